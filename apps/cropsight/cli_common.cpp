@@ -1,0 +1,64 @@
+#include "cli_common.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+
+#include "cropsight/io/config_yaml.hpp"
+
+namespace cropsight::cli {
+
+namespace {
+double now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+ConfigMap CommonOptions::config_map(const std::string& default_preset) const {
+  ConfigMap m;
+  const std::string preset = config.empty() ? default_preset : config;
+  if (!preset.empty()) m = io::load_config_map(io::find_preset(preset));
+  for (const auto& s : sets) {
+    auto [k, v] = parse_assignment(s);
+    m[k] = v;
+  }
+  return m;
+}
+
+void add_json_flag(CLI::App* cmd, CommonOptions& o) {
+  cmd->add_flag("--json", o.json, "Print one JSON object on stdout instead of text");
+}
+
+void add_config_options(CLI::App* cmd, CommonOptions& o) {
+  cmd->add_option("--config", o.config, "Preset name (configs/<name>.yaml) or YAML file");
+  cmd->add_option("--set", o.sets, "Override a parameter: key=value (repeatable)")->take_all();
+}
+
+void print_json(const nlohmann::json& j) {
+  std::cout << j.dump() << std::endl;
+}
+
+Progress::Progress(std::string what, long total, bool quiet, double min_interval_s)
+    : what_(std::move(what)), total_(total), quiet_(quiet), tty_(::isatty(2) != 0), min_interval_s_(min_interval_s), start_(now_s()) {}
+
+void Progress::update(long done) {
+  if (quiet_) return;
+  const double t = now_s();
+  if (t - last_ < min_interval_s_ && done < total_) return;
+  last_ = t;
+  const double elapsed = t - start_;
+  const double eta = done > 0 ? elapsed * double(total_ - done) / double(done) : 0.0;
+  std::fprintf(stderr, "%s%s %ld/%ld (%.0f%%, %.1f s, eta %.1f s)%s", tty_ ? "\r" : "", what_.c_str(), done, total_,
+               total_ ? 100.0 * double(done) / double(total_) : 100.0, elapsed, eta, tty_ ? "" : "\n");
+  std::fflush(stderr);
+}
+
+void Progress::finish() {
+  if (quiet_) return;
+  update(total_);
+  if (tty_) std::fprintf(stderr, "\n");
+}
+
+}  // namespace cropsight::cli

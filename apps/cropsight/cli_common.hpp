@@ -1,0 +1,46 @@
+#pragma once
+// Options and output helpers shared by every sub-command.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cropsight/core/config.hpp"
+
+namespace cropsight::cli {
+
+/// --json, --config PRESET and --set key=value, added to a sub-command that takes them.
+struct CommonOptions {
+  bool json = false;
+  std::string config;  ///< preset name (configs/<name>.yaml) or path to a YAML file
+  std::vector<std::string> sets;
+
+  /// The preset's values (when --config is given, else `default_preset` if non-empty) overlaid
+  /// with --set; keys are dotted paths. Throws Error naming the file or "--set".
+  ConfigMap config_map(const std::string& default_preset = "") const;
+};
+
+void add_json_flag(CLI::App* cmd, CommonOptions& o);
+void add_config_options(CLI::App* cmd, CommonOptions& o);
+
+/// Prints `j` as one line of JSON on stdout.
+void print_json(const nlohmann::json& j);
+
+/// Progress line on stderr ("\r" overwritten when stderr is a terminal, one line per update otherwise,
+/// at most every `min_interval_s`). Silent when `quiet`.
+class Progress {
+ public:
+  Progress(std::string what, long total, bool quiet = false, double min_interval_s = 1.0);
+  void update(long done);
+  void finish();
+
+ private:
+  std::string what_;
+  long total_;
+  bool quiet_, tty_;
+  double min_interval_s_;
+  double last_ = -1e9;
+  double start_;
+};
+
+}  // namespace cropsight::cli

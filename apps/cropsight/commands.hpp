@@ -1,0 +1,14 @@
+#pragma once
+// Every sub-command registers itself on its parent verb here. One file per sub-command
+// (cmd_<verb>[_<pipeline>].cpp) defines the matching function; main.cpp calls them.
+#include <CLI/CLI.hpp>
+
+namespace cropsight::cli {
+
+// Foundation (sequences, simulator)
+void add_simulate_broccoli(CLI::App& simulate);
+void add_info(CLI::App& app);
+void add_export(CLI::App& app);
+void add_render(CLI::App& app);
+
+}  // namespace cropsight::cli

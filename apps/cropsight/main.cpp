@@ -1,0 +1,49 @@
+// cropsight CLI entry point: builds the command tree and maps errors to one line + exit code.
+//   exit 0  success
+//   exit 2  bad input or usage (one line on stderr naming the file/option and the problem)
+//   exit 1  unexpected internal failure
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+#include "commands.hpp"
+#include "cropsight/core/error.hpp"
+
+int main(int argc, char** argv) {
+  spdlog::set_pattern("%v");
+  spdlog::set_level(spdlog::level::warn);
+  CLI::App app{"cropsight: 3D perception for harvesting and weeding robots"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "cropsight 0.1.0");
+
+  using namespace cropsight::cli;
+  auto* simulate = app.add_subcommand("simulate", "Simulate sequences with exact ground truth");
+  simulate->require_subcommand(1);
+  add_simulate_broccoli(*simulate);
+  add_info(app);
+  add_export(app);
+  add_render(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "cropsight: %s (see --help)\n", e.what());
+    return 2;
+  } catch (const cropsight::Error& e) {
+    std::fprintf(stderr, "cropsight: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "cropsight: internal error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

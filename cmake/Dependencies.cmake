@@ -1,0 +1,48 @@
+# Every dependency comes from a Debian package (scripts/install-deps.sh).
+find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+find_package(yaml-cpp REQUIRED)
+find_package(nlohmann_json 3 REQUIRED)
+find_package(CLI11 REQUIRED)
+find_package(spdlog REQUIRED)
+find_package(fmt REQUIRED)
+find_package(TBB REQUIRED)
+find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs calib3d video ml dnn)
+find_package(Threads REQUIRED)
+
+# PCL: only the component libraries we use, found directly. PCL's own CMake config pulls in
+# VTK (and through it MPI and Qt), which we never use and which slows configuration down.
+find_path(PCL_INCLUDE_DIR pcl/point_types.h PATH_SUFFIXES pcl-1.13 pcl-1.14 pcl-1.12 REQUIRED)
+set(CROPSIGHT_PCL_COMPONENTS common io io_ply features search kdtree segmentation filters surface octree sample_consensus)
+set(CROPSIGHT_PCL_LIBS)
+foreach(c IN LISTS CROPSIGHT_PCL_COMPONENTS)
+  find_library(PCL_${c}_LIBRARY NAMES pcl_${c} REQUIRED)
+  list(APPEND CROPSIGHT_PCL_LIBS ${PCL_${c}_LIBRARY})
+endforeach()
+find_package(Boost REQUIRED COMPONENTS filesystem iostreams)
+find_library(LZ4_LIBRARY NAMES lz4 REQUIRED)
+find_path(FLANN_INCLUDE_DIR flann/flann.hpp REQUIRED)
+find_library(FLANN_LIBRARY NAMES flann_cpp REQUIRED)
+find_library(QHULL_LIBRARY NAMES qhull_r REQUIRED)
+add_library(cropsight_pcl INTERFACE)
+target_include_directories(cropsight_pcl SYSTEM INTERFACE ${PCL_INCLUDE_DIR} ${FLANN_INCLUDE_DIR})
+target_link_libraries(cropsight_pcl INTERFACE ${CROPSIGHT_PCL_LIBS} ${FLANN_LIBRARY} ${QHULL_LIBRARY} ${LZ4_LIBRARY}
+  Boost::filesystem Boost::iostreams Eigen3::Eigen)
+
+# nanoflann is header-only.
+find_path(NANOFLANN_INCLUDE_DIR nanoflann.hpp REQUIRED)
+add_library(cropsight_nanoflann INTERFACE)
+target_include_directories(cropsight_nanoflann SYSTEM INTERFACE ${NANOFLANN_INCLUDE_DIR})
+
+# libsvm ships no CMake config.
+find_path(LIBSVM_INCLUDE_DIR NAMES libsvm/svm.h REQUIRED)
+find_library(LIBSVM_LIBRARY NAMES svm REQUIRED)
+add_library(cropsight_libsvm INTERFACE)
+target_include_directories(cropsight_libsvm SYSTEM INTERFACE ${LIBSVM_INCLUDE_DIR})
+target_link_libraries(cropsight_libsvm INTERFACE ${LIBSVM_LIBRARY})
+
+if(CROPSIGHT_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+endif()
+if(CROPSIGHT_BUILD_BENCH)
+  find_package(benchmark REQUIRED)
+endif()

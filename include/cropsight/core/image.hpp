@@ -1,0 +1,38 @@
+#pragma once
+// A minimal owned, row-major image. Kept free of OpenCV so that the public headers stay light;
+// io/ converts to and from cv::Mat inside its .cpp files.
+#include <cstdint>
+#include <cstddef>
+#include <vector>
+
+namespace cropsight {
+
+struct Rgb8 {
+  std::uint8_t r = 0, g = 0, b = 0;
+  friend bool operator==(const Rgb8&, const Rgb8&) = default;
+};
+
+template <typename T>
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<T> data;  ///< row-major, width*height elements
+
+  Image() = default;
+  Image(int w, int h, T fill = T{}) : width(w), height(h), data(std::size_t(w) * std::size_t(h), fill) {}
+
+  bool empty() const { return data.empty(); }
+  std::size_t size() const { return data.size(); }
+  T& at(int u, int v) { return data[std::size_t(v) * std::size_t(width) + std::size_t(u)]; }
+  const T& at(int u, int v) const { return data[std::size_t(v) * std::size_t(width) + std::size_t(u)]; }
+  T* row(int v) { return data.data() + std::size_t(v) * std::size_t(width); }
+  const T* row(int v) const { return data.data() + std::size_t(v) * std::size_t(width); }
+  friend bool operator==(const Image&, const Image&) = default;
+};
+
+using DepthImage = Image<std::uint16_t>;  ///< raw sensor units; metres = value * depth_scale; 0 = no return
+using LabelImage = Image<std::uint16_t>;  ///< instance id per pixel, 0 = none
+using ColorImage = Image<Rgb8>;
+using GrayImage = Image<std::uint8_t>;
+
+}  // namespace cropsight

@@ -1,0 +1,45 @@
+#pragma once
+// Per-stage wall-clock timing. Not thread-safe: one StageTimer per thread / pipeline instance.
+#include <chrono>
+#include <string>
+#include <vector>
+
+namespace cropsight {
+
+class StageTimer {
+ public:
+  struct Stage {
+    std::string name;
+    double total_ms = 0.0;
+    long count = 0;
+    double mean_ms() const { return count ? total_ms / double(count) : 0.0; }
+  };
+
+  /// RAII scope: adds its lifetime to stage `name`.
+  class Scope {
+   public:
+    Scope(StageTimer& t, std::string name)
+        : timer_(t), name_(std::move(name)), start_(std::chrono::steady_clock::now()) {}
+    ~Scope() {
+      timer_.add(name_, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count());
+    }
+    Scope(const Scope&) = delete;
+    Scope& operator=(const Scope&) = delete;
+
+   private:
+    StageTimer& timer_;
+    std::string name_;
+    std::chrono::steady_clock::time_point start_;
+  };
+
+  Scope scope(std::string name) { return Scope(*this, std::move(name)); }
+  void add(const std::string& name, double ms);
+  const std::vector<Stage>& stages() const { return stages_; }  ///< in first-seen order
+  double total_ms() const;
+  void clear() { stages_.clear(); }
+
+ private:
+  std::vector<Stage> stages_;
+};
+
+}  // namespace cropsight

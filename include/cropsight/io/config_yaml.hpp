@@ -1,0 +1,16 @@
+#pragma once
+// YAML presets (configs/*.yaml) as flat ConfigMaps: nested maps become dotted keys
+// ("oes.depth_tolerance"), sequences become "[a, b, c]" text.
+#include <filesystem>
+
+#include "cropsight/core/config.hpp"
+
+namespace cropsight::io {
+
+/// Throws Error(path, ...) for a missing file or malformed YAML (with line number).
+ConfigMap load_config_map(const std::filesystem::path& path);
+/// Resolves a preset name ("broccoli-uk") to configs/<name>.yaml under the source or install
+/// tree, or returns `name_or_path` itself when it names an existing file.
+std::filesystem::path find_preset(const std::string& name_or_path);
+
+}  // namespace cropsight::io

@@ -1,0 +1,114 @@
+#pragma once
+// The RGB-D sequence format (docs/formats.md):
+//
+//   SEQ/camera.yaml          width, height, fx, fy, cx, cy, depth_scale, [distortion], [sensor]
+//   SEQ/depth/000000.png     16-bit depth, 0 = no return
+//   SEQ/color/000000.png     8-bit colour registered to depth (optional)
+//   SEQ/labels/000000.png    16-bit instance id per pixel, 0 = other (optional; needs depth)
+//   SEQ/poses.csv            frame,timestamp,x,y,z camera position in the field frame (optional)
+//   SEQ/groundtruth.json     {"instances": [{"id", "position": [x,y,z], "diameter_mm", ...}], ...}
+//
+// Readers validate everything and throw cropsight::Error naming the offending file.
+// Not thread-safe per object; distinct readers may be used from distinct threads.
+#include <Eigen/Core>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cropsight/core/camera.hpp"
+#include "cropsight/core/rgbd_frame.hpp"
+
+namespace cropsight::io {
+
+/// One ground-truth instance of a sequence (e.g. a broccoli head).
+struct InstanceTruth {
+  int id = 0;                                          ///< matches the label image value
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< field frame, metres
+  double diameter_mm = 0.0;
+  std::map<std::string, double> extra;  ///< other numeric truth (e.g. "height_m", "harvested")
+};
+
+struct GroundTruth {
+  std::vector<InstanceTruth> instances;
+  std::map<std::string, std::string> attributes;  ///< free-form sequence-level truth (variety, seed...)
+};
+
+struct CameraPose {
+  int frame = 0;
+  double timestamp = 0.0;                              ///< seconds
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< field frame, metres
+};
+
+struct SequenceInfo {
+  std::filesystem::path dir;
+  CameraIntrinsics camera;
+  int frames = 0;
+  bool has_color = false;
+  bool has_labels = false;
+  bool has_poses = false;
+  bool has_groundtruth = false;
+};
+
+/// Reads camera.yaml. Throws Error(path, ...) for a missing file, bad YAML or bad values.
+CameraIntrinsics read_camera_yaml(const std::filesystem::path& path);
+/// Writes camera.yaml atomically.
+void write_camera_yaml(const std::filesystem::path& path, const CameraIntrinsics& camera);
+
+class SequenceReader {
+ public:
+  /// Opens and validates the layout of `dir`: camera.yaml, frames numbered from 0 without gaps,
+  /// colour/labels frame sets equal to the depth set, poses/groundtruth parse. Image contents are
+  /// checked (bit depth, size) when each frame is read.
+  explicit SequenceReader(std::filesystem::path dir);
+
+  const SequenceInfo& info() const { return info_; }
+  int size() const { return info_.frames; }
+  /// Reads frame `index` (0-based); throws Error naming the image file on a wrong bit depth,
+  /// channel count or size.
+  RgbdFrame read(int index) const;
+  const std::vector<CameraPose>& poses() const { return poses_; }  ///< empty when no poses.csv
+  const GroundTruth& groundtruth() const { return groundtruth_; }  ///< empty when absent
+
+  std::filesystem::path depth_path(int index) const;
+  std::filesystem::path color_path(int index) const;
+  std::filesystem::path labels_path(int index) const;
+
+ private:
+  SequenceInfo info_;
+  std::vector<CameraPose> poses_;
+  GroundTruth groundtruth_;
+};
+
+/// Writes a sequence. Everything goes to a temporary sibling directory that is renamed to `dir`
+/// by finish(); a writer destroyed without finish() removes its temporary directory, so an
+/// interrupted run never leaves a sequence that looks complete.
+class SequenceWriter {
+ public:
+  /// Throws Error(dir, ...) when `dir` exists and `overwrite` is false.
+  SequenceWriter(std::filesystem::path dir, CameraIntrinsics camera, bool overwrite = false);
+  ~SequenceWriter();
+  SequenceWriter(const SequenceWriter&) = delete;
+  SequenceWriter& operator=(const SequenceWriter&) = delete;
+
+  /// Frames must arrive in order 0, 1, 2, ...; colour/labels presence must not change.
+  void write(const RgbdFrame& frame);
+  void set_groundtruth(GroundTruth truth);
+  /// Writes poses.csv (from frames' camera_position and timestamp), groundtruth.json, then renames.
+  void finish();
+
+ private:
+  std::filesystem::path dir_, tmp_;
+  CameraIntrinsics camera_;
+  bool overwrite_;
+  int next_ = 0;
+  bool color_ = false, labels_ = false, finished_ = false;
+  std::vector<CameraPose> poses_;
+  std::optional<GroundTruth> truth_;
+};
+
+/// Frame file name: zero-padded to six digits, e.g. 000042.png.
+std::string frame_file_name(int index);
+
+}  // namespace cropsight::io

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Installs every build and run dependency of cropsight from Debian packages.
+# Idempotent: does nothing when everything is present; runs `apt-get update` only when a
+# package is missing and apt cannot find it in its current lists.
+#
+# Usage: scripts/install-deps.sh [--check]   (--check: only report what is missing, exit 1 if any)
+set -euo pipefail
+
+PACKAGES=(
+  # toolchain
+  build-essential cmake ccache pkg-config git
+  # core libraries (ARCHITECTURE.md "Dependencies")
+  libeigen3-dev libopencv-dev libpcl-dev libnanoflann-dev libtbb-dev libsvm-dev
+  libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
+  # neural networks and gradient-boosted trees
+  libtorch-dev libxgboost-dev
+  # fast BLAS for libtorch/OpenCV (the generic libblas.so.3 is the slow reference one)
+  libopenblas0-pthread
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # report rendering test (headless browser)
+  chromium
+)
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [[ ${#missing[@]} -eq 0 ]]; then
+  exit 0
+fi
+if [[ "${1:-}" == "--check" ]]; then
+  echo "missing packages: ${missing[*]}"
+  exit 1
+fi
+
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then
+  command -v sudo >/dev/null || { echo "install-deps: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+  SUDO="sudo"
+fi
+export DEBIAN_FRONTEND=noninteractive
+echo "install-deps: installing ${missing[*]}"
+# Update the package lists only when apt does not know one of the missing packages.
+need_update=0
+for p in "${missing[@]}"; do
+  if ! apt-cache show "$p" >/dev/null 2>&1; then need_update=1; break; fi
+done
+if [[ $need_update -eq 1 || ! -d /var/lib/apt/lists || -z "$(ls -A /var/lib/apt/lists 2>/dev/null | grep -v lock)" ]]; then
+  $SUDO apt-get update -qq
+fi
+if ! $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"; then
+  # stale lists: refresh once and retry
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi

@@ -1,0 +1,69 @@
+#include "cropsight/io/config_yaml.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cstdlib>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/io/files.hpp"
+
+namespace cropsight::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+void flatten(const YAML::Node& node, const std::string& prefix, ConfigMap& out, const fs::path& path) {
+  switch (node.Type()) {
+    case YAML::NodeType::Map:
+      for (const auto& kv : node) {
+        const std::string key = kv.first.as<std::string>();
+        flatten(kv.second, prefix.empty() ? key : prefix + "." + key, out, path);
+      }
+      break;
+    case YAML::NodeType::Sequence: {
+      std::string text = "[";
+      for (std::size_t i = 0; i < node.size(); ++i) {
+        if (!node[i].IsScalar())
+          throw Error(path.string(), "'" + prefix + "' must be a list of scalars");
+        text += (i ? ", " : "") + node[i].as<std::string>();
+      }
+      out[prefix] = text + "]";
+      break;
+    }
+    case YAML::NodeType::Scalar:
+      out[prefix] = node.as<std::string>();
+      break;
+    case YAML::NodeType::Null:
+    case YAML::NodeType::Undefined:
+      break;
+  }
+}
+}  // namespace
+
+ConfigMap load_config_map(const fs::path& path) {
+  const std::string text = read_file(path);
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw Error(path.string(), "malformed YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
+  if (!root.IsMap() && !root.IsNull()) throw Error(path.string(), "expected a YAML mapping at the top level");
+  ConfigMap out;
+  flatten(root, "", out, path);
+  return out;
+}
+
+fs::path find_preset(const std::string& name_or_path) {
+  if (fs::exists(name_or_path)) return name_or_path;
+  std::vector<fs::path> roots;
+  if (const char* env = std::getenv("CROPSIGHT_CONFIGS")) roots.emplace_back(env);
+  roots.emplace_back(fs::path(CROPSIGHT_SOURCE_DIR) / "configs");
+  for (const auto& r : roots) {
+    const fs::path p = r / (name_or_path + ".yaml");
+    if (fs::exists(p)) return p;
+  }
+  throw Error(name_or_path, "no such preset or file (looked in configs/)");
+}
+
+}  // namespace cropsight::io
