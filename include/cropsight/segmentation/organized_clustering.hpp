@@ -1,0 +1,112 @@
+#pragma once
+// The two organised clusterings of Montes et al. 2020 as predicates of the one flood fill
+// (flood_fill.hpp):
+//
+//  OES (organised edge segmentation): regions bounded by organised edges (geometry/
+//   organized_edges.hpp). A pixel is a member when it is valid and carries none of the edge
+//   labels in `barrier_labels`; 4-neighbours join when their Euclidean distance is below
+//   `distance_tolerance` (so two surfaces that touch in the image without an edge pixel between
+//   them still separate when they are far apart in 3D).
+//  ORG (organised region growing): a pixel is a member when it is valid and has a finite normal;
+//   4-neighbours join when the angle between their normals is below `angle_threshold` (and their
+//   distance below `distance_tolerance`); growth continues only from pixels whose curvature is
+//   below `curvature_threshold` (PCL RegionGrowing's rule), and only such pixels seed segments.
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "cropsight/core/organized_cloud.hpp"
+#include "cropsight/core/segment.hpp"
+#include "cropsight/segmentation/flood_fill.hpp"
+
+namespace cropsight::segmentation {
+
+struct OesConfig {
+  float distance_tolerance = 0.01f;  ///< m; max 3D distance between 4-neighbours
+  int barrier_labels = 7;            ///< bit mask of geometry::EdgeLabel (1 NaN boundary | 2 occluding | 4 occluded)
+  int min_size = 500;                ///< points
+  int max_size = 10000;              ///< points
+
+  template <class V>
+  void visit(V& v) {
+    v("distance_tolerance", distance_tolerance,
+      "m; max distance between 4-neighbours of one segment (PCL EuclideanClusterComparator as in its organised "
+      "segmentation demo: 0.01 m)");
+    v("barrier_labels", barrier_labels,
+      "bit mask of edge labels that stop a segment: 1 NaN boundary, 2 occluding, 4 occluded (default 7: all)");
+    v("min_size", min_size, "points; smaller segments are dropped (paper FEC UK value: 500, Montes et al. 2020)");
+    v("max_size", max_size,
+      "points; larger segments (ground) are dropped (paper FEC value: 10000, Montes et al. 2020)");
+  }
+};
+
+struct OrgConfig {
+  float angle_threshold = 0.0872665f;  ///< rad (5°); max angle between neighbouring normals
+  float curvature_threshold = 0.05f;   ///< surface variation; growth stops at pixels above it
+  float distance_tolerance = 0.01f;    ///< m; max 3D distance between 4-neighbours
+  int min_size = 500;                  ///< points
+  int max_size = 10000;                ///< points
+
+  template <class V>
+  void visit(V& v) {
+    v("angle_threshold", angle_threshold, "rad; max angle between 4-neighbour normals (default 5 deg = 0.0873)");
+    v("curvature_threshold", curvature_threshold,
+      "surface variation above which a point does not grow the region (PCL RegionGrowing default 0.05)");
+    v("distance_tolerance", distance_tolerance, "m; max distance between 4-neighbours of one segment (0.01 m)");
+    v("min_size", min_size, "points; smaller segments are dropped (paper FEC UK value: 500, Montes et al. 2020)");
+    v("max_size", max_size,
+      "points; larger segments (ground) are dropped (paper FEC value: 10000, Montes et al. 2020)");
+  }
+};
+
+/// OES predicate over raw arrays (cloud x/y/z and edge labels), all of width·height.
+struct OesPredicate {
+  const float* x;
+  const float* y;
+  const float* z;
+  const std::uint8_t* edges;  // geometry::EdgeLabel per pixel
+  std::uint8_t barrier;       // labels that exclude a pixel
+  float tol2;                 // squared distance tolerance, m²
+
+  bool member(int q) const { return std::isfinite(z[q]) && (edges[q] & barrier) == 0; }
+  bool seed(int s) const { return member(s); }
+  bool expands(int) const { return true; }
+  bool similar(int p, int q) const {
+    const float dx = x[p] - x[q], dy = y[p] - y[q], dz = z[p] - z[q];
+    return dx * dx + dy * dy + dz * dz < tol2;
+  }
+};
+
+/// ORG predicate over raw arrays (positions, unit normals, curvature), all of width·height.
+struct OrgPredicate {
+  const float* x;
+  const float* y;
+  const float* z;
+  const float* nx;
+  const float* ny;
+  const float* nz;
+  const float* curvature;
+  float cos_angle;      // cos(angle_threshold)
+  float max_curvature;  // curvature_threshold
+  float tol2;           // squared distance tolerance, m²
+
+  bool member(int q) const { return std::isfinite(z[q]) && std::isfinite(nx[q]); }
+  bool seed(int s) const { return member(s) && expands(s); }
+  bool expands(int p) const { return curvature[p] < max_curvature; }
+  bool similar(int p, int q) const {
+    const float dx = x[p] - x[q], dy = y[p] - y[q], dz = z[p] - z[q];
+    if (dx * dx + dy * dy + dz * dz >= tol2) return false;
+    return nx[p] * nx[q] + ny[p] * ny[q] + nz[p] * nz[q] > cos_angle;  // normals face the camera: no abs
+  }
+};
+
+/// OES segmentation. `edges` from geometry::detect_organized_edges on the same cloud.
+/// Throws Error("oes", ...) when sizes disagree or the config is invalid.
+std::vector<Segment> segment_oes(const OrganizedCloud& cloud, const std::vector<std::uint8_t>& edges,
+                                 const OesConfig& cfg, FloodFillWorkspace& ws);
+
+/// ORG segmentation; requires cloud.has_normals() (geometry::IntegralNormalEstimator).
+/// Throws Error("org", ...) when normals are missing or the config is invalid.
+std::vector<Segment> segment_org(const OrganizedCloud& cloud, const OrgConfig& cfg, FloodFillWorkspace& ws);
+
+}  // namespace cropsight::segmentation
