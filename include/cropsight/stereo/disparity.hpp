@@ -1,0 +1,94 @@
+#pragma once
+// Dense disparity from a rectified stereo pair (left image is the reference).
+//
+// compute_disparity() is the pipeline's matcher: OpenCV's semi-global block matcher (SGBM,
+// Hirschmüller 2008) as the engine, with
+//   - left padding so that the left-most `num_disparities` columns get a disparity too (OpenCV
+//     leaves them invalid),
+//   - a left-right consistency check (OpenCV's internal one, disp12MaxDiff, plus an optional
+//     explicit check against a second match of the horizontally mirrored pair),
+//   - matching features: rank transform + grey level (robust to exposure differences between
+//     the cameras); measured on Middlebury it lowers mean bad-1 by ~1 point over raw colour,
+//   - sub-pixel disparities (OpenCV's parabola fit, 1/16 px),
+//   - hole filling: every invalid pixel takes the smaller (background) of its nearest valid
+//     left / right neighbours on the scan line, then a median over the filled pixels,
+// so that every pixel gets an estimate (the issue's "no holes on textured surfaces" rule and the
+// Middlebury rule where a missing estimate counts as an error).
+//
+// Disparity images: pixels, float, x_left - x_right >= 0; NaN = no estimate.
+#include <string>
+
+#include "cropsight/core/image.hpp"
+
+namespace cropsight::stereo {
+
+using DisparityImage = Image<float>;
+
+struct DisparityConfig {
+  int num_disparities = 128;  ///< search range [min_disparity, min_disparity + num_disparities); multiple of 16
+  int min_disparity = 0;      ///< pixels
+  int block_size = 5;         ///< matching window side (odd)
+  double p1 = 32;             ///< SGM small-jump penalty per channel per window pixel (P1 = p1*cn*bs^2)
+  double p2 = 64;             ///< SGM large-jump penalty per channel per window pixel (P2 = p2*cn*bs^2)
+  int uniqueness_ratio = 10;  ///< percent margin of best over second-best cost
+  int speckle_window = 100;   ///< pixels; connected regions smaller than this are invalidated
+  int speckle_range = 2;      ///< pixels; max disparity step inside one speckle region
+  int disp12_max_diff = 1;    ///< pixels; OpenCV's internal left-right check tolerance (-1 off)
+  int pre_filter_cap = 63;    ///< clip of OpenCV's x-Sobel prefilter
+  int lr_check = 1;           ///< px; explicit left-right check against the mirrored match (-1 off)
+  std::string mode = "3way";  ///< "sgbm" (5 paths), "hh" (8 paths), "hh4", "3way"
+  bool pad_left = true;       ///< pad left so the left-most columns get a disparity
+  bool fill_holes = true;     ///< fill invalid pixels (background-favouring scan-line fill + median)
+  int median = 5;             ///< median window (0/1 = none) applied after filling
+  bool use_color = true;      ///< match on colour when both images have colour (ignored when rank_radius > 0)
+  int rank_radius = 3;        ///< px; rank-transform window radius of the matching features (0 = raw image)
+
+  template <class V>
+  void visit(V& v) {
+    v("num_disparities", num_disparities, "px; disparity search range, multiple of 16 (paper: 128 at 640x480)");
+    v("min_disparity", min_disparity, "px; smallest disparity searched");
+    v("block_size", block_size, "px; SGBM matching window side, odd");
+    v("p1", p1, "SGM penalty for +-1 px disparity changes, per channel and window pixel (OpenCV sample: 8)");
+    v("p2", p2, "SGM penalty for larger disparity jumps, per channel and window pixel (OpenCV sample: 32)");
+    v("uniqueness_ratio", uniqueness_ratio, "percent; best cost must beat the second best by this margin");
+    v("speckle_window", speckle_window, "px; disparity regions smaller than this are removed");
+    v("speckle_range", speckle_range, "px; disparity variation allowed inside a region");
+    v("disp12_max_diff", disp12_max_diff, "px; left-right consistency tolerance (-1 disables)");
+    v("pre_filter_cap", pre_filter_cap, "clip value of the x-derivative prefilter");
+    v("lr_check", lr_check, "px; explicit left-right check tolerance against the mirrored match (-1 disables)");
+    v("mode", mode, "SGM variant: sgbm | hh | hh4 | 3way");
+    v("pad_left", pad_left, "pad the images on the left so the left-most columns get disparities");
+    v("fill_holes", fill_holes, "fill pixels without a disparity from their scan-line neighbours");
+    v("median", median, "px; median window applied after hole filling (0 = none)");
+    v("use_color", use_color, "match on colour images when available (raw-image matching only)");
+    v("rank_radius", rank_radius,
+      "px; match on (rank transform, grey, rank transform) features, window radius (0 = raw)");
+  }
+};
+
+/// Left-reference disparity of a rectified pair. Images must have equal, non-zero size, else
+/// Error(where, ...). Colour images are matched in colour when cfg.use_color.
+DisparityImage compute_disparity(const ColorImage& left, const ColorImage& right, const DisparityConfig& cfg,
+                                 const std::string& where = "stereo pair");
+DisparityImage compute_disparity(const GrayImage& left, const GrayImage& right, const DisparityConfig& cfg,
+                                 const std::string& where = "stereo pair");
+
+/// Plain OpenCV StereoSGBM with the parameters of OpenCV's stereo_match sample (block 3 → here
+/// `block_size`, P1 = 8·cn·bs², P2 = 32·cn·bs², uniqueness 10, speckle 100/32, disp12MaxDiff 1),
+/// no padding, no filling: the baseline the issue compares against. Invalid pixels are NaN.
+DisparityImage opencv_sgbm_disparity(const ColorImage& left, const ColorImage& right, int num_disparities,
+                                     int block_size = 3, const std::string& where = "stereo pair");
+
+/// Winner-take-all block matching with a square window (the paper's SAD / SSD baselines, 55×55),
+/// integer disparities, computed with box filters. Pixels whose window leaves the image get NaN.
+enum class BlockCost { kSad, kSsd };
+DisparityImage block_matching(const GrayImage& left, const GrayImage& right, int num_disparities, int window,
+                              BlockCost cost, const std::string& where = "stereo pair");
+
+/// Fills NaN pixels in place: each takes the smaller of its nearest valid left / right neighbours
+/// on the same row (occlusions belong to the background), then a `median`-window median is
+/// applied to the filled pixels only. Rows without any valid pixel are filled from the rows above
+/// or below. A disparity image with no valid pixel at all is left unchanged.
+void fill_disparity_holes(DisparityImage& disparity, int median);
+
+}  // namespace cropsight::stereo

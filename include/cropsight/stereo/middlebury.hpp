@@ -1,0 +1,35 @@
+#pragma once
+// The four classic Middlebury pairs (../shared/data/middlebury/) and the bad-pixel metric.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cropsight/core/image.hpp"
+#include "cropsight/stereo/disparity.hpp"
+
+namespace cropsight::stereo {
+
+struct MiddleburyPair {
+  std::string name;
+  ColorImage left, right;
+  DisparityImage truth;   ///< pixels, NaN where the ground truth is unknown
+  int max_disparity = 0;  ///< largest true disparity (data README)
+};
+
+/// Loads tsukuba, venus, teddy and cones from `dir` (each a folder with left.png, right.png and
+/// disp_left.pgm / disp_left.png). Throws Error(file, ...) for a missing or unreadable file.
+std::vector<MiddleburyPair> load_middlebury(const std::filesystem::path& dir);
+
+struct BadPixelStats {
+  double bad1 = 0;     ///< percent of ground-truth pixels with |d - d_true| > 1 or no estimate
+  double bad2 = 0;     ///< same with threshold 2
+  double invalid = 0;  ///< percent of ground-truth pixels without estimate
+  long pixels = 0;     ///< ground-truth pixels counted
+};
+
+/// Bad-pixel rates over every pixel with ground truth; NaN estimates count as errors.
+/// Sizes must agree, else Error(where, ...).
+BadPixelStats bad_pixels(const DisparityImage& estimate, const DisparityImage& truth,
+                         const std::string& where = "disparity");
+
+}  // namespace cropsight::stereo

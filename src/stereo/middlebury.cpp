@@ -1,0 +1,67 @@
+#include "cropsight/stereo/middlebury.hpp"
+
+#include <cmath>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/stereo/stereo_io.hpp"
+
+namespace cropsight::stereo {
+
+namespace fs = std::filesystem;
+
+std::vector<MiddleburyPair> load_middlebury(const fs::path& dir) {
+  if (!fs::is_directory(dir)) throw Error(dir.string(), "Middlebury directory not found");
+  struct Spec {
+    const char* name;
+    const char* gt;
+    double scale;
+    int max_disp;
+  };
+  // GT scales and ranges from ../shared/data/README.md.
+  const Spec specs[] = {{"tsukuba", "disp_left.pgm", 16, 15},
+                        {"venus", "disp_left.pgm", 8, 19},
+                        {"teddy", "disp_left.png", 4, 59},
+                        {"cones", "disp_left.png", 4, 59}};
+  std::vector<MiddleburyPair> out;
+  for (const Spec& s : specs) {
+    MiddleburyPair p;
+    p.name = s.name;
+    p.left = read_color(dir / s.name / "left.png");
+    p.right = read_color(dir / s.name / "right.png");
+    p.truth = read_disparity(dir / s.name / s.gt, s.scale);
+    p.max_disparity = s.max_disp;
+    if (p.left.width != p.truth.width || p.left.height != p.truth.height)
+      throw Error((dir / s.name / s.gt).string(), "ground truth size differs from the images");
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
+BadPixelStats bad_pixels(const DisparityImage& est, const DisparityImage& truth, const std::string& where) {
+  if (est.width != truth.width || est.height != truth.height)
+    throw Error(where, "estimate and ground truth differ in size");
+  long n = 0, b1 = 0, b2 = 0, inv = 0;
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    const float t = truth.data[i];
+    if (std::isnan(t)) continue;
+    ++n;
+    const float e = est.data[i];
+    if (std::isnan(e)) {
+      ++inv, ++b1, ++b2;
+      continue;
+    }
+    const float err = std::fabs(e - t);
+    b1 += err > 1.0f;
+    b2 += err > 2.0f;
+  }
+  BadPixelStats s;
+  s.pixels = n;
+  if (n > 0) {
+    s.bad1 = 100.0 * double(b1) / double(n);
+    s.bad2 = 100.0 * double(b2) / double(n);
+    s.invalid = 100.0 * double(inv) / double(n);
+  }
+  return s;
+}
+
+}  // namespace cropsight::stereo
