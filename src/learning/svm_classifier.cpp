@@ -1,0 +1,148 @@
+#include "learning/svm_classifier.hpp"
+
+#include <libsvm/svm.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <vector>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/io/files.hpp"
+#include "learning/temp_file.hpp"
+
+namespace cropsight::learning::detail {
+
+namespace {
+void silent(const char*) {}  // libsvm prints optimisation progress on stdout otherwise
+}  // namespace
+
+SvmClassifier::SvmClassifier(const Dataset& data, const ClassifierParams& params, const std::string& where)
+    : type_(params.type), dim_(data.dim) {
+  const std::size_t n = data.size();
+  const std::size_t npos = data.positives(), nneg = n - npos;
+  if (npos == 0 || nneg == 0)
+    throw Error(where, "training data needs both classes (positives " + std::to_string(npos) + ", negatives " +
+                           std::to_string(nneg) + ")");
+  // Dense rows as libsvm node lists: dim entries plus the -1 terminator each.
+  std::vector<svm_node> nodes(n * std::size_t(dim_ + 1));
+  std::vector<svm_node*> rows(n);
+  std::vector<double> y(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    svm_node* r = nodes.data() + i * std::size_t(dim_ + 1);
+    const float* x = data.row(i);
+    for (int j = 0; j < dim_; ++j) r[j] = {j + 1, double(x[j])};
+    r[dim_] = {-1, 0.0};
+    rows[i] = r;
+    y[i] = data.labels[i] == 1 ? 1.0 : -1.0;
+  }
+  svm_problem prob{};
+  prob.l = int(n);
+  prob.y = y.data();
+  prob.x = rows.data();
+
+  rbf_ = params.type == "svm-rbf";
+  svm_parameter p{};
+  p.svm_type = C_SVC;
+  p.kernel_type = rbf_ ? RBF : LINEAR;
+  p.gamma = rbf_ ? params.rbf_gamma : 0.0;
+  p.C = rbf_ ? params.rbf_c : params.linear_c;
+  p.cache_size = params.svm_cache_mb;
+  p.eps = params.svm_eps;
+  p.shrinking = 1;
+  p.probability = 0;
+  // Class weights n / (k · n_j) with k = 2 classes: each class contributes equally to the loss.
+  int weight_label[2] = {1, -1};
+  double weight[2] = {double(n) / (2.0 * double(npos)), double(n) / (2.0 * double(nneg))};
+  if (params.balanced_weights) {
+    p.nr_weight = 2;
+    p.weight_label = weight_label;
+    p.weight = weight;
+  }
+  if (const char* msg = svm_check_parameter(&prob, &p)) throw Error(where, std::string("libsvm: ") + msg);
+  svm_set_print_string_function(&silent);
+  svm_model* trained = svm_train(&prob, &p);
+  // The trained model points into `nodes`; go through libsvm's own text format so that the
+  // object holds exactly what a saved file holds (and owns its memory).
+  TempFile tmp;
+  const int rc = svm_save_model(tmp.path().c_str(), trained);
+  svm_free_and_destroy_model(&trained);
+  if (rc != 0) throw Error(tmp.path().string(), "libsvm could not write its model");
+  load_text(io::read_file(tmp.path()), where);
+}
+
+SvmClassifier::SvmClassifier(const ClassifierParams& params, int dim, const std::string& libsvm_text,
+                             const std::string& where)
+    : type_(params.type), dim_(dim) {
+  load_text(libsvm_text, where);
+}
+
+SvmClassifier::~SvmClassifier() {
+  if (model_) svm_free_and_destroy_model(&model_);
+}
+
+void SvmClassifier::load_text(const std::string& text, const std::string& where) {
+  {
+    TempFile tmp;
+    io::write_file_atomic(tmp.path(), text);
+    model_ = svm_load_model(tmp.path().c_str());
+  }
+  if (!model_) throw Error(where, "libsvm cannot parse the embedded SVM model");
+  text_ = text;
+  const svm_parameter& p = model_->param;
+  if (p.svm_type != C_SVC || model_->nr_class != 2) throw Error(where, "SVM model is not a two-class C-SVC");
+  const bool want_rbf = type_ == "svm-rbf";
+  if ((want_rbf && p.kernel_type != RBF) || (!want_rbf && p.kernel_type != LINEAR))
+    throw Error(where, "SVM model kernel does not match classifier type '" + type_ + "'");
+  rbf_ = want_rbf;
+  gamma_ = p.gamma;
+  const int l0 = model_->label[0], l1 = model_->label[1];
+  if (!((l0 == 1 && l1 == -1) || (l0 == -1 && l1 == 1))) throw Error(where, "SVM model labels must be +1 and -1");
+  // libsvm's decision value is positive for label[0]; flip so that positive always means head.
+  sign_ = l0 == 1 ? 1.0f : -1.0f;
+  rho_ = float(model_->rho[0]);
+  const int l = model_->l;
+  sv_.setZero(l, dim_);
+  coef_.resize(l);
+  for (int i = 0; i < l; ++i) {
+    coef_[i] = float(model_->sv_coef[0][i]);
+    for (const svm_node* nd = model_->SV[i]; nd->index != -1; ++nd) {
+      if (nd->index < 1 || nd->index > dim_)
+        throw Error(where, "SVM support vector has feature index " + std::to_string(nd->index) + " outside 1.." +
+                               std::to_string(dim_));
+      sv_(i, nd->index - 1) = float(nd->value);
+    }
+  }
+  if (!sv_.allFinite() || !coef_.allFinite() || !std::isfinite(rho_))
+    throw Error(where, "SVM model has non-finite values");
+  sv_norm2_ = sv_.rowwise().squaredNorm();
+  w_ = sv_.transpose() * coef_;
+}
+
+float SvmClassifier::score(const float* x) const {
+  const Eigen::Map<const Eigen::VectorXf> z(x, dim_);
+  float dec;
+  if (rbf_) {
+    // K(sv, z) = exp(-γ |sv − z|²) with |sv − z|² = |sv|² + |z|² − 2 sv·z: one vectorised dot
+    // product per (contiguous, row-major) support vector and no temporary allocation.
+    const float z2 = z.squaredNorm();
+    const float g = float(gamma_);
+    float s = 0.0f;
+    for (Eigen::Index i = 0; i < sv_.rows(); ++i)
+      s += coef_[i] * std::exp(-g * std::max(0.0f, sv_norm2_[i] + z2 - 2.0f * sv_.row(i).dot(z)));
+    dec = s - rho_;
+  } else {
+    dec = w_.dot(z) - rho_;
+  }
+  return sign_ * dec;
+}
+
+double SvmClassifier::libsvm_score(const float* x) const {
+  std::vector<svm_node> nodes(std::size_t(dim_) + 1);
+  for (int j = 0; j < dim_; ++j) nodes[std::size_t(j)] = {j + 1, double(x[j])};
+  nodes[std::size_t(dim_)] = {-1, 0.0};
+  double dec = 0.0;
+  svm_predict_values(model_, nodes.data(), &dec);
+  return double(sign_) * dec;
+}
+
+}  // namespace cropsight::learning::detail

@@ -1,0 +1,141 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/learning/classifier.hpp"
+#include "cropsight/learning/standardizer.hpp"
+#include "learning/knn_classifier.hpp"
+#include "learning/svm_classifier.hpp"
+#include "test_learning_common.hpp"
+
+using namespace cropsight;
+using namespace cropsight::learning;
+
+TEST(Standardizer, FitsMeanAndPopulationStd) {
+  Dataset d(2);
+  d.add(std::vector<float>{1.0f, 5.0f}, 0);
+  d.add(std::vector<float>{3.0f, 5.0f}, 1);
+  const Standardizer s = Standardizer::fit(d);
+  EXPECT_FLOAT_EQ(s.mean[0], 2.0f);
+  EXPECT_FLOAT_EQ(s.std[0], 1.0f);
+  EXPECT_FLOAT_EQ(s.mean[1], 5.0f);
+  EXPECT_FLOAT_EQ(s.std[1], 1.0f);  // constant feature: std 1, maps to 0
+  float z[2];
+  const float x[2] = {4.0f, 5.0f};
+  s.apply(x, z);
+  EXPECT_FLOAT_EQ(z[0], 2.0f);
+  EXPECT_FLOAT_EQ(z[1], 0.0f);
+}
+
+TEST(Dataset, RejectsBadRows) {
+  Dataset d(3);
+  EXPECT_THROW(d.add(std::vector<float>{1, 2}, 1), Error);
+  EXPECT_THROW(d.add(std::vector<float>{1, 2, NAN}, 1), Error);
+  EXPECT_THROW(d.add(std::vector<float>{1, 2, 3}, 2), Error);
+  d.add(std::vector<float>{1, 2, 3}, 1);
+  EXPECT_EQ(d.size(), 1u);
+  EXPECT_EQ(d.positives(), 1u);
+}
+
+namespace {
+double accuracy(const Classifier& c, const Dataset& d) {
+  std::size_t ok = 0;
+  for (std::size_t i = 0; i < d.size(); ++i) ok += (c.predict(d.row(i)) ? 1 : 0) == d.labels[i];
+  return double(ok) / double(d.size());
+}
+}  // namespace
+
+class SvmKernels : public ::testing::TestWithParam<std::string> {};
+
+// The dense scorer is our hot path: it must give libsvm's own decision value (sign-corrected).
+TEST_P(SvmKernels, DenseScoreMatchesLibsvmAndSeparatesClasses) {
+  const Dataset raw = testdata::gaussians(600, 24, 1.5, 7);
+  const Standardizer s = Standardizer::fit(raw);
+  const Dataset train = s.apply(raw);
+  const Dataset test = s.apply(testdata::gaussians(400, 24, 1.5, 8));
+  ClassifierParams p;
+  p.type = GetParam();
+  p.linear_c = 0.01;
+  const auto clf = train_classifier(train, p);
+  const auto& svm = dynamic_cast<const detail::SvmClassifier&>(*clf);
+  EXPECT_GT(svm.model_size(), 0u);
+  for (std::size_t i = 0; i < test.size(); ++i) {
+    const double ref = svm.libsvm_score(test.row(i));
+    EXPECT_NEAR(svm.score(test.row(i)), ref, 1e-4 * (1.0 + std::abs(ref))) << "sample " << i;
+  }
+  // Shift 1.5σ on 12 features: Bayes accuracy is ~1; a working SVM is far above chance (0.7).
+  EXPECT_GT(accuracy(*clf, test), 0.95);
+}
+
+// Whichever class libsvm sees first, a positive score must mean the positive class.
+TEST_P(SvmKernels, ScoreSignDoesNotDependOnSampleOrder) {
+  Dataset raw = testdata::gaussians(300, 10, 2.0, 3);
+  for (int first_label : {0, 1}) {
+    Dataset ordered(raw.dim);
+    for (int pass = 0; pass < 2; ++pass)
+      for (std::size_t i = 0; i < raw.size(); ++i)
+        if ((raw.labels[i] == first_label) == (pass == 0)) ordered.add(raw.row_span(i), raw.labels[i]);
+    const Standardizer s = Standardizer::fit(ordered);
+    const Dataset d = s.apply(ordered);
+    ClassifierParams p;
+    p.type = GetParam();
+    const auto clf = train_classifier(d, p);
+    double mean_pos = 0, mean_neg = 0;
+    for (std::size_t i = 0; i < d.size(); ++i) (d.labels[i] ? mean_pos : mean_neg) += clf->score(d.row(i));
+    EXPECT_GT(mean_pos / double(d.positives()), 0.0) << "first label " << first_label;
+    EXPECT_LT(mean_neg / double(d.negatives()), 0.0) << "first label " << first_label;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Learning, SvmKernels, ::testing::Values("svm-rbf", "svm-linear"));
+
+TEST(Svm, BalancedWeightsRaiseMinorityRecall) {
+  // 10 % positives with a weak signal: unweighted SVMs favour the majority class.
+  const Dataset raw = testdata::gaussians(800, 10, 0.8, 11, 0.1);
+  const Standardizer s = Standardizer::fit(raw);
+  const Dataset d = s.apply(raw);
+  auto recall = [&](bool balanced) {
+    ClassifierParams p;
+    p.type = "svm-linear";
+    p.linear_c = 0.05;
+    p.balanced_weights = balanced;
+    const auto clf = train_classifier(d, p);
+    std::size_t tp = 0;
+    for (std::size_t i = 0; i < d.size(); ++i) tp += d.labels[i] && clf->predict(d.row(i));
+    return double(tp) / double(d.positives());
+  };
+  EXPECT_GT(recall(true), recall(false) + 0.1);
+}
+
+TEST(Knn, ScoreIsFractionOfPositiveNeighboursAndMatchesBruteForce) {
+  const Dataset raw = testdata::gaussians(500, 16, 1.5, 5);
+  const Standardizer s = Standardizer::fit(raw);
+  const Dataset train = s.apply(raw);
+  const Dataset test = s.apply(testdata::gaussians(200, 16, 1.5, 6));
+  ClassifierParams p;
+  p.type = "knn";
+  const auto clf = train_classifier(train, p);
+  const auto& knn = dynamic_cast<const detail::KnnClassifier&>(*clf);
+  for (std::size_t i = 0; i < test.size(); ++i) {
+    const float sc = knn.score(test.row(i));
+    EXPECT_FLOAT_EQ(sc, knn.brute_force_score(test.row(i))) << "sample " << i;
+    EXPECT_FLOAT_EQ(sc * 11.0f, std::round(sc * 11.0f));  // k = 11 neighbours
+  }
+  EXPECT_GT(accuracy(*clf, test), 0.9);
+}
+
+TEST(Classifier, RejectsBadInput) {
+  Dataset one_class(3);
+  one_class.add(std::vector<float>{1, 2, 3}, 1);
+  one_class.add(std::vector<float>{1, 2, 4}, 1);
+  ClassifierParams p;
+  EXPECT_THROW(train_classifier(one_class, p), Error);
+  p.type = "knn";
+  EXPECT_THROW(train_classifier(one_class, p), Error);
+  p.type = "forest";
+  EXPECT_THROW(train_classifier(one_class, p), Error);
+  p.type = "svm-rbf";
+  p.rbf_gamma = -1;
+  EXPECT_THROW(p.validate("test"), Error);
+}
