@@ -1,0 +1,119 @@
+#pragma once
+// Broccoli head sizing (Kusumam et al., "3D-vision based detection, localisation and sizing of
+// broccoli heads in the field", §4.4).
+//
+// Two estimators of the head diameter from the head's 3D points (metres, camera frame: x right,
+// y down, z forward; the camera looks straight down at the crop):
+//
+//  * bounding box: the width of the points along the camera x axis, max(x) - min(x). A head seen
+//    from above shows its full width across the image, so this is the diameter unless leaves
+//    hide an edge (then it underestimates) or noise adds outliers (then it overestimates).
+//  * convex hull: the 3D convex hull of the points (qhull through PCL), the centroid of the hull
+//    vertices, and the mean distance of the hull vertices to that centroid as the radius
+//    (diameter = 2 × radius). Only the visible cap of the head is sampled, so the centroid
+//    sits inside the cap and this estimator underestimates systematically (the paper reports a
+//    median error of −22 mm); the bias correction below removes such offsets.
+//
+// Bias correction: d_corrected = scale · d + offset_mm, one (scale, offset) per estimator, learnt
+// by least squares from heads with measured diameters (fit_size_bias) and stored in the config
+// (the keys sizing.bbox_scale, sizing.bbox_offset_mm, sizing.hull_scale, sizing.hull_offset_mm)
+// or in a model file. The defaults (1, 0) leave the raw estimate unchanged, as in the paper.
+//
+// Harvestable: the chosen (corrected) diameter lies inside the market window
+// [market_min_mm, market_max_mm].
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "cropsight/core/config.hpp"
+
+namespace cropsight {
+struct OrganizedCloud;
+}
+
+namespace cropsight::measure {
+
+enum class SizeEstimator { bounding_box, convex_hull };
+
+/// Parses "bbox" / "bounding_box" / "hull" / "convex_hull"; throws Error(where, ...) otherwise.
+SizeEstimator parse_size_estimator(const std::string& text, const std::string& where = "sizing.estimator");
+const char* to_string(SizeEstimator e);
+
+struct HeadSizeConfig {
+  std::string estimator = "bbox";                 ///< which estimator gives `diameter_mm` (bbox | hull)
+  bool compute_hull = true;                       ///< false skips qhull (hull_mm stays 0) when only bbox is used
+  int min_points = 20;                            ///< heads with fewer valid points are not measured
+  double bbox_scale = 1.0, bbox_offset_mm = 0.0;  ///< bias correction of the bounding box
+  double hull_scale = 1.0, hull_offset_mm = 0.0;  ///< bias correction of the convex hull
+  double market_min_mm = 100.0;                   ///< harvestable window, lower end
+  double market_max_mm = 180.0;                   ///< harvestable window, upper end
+
+  template <class V>
+  void visit(V& v) {
+    v("estimator", estimator, "bbox | hull; estimator behind diameter_mm and harvestable (paper: both, §4.4)");
+    v("compute_hull", compute_hull, "bool; also run the convex-hull estimator (qhull) for every head");
+    v("min_points", min_points, "points; heads with fewer valid points are not measured (not in the paper)");
+    v("bbox_scale", bbox_scale, "1; bias correction d' = scale*d + offset of the bounding box (paper: none, 1)");
+    v("bbox_offset_mm", bbox_offset_mm, "mm; bias correction offset of the bounding box (paper: none, 0)");
+    v("hull_scale", hull_scale, "1; bias correction scale of the convex hull (paper: none, 1)");
+    v("hull_offset_mm", hull_offset_mm, "mm; bias correction offset of the convex hull (paper: none, 0)");
+    v("market_min_mm", market_min_mm,
+      "mm; smallest harvestable diameter (paper: market-dependent, not given; assumption 100 mm)");
+    v("market_max_mm", market_max_mm,
+      "mm; largest harvestable diameter (paper: market-dependent, not given; assumption 180 mm)");
+  }
+};
+
+/// Size of one head in one frame. Raw values are the estimators' outputs; `diameter_mm` is the
+/// bias-corrected value of the configured estimator.
+struct HeadSize {
+  bool valid = false;        ///< false when the head had fewer than min_points points
+  int points = 0;            ///< valid points used
+  double bbox_mm = 0.0;      ///< raw bounding-box width along camera x
+  double hull_mm = 0.0;      ///< raw convex-hull diameter (0 when not computed)
+  int hull_vertices = 0;     ///< vertices of the 3D hull (0 when not computed)
+  double diameter_mm = 0.0;  ///< corrected diameter of the chosen estimator
+  bool harvestable = false;  ///< diameter_mm inside the market window
+};
+
+/// max(x) - min(x) of the points, metres (0 for an empty set).
+double bounding_box_width(const std::vector<Eigen::Vector3f>& points);
+
+/// Convex-hull diameter, metres: 2 × mean distance of the 3D hull vertices to their centroid.
+/// Degenerate sets (fewer than 4 points, or all coplanar so qhull finds no 3D hull) fall back to
+/// the mean distance of all points to their centroid. `vertices` (optional) receives the count
+/// of hull vertices used (0 on fallback).
+double convex_hull_diameter(const std::vector<Eigen::Vector3f>& points, int* vertices = nullptr);
+
+/// Applies the configured estimators, bias correction and market window.
+class HeadSizer {
+ public:
+  explicit HeadSizer(const HeadSizeConfig& cfg = {});
+  const HeadSizeConfig& config() const { return cfg_; }
+  SizeEstimator estimator() const { return estimator_; }
+
+  HeadSize measure(const std::vector<Eigen::Vector3f>& points) const;
+  /// Measures the valid points of `cloud` at `indices` (pixel indices).
+  HeadSize measure(const OrganizedCloud& cloud, const std::vector<int>& indices) const;
+  /// Corrects a raw diameter (mm) of estimator `e`.
+  double correct(SizeEstimator e, double raw_mm) const;
+  /// Corrected diameter of the configured estimator from raw values (used for averaged tracks).
+  double corrected(double bbox_mm, double hull_mm) const;
+  bool harvestable(double diameter_mm) const;
+
+ private:
+  HeadSizeConfig cfg_;
+  SizeEstimator estimator_;
+};
+
+/// Least-squares line truth = scale · estimate + offset (both mm). Throws Error(where, ...) for
+/// fewer than 2 pairs, unequal lengths, or estimates without spread.
+struct BiasFit {
+  double scale = 1.0, offset_mm = 0.0;
+  int n = 0;
+  double rms_before_mm = 0.0, rms_after_mm = 0.0;  ///< RMS error before / after correction
+};
+BiasFit fit_size_bias(const std::vector<double>& estimate_mm, const std::vector<double>& truth_mm,
+                      const std::string& where = "size calibration");
+
+}  // namespace cropsight::measure

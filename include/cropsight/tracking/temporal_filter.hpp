@@ -1,0 +1,143 @@
+#pragma once
+// The temporal filter of Kusumam et al. §4.5: follows broccoli heads across the frames of a pass
+// along a row and builds a field map (one entry per head, position in the field frame, averaged
+// size) without odometry.
+//
+// State: the camera position x_c and velocity v_c (field frame, metres and metres per frame), and
+// three sets of heads: T (tracked), D (detected in the current frame), M (mapped).
+// Every frame:
+//   1. predict x_c ← x_c + v_c and move the detections D to the field frame with it;
+//   2. (extension, on by default: motion_search) if the prediction left no detection within the
+//      association radius of a tracked head, look for the camera shift that explains the most
+//      detection–head pairs (translation voting over all pairs within motion_search_radius_m);
+//   3. associate each detection with the nearest tracked head within association_radius_m
+//      (one-to-one, closest pairs first, so two heads closer than the radius stay two heads);
+//   4. correct x_c by the mean displacement of the associated pairs and set v_c to the change of
+//      x_c since the previous frame (with use_poses, x_c comes from poses.csv instead);
+//   5. raise the tracking score of associated heads and update their position and size by running
+//      average; unassociated detections become new heads in T;
+//   6. heads undetected for max_missed_frames frames move from T to M.
+// At the end T moves to M and heads whose score is below min_track_score are dropped.
+//
+// When the first frame carries a camera position (poses.csv) and anchor_first_pose is set, x_c
+// starts there so that the map is in the same field frame as the ground truth; otherwise the
+// field frame's origin is the camera position at the first frame. Positions of heads are the
+// centroids of their visible points (the top of the head), not the centre of the plant.
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cropsight/core/config.hpp"
+#include "cropsight/measure/head_size.hpp"
+#include "cropsight/tracking/field_transform.hpp"
+
+namespace cropsight::tracking {
+
+struct TemporalFilterConfig {
+  double association_radius_m = 0.05;
+  int max_missed_frames = 3;
+  double initial_score = 1.0;
+  double score_increment = 1.0;
+  double min_track_score = 3.0;
+  double min_detection_score = -1e30;
+  bool use_poses = false;
+  bool anchor_first_pose = true;
+  bool motion_search = true;
+  double motion_search_radius_m = 0.30;
+  std::vector<double> initial_velocity = {0.0, 0.0, 0.0};
+  std::string camera_to_field = "x,-y,-z";
+
+  template <class V>
+  void visit(V& v) {
+    v("association_radius_m", association_radius_m,
+      "m; a detection joins the nearest tracked head within this distance (paper: 0.05 m, Kusumam §4.5)");
+    v("max_missed_frames", max_missed_frames,
+      "frames; a head undetected this many frames in a row leaves T for the map M (paper: 3, §4.5)");
+    v("initial_score", initial_score, "1; tracking score of a new head (paper: score per detection; 1)");
+    v("score_increment", score_increment, "1; score added per associated detection (paper: 1)");
+    v("min_track_score", min_track_score,
+      "1; heads whose final score is below this are dropped from the map (paper: threshold, value not given; 3 "
+      "= seen in 3 frames)");
+    v("min_detection_score", min_detection_score,
+      "classifier score; detections below it are ignored by the tracker (default: keep all)");
+    v("use_poses", use_poses, "bool; take x_c from poses.csv instead of estimating it (paper: no odometry, false)");
+    v("anchor_first_pose", anchor_first_pose,
+      "bool; start x_c at the first frame's pose when there is one, so the map shares the truth's field frame");
+    v("motion_search", motion_search,
+      "bool; when the predicted camera motion associates nothing, vote for the shift that does (extension)");
+    v("motion_search_radius_m", motion_search_radius_m, "m; largest camera shift per frame the vote considers");
+    v("initial_velocity", initial_velocity, "m/frame, field frame [x, y, z]; v_c before the first estimate (0)");
+    v("camera_to_field", camera_to_field,
+      "axes; field X,Y,Z as signed camera axes (camera looks straight down: x,-y,-z)");
+  }
+};
+
+/// One head seen in one frame, as the detector hands it to the tracker.
+struct HeadObservation {
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();  ///< metres, camera frame
+  float score = 0.0f;                                  ///< classifier score
+  measure::HeadSize size;                              ///< per-frame size (may be invalid)
+};
+
+/// A head of T or M.
+struct TrackedHead {
+  int id = 0;
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< field frame, metres (running average)
+  double score = 0.0;                                  ///< tracking score
+  int frames_seen = 0;                                 ///< associated detections
+  int first_frame = 0, last_frame = 0;
+  int missed = 0;                       ///< consecutive frames without a detection (T only)
+  double mean_detection_score = 0.0;    ///< running average of the classifier scores
+  int size_samples = 0;                 ///< frames with a valid size
+  double bbox_mm = 0.0, hull_mm = 0.0;  ///< running averages of the raw estimators
+  double diameter_mm = 0.0;             ///< corrected diameter of the chosen estimator
+  bool harvestable = false;
+};
+
+/// What update() did with each detection of the frame.
+struct FrameAssociation {
+  std::vector<int> track_ids;                                 ///< per input detection: head id, or -1 when ignored
+  std::vector<bool> new_track;                                ///< per input detection: started a new head
+  Eigen::Vector3d camera_position = Eigen::Vector3d::Zero();  ///< x_c after the update
+  Eigen::Vector3d camera_velocity = Eigen::Vector3d::Zero();  ///< v_c after the update
+  int associated = 0;
+  bool motion_searched = false;
+};
+
+class TemporalFilter {
+ public:
+  explicit TemporalFilter(const TemporalFilterConfig& cfg = {}, const measure::HeadSizer& sizer = measure::HeadSizer{});
+
+  /// Processes frame `frame` (strictly increasing). `camera_position` (field frame) is used when
+  /// use_poses is set (then it is required) and, with anchor_first_pose, on the first frame.
+  FrameAssociation update(int frame, const std::vector<HeadObservation>& detections,
+                          const std::optional<Eigen::Vector3d>& camera_position = std::nullopt);
+
+  /// Moves T to M and returns the map: heads with score ≥ min_track_score, sorted by id.
+  /// The filter can be finished once; update() afterwards throws.
+  std::vector<TrackedHead> finish();
+
+  /// Every head ever created (T ∪ M, before the score threshold), by id.
+  std::vector<TrackedHead> all_heads() const;
+  const std::vector<TrackedHead>& tracked() const { return tracked_; }
+  const std::vector<TrackedHead>& mapped() const { return mapped_; }
+  const Eigen::Vector3d& camera_position() const { return x_c_; }
+  const Eigen::Vector3d& camera_velocity() const { return v_c_; }
+  const FieldTransform& transform() const { return transform_; }
+  const TemporalFilterConfig& config() const { return cfg_; }
+
+ private:
+  void add_sample(TrackedHead& h, const Eigen::Vector3d& p, const HeadObservation& d) const;
+
+  TemporalFilterConfig cfg_;
+  measure::HeadSizer sizer_;
+  FieldTransform transform_;
+  Eigen::Vector3d x_c_ = Eigen::Vector3d::Zero(), v_c_ = Eigen::Vector3d::Zero();
+  std::vector<TrackedHead> tracked_, mapped_;
+  int last_frame_ = -1;
+  int next_id_ = 1;
+  bool started_ = false, finished_ = false;
+};
+
+}  // namespace cropsight::tracking

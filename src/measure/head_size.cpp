@@ -1,0 +1,166 @@
+// Head sizing: bounding-box and convex-hull estimators (Kusumam et al. §4.4), bias correction and
+// market window. qhull is reached through pcl::ConvexHull, the library implementation the paper
+// used; PCL stays inside this file.
+#include "cropsight/measure/head_size.hpp"
+
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/surface/convex_hull.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/core/organized_cloud.hpp"
+
+namespace cropsight::measure {
+
+SizeEstimator parse_size_estimator(const std::string& text, const std::string& where) {
+  if (text == "bbox" || text == "bounding_box") return SizeEstimator::bounding_box;
+  if (text == "hull" || text == "convex_hull") return SizeEstimator::convex_hull;
+  throw Error(where, "unknown size estimator '" + text + "' (expected bbox or hull)");
+}
+
+const char* to_string(SizeEstimator e) { return e == SizeEstimator::bounding_box ? "bbox" : "hull"; }
+
+double bounding_box_width(const std::vector<Eigen::Vector3f>& points) {
+  if (points.empty()) return 0.0;
+  float lo = points[0].x(), hi = points[0].x();
+  for (const auto& p : points) {
+    lo = std::min(lo, p.x());
+    hi = std::max(hi, p.x());
+  }
+  return double(hi) - double(lo);
+}
+
+namespace {
+
+Eigen::Vector3d mean_of(const std::vector<Eigen::Vector3f>& pts) {
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const auto& p : pts) c += p.cast<double>();
+  return c / double(pts.size());
+}
+
+double mean_distance(const std::vector<Eigen::Vector3f>& pts, const Eigen::Vector3d& c) {
+  double s = 0.0;
+  for (const auto& p : pts) s += (p.cast<double>() - c).norm();
+  return s / double(pts.size());
+}
+
+// True when the points span a volume qhull can triangulate: the smallest covariance eigenvalue is
+// not negligible against the largest. qhull reports flat input as an error (and PCL prints it), so
+// flat sets are caught here and measured by the fallback instead.
+bool spans_volume(const std::vector<Eigen::Vector3f>& pts) {
+  const Eigen::Vector3d c = mean_of(pts);
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (const auto& p : pts) {
+    const Eigen::Vector3d d = p.cast<double>() - c;
+    cov += d * d.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov, Eigen::EigenvaluesOnly);
+  const auto ev = es.eigenvalues();  // ascending
+  return ev(2) > 0.0 && ev(0) > 1e-10 * ev(2);
+}
+
+}  // namespace
+
+double convex_hull_diameter(const std::vector<Eigen::Vector3f>& points, int* vertices) {
+  if (vertices) *vertices = 0;
+  if (points.empty()) return 0.0;
+  if (points.size() >= 4 && spans_volume(points)) {
+    pcl::PointCloud<pcl::PointXYZ>::Ptr in(new pcl::PointCloud<pcl::PointXYZ>);
+    in->points.reserve(points.size());
+    for (const auto& p : points) in->points.emplace_back(p.x(), p.y(), p.z());
+    in->width = std::uint32_t(in->points.size());
+    in->height = 1;
+    in->is_dense = true;
+    pcl::ConvexHull<pcl::PointXYZ> hull;
+    hull.setDimension(3);
+    hull.setInputCloud(in);
+    pcl::PointCloud<pcl::PointXYZ> out;
+    hull.reconstruct(out);
+    if (out.size() >= 4) {
+      std::vector<Eigen::Vector3f> v;
+      v.reserve(out.size());
+      for (const auto& p : out.points) v.emplace_back(p.x, p.y, p.z);
+      if (vertices) *vertices = int(v.size());
+      return 2.0 * mean_distance(v, mean_of(v));
+    }
+  }
+  // Fallback for degenerate sets: all points stand in for the hull vertices.
+  return 2.0 * mean_distance(points, mean_of(points));
+}
+
+HeadSizer::HeadSizer(const HeadSizeConfig& cfg) : cfg_(cfg), estimator_(parse_size_estimator(cfg.estimator)) {
+  if (cfg_.min_points < 1) throw Error("sizing.min_points", "must be at least 1");
+  if (!(cfg_.market_min_mm <= cfg_.market_max_mm))
+    throw Error("sizing.market_min_mm", "market window is empty (min > max)");
+  if (!(cfg_.bbox_scale > 0.0) || !(cfg_.hull_scale > 0.0))
+    throw Error("sizing", "bias-correction scales must be positive");
+  if (estimator_ == SizeEstimator::convex_hull && !cfg_.compute_hull)
+    throw Error("sizing.compute_hull", "the hull estimator is chosen but compute_hull is false");
+}
+
+double HeadSizer::correct(SizeEstimator e, double raw_mm) const {
+  return e == SizeEstimator::bounding_box ? cfg_.bbox_scale * raw_mm + cfg_.bbox_offset_mm
+                                          : cfg_.hull_scale * raw_mm + cfg_.hull_offset_mm;
+}
+
+double HeadSizer::corrected(double bbox_mm, double hull_mm) const {
+  return estimator_ == SizeEstimator::bounding_box ? correct(estimator_, bbox_mm) : correct(estimator_, hull_mm);
+}
+
+bool HeadSizer::harvestable(double d) const { return d >= cfg_.market_min_mm && d <= cfg_.market_max_mm; }
+
+HeadSize HeadSizer::measure(const std::vector<Eigen::Vector3f>& points) const {
+  HeadSize s;
+  s.points = int(points.size());
+  if (s.points < cfg_.min_points) return s;
+  s.valid = true;
+  s.bbox_mm = 1000.0 * bounding_box_width(points);
+  if (cfg_.compute_hull) s.hull_mm = 1000.0 * convex_hull_diameter(points, &s.hull_vertices);
+  s.diameter_mm = corrected(s.bbox_mm, s.hull_mm);
+  s.harvestable = harvestable(s.diameter_mm);
+  return s;
+}
+
+HeadSize HeadSizer::measure(const OrganizedCloud& cloud, const std::vector<int>& indices) const {
+  std::vector<Eigen::Vector3f> pts;
+  pts.reserve(indices.size());
+  for (int i : indices) {
+    if (i < 0 || std::size_t(i) >= cloud.size()) throw Error("head sizing", "point index out of range");
+    if (cloud.valid(std::size_t(i))) pts.push_back(cloud.point(std::size_t(i)));
+  }
+  return measure(pts);
+}
+
+BiasFit fit_size_bias(const std::vector<double>& est, const std::vector<double>& truth, const std::string& where) {
+  if (est.size() != truth.size()) throw Error(where, "estimates and truths differ in count");
+  if (est.size() < 2) throw Error(where, "need at least 2 heads with measured diameters to fit a bias");
+  const double n = double(est.size());
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < est.size(); ++i) mx += est[i], my += truth[i];
+  mx /= n, my /= n;
+  double sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < est.size(); ++i) {
+    sxx += (est[i] - mx) * (est[i] - mx);
+    sxy += (est[i] - mx) * (truth[i] - my);
+  }
+  if (!(sxx > 1e-12 * n)) throw Error(where, "estimated diameters have no spread; cannot fit a scale");
+  BiasFit f;
+  f.n = int(est.size());
+  f.scale = sxy / sxx;
+  f.offset_mm = my - f.scale * mx;
+  double b = 0, a = 0;
+  for (std::size_t i = 0; i < est.size(); ++i) {
+    b += (est[i] - truth[i]) * (est[i] - truth[i]);
+    const double c = f.scale * est[i] + f.offset_mm;
+    a += (c - truth[i]) * (c - truth[i]);
+  }
+  f.rms_before_mm = std::sqrt(b / n);
+  f.rms_after_mm = std::sqrt(a / n);
+  return f;
+}
+
+}  // namespace cropsight::measure

@@ -1,0 +1,237 @@
+// Temporal filter of Kusumam et al. §4.5 (see the header for the algorithm). The sets are small
+// (tens of heads), so association is a plain all-pairs search: cheaper than any spatial index at
+// this size, and exact.
+#include "cropsight/tracking/temporal_filter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "cropsight/core/error.hpp"
+
+namespace cropsight::tracking {
+
+namespace {
+
+struct Pair {
+  double d;
+  int det, head;
+};
+
+// One-to-one association, closest pairs first, pairs farther than `radius` excluded.
+// Returns per detection the index into `heads` or -1.
+std::vector<int> associate(const std::vector<Eigen::Vector3d>& det, const std::vector<TrackedHead>& heads,
+                           const Eigen::Vector3d& shift, double radius, std::vector<Pair>& scratch) {
+  scratch.clear();
+  const double r2 = radius * radius;
+  for (int j = 0; j < int(det.size()); ++j)
+    for (int i = 0; i < int(heads.size()); ++i) {
+      const double d2 = (heads[std::size_t(i)].position - (det[std::size_t(j)] + shift)).squaredNorm();
+      if (d2 <= r2) scratch.push_back({d2, j, i});
+    }
+  std::sort(scratch.begin(), scratch.end(), [](const Pair& a, const Pair& b) {
+    return a.d < b.d || (a.d == b.d && (a.det < b.det || (a.det == b.det && a.head < b.head)));
+  });
+  std::vector<int> out(det.size(), -1);
+  std::vector<char> used(heads.size(), 0);
+  for (const auto& p : scratch) {
+    if (out[std::size_t(p.det)] >= 0 || used[std::size_t(p.head)]) continue;
+    out[std::size_t(p.det)] = p.head;
+    used[std::size_t(p.head)] = 1;
+  }
+  return out;
+}
+
+struct Score {
+  int n = 0;
+  double residual = 0.0;
+};
+
+Score score_of(const std::vector<int>& a, const std::vector<Eigen::Vector3d>& det,
+               const std::vector<TrackedHead>& heads, const Eigen::Vector3d& shift) {
+  Score s;
+  for (std::size_t j = 0; j < a.size(); ++j)
+    if (a[j] >= 0) {
+      ++s.n;
+      s.residual += (heads[std::size_t(a[j])].position - (det[j] + shift)).norm();
+    }
+  return s;
+}
+
+}  // namespace
+
+TemporalFilter::TemporalFilter(const TemporalFilterConfig& cfg, const measure::HeadSizer& sizer)
+    : cfg_(cfg), sizer_(sizer), transform_(FieldTransform::parse(cfg.camera_to_field)) {
+  if (!(cfg_.association_radius_m > 0.0)) throw Error("tracking.association_radius_m", "must be positive");
+  if (cfg_.max_missed_frames < 1) throw Error("tracking.max_missed_frames", "must be at least 1");
+  if (!(cfg_.motion_search_radius_m >= 0.0)) throw Error("tracking.motion_search_radius_m", "must be >= 0");
+  if (cfg_.initial_velocity.size() != 3)
+    throw Error("tracking.initial_velocity", "expects three numbers [x, y, z] (m/frame)");
+  v_c_ = Eigen::Vector3d(cfg_.initial_velocity[0], cfg_.initial_velocity[1], cfg_.initial_velocity[2]);
+}
+
+void TemporalFilter::add_sample(TrackedHead& h, const Eigen::Vector3d& p, const HeadObservation& d) const {
+  const double n = double(h.frames_seen);
+  h.position = (h.position * n + p) / (n + 1.0);
+  h.mean_detection_score = (h.mean_detection_score * n + double(d.score)) / (n + 1.0);
+  h.frames_seen += 1;
+  if (d.size.valid) {
+    const double m = double(h.size_samples);
+    h.bbox_mm = (h.bbox_mm * m + d.size.bbox_mm) / (m + 1.0);
+    h.hull_mm = (h.hull_mm * m + d.size.hull_mm) / (m + 1.0);
+    h.size_samples += 1;
+    h.diameter_mm = sizer_.corrected(h.bbox_mm, h.hull_mm);
+    h.harvestable = sizer_.harvestable(h.diameter_mm);
+  }
+}
+
+FrameAssociation TemporalFilter::update(int frame, const std::vector<HeadObservation>& detections,
+                                        const std::optional<Eigen::Vector3d>& camera_position) {
+  const std::string where = "frame " + std::to_string(frame);
+  if (finished_) throw Error(where, "temporal filter already finished");
+  if (frame <= last_frame_) throw Error(where, "frames must arrive in increasing order");
+  if (cfg_.use_poses && !camera_position)
+    throw Error(where, "tracking.use_poses is set but the frame has no camera position (poses.csv)");
+
+  // 1. Prediction of the camera position.
+  const Eigen::Vector3d x_prev = x_c_;
+  const int steps = started_ ? frame - last_frame_ : 0;  // skipped frames advance the prediction
+  Eigen::Vector3d x_pred;
+  if (cfg_.use_poses) {
+    x_pred = *camera_position;
+  } else if (!started_) {
+    x_pred = (cfg_.anchor_first_pose && camera_position) ? *camera_position : Eigen::Vector3d::Zero();
+  } else {
+    x_pred = x_c_ + double(steps) * v_c_;
+  }
+  started_ = true;
+  last_frame_ = frame;
+
+  FrameAssociation out;
+  out.track_ids.assign(detections.size(), -1);
+  out.new_track.assign(detections.size(), false);
+
+  // Detections in the field frame relative to the predicted camera position.
+  std::vector<int> used;  // indices of detections the tracker takes
+  std::vector<Eigen::Vector3d> rel;
+  for (int j = 0; j < int(detections.size()); ++j) {
+    const auto& d = detections[std::size_t(j)];
+    if (!(double(d.score) >= cfg_.min_detection_score) || !d.centroid.allFinite()) continue;
+    used.push_back(j);
+    rel.push_back(transform_.rotation * d.centroid.cast<double>());
+  }
+  std::vector<Eigen::Vector3d> det(rel.size());
+  for (std::size_t k = 0; k < rel.size(); ++k) det[k] = x_pred + rel[k];
+
+  // 2.–3. Association (with the optional shift vote).
+  std::vector<Pair> scratch;
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+  std::vector<int> assoc = associate(det, tracked_, shift, cfg_.association_radius_m, scratch);
+  if (cfg_.motion_search && !cfg_.use_poses && !det.empty() && !tracked_.empty()) {
+    Score best = score_of(assoc, det, tracked_, shift);
+    const std::size_t possible = std::min(det.size(), tracked_.size());
+    if (std::size_t(best.n) < possible) {
+      out.motion_searched = true;
+      const double r2 = cfg_.motion_search_radius_m * cfg_.motion_search_radius_m;
+      std::vector<Pair> tmp;
+      bool searched = false;
+      for (const auto& h : tracked_)
+        for (const auto& p : det) {
+          const Eigen::Vector3d s = h.position - p;
+          if (s.squaredNorm() > r2) continue;
+          auto a = associate(det, tracked_, s, cfg_.association_radius_m, tmp);
+          const Score sc = score_of(a, det, tracked_, s);
+          // Strictly more pairs than the prediction explains; among shifts with as many pairs the
+          // smallest residual wins.
+          if (sc.n > best.n || (searched && sc.n == best.n && sc.residual < best.residual)) {
+            searched = true;
+            best = sc;
+            shift = s;
+            assoc = std::move(a);
+          }
+        }
+    }
+  }
+
+  // 4. Camera correction by the mean displacement of the associated pairs.
+  Eigen::Vector3d delta = Eigen::Vector3d::Zero();
+  int n_assoc = 0;
+  for (std::size_t k = 0; k < det.size(); ++k)
+    if (assoc[k] >= 0) {
+      delta += tracked_[std::size_t(assoc[k])].position - det[k];
+      ++n_assoc;
+    }
+  if (cfg_.use_poses) {
+    x_c_ = x_pred;
+  } else {
+    x_c_ = n_assoc ? Eigen::Vector3d(x_pred + delta / double(n_assoc)) : x_pred;
+  }
+  if (steps > 0 && (n_assoc > 0 || cfg_.use_poses)) v_c_ = (x_c_ - x_prev) / double(steps);
+  out.associated = n_assoc;
+
+  // 5. Score, running averages, new heads.
+  std::vector<char> seen(tracked_.size(), 0);
+  const std::size_t old_count = tracked_.size();
+  for (std::size_t k = 0; k < det.size(); ++k) {
+    const auto& d = detections[std::size_t(used[k])];
+    const Eigen::Vector3d p = x_c_ + rel[k];
+    if (assoc[k] >= 0) {
+      auto& h = tracked_[std::size_t(assoc[k])];
+      h.score += cfg_.score_increment;
+      h.last_frame = frame;
+      h.missed = 0;
+      add_sample(h, p, d);
+      seen[std::size_t(assoc[k])] = 1;
+      out.track_ids[std::size_t(used[k])] = h.id;
+    } else {
+      TrackedHead h;
+      h.id = next_id_++;
+      h.score = cfg_.initial_score;
+      h.first_frame = h.last_frame = frame;
+      h.position = p;
+      add_sample(h, p, d);
+      h.position = p;
+      tracked_.push_back(h);
+      out.track_ids[std::size_t(used[k])] = h.id;
+      out.new_track[std::size_t(used[k])] = true;
+    }
+  }
+
+  // 6. Heads undetected for max_missed_frames frames move to the map.
+  std::vector<TrackedHead> keep;
+  keep.reserve(tracked_.size());
+  for (std::size_t i = 0; i < tracked_.size(); ++i) {
+    auto& h = tracked_[i];
+    if (i < old_count && !seen[i]) h.missed += std::max(steps, 1);
+    if (h.missed >= cfg_.max_missed_frames)
+      mapped_.push_back(h);
+    else
+      keep.push_back(h);
+  }
+  tracked_.swap(keep);
+
+  out.camera_position = x_c_;
+  out.camera_velocity = v_c_;
+  return out;
+}
+
+std::vector<TrackedHead> TemporalFilter::finish() {
+  if (finished_) throw Error("temporal filter", "finish() called twice");
+  finished_ = true;
+  for (auto& h : tracked_) mapped_.push_back(h);
+  tracked_.clear();
+  std::vector<TrackedHead> map;
+  for (const auto& h : mapped_)
+    if (h.score >= cfg_.min_track_score) map.push_back(h);
+  std::sort(map.begin(), map.end(), [](const TrackedHead& a, const TrackedHead& b) { return a.id < b.id; });
+  return map;
+}
+
+std::vector<TrackedHead> TemporalFilter::all_heads() const {
+  std::vector<TrackedHead> all = mapped_;
+  all.insert(all.end(), tracked_.begin(), tracked_.end());
+  std::sort(all.begin(), all.end(), [](const TrackedHead& a, const TrackedHead& b) { return a.id < b.id; });
+  return all;
+}
+
+}  // namespace cropsight::tracking
