@@ -46,3 +46,18 @@ endif()
 if(CROPSIGHT_BUILD_BENCH)
   find_package(benchmark REQUIRED)
 endif()
+
+# Grape pipeline (issue 6): XGBoost (libxgboost-dev) for the classical per-point model, used only
+# inside src/learning/gbdt.cpp; libtorch (libtorch-dev) for the point networks, used only inside
+# src/nn/*.cpp (never in public headers: TorchConfig adds heavy include paths and flags).
+# Debian's XGBoost CMake config references a /usr/bin/xgboost that the -dev package does not
+# ship, so the library is found directly.
+find_path(XGBOOST_INCLUDE_DIR xgboost/c_api.h REQUIRED)
+find_library(XGBOOST_LIBRARY NAMES xgboost REQUIRED)
+add_library(cropsight_xgboost INTERFACE)
+target_include_directories(cropsight_xgboost SYSTEM INTERFACE ${XGBOOST_INCLUDE_DIR})
+target_link_libraries(cropsight_xgboost INTERFACE ${XGBOOST_LIBRARY})
+find_package(Torch REQUIRED CONFIG PATHS /usr/lib/x86_64-linux-gnu/cmake/Torch /usr/share/cmake/Torch)
+add_library(cropsight_torch INTERFACE)
+target_link_libraries(cropsight_torch INTERFACE ${TORCH_LIBRARIES})
+target_include_directories(cropsight_torch SYSTEM INTERFACE ${TORCH_INCLUDE_DIRS})
