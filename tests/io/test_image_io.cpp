@@ -1,0 +1,109 @@
+#include <gtest/gtest.h>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/io/files.hpp"
+#include "cropsight/io/image_io.hpp"
+#include "testing/testing.hpp"
+
+namespace cropsight::io {
+namespace {
+
+using testing::TempDir;
+namespace fs = std::filesystem;
+
+Image<std::uint16_t> ramp16(int w, int h) {
+  Image<std::uint16_t> img(w, h);
+  for (std::size_t i = 0; i < img.size(); ++i) img.data[i] = std::uint16_t(i * 997 % 65536);
+  return img;
+}
+
+TEST(ImageIo, U16RoundTrip) {
+  TempDir tmp;
+  const auto img = ramp16(17, 9);
+  write_u16(tmp / "a.png", img);
+  EXPECT_EQ(read_u16(tmp / "a.png"), img);
+}
+
+TEST(ImageIo, ColorRoundTripKeepsChannelOrder) {
+  TempDir tmp;
+  ColorImage img(5, 4);
+  for (int v = 0; v < 4; ++v)
+    for (int u = 0; u < 5; ++u) img.at(u, v) = Rgb8{std::uint8_t(50 * u), std::uint8_t(60 * v), 7};
+  write_color(tmp / "c.png", img);
+  EXPECT_EQ(read_color(tmp / "c.png"), img);
+  // OpenCV stores BGR: check the file really has red in the third channel, as other tools expect.
+  const cv::Mat m = cv::imread((tmp / "c.png").string(), cv::IMREAD_UNCHANGED);
+  EXPECT_EQ(m.at<cv::Vec3b>(0, 4)[2], 200);
+}
+
+TEST(ImageIo, GrayRoundTripAndExpansionToColor) {
+  TempDir tmp;
+  GrayImage g(6, 3);
+  for (std::size_t i = 0; i < g.size(); ++i) g.data[i] = std::uint8_t(i * 13);
+  write_gray(tmp / "g.png", g);
+  EXPECT_EQ(read_gray(tmp / "g.png"), g);
+  const ColorImage c = read_color(tmp / "g.png");
+  EXPECT_EQ(c.at(2, 1), (Rgb8{g.at(2, 1), g.at(2, 1), g.at(2, 1)}));
+}
+
+TEST(ImageIo, EncodingIsDeterministic) {
+  const auto img = ramp16(64, 48);
+  EXPECT_EQ(encode_png(img), encode_png(img));
+  TempDir tmp;
+  write_u16(tmp / "a.png", img);
+  write_u16(tmp / "b.png", img);
+  EXPECT_EQ(read_file(tmp / "a.png"), read_file(tmp / "b.png"));
+  EXPECT_EQ(read_file(tmp / "a.png"), encode_png(img));
+}
+
+void expect_error_names(const fs::path& path, const std::function<void()>& f, const std::string& words) {
+  try {
+    f();
+    FAIL() << "no error for " << path;
+  } catch (const Error& e) {
+    EXPECT_EQ(e.where(), path.string());
+    EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+  }
+}
+
+TEST(ImageIo, WrongBitDepthAndChannelsAreErrorsNamingTheFile) {
+  TempDir tmp;
+  GrayImage g(4, 4, 9);
+  write_gray(tmp / "g8.png", g);
+  expect_error_names(
+      tmp / "g8.png", [&] { read_u16(tmp / "g8.png"); }, "8-bit");
+  write_u16(tmp / "d16.png", ramp16(4, 4));
+  expect_error_names(
+      tmp / "d16.png", [&] { read_color(tmp / "d16.png"); }, "16-bit");
+  expect_error_names(
+      tmp / "d16.png", [&] { read_gray(tmp / "d16.png"); }, "16-bit");
+  ColorImage c(4, 4);
+  write_color(tmp / "c.png", c);
+  expect_error_names(
+      tmp / "c.png", [&] { read_u16(tmp / "c.png"); }, "3-channel");
+  cv::Mat bgra(4, 4, CV_8UC4, cv::Scalar(1, 2, 3, 4));
+  cv::imwrite((tmp / "bgra.png").string(), bgra);
+  expect_error_names(
+      tmp / "bgra.png", [&] { read_color(tmp / "bgra.png"); }, "4-channel");
+}
+
+TEST(ImageIo, MissingAndCorruptFiles) {
+  TempDir tmp;
+  expect_error_names(
+      tmp / "none.png", [&] { read_u16(tmp / "none.png"); }, "not found");
+  write_file_atomic(tmp / "bad.png", "not a png");
+  expect_error_names(
+      tmp / "bad.png", [&] { read_u16(tmp / "bad.png"); }, "decode");
+}
+
+TEST(ImageIo, FailedWriteLeavesNothing) {
+  TempDir tmp;
+  EXPECT_THROW(write_u16(tmp / "noext", ramp16(3, 3)), Error);
+  EXPECT_THROW(write_u16(tmp / "empty.png", Image<std::uint16_t>()), Error);
+  EXPECT_TRUE(fs::is_empty(tmp.path()));
+}
+
+}  // namespace
+}  // namespace cropsight::io
