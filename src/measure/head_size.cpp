@@ -92,8 +92,18 @@ double convex_hull_diameter(const std::vector<Eigen::Vector3f>& points, int* ver
   return 2.0 * mean_distance(points, mean_of(points));
 }
 
+std::vector<Eigen::Vector3f> stride_subsample(const std::vector<Eigen::Vector3f>& points, int max_points) {
+  if (max_points <= 0 || points.size() <= std::size_t(max_points)) return points;
+  const std::size_t k = (points.size() + std::size_t(max_points) - 1) / std::size_t(max_points);
+  std::vector<Eigen::Vector3f> out;
+  out.reserve(points.size() / k + 1);
+  for (std::size_t i = 0; i < points.size(); i += k) out.push_back(points[i]);
+  return out;
+}
+
 HeadSizer::HeadSizer(const HeadSizeConfig& cfg) : cfg_(cfg), estimator_(parse_size_estimator(cfg.estimator)) {
   if (cfg_.min_points < 1) throw Error("sizing.min_points", "must be at least 1");
+  if (cfg_.hull_max_points < 0) throw Error("sizing.hull_max_points", "must be >= 0 (0 = all points)");
   if (!(cfg_.market_min_mm <= cfg_.market_max_mm))
     throw Error("sizing.market_min_mm", "market window is empty (min > max)");
   if (!(cfg_.bbox_scale > 0.0) || !(cfg_.hull_scale > 0.0))
@@ -119,7 +129,12 @@ HeadSize HeadSizer::measure(const std::vector<Eigen::Vector3f>& points) const {
   if (s.points < cfg_.min_points) return s;
   s.valid = true;
   s.bbox_mm = 1000.0 * bounding_box_width(points);
-  if (cfg_.compute_hull) s.hull_mm = 1000.0 * convex_hull_diameter(points, &s.hull_vertices);
+  if (cfg_.compute_hull) {
+    if (cfg_.hull_max_points > 0 && points.size() > std::size_t(cfg_.hull_max_points))
+      s.hull_mm = 1000.0 * convex_hull_diameter(stride_subsample(points, cfg_.hull_max_points), &s.hull_vertices);
+    else
+      s.hull_mm = 1000.0 * convex_hull_diameter(points, &s.hull_vertices);
+  }
   s.diameter_mm = corrected(s.bbox_mm, s.hull_mm);
   s.harvestable = harvestable(s.diameter_mm);
   return s;

@@ -206,3 +206,28 @@ TEST(HeadSize, BiasFitRecoversALine) {
   EXPECT_THROW(fit_size_bias({1.0, 1.0}, {2.0, 3.0}), Error);
   EXPECT_THROW(fit_size_bias({1.0, 2.0}, {2.0}), Error);
 }
+
+TEST(HeadSize, HullSubsampleForSpeed) {
+  // hull_max_points trades exactness for speed (bench_tracking: BM_Size). The hull estimator depends
+  // on point density (how many noisy points stick out of the surface): on a noisy 140 mm dome
+  // (3850 points) a 500-point subsample lowers it by about 10 mm (120 → 110 mm), so a bias
+  // correction must be fitted with the same hull_max_points it is used with.
+  auto pts = dome(0.07);
+  std::mt19937 rng(7);
+  std::normal_distribution<float> n(0.0f, 0.001f);
+  for (auto& p : pts) p += Eigen::Vector3f(n(rng), n(rng), n(rng));
+  const auto sub = stride_subsample(pts, 500);
+  EXPECT_LE(sub.size(), 500u);
+  EXPECT_GE(sub.size(), 450u);
+  EXPECT_EQ(stride_subsample(pts, 0).size(), pts.size());
+  HeadSizeConfig cfg;
+  const double exact = HeadSizer(cfg).measure(pts).hull_mm;
+  cfg.hull_max_points = 500;
+  const auto capped = HeadSizer(cfg).measure(pts);
+  EXPECT_NEAR(capped.hull_mm, 1000.0 * convex_hull_diameter(sub), 1e-9);
+  EXPECT_LT(capped.hull_mm, exact);
+  EXPECT_NEAR(capped.hull_mm, exact, 15.0) << "exact " << exact << " capped " << capped.hull_mm;
+  EXPECT_DOUBLE_EQ(capped.bbox_mm, HeadSizer().measure(pts).bbox_mm);  // the box always sees every point
+  cfg.hull_max_points = -1;
+  EXPECT_THROW(HeadSizer{cfg}, Error);
+}

@@ -40,9 +40,10 @@ SizeEstimator parse_size_estimator(const std::string& text, const std::string& w
 const char* to_string(SizeEstimator e);
 
 struct HeadSizeConfig {
-  std::string estimator = "bbox";                 ///< which estimator gives `diameter_mm` (bbox | hull)
-  bool compute_hull = true;                       ///< false skips qhull (hull_mm stays 0) when only bbox is used
-  int min_points = 20;                            ///< heads with fewer valid points are not measured
+  std::string estimator = "bbox";  ///< which estimator gives `diameter_mm` (bbox | hull)
+  bool compute_hull = true;        ///< false skips qhull (hull_mm stays 0) when only bbox is used
+  int min_points = 20;             ///< heads with fewer valid points are not measured
+  int hull_max_points = 0;         ///< > 0: the hull sees every k-th point so that at most this many remain
   double bbox_scale = 1.0, bbox_offset_mm = 0.0;  ///< bias correction of the bounding box
   double hull_scale = 1.0, hull_offset_mm = 0.0;  ///< bias correction of the convex hull
   double market_min_mm = 100.0;                   ///< harvestable window, lower end
@@ -53,6 +54,8 @@ struct HeadSizeConfig {
     v("estimator", estimator, "bbox | hull; estimator behind diameter_mm and harvestable (paper: both, §4.4)");
     v("compute_hull", compute_hull, "bool; also run the convex-hull estimator (qhull) for every head");
     v("min_points", min_points, "points; heads with fewer valid points are not measured (not in the paper)");
+    v("hull_max_points", hull_max_points,
+      "points; 0 = hull of all points (paper); > 0 = hull of an even subsample of at most this many (speed)");
     v("bbox_scale", bbox_scale, "1; bias correction d' = scale*d + offset of the bounding box (paper: none, 1)");
     v("bbox_offset_mm", bbox_offset_mm, "mm; bias correction offset of the bounding box (paper: none, 0)");
     v("hull_scale", hull_scale, "1; bias correction scale of the convex hull (paper: none, 1)");
@@ -84,6 +87,10 @@ double bounding_box_width(const std::vector<Eigen::Vector3f>& points);
 /// the mean distance of all points to their centroid. `vertices` (optional) receives the count
 /// of hull vertices used (0 on fallback).
 double convex_hull_diameter(const std::vector<Eigen::Vector3f>& points, int* vertices = nullptr);
+
+/// Every k-th point (k = ceil(n / max_points)), so that at most max_points remain; all points when
+/// max_points <= 0 or n <= max_points.
+std::vector<Eigen::Vector3f> stride_subsample(const std::vector<Eigen::Vector3f>& points, int max_points);
 
 /// Applies the configured estimators, bias correction and market window.
 class HeadSizer {
