@@ -1,0 +1,85 @@
+#pragma once
+// HeadMapper: what a detector's caller needs to size and map broccoli heads over a sequence.
+// Per frame it measures every detection (measure::HeadSizer on the detection's points), writes
+// the size into Detection::size_m, hands the detections to the TemporalFilter and writes the head
+// id into Detection::track_id. After finish() it can say which tracks made it into the map, which
+// gives the "temporally filtered" detection scores used for ap50 with the filter:
+//
+//   filtered_score(d) = d.score + confirmed_bonus  when d's head is in the map,
+//                       d.score                    otherwise,
+//
+// with confirmed_bonus larger than any score spread, so detections of confirmed heads rank before
+// every unconfirmed one (a detection is never removed: ranking it last is never worse for AP than
+// dropping it).
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "cropsight/core/config.hpp"
+#include "cropsight/core/detection.hpp"
+#include "cropsight/measure/head_size.hpp"
+#include "cropsight/tracking/temporal_filter.hpp"
+
+namespace cropsight {
+struct OrganizedCloud;
+}
+
+namespace cropsight::tracking {
+
+/// The sizing and tracking config of a broccoli preset: keys "sizing.*" and "tracking.*".
+struct HeadMapperConfig {
+  measure::HeadSizeConfig sizing;
+  TemporalFilterConfig tracking;
+  template <class V>
+  void visit(V& v) {
+    v("sizing", sizing, "head sizing (Kusumam §4.4)");
+    v("tracking", tracking, "temporal filter (Kusumam §4.5)");
+  }
+  /// Applies only the "sizing." and "tracking." keys of `values` (other keys belong to other
+  /// stages of the preset and are left alone).
+  void apply(const ConfigMap& values, const std::string& where);
+};
+
+/// One measured detection, kept for per-frame size metrics and filtered scores.
+struct MeasuredDetection {
+  int frame = 0;
+  int index = 0;  ///< index in that frame's detection list
+  int track_id = -1;
+  float score = 0.0f;
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();  ///< camera frame
+  Eigen::Vector3d field_position = Eigen::Vector3d::Zero();
+  measure::HeadSize size;
+};
+
+class HeadMapper {
+ public:
+  explicit HeadMapper(const HeadMapperConfig& cfg = {});
+
+  /// Sizes and tracks the detections of one frame (frames in increasing order). `cloud` is the
+  /// frame's organised cloud the detection indices refer to.
+  FrameAssociation add_frame(int frame, const OrganizedCloud& cloud, std::vector<Detection>& detections,
+                             const std::optional<Eigen::Vector3d>& camera_position = std::nullopt);
+  /// Ends the pass; returns the map (see TemporalFilter::finish).
+  const std::vector<TrackedHead>& finish();
+
+  const std::vector<TrackedHead>& map() const { return map_; }
+  const std::vector<MeasuredDetection>& detections() const { return measured_; }
+  bool confirmed(int track_id) const { return confirmed_.count(track_id) > 0; }
+  /// Score of a recorded detection after the temporal filter (valid after finish()).
+  float filtered_score(const MeasuredDetection& d) const;
+  const measure::HeadSizer& sizer() const { return sizer_; }
+  const TemporalFilter& filter() const { return filter_; }
+
+  static constexpr float kConfirmedBonus = 1e6f;
+
+ private:
+  measure::HeadSizer sizer_;
+  TemporalFilter filter_;
+  std::vector<MeasuredDetection> measured_;
+  std::vector<TrackedHead> map_;
+  std::set<int> confirmed_;
+  bool finished_ = false;
+};
+
+}  // namespace cropsight::tracking

@@ -1,0 +1,110 @@
+// Field-map CSV round trip, bad files, and the HeadMapper glue on an organised cloud.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/core/organized_cloud.hpp"
+#include "cropsight/tracking/field_map_io.hpp"
+#include "cropsight/tracking/head_mapper.hpp"
+#include "testing/testing.hpp"
+
+using namespace cropsight;
+using namespace cropsight::tracking;
+
+TEST(FieldMap, RoundTrip) {
+  cropsight::testing::TempDir dir;
+  TrackedHead a;
+  a.id = 3;
+  a.position = {1.25, -0.3, 0.52};
+  a.diameter_mm = 131.2;
+  a.bbox_mm = 128.0;
+  a.hull_mm = 101.5;
+  a.frames_seen = 9;
+  a.first_frame = 4;
+  a.last_frame = 12;
+  a.score = 9;
+  a.harvestable = true;
+  TrackedHead b = a;
+  b.id = 4;
+  b.harvestable = false;
+  write_field_map(dir / "m.csv", {a, b});
+  const auto r = read_field_map(dir / "m.csv");
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0].id, 3);
+  EXPECT_NEAR((r[0].position - a.position).norm(), 0, 1e-9);
+  EXPECT_DOUBLE_EQ(r[0].diameter_mm, 131.2);
+  EXPECT_DOUBLE_EQ(r[0].hull_mm, 101.5);
+  EXPECT_EQ(r[0].frames_seen, 9);
+  EXPECT_TRUE(r[0].harvestable);
+  EXPECT_FALSE(r[1].harvestable);
+}
+
+TEST(FieldMap, BadFilesNameTheLine) {
+  cropsight::testing::TempDir dir;
+  const std::string header = field_map_csv({});
+  {
+    std::ofstream(dir / "a.csv") << "x,y\n1,2\n";
+    EXPECT_THROW(read_field_map(dir / "a.csv"), Error);
+  }
+  std::ofstream(dir / "b.csv") << header << "1,0.1,0.2,0.3,100,100,80,3,0,2,3,1\n1,0.1,zz,0.3,100,100,80,3,0,2,3,1\n";
+  try {
+    read_field_map(dir / "b.csv");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("line 3"), std::string::npos) << e.what();
+  }
+  std::ofstream(dir / "c.csv") << header << "1,0.1,0.2\n";
+  EXPECT_THROW(read_field_map(dir / "c.csv"), Error);
+  std::ofstream(dir / "d.csv") << header << "1,0.1,0.2,0.3,100,100,80,3,0,2,3,7\n";
+  EXPECT_THROW(read_field_map(dir / "d.csv"), Error);
+  EXPECT_THROW(read_field_map(dir / "missing.csv"), Error);
+}
+
+TEST(HeadMapper, SizesTracksAndRescores) {
+  // A 40×40 cloud with a flat 100 mm square patch of points 0.7 m below the camera, seen in 5
+  // frames while the camera is still; plus a one-frame false detection.
+  OrganizedCloud c(40, 40);
+  std::vector<int> head, fp;
+  for (int v = 0; v < 40; ++v)
+    for (int u = 0; u < 40; ++u) {
+      const int i = c.index(u, v);
+      c.x[std::size_t(i)] = 0.005f * float(u - 20);
+      c.y[std::size_t(i)] = 0.005f * float(v - 20);
+      c.z[std::size_t(i)] = 0.7f;
+      if (u >= 10 && u <= 30 && v >= 10 && v <= 30) head.push_back(i);
+      if (u < 6 && v < 6) fp.push_back(i);
+    }
+  HeadMapperConfig cfg;
+  ConfigMap m{{"sizing.compute_hull", "false"}, {"tracking.min_track_score", "3"}, {"detector.other", "1"}};
+  cfg.apply(m, "test");
+  EXPECT_FALSE(cfg.sizing.compute_hull);
+  HeadMapper mapper(cfg);
+  for (int f = 0; f < 5; ++f) {
+    std::vector<Detection> d(1);
+    d[0].indices = head;
+    d[0].centroid = {0.0f, 0.0f, 0.7f};
+    d[0].score = 0.5f;
+    if (f == 2) {
+      Detection x;
+      x.indices = fp;
+      x.centroid = {-0.09f, -0.09f, 0.7f};
+      x.score = 0.9f;
+      d.push_back(x);
+    }
+    mapper.add_frame(f, c, d, Eigen::Vector3d(0, 0, 0.8));
+    EXPECT_NEAR(d[0].size_m, 0.100, 1e-5);
+    EXPECT_EQ(d[0].track_id, 1);
+  }
+  const auto& map = mapper.finish();
+  ASSERT_EQ(map.size(), 1u);
+  EXPECT_EQ(map[0].frames_seen, 5);
+  EXPECT_NEAR(map[0].position.z(), 0.1, 1e-6);
+  ASSERT_EQ(mapper.detections().size(), 6u);
+  float best_fp = 0, worst_tp = 1e9;
+  for (const auto& d : mapper.detections())
+    (d.track_id == 1 ? worst_tp : best_fp) =
+        d.track_id == 1 ? std::min(worst_tp, mapper.filtered_score(d)) : std::max(best_fp, mapper.filtered_score(d));
+  EXPECT_GT(worst_tp, best_fp);  // the confirmed head now outranks the brighter false detection
+  EXPECT_THROW(mapper.finish(), Error);
+}
