@@ -49,7 +49,7 @@ Frames make_frames(int n_frames) {
     f.centroids.emplace_back();
     for (const auto& h : heads) {
       const Eigen::Vector3d rel = h.p - cam;
-      if (std::abs(rel.x()) > 0.5 || std::abs(rel.y()) > 0.42) continue;
+      if (std::abs(rel.x()) > 0.42 || std::abs(rel.y()) > 0.5) continue;
       std::vector<Eigen::Vector3f> pts;
       Eigen::Vector3f c = Eigen::Vector3f::Zero();
       const int n = int(h.r / step);
@@ -57,8 +57,9 @@ Frames make_frames(int n_frames) {
         for (int b = -n; b <= n; ++b) {
           const double x = a * step, y = b * step, q = h.r * h.r - x * x - y * y;
           if (q < 0) continue;
-          // camera frame = "x,-y,-z" of the field offset; the dome bulges towards the camera
-          const Eigen::Vector3f p(float(rel.x() + x) + noise(rng), float(-(rel.y() + y)) + noise(rng),
+          // camera frame (default "y,x,-z": camera x = field y, camera y = field x); the dome
+          // bulges towards the camera
+          const Eigen::Vector3f p(float(rel.y() + y) + noise(rng), float(rel.x() + x) + noise(rng),
                                   float(-rel.z() - std::sqrt(q) + h.r) + noise(rng));
           pts.push_back(p);
           c += p;

@@ -27,7 +27,7 @@ struct Scene {
   Eigen::Vector3d camera(int f) const { return start + double(f) * velocity; }
 
   // Detections of frame f, in the camera frame (x right, y down, z forward = down): p_cam = Rᵀ(p − x_c)
-  // with R = "x,-y,-z".
+  // with the default R = "y,x,-z" (camera x = field y, camera y = field x, camera z = −field z).
   std::vector<HeadObservation> frame(int f, std::mt19937& rng, const std::vector<int>& hide = {}) const {
     std::normal_distribution<double> n(0.0, noise);
     std::vector<HeadObservation> out;
@@ -36,7 +36,7 @@ struct Scene {
       const Eigen::Vector3d r = heads[std::size_t(i)].p - camera(f);
       if (std::abs(r.x()) > half_w || std::abs(r.y()) > half_h) continue;
       HeadObservation o;
-      o.centroid = Eigen::Vector3f(float(r.x() + n(rng)), float(-r.y() + n(rng)), float(-r.z() + n(rng)));
+      o.centroid = Eigen::Vector3f(float(r.y() + n(rng)), float(r.x() + n(rng)), float(-r.z() + n(rng)));
       o.score = 1.0f;
       o.size.valid = true;
       o.size.bbox_mm = heads[std::size_t(i)].d_mm;
@@ -140,7 +140,7 @@ TEST(TemporalFilter, ShortDropoutsKeepOneHeadLongOnesSplitIt) {
     std::mt19937 rng(1);
     for (int f = 0; f < 30; ++f)
       for (const auto& o : s.frame(f, rng))
-        if (std::abs(o.centroid.x() - float(s.heads[1].p.x() - s.camera(f).x())) < 1e-6f) {
+        if (std::abs(o.centroid.y() - float(s.heads[1].p.x() - s.camera(f).x())) < 1e-6f) {
           if (visible_from < 0) visible_from = f;
           visible_to = f;
         }

@@ -8,9 +8,11 @@
 //   p_field = x_c + R · p_camera
 //
 // where x_c is the camera position in the field frame and R a signed axis permutation written as
-// three axis names, one per field axis: "x,-y,-z" (default) means field X = camera x, field
-// Y = −camera y, field Z = −camera z (Z up, the ground plane is X–Y). R must be a proper rotation
-// (determinant +1). The simulator's field frame (docs/simulator.md) uses the same default.
+// three axis names, one per field axis. The default "y,x,-z" is the simulator's frame
+// (include/cropsight/sim/renderer.hpp: field x along the row = camera y, field y across the row =
+// camera x, field z up = −camera z; the tractor drives along +x, which moves down the image).
+// "x,-y,-z" would instead put field X along the image's x axis. R must be a proper rotation
+// (determinant +1).
 #include <Eigen/Core>
 #include <string>
 

@@ -46,7 +46,7 @@ struct TemporalFilterConfig {
   bool motion_search = true;
   double motion_search_radius_m = 0.30;
   std::vector<double> initial_velocity = {0.0, 0.0, 0.0};
-  std::string camera_to_field = "x,-y,-z";
+  std::string camera_to_field = "y,x,-z";
 
   template <class V>
   void visit(V& v) {
@@ -69,7 +69,7 @@ struct TemporalFilterConfig {
     v("motion_search_radius_m", motion_search_radius_m, "m; largest camera shift per frame the vote considers");
     v("initial_velocity", initial_velocity, "m/frame, field frame [x, y, z]; v_c before the first estimate (0)");
     v("camera_to_field", camera_to_field,
-      "axes; field X,Y,Z as signed camera axes (camera looks straight down: x,-y,-z)");
+      "axes; field X,Y,Z as signed camera axes (camera looks straight down; simulator: y,x,-z)");
   }
 };
 
