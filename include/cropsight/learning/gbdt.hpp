@@ -1,0 +1,76 @@
+#pragma once
+// Gradient-boosted trees for multi-class classification (XGBoost C API, Debian libxgboost-dev),
+// behind a pimpl so that no XGBoost header leaks into users. Rows are row-major float features.
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace cropsight::learning {
+
+struct GbdtParams {
+  int num_class = 6;
+  int rounds = 200;  ///< boosting rounds
+  int max_depth = 8;
+  double eta = 0.15;       ///< learning rate
+  double subsample = 0.8;  ///< row subsampling per tree
+  double colsample = 0.8;  ///< feature subsampling per tree
+  double min_child_weight = 1;
+  double lambda = 1;  ///< L2 leaf regularisation
+  int max_bin = 256;  ///< histogram bins (tree_method=hist)
+  int nthread = 2;    ///< XGBoost threads (set deliberately: the machine has 2 cores)
+  int seed = 0;
+
+  template <class V>
+  void visit(V& v) {
+    v("rounds", rounds, "count; boosting rounds");
+    v("max_depth", max_depth, "count; maximum tree depth");
+    v("eta", eta, "1; learning rate");
+    v("subsample", subsample, "fraction; rows sampled per tree");
+    v("colsample", colsample, "fraction; features sampled per tree");
+    v("min_child_weight", min_child_weight, "1; minimum hessian sum in a leaf");
+    v("lambda", lambda, "1; L2 regularisation of leaf weights");
+    v("max_bin", max_bin, "count; histogram bins of tree_method=hist");
+    v("nthread", nthread, "count; XGBoost threads");
+    v("seed", seed, "1; random seed");
+  }
+};
+
+class Gbdt {
+ public:
+  Gbdt();
+  ~Gbdt();
+  Gbdt(Gbdt&&) noexcept;
+  Gbdt& operator=(Gbdt&&) noexcept;
+
+  /// Trains from scratch on `rows` × `cols` features, labels in [0, num_class), optional
+  /// per-row weights (empty = 1). Throws Error on inconsistent sizes.
+  void train(const std::vector<float>& x, std::size_t rows, std::size_t cols, const std::vector<float>& labels,
+             const std::vector<float>& weights, const GbdtParams& params);
+
+  /// Class probabilities, rows × num_class, row-major.
+  std::vector<float> predict_proba(const std::vector<float>& x, std::size_t rows, std::size_t cols) const;
+  /// Arg-max class per row.
+  std::vector<int> predict(const std::vector<float>& x, std::size_t rows, std::size_t cols) const;
+
+  int num_class() const { return num_class_; }
+  std::size_t num_features() const { return cols_; }
+
+  /// Free-text metadata stored inside the model file (e.g. the feature recipe).
+  void set_attribute(const std::string& key, const std::string& value);
+  std::string attribute(const std::string& key) const;  ///< "" when absent
+
+  /// XGBoost's JSON model format (one file). save() is atomic; load() throws Error(path, ...).
+  void save(const std::filesystem::path& path) const;
+  static Gbdt load(const std::filesystem::path& path, int nthread = 2);
+
+  bool trained() const;
+
+ private:
+  void* booster_ = nullptr;  // BoosterHandle
+  int num_class_ = 0;
+  std::size_t cols_ = 0;
+};
+
+}  // namespace cropsight::learning

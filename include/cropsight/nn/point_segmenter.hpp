@@ -1,0 +1,121 @@
+#pragma once
+// Point-cloud semantic segmentation networks on libtorch (CPU): PointNet++ with multi-scale
+// grouping and PointResNet (Luo et al.: three set-abstraction layers whose MLPs are residual
+// "ResMLP" blocks, feature propagation back to every point). libtorch stays inside
+// src/nn/*.cpp; this header only declares the configuration and a pimpl.
+//
+// Input clouds are normalised to the unit sphere (geometry::normalize_unit_sphere) before they
+// reach the network, both in training and in segmentation.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cropsight/core/cloud.hpp"
+
+namespace cropsight::nn {
+
+struct PointNetConfig {
+  std::string arch = "pointresnet";  ///< "pointresnet" | "pointnet2" (MSG)
+  std::string features = "xyzrgbn";  ///< "xyz" | "xyzn" | "xyzrgb" | "xyzrgbn" (paper Table 3)
+  int num_classes = 6;
+  int num_points = 2048;  ///< points per network pass (paper: 4096 for PointNet++-style nets)
+  int sa1_points = 512, sa2_points = 128, sa3_points = 32;  ///< set-abstraction centroids
+  int k1 = 32, k2 = 32, k3 = 16;                            ///< neighbours grouped per centroid (MSG adds k/2 scales)
+  int width = 32;                                           ///< base channel width (SA1 = 2w, SA2 = 4w, SA3 = 8w)
+  double dropout = 0.3;
+
+  // Training
+  int epochs = 40;
+  int batch_size = 8;
+  double lr = 1e-3;       ///< Adam initial learning rate
+  double lr_decay = 0.7;  ///< multiplied every lr_step epochs
+  int lr_step = 10;
+  double weight_decay = 1e-4;
+  double class_weight_power = 0.5;  ///< CE weight = (median share / class share)^power
+  bool augment = true;              ///< rotation about the vertical (y) axis, scaling, jitter, colour jitter
+  double scale_min = 0.85, scale_max = 1.15;
+  double jitter_sigma = 0.005, colour_jitter = 0.05;
+  int val_every = 5;  ///< epochs between validation passes (0 = never)
+  int threads = 2;    ///< at::set_num_threads (the machine has two cores)
+  std::uint64_t seed = 1;
+  std::string checkpoint;  ///< path written after each epoch (empty = none); resumed when present
+
+  template <class V>
+  void visit(V& v) {
+    v("arch", arch, "pointresnet | pointnet2 (paper: PointResNet, Luo et al.)");
+    v("features", features, "xyz | xyzn | xyzrgb | xyzrgbn (paper: 9 features, Table 3)");
+    v("num_points", num_points, "count; points per network pass (ours: 2048 for CPU)");
+    v("sa1_points", sa1_points, "count; SA1 centroids");
+    v("sa2_points", sa2_points, "count; SA2 centroids");
+    v("sa3_points", sa3_points, "count; SA3 centroids");
+    v("k1", k1, "count; SA1 neighbours");
+    v("k2", k2, "count; SA2 neighbours");
+    v("k3", k3, "count; SA3 neighbours");
+    v("width", width, "count; base channel width");
+    v("dropout", dropout, "probability; dropout before the classifier");
+    v("epochs", epochs, "count; training epochs");
+    v("batch_size", batch_size, "count; clouds per step");
+    v("lr", lr, "1; Adam learning rate (PointNet++: 1e-3)");
+    v("lr_decay", lr_decay, "1; learning-rate factor every lr_step epochs (PointNet++: 0.7)");
+    v("lr_step", lr_step, "epochs; learning-rate decay period");
+    v("weight_decay", weight_decay, "1; Adam L2");
+    v("class_weight_power", class_weight_power, "1; inverse-frequency CE weight exponent");
+    v("augment", augment, "bool; rotation/scale/jitter/colour augmentation");
+    v("val_every", val_every, "epochs; validation period");
+    v("threads", threads, "count; libtorch intra-op threads");
+    v("seed", seed, "1; random seed");
+  }
+};
+
+/// One epoch's record.
+struct EpochLog {
+  int epoch = 0;
+  double loss = 0;
+  double train_acc = 0;  ///< on the sampled training points
+  double val_miou = -1;  ///< -1 when not validated this epoch
+  double seconds = 0;
+  double lr = 0;
+};
+
+class PointSegmenter {
+ public:
+  explicit PointSegmenter(const PointNetConfig& cfg);
+  ~PointSegmenter();
+  PointSegmenter(PointSegmenter&&) noexcept;
+  PointSegmenter& operator=(PointSegmenter&&) noexcept;
+
+  /// Trains for cfg.epochs (continuing from cfg.checkpoint when it exists). `on_epoch` is
+  /// called after each epoch. Clouds need labels and, depending on `features`, normals/colours.
+  std::vector<EpochLog> train(const std::vector<Cloud>& train, const std::vector<Cloud>& val,
+                              const std::function<void(const EpochLog&)>& on_epoch = {});
+
+  /// Labels of every point: the cloud is split into random disjoint chunks of num_points
+  /// (padded), each chunk is one network pass, so every point gets its own prediction.
+  /// Deterministic (fixed seed). `passes_out` (optional) receives the number of passes.
+  std::vector<int> segment(const Cloud& cloud, int* passes_out = nullptr) const;
+
+  /// Paper variant: `num_points` farthest-point samples, one pass, labels carried back to
+  /// every point by nearest neighbour.
+  std::vector<int> segment_sampled(const Cloud& cloud) const;
+
+  /// One training step on fixed inputs (no augmentation, no sampling when the cloud already has
+  /// num_points points): returns (loss, accuracy). Used by the tests to show learning works.
+  std::pair<double, double> train_step(const std::vector<Cloud>& batch);
+
+  void save(const std::filesystem::path& path) const;  ///< atomic
+  static PointSegmenter load(const std::filesystem::path& path, int threads = 2);
+  const PointNetConfig& config() const;
+  std::size_t parameter_count() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Feature channels of a feature name ("xyzrgbn" → 9). Throws Error on an unknown name.
+int feature_channels(const std::string& features);
+
+}  // namespace cropsight::nn

@@ -1,0 +1,43 @@
+#pragma once
+// The classical grape segmentation model: per-point features (grape_features.hpp) classified by
+// gradient-boosted trees (learning::Gbdt). The feature recipe is stored inside the model file,
+// so a model segments a cloud with exactly the features it was trained on.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "cropsight/core/cloud.hpp"
+#include "cropsight/learning/gbdt.hpp"
+#include "cropsight/pipeline/grape_features.hpp"
+
+namespace cropsight::pipeline {
+
+struct GrapeGbdtConfig {
+  GrapeFeatureConfig features;
+  learning::GbdtParams gbdt;
+  int points_per_cloud = 4000;      ///< training rows drawn per cloud (rare classes kept whole)
+  int rare_class_max = 400;         ///< classes with fewer points than this in a cloud are kept whole
+  double class_weight_power = 0.5;  ///< row weight = (median class share / class share)^power
+  std::uint64_t seed = 1;
+
+  template <class V>
+  void visit(V& v) {
+    v("features", features, "per-point feature recipe");
+    v("gbdt", gbdt, "XGBoost parameters");
+    v("points_per_cloud", points_per_cloud, "count; training rows sampled per cloud (ours)");
+    v("rare_class_max", rare_class_max, "count; classes smaller than this in a cloud are kept whole (ours)");
+    v("class_weight_power", class_weight_power, "1; inverse-frequency class weight exponent (ours)");
+    v("seed", seed, "1; sampling seed");
+  }
+};
+
+/// Trains on the labelled `clouds` (labels 0..gbdt.num_class-1). `log` (optional) receives
+/// progress lines.
+learning::Gbdt train_grape_gbdt(const std::vector<Cloud>& clouds, const GrapeGbdtConfig& cfg,
+                                const std::function<void(const std::string&)>& log = {});
+
+/// Labels of every point of `cloud` (needs normals and colours).
+std::vector<int> segment_grape_gbdt(const learning::Gbdt& model, const Cloud& cloud, int threads = 2);
+
+}  // namespace cropsight::pipeline

@@ -1,0 +1,66 @@
+#pragma once
+// Grape pipeline, stages 1-2 (Luo et al.): the region of interest of a bunch from its 2D
+// detection and its peduncle's (Eq. 1), and the coloured point cloud of that region
+// (Algorithm 1). Pixels: x = column, y = row, origin top-left. Points: camera frame, metres.
+#include <filesystem>
+#include <vector>
+
+#include "cropsight/core/camera.hpp"
+#include "cropsight/core/cloud.hpp"
+#include "cropsight/core/geometry_types.hpp"
+#include "cropsight/core/image.hpp"
+
+namespace cropsight::pipeline {
+
+/// One 2D detection as read from a COCO-style file.
+struct GrapeDetection {
+  Box2D box;
+  int category = 0;  ///< 1 = grape bunch, 2 = peduncle (the dataset's COCO categories)
+  float score = 1.f;
+};
+
+struct GrapeRoiConfig {
+  int bunch_category = 1;     ///< COCO category id of bunches (dataset: 1)
+  int peduncle_category = 2;  ///< COCO category id of peduncles (dataset: 2)
+  float min_score = 0.5f;     ///< detections below are ignored
+  double z_min = 0.001;       ///< m; nearest depth kept (paper: 0.001 m, Luo et al. Algorithm 1)
+  double z_max = 3.0;         ///< m; farthest depth kept (paper: 3.0 m, Luo et al. Algorithm 1)
+  int normal_k = 30;          ///< KNN-PCA normal neighbours (paper: 30, Luo et al. 2.3)
+
+  template <class V>
+  void visit(V& v) {
+    v("bunch_category", bunch_category, "id; COCO category of grape bunches (dataset: 1)");
+    v("peduncle_category", peduncle_category, "id; COCO category of peduncles (dataset: 2)");
+    v("min_score", min_score, "1; detections with a lower score are ignored");
+    v("z_min", z_min, "m; nearest depth kept (paper: 0.001 m, Luo et al. Algorithm 1)");
+    v("z_max", z_max, "m; farthest depth kept (paper: 3.0 m, Luo et al. Algorithm 1)");
+    v("normal_k", normal_k, "count; KNN-PCA normal neighbours (paper: 30, Luo et al. 2.3)");
+  }
+};
+
+/// Eq. 1: the ROI spanning a bunch box g and its peduncle box p:
+/// X = X_g, Y = Y_p, W = W_g, H = Y_g + H_g - Y_p.
+Box2D roi_from_boxes(const Box2D& bunch, const Box2D& peduncle);
+
+/// ROIs of every bunch: each bunch is paired with the peduncle box whose horizontal centre lies
+/// within the bunch's columns and whose top is above the bunch's top, nearest first (Eq. 1);
+/// a bunch without a peduncle keeps its own box. Overlapping ROIs are then merged into their
+/// union until none overlap. The result is clipped to the image (width × height).
+std::vector<Box2D> grape_rois(const std::vector<GrapeDetection>& detections, int width, int height,
+                              const GrapeRoiConfig& cfg = {});
+
+/// Merges boxes that overlap (intersection area > 0) into their bounding union, repeatedly.
+std::vector<Box2D> merge_overlapping(std::vector<Box2D> boxes);
+
+/// Algorithm 1: deprojects every pixel of `roi` whose depth z satisfies z_min < z < z_max with
+/// `cam`, attaching its colour scaled to [0, 1] (when `color` is non-empty, same size as depth).
+/// Throws Error("roi cloud", ...) on size mismatch.
+Cloud roi_cloud(const DepthImage& depth, const ColorImage& color, const CameraIntrinsics& cam, const Box2D& roi,
+                const GrapeRoiConfig& cfg = {});
+
+/// Detections from a COCO-style JSON file: either a full COCO file ("annotations" array) or a
+/// results array; each entry needs "bbox" [x, y, w, h] and "category_id" ("score" optional).
+/// When `image_id` >= 0 only that image's entries are kept. Throws Error(path, ...).
+std::vector<GrapeDetection> read_coco_detections(const std::filesystem::path& path, long image_id = -1);
+
+}  // namespace cropsight::pipeline

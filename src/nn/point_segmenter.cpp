@@ -1,0 +1,561 @@
+// PointNet++ (MSG) and PointResNet on libtorch, CPU. Layers follow Qi et al. (PointNet++) with
+// two deliberate simplifications for speed on two cores, documented in
+// docs/pipelines/grape-bunches.md: k-nearest-neighbour grouping instead of ball query, and
+// farthest-point sampling done in C++ (geometry::farthest_point_sample) outside autograd.
+#include "cropsight/nn/point_segmenter.hpp"
+
+#include <torch/torch.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/geometry/farthest_point.hpp"
+#include "cropsight/geometry/knn_normals.hpp"
+
+namespace cropsight::nn {
+
+int feature_channels(const std::string& f) {
+  if (f == "xyz") return 3;
+  if (f == "xyzn" || f == "xyzrgb") return 6;
+  if (f == "xyzrgbn") return 9;
+  throw Error("features", "unknown feature set '" + f + "' (expected xyz, xyzn, xyzrgb or xyzrgbn)");
+}
+
+namespace {
+
+// Linear over the last dimension followed by BatchNorm over every other dimension.
+struct LinBnImpl : torch::nn::Module {
+  torch::nn::Linear lin{nullptr};
+  torch::nn::BatchNorm1d bn{nullptr};
+  LinBnImpl(int in, int out) {
+    lin = register_module("lin", torch::nn::Linear(torch::nn::LinearOptions(in, out).bias(false)));
+    bn = register_module("bn", torch::nn::BatchNorm1d(out));
+  }
+  torch::Tensor forward(const torch::Tensor& x) {
+    auto s = x.sizes().vec();
+    auto y = lin(x.reshape({-1, s.back()}));
+    y = bn(y);
+    s.back() = y.size(1);
+    return y.reshape(s);
+  }
+};
+TORCH_MODULE(LinBn);
+
+// ResMLP block (PointResNet): relu(x' + F(x')) with x' = relu(BN(W0 x)) and
+// F = BN(W2 relu(BN(W1 .))). The projection W0 makes the residual widths match.
+struct MlpBlockImpl : torch::nn::Module {
+  bool residual;
+  LinBn proj{nullptr}, f1{nullptr}, f2{nullptr};
+  MlpBlockImpl(int in, int out, bool res) : residual(res) {
+    proj = register_module("proj", LinBn(in, out));
+    f1 = register_module("f1", LinBn(out, out));
+    if (residual) f2 = register_module("f2", LinBn(out, out));
+  }
+  torch::Tensor forward(const torch::Tensor& x) {
+    auto h = torch::relu(proj(x));
+    if (!residual) return torch::relu(f1(h));  // plain PointNet++ MLP: two layers
+    return torch::relu(h + f2(torch::relu(f1(h))));
+  }
+};
+TORCH_MODULE(MlpBlock);
+
+// Rows of `points` (B, N, C) picked by `idx` (B, ...) → (B, ..., C).
+torch::Tensor gather(const torch::Tensor& points, const torch::Tensor& idx) {
+  const auto B = points.size(0), N = points.size(1), C = points.size(2);
+  auto offs = torch::arange(B, idx.options()).mul(N);
+  std::vector<int64_t> shape(idx.dim(), 1);
+  shape[0] = B;
+  auto flat = (idx + offs.view(shape)).reshape({-1});
+  auto out_shape = idx.sizes().vec();
+  out_shape.push_back(C);
+  return points.reshape({B * N, C}).index_select(0, flat).view(out_shape);
+}
+
+// Farthest-point sampling per batch item (C++, no autograd) → (B, S) int64.
+torch::Tensor fps(const torch::Tensor& xyz, int S) {
+  const auto B = xyz.size(0), N = xyz.size(1);
+  auto cpu = xyz.detach().contiguous();
+  auto out = torch::empty({B, S}, torch::kLong);
+  for (int64_t b = 0; b < B; ++b) {
+    const float* p = cpu[b].data_ptr<float>();
+    std::vector<Eigen::Vector3f> pts(static_cast<std::size_t>(N));
+    for (int64_t i = 0; i < N; ++i) pts[std::size_t(i)] = {p[3 * i], p[3 * i + 1], p[3 * i + 2]};
+    auto idx = geometry::farthest_point_sample(pts, std::size_t(S), 0);
+    while (int(idx.size()) < S) idx.push_back(idx[idx.size() % std::max<std::size_t>(1, idx.size())]);
+    auto* o = out[b].data_ptr<int64_t>();
+    for (int s = 0; s < S; ++s) o[s] = idx[std::size_t(s)];
+  }
+  return out;
+}
+
+// Set abstraction: S centroids, one or more kNN scales, each scale an MLP block then max-pool.
+struct SetAbstractionImpl : torch::nn::Module {
+  int S;
+  std::vector<int> ks;
+  std::vector<MlpBlock> branches;
+  SetAbstractionImpl(int S_, std::vector<int> ks_, int in, std::vector<int> outs, bool residual) : S(S_), ks(ks_) {
+    for (std::size_t i = 0; i < ks.size(); ++i)
+      branches.push_back(register_module("b" + std::to_string(i), MlpBlock(in + 3, outs[i], residual)));
+  }
+  std::pair<torch::Tensor, torch::Tensor> forward(const torch::Tensor& xyz, const torch::Tensor& feats) {
+    const int s = std::min<int>(S, int(xyz.size(1)));
+    auto cidx = fps(xyz, s);
+    auto new_xyz = gather(xyz, cidx);     // (B, S, 3)
+    auto d = torch::cdist(new_xyz, xyz);  // (B, S, N)
+    std::vector<torch::Tensor> outs;
+    for (std::size_t i = 0; i < ks.size(); ++i) {
+      const int k = std::min<int>(ks[i], int(xyz.size(1)));
+      auto nidx = std::get<1>(d.topk(k, -1, /*largest=*/false));  // (B, S, k)
+      auto rel = gather(xyz, nidx) - new_xyz.unsqueeze(2);        // (B, S, k, 3)
+      // Relative positions are tiny in unit-sphere clouds: scale by the mean neighbour
+      // distance of this layer so that the first linear layer sees O(1) inputs.
+      rel = rel / (rel.norm(2, -1).mean().detach() + 1e-6);
+      auto g = torch::cat({rel, gather(feats, nidx)}, -1);
+      outs.push_back(std::get<0>(branches[i]->forward(g).max(2)));
+    }
+    return {new_xyz, torch::cat(outs, -1)};
+  }
+};
+TORCH_MODULE(SetAbstraction);
+
+// Feature propagation: inverse-distance interpolation from the 3 nearest coarse points, skip
+// concatenation, MLP block.
+struct FeaturePropImpl : torch::nn::Module {
+  MlpBlock mlp{nullptr};
+  FeaturePropImpl(int in, int out, bool residual) { mlp = register_module("mlp", MlpBlock(in, out, residual)); }
+  torch::Tensor forward(const torch::Tensor& xyz1, const torch::Tensor& xyz2, const torch::Tensor& f1,
+                        const torch::Tensor& f2) {
+    const int k = std::min<int>(3, int(xyz2.size(1)));
+    auto d = torch::cdist(xyz1, xyz2);
+    auto [dist, idx] = d.topk(k, -1, false);
+    auto w = 1.0 / (dist + 1e-8);
+    w = w / w.sum(-1, true);
+    auto interp = (gather(f2, idx) * w.unsqueeze(-1)).sum(2);
+    return mlp->forward(torch::cat({f1, interp}, -1));
+  }
+};
+TORCH_MODULE(FeatureProp);
+
+struct SegNetImpl : torch::nn::Module {
+  SetAbstraction sa1{nullptr}, sa2{nullptr}, sa3{nullptr};
+  FeatureProp fp3{nullptr}, fp2{nullptr}, fp1{nullptr};
+  LinBn head1{nullptr};
+  torch::nn::Dropout drop{nullptr};
+  torch::nn::Linear head2{nullptr};
+  explicit SegNetImpl(const PointNetConfig& c) {
+    const int cin = feature_channels(c.features), w = c.width;
+    const bool res = c.arch == "pointresnet";
+    auto scales = [&](int k) { return res ? std::vector<int>{k} : std::vector<int>{std::max(4, k / 2), k}; };
+    auto widths = [&](int o) { return res ? std::vector<int>{o} : std::vector<int>{o / 2, o / 2}; };
+    sa1 = register_module("sa1", SetAbstraction(c.sa1_points, scales(c.k1), cin, widths(2 * w), res));
+    sa2 = register_module("sa2", SetAbstraction(c.sa2_points, scales(c.k2), 2 * w, widths(4 * w), res));
+    sa3 = register_module("sa3", SetAbstraction(c.sa3_points, scales(c.k3), 4 * w, widths(8 * w), res));
+    fp3 = register_module("fp3", FeatureProp(8 * w + 4 * w, 4 * w, res));
+    fp2 = register_module("fp2", FeatureProp(4 * w + 2 * w, 2 * w, res));
+    fp1 = register_module("fp1", FeatureProp(2 * w + cin, 2 * w, res));
+    head1 = register_module("head1", LinBn(2 * w, 2 * w));
+    drop = register_module("drop", torch::nn::Dropout(c.dropout));
+    head2 = register_module("head2", torch::nn::Linear(2 * w, c.num_classes));
+  }
+  // xyz (B, N, 3), feats (B, N, C) → logits (B, N, classes)
+  torch::Tensor forward(const torch::Tensor& xyz, const torch::Tensor& feats) {
+    auto [x1, f1] = sa1->forward(xyz, feats);
+    auto [x2, f2] = sa2->forward(x1, f1);
+    auto [x3, f3] = sa3->forward(x2, f2);
+    auto g2 = fp3->forward(x2, x3, f2, f3);
+    auto g1 = fp2->forward(x1, x2, f1, g2);
+    auto g0 = fp1->forward(xyz, x1, feats, g1);
+    return head2(drop(torch::relu(head1(g0))));
+  }
+};
+TORCH_MODULE(SegNet);
+
+// A cloud prepared for the network: normalised positions plus the selected channels.
+struct Prepared {
+  std::vector<Eigen::Vector3f> xyz, n, rgb;
+  std::vector<int> labels;
+};
+
+Prepared prepare(const Cloud& c, const std::string& features) {
+  const bool need_n = features.find('n') != std::string::npos && features != "xyz";
+  const bool need_rgb = features.find("rgb") != std::string::npos;
+  if (need_n && !c.has_normals()) throw Error("point network", "features '" + features + "' need normals");
+  if (need_rgb && !c.has_colors()) throw Error("point network", "features '" + features + "' need colours");
+  Prepared p;
+  p.xyz = c.points;
+  geometry::normalize_unit_sphere(p.xyz);
+  if (need_n) p.n = c.normals;
+  if (need_rgb) p.rgb = c.colors;
+  p.labels = c.labels;
+  return p;
+}
+
+// Fills row i of xyz (N,3) and feats (N,C) from point `src` with the channel order x y z
+// [r g b] [nx ny nz].
+void fill_point(const Prepared& p, int src, float* xyz, float* f, const Eigen::Matrix3f& R, float scale,
+                const Eigen::Vector3f& jitter, const Eigen::Vector3f& dcol) {
+  const Eigen::Vector3f x = scale * (R * p.xyz[std::size_t(src)]) + jitter;
+  xyz[0] = x.x(), xyz[1] = x.y(), xyz[2] = x.z();
+  int k = 0;
+  f[k++] = x.x(), f[k++] = x.y(), f[k++] = x.z();
+  if (!p.rgb.empty()) {
+    const Eigen::Vector3f c = (p.rgb[std::size_t(src)] + dcol).cwiseMax(0.f).cwiseMin(1.f);
+    f[k++] = c.x(), f[k++] = c.y(), f[k++] = c.z();
+  }
+  if (!p.n.empty()) {
+    const Eigen::Vector3f n = R * p.n[std::size_t(src)];
+    f[k++] = n.x(), f[k++] = n.y(), f[k++] = n.z();
+  }
+}
+
+}  // namespace
+
+struct PointSegmenter::Impl {
+  PointNetConfig cfg;
+  mutable SegNet net{nullptr};  // eval-mode forward passes from const methods
+  std::unique_ptr<torch::optim::Adam> opt;
+  torch::Tensor class_weights;  // (classes) float
+  int epochs_done = 0;
+
+  explicit Impl(const PointNetConfig& c) : cfg(c) {
+    if (cfg.arch != "pointresnet" && cfg.arch != "pointnet2")
+      throw Error("point network", "unknown arch '" + cfg.arch + "' (expected pointresnet or pointnet2)");
+    feature_channels(cfg.features);
+    if (cfg.num_points < 8 || cfg.sa1_points < 4 || cfg.sa2_points < 2 || cfg.sa3_points < 1)
+      throw Error("point network", "point counts too small");
+    at::set_num_threads(std::max(1, cfg.threads));
+    torch::manual_seed(cfg.seed);
+    net = SegNet(cfg);
+    class_weights = torch::ones({cfg.num_classes});
+  }
+
+  void make_optimizer() {
+    opt = std::make_unique<torch::optim::Adam>(net->parameters(),
+                                               torch::optim::AdamOptions(cfg.lr).weight_decay(cfg.weight_decay));
+  }
+
+  void set_lr(double lr) {
+    for (auto& g : opt->param_groups()) static_cast<torch::optim::AdamOptions&>(g.options()).lr(lr);
+  }
+
+  // Builds a batch from (cloud, point indices) pairs, with optional augmentation.
+  std::tuple<torch::Tensor, torch::Tensor, torch::Tensor> batch(const std::vector<const Prepared*>& clouds,
+                                                                const std::vector<std::vector<int>>& idx,
+                                                                std::mt19937_64* aug) const {
+    const int64_t B = int64_t(clouds.size()), N = int64_t(idx[0].size()), C = feature_channels(cfg.features);
+    auto xyz = torch::empty({B, N, 3});
+    auto feats = torch::empty({B, N, C});
+    auto labels = torch::zeros({B, N}, torch::kLong);
+    for (int64_t b = 0; b < B; ++b) {
+      Eigen::Matrix3f R = Eigen::Matrix3f::Identity();
+      float scale = 1.f;
+      Eigen::Vector3f dcol = Eigen::Vector3f::Zero();
+      std::normal_distribution<float> g(0.f, float(cfg.jitter_sigma));
+      if (aug) {
+        std::uniform_real_distribution<float> u(0.f, 1.f);
+        const float a = u(*aug) * 2.f * float(M_PI);
+        // Rotation about the vertical axis: y (camera frame: y down).
+        R << std::cos(a), 0, std::sin(a), 0, 1, 0, -std::sin(a), 0, std::cos(a);
+        scale = float(cfg.scale_min + (cfg.scale_max - cfg.scale_min) * u(*aug));
+        const float cj = float(cfg.colour_jitter);
+        dcol = Eigen::Vector3f::Constant((u(*aug) * 2 - 1) * cj) +
+               Eigen::Vector3f((u(*aug) * 2 - 1), (u(*aug) * 2 - 1), (u(*aug) * 2 - 1)) * (cj / 2);
+      }
+      float* px = xyz[b].data_ptr<float>();
+      float* pf = feats[b].data_ptr<float>();
+      int64_t* pl = labels[b].data_ptr<int64_t>();
+      for (int64_t i = 0; i < N; ++i) {
+        const int src = idx[std::size_t(b)][std::size_t(i)];
+        Eigen::Vector3f jit = Eigen::Vector3f::Zero();
+        if (aug) jit = Eigen::Vector3f(g(*aug), g(*aug), g(*aug)).cwiseMax(-0.02f).cwiseMin(0.02f);
+        fill_point(*clouds[std::size_t(b)], src, px + 3 * i, pf + C * i, R, scale, jit, dcol);
+        if (!clouds[std::size_t(b)]->labels.empty()) pl[i] = clouds[std::size_t(b)]->labels[std::size_t(src)];
+      }
+    }
+    return {xyz, feats, labels};
+  }
+
+  std::pair<double, double> step(const torch::Tensor& xyz, const torch::Tensor& feats, const torch::Tensor& labels) {
+    net->train();
+    if (!opt) make_optimizer();
+    opt->zero_grad();
+    auto logits = net->forward(xyz, feats);
+    auto flat = logits.reshape({-1, cfg.num_classes});
+    auto y = labels.reshape({-1});
+    auto loss = torch::nn::functional::cross_entropy(
+        flat, y, torch::nn::functional::CrossEntropyFuncOptions().weight(class_weights));
+    loss.backward();
+    opt->step();
+    const double acc = flat.argmax(1).eq(y).to(torch::kDouble).mean().item<double>();
+    return {loss.item<double>(), acc};
+  }
+
+  // Predicted labels for every point of a prepared cloud: random disjoint chunks.
+  std::vector<int> predict(const Prepared& p, int* passes) const {
+    torch::NoGradGuard ng;
+    net->eval();
+    const std::size_t n = p.xyz.size(), N = std::size_t(cfg.num_points);
+    std::vector<int> perm = geometry::random_sample(n, n, cfg.seed);
+    const std::size_t chunks = (n + N - 1) / N;
+    // Pad the last chunk with points drawn from the rest so every pass has N points.
+    std::vector<std::vector<int>> idx(chunks);
+    for (std::size_t c = 0; c < chunks; ++c)
+      for (std::size_t i = 0; i < N; ++i) idx[c].push_back(perm[(c * N + i) % n]);
+    std::vector<int> out(n, 0);
+    const std::size_t per_batch = std::size_t(std::max(1, cfg.batch_size));
+    for (std::size_t c0 = 0; c0 < chunks; c0 += per_batch) {
+      const std::size_t c1 = std::min(chunks, c0 + per_batch);
+      std::vector<const Prepared*> cl(c1 - c0, &p);
+      std::vector<std::vector<int>> sub(idx.begin() + long(c0), idx.begin() + long(c1));
+      auto [xyz, feats, labels] = batch(cl, sub, nullptr);
+      auto pred = net->forward(xyz, feats).argmax(-1).contiguous();
+      const int64_t* pp = pred.data_ptr<int64_t>();
+      for (std::size_t c = c0; c < c1; ++c)
+        for (std::size_t i = 0; i < N && c * N + i < n; ++i)
+          out[std::size_t(perm[c * N + i])] = int(pp[(c - c0) * N + i]);
+    }
+    if (passes) *passes = int(chunks);
+    return out;
+  }
+};
+
+PointSegmenter::PointSegmenter(const PointNetConfig& cfg) : impl_(std::make_unique<Impl>(cfg)) {}
+PointSegmenter::~PointSegmenter() = default;
+PointSegmenter::PointSegmenter(PointSegmenter&&) noexcept = default;
+PointSegmenter& PointSegmenter::operator=(PointSegmenter&&) noexcept = default;
+const PointNetConfig& PointSegmenter::config() const { return impl_->cfg; }
+
+std::size_t PointSegmenter::parameter_count() const {
+  std::size_t n = 0;
+  for (const auto& p : impl_->net->parameters()) n += std::size_t(p.numel());
+  return n;
+}
+
+std::pair<double, double> PointSegmenter::train_step(const std::vector<Cloud>& batch) {
+  std::vector<Prepared> prep;
+  for (const auto& c : batch) prep.push_back(prepare(c, impl_->cfg.features));
+  std::vector<const Prepared*> ptrs;
+  std::vector<std::vector<int>> idx;
+  for (const auto& p : prep) {
+    ptrs.push_back(&p);
+    idx.push_back(geometry::random_sample(p.xyz.size(), std::size_t(impl_->cfg.num_points), impl_->cfg.seed));
+  }
+  auto [xyz, feats, labels] = impl_->batch(ptrs, idx, nullptr);
+  return impl_->step(xyz, feats, labels);
+}
+
+std::vector<EpochLog> PointSegmenter::train(const std::vector<Cloud>& train, const std::vector<Cloud>& val,
+                                            const std::function<void(const EpochLog&)>& on_epoch) {
+  auto& I = *impl_;
+  const auto& cfg = I.cfg;
+  if (train.empty()) throw Error("train", "no training clouds");
+  std::vector<Prepared> tr, va;
+  for (const auto& c : train) {
+    if (!c.has_labels()) throw Error("train", "training cloud without labels");
+    tr.push_back(prepare(c, cfg.features));
+  }
+  for (const auto& c : val) va.push_back(prepare(c, cfg.features));
+
+  // Class weights from the training labels (inverse frequency, softened).
+  std::vector<double> count(std::size_t(cfg.num_classes), 0.0);
+  for (const auto& p : tr)
+    for (int l : p.labels) {
+      if (l < 0 || l >= cfg.num_classes) throw Error("train", "label " + std::to_string(l) + " out of range");
+      count[std::size_t(l)] += 1;
+    }
+  std::vector<double> present;
+  for (double c : count)
+    if (c > 0) present.push_back(c);
+  std::sort(present.begin(), present.end());
+  const double median = present[present.size() / 2];
+  I.class_weights = torch::ones({cfg.num_classes});
+  for (int c = 0; c < cfg.num_classes; ++c)
+    I.class_weights[c] =
+        count[std::size_t(c)] > 0 ? float(std::pow(median / count[std::size_t(c)], cfg.class_weight_power)) : 1.f;
+
+  if (!I.opt) I.make_optimizer();
+  // Resume.
+  if (!cfg.checkpoint.empty() && std::filesystem::exists(cfg.checkpoint)) {
+    torch::serialize::InputArchive a;
+    a.load_from(cfg.checkpoint);
+    torch::serialize::InputArchive m, o;
+    a.read("model", m);
+    a.read("optim", o);
+    I.net->load(m);
+    I.opt->load(o);
+    torch::Tensor e;
+    a.read("epoch", e);
+    I.epochs_done = int(e.item<int64_t>());
+  }
+
+  std::vector<EpochLog> logs;
+  std::mt19937_64 rng(cfg.seed * 7919 + std::uint64_t(I.epochs_done));
+  for (int epoch = I.epochs_done; epoch < cfg.epochs; ++epoch) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const double lr = cfg.lr * std::pow(cfg.lr_decay, epoch / std::max(1, cfg.lr_step));
+    I.set_lr(lr);
+    torch::manual_seed(cfg.seed + std::uint64_t(epoch));  // dropout masks: deterministic per epoch
+    std::vector<int> order(tr.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::shuffle(order.begin(), order.end(), rng);
+    double loss_sum = 0, acc_sum = 0;
+    int steps = 0;
+    for (std::size_t b0 = 0; b0 < order.size(); b0 += std::size_t(cfg.batch_size)) {
+      const std::size_t b1 = std::min(order.size(), b0 + std::size_t(cfg.batch_size));
+      if (b1 - b0 < 2 && order.size() >= 2) continue;  // BatchNorm needs more than one cloud
+      std::vector<const Prepared*> ptrs;
+      std::vector<std::vector<int>> idx;
+      for (std::size_t k = b0; k < b1; ++k) {
+        const Prepared& p = tr[std::size_t(order[k])];
+        ptrs.push_back(&p);
+        idx.push_back(geometry::random_sample(p.xyz.size(), std::size_t(cfg.num_points), rng()));
+      }
+      auto [xyz, feats, labels] = I.batch(ptrs, idx, cfg.augment ? &rng : nullptr);
+      auto [l, a] = I.step(xyz, feats, labels);
+      loss_sum += l, acc_sum += a, ++steps;
+    }
+    EpochLog log;
+    log.epoch = epoch + 1;
+    log.loss = steps ? loss_sum / steps : 0;
+    log.train_acc = steps ? acc_sum / steps : 0;
+    log.lr = lr;
+    if (!va.empty() && cfg.val_every > 0 && ((epoch + 1) % cfg.val_every == 0 || epoch + 1 == cfg.epochs)) {
+      // Validation mIoU over the pooled points of every validation cloud (classes present).
+      std::vector<double> tp(std::size_t(cfg.num_classes)), t(tp), pr(tp);
+      for (const auto& p : va) {
+        const auto pred = I.predict(p, nullptr);
+        for (std::size_t i = 0; i < pred.size(); ++i) {
+          t[std::size_t(p.labels[i])] += 1, pr[std::size_t(pred[i])] += 1;
+          if (pred[i] == p.labels[i]) tp[std::size_t(pred[i])] += 1;
+        }
+      }
+      double s = 0;
+      int k = 0;
+      for (int c = 0; c < cfg.num_classes; ++c)
+        if (t[std::size_t(c)] + pr[std::size_t(c)] > 0)
+          s += tp[std::size_t(c)] / (t[std::size_t(c)] + pr[std::size_t(c)] - tp[std::size_t(c)]), ++k;
+      log.val_miou = k ? s / k : 0;
+    }
+    log.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    I.epochs_done = epoch + 1;
+    if (!cfg.checkpoint.empty()) {
+      torch::serialize::OutputArchive a, m, o;
+      I.net->save(m);
+      I.opt->save(o);
+      a.write("model", m);
+      a.write("optim", o);
+      a.write("epoch", torch::tensor(int64_t(I.epochs_done)));
+      const std::string tmp = cfg.checkpoint + ".tmp";
+      a.save_to(tmp);
+      std::filesystem::rename(tmp, cfg.checkpoint);
+    }
+    logs.push_back(log);
+    if (on_epoch) on_epoch(log);
+  }
+  return logs;
+}
+
+std::vector<int> PointSegmenter::segment(const Cloud& cloud, int* passes) const {
+  if (cloud.empty()) return {};
+  return impl_->predict(prepare(cloud, impl_->cfg.features), passes);
+}
+
+std::vector<int> PointSegmenter::segment_sampled(const Cloud& cloud) const {
+  torch::NoGradGuard ng;
+  impl_->net->eval();
+  const Prepared p = prepare(cloud, impl_->cfg.features);
+  auto idx = geometry::farthest_point_sample(p.xyz, std::size_t(impl_->cfg.num_points), 0);
+  while (idx.size() < std::size_t(impl_->cfg.num_points)) idx.push_back(idx[idx.size() % p.xyz.size()]);
+  auto [xyz, feats, labels] = impl_->batch({&p}, {idx}, nullptr);
+  auto pred = impl_->net->forward(xyz, feats).argmax(-1).contiguous();
+  std::vector<Eigen::Vector3f> samples;
+  std::vector<int> sl;
+  for (std::size_t i = 0; i < idx.size(); ++i) {
+    samples.push_back(p.xyz[std::size_t(idx[i])]);
+    sl.push_back(int(pred.data_ptr<int64_t>()[i]));
+  }
+  return geometry::carry_labels_back(samples, sl, p.xyz);
+}
+
+namespace {
+void put(torch::serialize::OutputArchive& a, const std::string& k, const std::string& v) { a.write(k, c10::IValue(v)); }
+void put(torch::serialize::OutputArchive& a, const std::string& k, double v) { a.write(k, c10::IValue(v)); }
+std::string get_s(torch::serialize::InputArchive& a, const std::string& k) {
+  c10::IValue v;
+  a.read(k, v);
+  return v.toStringRef();
+}
+double get_d(torch::serialize::InputArchive& a, const std::string& k) {
+  c10::IValue v;
+  a.read(k, v);
+  return v.toDouble();
+}
+}  // namespace
+
+void PointSegmenter::save(const std::filesystem::path& path) const {
+  const auto& c = impl_->cfg;
+  torch::serialize::OutputArchive a, m;
+  impl_->net->save(m);
+  a.write("model", m);
+  put(a, "meta.kind", std::string("grape-pointnet"));
+  put(a, "meta.arch", c.arch);
+  put(a, "meta.features", c.features);
+  put(a, "meta.num_classes", double(c.num_classes));
+  put(a, "meta.num_points", double(c.num_points));
+  put(a, "meta.sa1_points", double(c.sa1_points));
+  put(a, "meta.sa2_points", double(c.sa2_points));
+  put(a, "meta.sa3_points", double(c.sa3_points));
+  put(a, "meta.k1", double(c.k1));
+  put(a, "meta.k2", double(c.k2));
+  put(a, "meta.k3", double(c.k3));
+  put(a, "meta.width", double(c.width));
+  put(a, "meta.seed", double(c.seed));
+  put(a, "meta.batch_size", double(c.batch_size));
+  const std::string tmp = path.string() + ".tmp";
+  a.save_to(tmp);
+  std::filesystem::rename(tmp, path);
+}
+
+PointSegmenter PointSegmenter::load(const std::filesystem::path& path, int threads) {
+  const std::string where = path.string();
+  if (!std::filesystem::exists(path)) throw Error(where, "no such model file");
+  torch::serialize::InputArchive a;
+  try {
+    a.load_from(where);
+  } catch (const std::exception& e) {
+    throw Error(where, "not a cropsight network model");
+  }
+  PointNetConfig c;
+  try {
+    if (get_s(a, "meta.kind") != "grape-pointnet") throw Error(where, "not a grape network model");
+    c.arch = get_s(a, "meta.arch");
+    c.features = get_s(a, "meta.features");
+    c.num_classes = int(get_d(a, "meta.num_classes"));
+    c.num_points = int(get_d(a, "meta.num_points"));
+    c.sa1_points = int(get_d(a, "meta.sa1_points"));
+    c.sa2_points = int(get_d(a, "meta.sa2_points"));
+    c.sa3_points = int(get_d(a, "meta.sa3_points"));
+    c.k1 = int(get_d(a, "meta.k1"));
+    c.k2 = int(get_d(a, "meta.k2"));
+    c.k3 = int(get_d(a, "meta.k3"));
+    c.width = int(get_d(a, "meta.width"));
+    c.seed = std::uint64_t(get_d(a, "meta.seed"));
+    c.batch_size = int(get_d(a, "meta.batch_size"));
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception&) {
+    throw Error(where, "model file lacks its metadata");
+  }
+  c.threads = threads;
+  PointSegmenter s(c);
+  torch::serialize::InputArchive m;
+  a.read("model", m);
+  s.impl_->net->load(m);
+  return s;
+}
+
+}  // namespace cropsight::nn

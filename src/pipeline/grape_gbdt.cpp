@@ -1,0 +1,82 @@
+#include "cropsight/pipeline/grape_gbdt.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <random>
+
+#include "cropsight/core/error.hpp"
+
+namespace cropsight::pipeline {
+
+namespace {
+// Rows used for training from one cloud: every point of a class rarer than rare_class_max,
+// plus a uniform draw from the rest up to points_per_cloud (the shared clouds have 14k-40k
+// points; all of them would make training slow without adding much information).
+std::vector<int> training_rows(const Cloud& c, const GrapeGbdtConfig& cfg, std::mt19937_64& rng) {
+  std::map<int, std::vector<int>> by_class;
+  for (std::size_t i = 0; i < c.size(); ++i) by_class[c.labels[i]].push_back(int(i));
+  std::vector<int> rows, rest;
+  for (auto& [label, idx] : by_class) {
+    if (int(idx.size()) < cfg.rare_class_max)
+      rows.insert(rows.end(), idx.begin(), idx.end());
+    else
+      rest.insert(rest.end(), idx.begin(), idx.end());
+  }
+  std::shuffle(rest.begin(), rest.end(), rng);
+  const std::size_t want = std::size_t(std::max(0, cfg.points_per_cloud - int(rows.size())));
+  rows.insert(rows.end(), rest.begin(), rest.begin() + long(std::min(want, rest.size())));
+  std::sort(rows.begin(), rows.end());
+  return rows;
+}
+}  // namespace
+
+learning::Gbdt train_grape_gbdt(const std::vector<Cloud>& clouds, const GrapeGbdtConfig& cfg,
+                                const std::function<void(const std::string&)>& log) {
+  if (clouds.empty()) throw Error("train grape", "no training clouds");
+  const std::size_t F = grape_feature_count(cfg.features);
+  std::mt19937_64 rng(cfg.seed);
+  std::vector<float> X, y;
+  for (std::size_t k = 0; k < clouds.size(); ++k) {
+    const Cloud& c = clouds[k];
+    if (!c.has_labels()) throw Error("train grape", "cloud " + std::to_string(k) + " has no labels");
+    const std::vector<int> rows = training_rows(c, cfg, rng);
+    const std::vector<float> f = grape_point_features(c, cfg.features, rows);
+    X.insert(X.end(), f.begin(), f.end());
+    for (int r : rows) y.push_back(float(c.labels[std::size_t(r)]));
+    if (log && (k + 1) % 10 == 0) log("features: " + std::to_string(k + 1) + "/" + std::to_string(clouds.size()));
+  }
+  const std::size_t n = y.size();
+  // Inverse-frequency weights (softened by class_weight_power), normalised so that the median
+  // class has weight 1: lifts the tiny peduncle class without drowning the others.
+  std::vector<double> count(std::size_t(cfg.gbdt.num_class), 0.0);
+  for (float l : y) {
+    if (l < 0 || l >= float(cfg.gbdt.num_class)) throw Error("train grape", "label out of range: " + std::to_string(l));
+    count[std::size_t(l)] += 1;
+  }
+  std::vector<double> present;
+  for (double c : count)
+    if (c > 0) present.push_back(c);
+  std::sort(present.begin(), present.end());
+  const double median = present[present.size() / 2];
+  std::vector<float> w(n);
+  for (std::size_t i = 0; i < n; ++i) w[i] = float(std::pow(median / count[std::size_t(y[i])], cfg.class_weight_power));
+  if (log) log("training XGBoost on " + std::to_string(n) + " rows x " + std::to_string(F) + " features");
+  learning::Gbdt model;
+  model.train(X, n, F, y, w, cfg.gbdt);
+  model.set_attribute("cropsight.kind", "grape-gbdt");
+  model.set_attribute("cropsight.features", cfg.features.recipe());
+  return model;
+}
+
+std::vector<int> segment_grape_gbdt(const learning::Gbdt& model, const Cloud& cloud, int threads) {
+  if (model.attribute("cropsight.kind") != "grape-gbdt")
+    throw Error("grape model", "not a grape GBDT model (cropsight.kind attribute missing)");
+  GrapeFeatureConfig fc = GrapeFeatureConfig::from_recipe(model.attribute("cropsight.features"), "grape model");
+  fc.threads = threads;
+  const std::vector<float> X = grape_point_features(cloud, fc);
+  return model.predict(X, cloud.size(), grape_feature_count(fc));
+}
+
+}  // namespace cropsight::pipeline

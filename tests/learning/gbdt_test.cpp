@@ -1,0 +1,61 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <random>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/learning/gbdt.hpp"
+#include "testing/testing.hpp"
+
+namespace {
+using cropsight::learning::Gbdt;
+using cropsight::learning::GbdtParams;
+
+// Three classes separated by thresholds on two of four features (the others are noise).
+void make(std::size_t n, std::uint32_t seed, std::vector<float>& x, std::vector<float>& y) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0, 1);
+  x.clear(), y.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    const float a = u(rng), b = u(rng);
+    x.insert(x.end(), {a, u(rng), b, u(rng)});
+    y.push_back(a < 0.3f ? 0.f : (b < 0.5f ? 1.f : 2.f));
+  }
+}
+
+TEST(Gbdt, LearnsHeldOutRuleAndRoundTrips) {
+  std::vector<float> x, y, xt, yt;
+  make(2000, 1, x, y);
+  make(500, 2, xt, yt);
+  GbdtParams p;
+  p.num_class = 3, p.rounds = 30, p.max_depth = 4;
+  Gbdt g;
+  g.train(x, 2000, 4, y, {}, p);
+  g.set_attribute("note", "hello");
+  const auto pred = g.predict(xt, 500, 4);
+  int ok = 0;
+  for (std::size_t i = 0; i < pred.size(); ++i) ok += pred[i] == int(yt[i]);
+  EXPECT_GT(ok, 480);  // held-out accuracy > 96 %
+
+  cropsight::testing::TempDir t;
+  g.save(t / "m.json");
+  const Gbdt h = Gbdt::load(t / "m.json");
+  EXPECT_EQ(h.num_class(), 3);
+  EXPECT_EQ(h.num_features(), 4u);
+  EXPECT_EQ(h.attribute("note"), "hello");
+  EXPECT_EQ(h.predict_proba(xt, 500, 4), g.predict_proba(xt, 500, 4));
+  EXPECT_THROW(h.predict(xt, 250, 8), cropsight::Error);
+}
+
+TEST(Gbdt, BadInputsThrow) {
+  Gbdt g;
+  GbdtParams p;
+  p.num_class = 2;
+  EXPECT_THROW(g.train({1, 2}, 2, 1, {0}, {}, p), cropsight::Error);
+  EXPECT_THROW(g.train({1, 2}, 2, 1, {0, 5}, {}, p), cropsight::Error);
+  EXPECT_THROW(g.predict({1}, 1, 1), cropsight::Error);
+  cropsight::testing::TempDir t;
+  std::ofstream(t / "junk.json") << "not a model";
+  EXPECT_THROW(Gbdt::load(t / "junk.json"), cropsight::Error);
+}
+}  // namespace
