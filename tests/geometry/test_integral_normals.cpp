@@ -1,0 +1,132 @@
+// Integral-image normals against pcl::IntegralImageNormalEstimation (COVARIANCE_MATRIX, the same
+// depth-change factor and smoothing size) on the same synthetic 512×424 organised cloud.
+#include <gtest/gtest.h>
+#include <pcl/features/integral_image_normal.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/core/pcl_conversions.hpp"
+#include "cropsight/geometry/integral_normals.hpp"
+#include "geometry/synthetic_scene.hpp"
+
+using namespace cropsight;
+
+namespace {
+
+struct Comparison {
+  std::size_t both = 0, only_ours = 0, only_pcl = 0, neither = 0;
+  double median_deg = 0, p95_deg = 0, median_curv_abs = 0;
+};
+
+Comparison compare_with_pcl(const OrganizedCloud& input, const geometry::IntegralNormalConfig& cfg) {
+  OrganizedCloud ours = input;
+  geometry::IntegralNormalEstimator est(cfg);
+  est.compute(ours);
+
+  auto pc = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+  to_pcl(input, *pc);
+  pcl::IntegralImageNormalEstimation<pcl::PointXYZ, pcl::Normal> ne;
+  ne.setNormalEstimationMethod(ne.COVARIANCE_MATRIX);
+  ne.setMaxDepthChangeFactor(cfg.max_depth_change_factor);
+  ne.setNormalSmoothingSize(cfg.normal_smoothing_size);
+  ne.setInputCloud(pc);
+  pcl::PointCloud<pcl::Normal> ref;
+  ne.compute(ref);
+
+  Comparison c;
+  std::vector<double> angles, curv;
+  for (std::size_t i = 0; i < input.size(); ++i) {
+    const bool a = std::isfinite(ours.nx[i]);
+    const bool b = std::isfinite(ref[i].normal_x);
+    if (a && b) {
+      ++c.both;
+      const double dot = double(ours.nx[i]) * ref[i].normal_x + double(ours.ny[i]) * ref[i].normal_y +
+                         double(ours.nz[i]) * ref[i].normal_z;
+      angles.push_back(std::acos(std::clamp(dot, -1.0, 1.0)) * 180.0 / M_PI);
+      curv.push_back(std::abs(double(ours.curvature[i]) - ref[i].curvature));
+    } else if (a) {
+      ++c.only_ours;
+    } else if (b) {
+      ++c.only_pcl;
+    } else {
+      ++c.neither;
+    }
+  }
+  if (!angles.empty()) {
+    std::sort(angles.begin(), angles.end());
+    std::sort(curv.begin(), curv.end());
+    c.median_deg = angles[angles.size() / 2];
+    c.p95_deg = angles[angles.size() * 95 / 100];
+    c.median_curv_abs = curv[curv.size() / 2];
+  }
+  return c;
+}
+
+}  // namespace
+
+TEST(IntegralNormals, MatchesPclOnSyntheticScene) {
+  const auto scene = cropsight::testing::make_synthetic_scene();
+  const Comparison c = compare_with_pcl(scene.cloud, {});
+  const double total = double(scene.cloud.size());
+  const double agreement = double(c.both + c.neither) / total;
+  std::cout << "[normals vs PCL] valid in both " << c.both << ", only ours " << c.only_ours << ", only PCL "
+            << c.only_pcl << "; validity agreement " << agreement * 100 << " %; median angle " << c.median_deg
+            << " deg, p95 " << c.p95_deg << " deg; median |curvature diff| " << c.median_curv_abs << "\n";
+  ASSERT_GT(c.both, scene.cloud.size() / 2);
+  EXPECT_LT(c.median_deg, 1.0);
+  EXPECT_GT(agreement, 0.999);
+  EXPECT_LT(c.median_curv_abs, 1e-3);
+}
+
+TEST(IntegralNormals, MatchesPclWithOtherParameters) {
+  const auto scene = cropsight::testing::make_synthetic_scene({.width = 256, .height = 212});
+  const Comparison c = compare_with_pcl(scene.cloud, {.max_depth_change_factor = 0.01f, .normal_smoothing_size = 6.0f});
+  std::cout << "[normals vs PCL, factor 0.01 size 6] median angle " << c.median_deg << " deg, only ours " << c.only_ours
+            << ", only PCL " << c.only_pcl << "\n";
+  ASSERT_GT(c.both, 1000u);
+  EXPECT_LT(c.median_deg, 1.0);
+  EXPECT_LE(c.only_ours + c.only_pcl, c.both / 1000 + 5);
+}
+
+TEST(IntegralNormals, PlaneGivesExactNormalFacingCamera) {
+  // Noise-free tilted plane z = 0.8 + 0.2 x: normal ∝ (0.2, 0, -1) facing the camera, curvature 0.
+  auto cam = CameraIntrinsics::from_fov(64, 48, 1.2, 1.0);
+  OrganizedCloud c(64, 48);
+  for (int v = 0; v < 48; ++v)
+    for (int u = 0; u < 64; ++u) {
+      const double rx = (u - cam.cx) / cam.fx, ry = (v - cam.cy) / cam.fy;
+      const double z = 0.8 / (1.0 - 0.2 * rx);
+      const int i = c.index(u, v);
+      c.x[i] = float(rx * z), c.y[i] = float(ry * z), c.z[i] = float(z);
+    }
+  geometry::estimate_normals_integral(c);
+  const Eigen::Vector3f expect = Eigen::Vector3f(0.2f, 0.0f, -1.0f).normalized();
+  int checked = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    if (!std::isfinite(c.nx[i])) continue;
+    ++checked;
+    EXPECT_GT(c.normal(i).dot(expect), 0.99999f);
+    EXPECT_LT(c.curvature[i], 1e-5f);
+  }
+  EXPECT_EQ(checked, (64 - 20) * (48 - 20));  // everything but the 10-pixel border
+}
+
+TEST(IntegralNormals, RejectsBadConfig) {
+  OrganizedCloud c(32, 32);
+  EXPECT_THROW(
+      geometry::estimate_normals_integral(c, {.max_depth_change_factor = 0.02f, .normal_smoothing_size = 0.0f}), Error);
+  EXPECT_THROW(geometry::estimate_normals_integral(c, {.max_depth_change_factor = -1.0f}), Error);
+}
+
+TEST(IntegralNormals, TinyCloudIsAllNaN) {
+  OrganizedCloud c(8, 8);
+  for (std::size_t i = 0; i < c.size(); ++i) c.x[i] = 0, c.y[i] = 0, c.z[i] = 1;
+  geometry::estimate_normals_integral(c);
+  ASSERT_TRUE(c.has_normals());
+  for (std::size_t i = 0; i < c.size(); ++i) EXPECT_TRUE(std::isnan(c.nx[i]));
+}
