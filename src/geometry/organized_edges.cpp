@@ -19,6 +19,13 @@ void detect_organized_edges(const OrganizedCloud& cloud, const OrganizedEdgeConf
   const std::uint8_t occluded = cfg.detect_occluded ? kEdgeOccluded : 0;
   const std::uint8_t occluding = cfg.detect_occluding ? kEdgeOccluding : 0;
   const std::uint8_t nan_boundary = cfg.detect_nan_boundary ? kEdgeNanBoundary : 0;
+  if (cfg.high_curvature_threshold > 0.0f && cloud.curvature.size() == cloud.size()) {
+    const float* C = cloud.curvature.data();
+    const float th = cfg.high_curvature_threshold;
+    // NaN curvature compares false: pixels without a normal are not creases.
+    for (std::size_t i = 0; i < cloud.size(); ++i)
+      if (C[i] > th) labels[i] = kEdgeHighCurvature;
+  }
   if ((occluded | occluding | nan_boundary) == 0) return;
   const float th = cfg.depth_discontinuity;
   const float* Z = cloud.z.data();
@@ -48,7 +55,7 @@ void detect_organized_edges(const OrganizedCloud& cloud, const OrganizedEdgeConf
       }
       if (!invalid) {
         const float dominant = std::abs(dmin) > std::abs(dmax) ? dmin : dmax;
-        if (std::abs(dominant) > th * cur) labels[i] = dominant > 0.0f ? occluded : occluding;
+        if (std::abs(dominant) > th * cur) labels[i] |= dominant > 0.0f ? occluded : occluding;
         continue;
       }
       // Some neighbour is NaN: look across the hole along the mean direction of the NaN ones.
@@ -74,9 +81,9 @@ void detect_organized_edges(const OrganizedCloud& cloud, const OrganizedEdgeConf
       }
       if (!std::isnan(corr)) {
         const float d = cur - corr;
-        if (std::abs(d) > th * cur) labels[i] = d > 0.0f ? occluded : occluding;
+        if (std::abs(d) > th * cur) labels[i] |= d > 0.0f ? occluded : occluding;
       } else {
-        labels[i] = nan_boundary;
+        labels[i] |= nan_boundary;
       }
     }
   }

@@ -4,6 +4,7 @@
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 
@@ -94,6 +95,20 @@ TEST(OrganizedEdges, StepGivesOccludingInFrontOccludedBehind) {
   const auto only_occluding = geometry::detect_organized_edges(c, {.detect_occluded = false});
   EXPECT_EQ(only_occluding[c.index(4, 2)], geometry::kEdgeOccluding);
   EXPECT_EQ(only_occluding[c.index(5, 2)], geometry::kEdgeNone);
+}
+
+TEST(OrganizedEdges, HighCurvatureBitIsOptional) {
+  OrganizedCloud c(5, 5);
+  for (std::size_t i = 0; i < c.size(); ++i)
+    c.x[i] = 0.001f * float(i % 5), c.y[i] = 0.001f * float(i / 5), c.z[i] = 0.8f;
+  c.allocate_normals();
+  c.curvature[c.index(2, 2)] = 0.1f;
+  c.curvature[c.index(1, 2)] = 0.01f;
+  EXPECT_EQ(geometry::detect_organized_edges(c)[c.index(2, 2)], geometry::kEdgeNone);  // off by default
+  const auto l = geometry::detect_organized_edges(c, {.high_curvature_threshold = 0.05f});
+  EXPECT_EQ(l[c.index(2, 2)], geometry::kEdgeHighCurvature);
+  EXPECT_EQ(l[c.index(1, 2)], geometry::kEdgeNone);
+  EXPECT_EQ(std::count(l.begin(), l.end(), geometry::kEdgeHighCurvature), 1);
 }
 
 TEST(OrganizedEdges, RejectsBadConfig) {

@@ -23,9 +23,9 @@ namespace cropsight::segmentation {
 
 struct OesConfig {
   float distance_tolerance = 0.01f;  ///< m; max 3D distance between 4-neighbours
-  int barrier_labels = 7;            ///< bit mask of geometry::EdgeLabel (1 NaN boundary | 2 occluding | 4 occluded)
-  int min_size = 500;                ///< points
-  int max_size = 10000;              ///< points
+  int barrier_labels = 15;  ///< bit mask of geometry::EdgeLabel (1 NaN boundary | 2 occluding | 4 occluded | 8 crease)
+  int min_size = 500;       ///< points
+  int max_size = 10000;     ///< points
 
   template <class V>
   void visit(V& v) {
@@ -33,7 +33,8 @@ struct OesConfig {
       "m; max distance between 4-neighbours of one segment (PCL EuclideanClusterComparator as in its organised "
       "segmentation demo: 0.01 m)");
     v("barrier_labels", barrier_labels,
-      "bit mask of edge labels that stop a segment: 1 NaN boundary, 2 occluding, 4 occluded (default 7: all)");
+      "bit mask of edge labels that stop a segment: 1 NaN boundary, 2 occluding, 4 occluded, 8 high curvature (default "
+      "15: all)");
     v("min_size", min_size, "points; smaller segments are dropped (paper FEC UK value: 500, Montes et al. 2020)");
     v("max_size", max_size,
       "points; larger segments (ground) are dropped (paper FEC value: 10000, Montes et al. 2020)");
