@@ -10,5 +10,6 @@ void add_simulate_broccoli(CLI::App& simulate);
 void add_info(CLI::App& app);
 void add_export(CLI::App& app);
 void add_render(CLI::App& app);
+void add_report(CLI::App& app);
 
 }  // namespace cropsight::cli

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   add_info(app);
   add_export(app);
   add_render(app);
+  add_report(app);
 
   try {
     app.parse(argc, argv);

@@ -1,0 +1,65 @@
+// cropsight report --data SEQ --out page.html: one self-contained HTML page (embedded PNGs,
+// inline CSS/SVG) with the sequence summary and renders of a few evenly spaced frames.
+// Detection results (issue 4, --model) are meant to be appended as further HtmlPage sections.
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "broccoli_tracking.hpp"
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "cropsight/core/error.hpp"
+#include "cropsight/io/sequence.hpp"
+#include "cropsight/report/html_page.hpp"
+#include "cropsight/report/sequence_page.hpp"
+
+namespace cropsight::cli {
+
+namespace {
+struct ReportOptions {
+  CommonOptions common;
+  std::string data, out, title;
+  std::string model;  // --model: broccoli detection, sizing and map sections (issue 4)
+  int frames = 4;
+};
+
+void run(const ReportOptions& o) {
+  if (o.frames < 1) throw Error("--frames", "must be at least 1");
+  const io::SequenceReader reader(o.data);
+  const report::SequenceSummary summary = report::summarize_sequence(reader);
+  const std::string name = std::filesystem::path(o.data).lexically_normal().filename().string();
+  report::HtmlPage page(o.title.empty() ? "cropsight: sequence " + name : o.title);
+  report::SequencePageOptions po;
+  po.frames_shown = o.frames;
+  report::add_sequence_sections(page, reader, summary, po);
+  nlohmann::json broccoli;
+  if (!o.model.empty())
+    broccoli = add_broccoli_report(page, o.data, o.model, o.common.config_map(), o.frames, o.common.json);
+  page.write(o.out);
+  const std::string abs = std::filesystem::absolute(o.out).lexically_normal().string();
+  if (o.common.json) {
+    nlohmann::json j{{"out", abs},
+                     {"frames", summary.info.frames},
+                     {"frames_shown", report::evenly_spaced_frames(summary.info.frames, o.frames).size()}};
+    if (!o.model.empty()) j["broccoli"] = broccoli;
+    print_json(j);
+  } else
+    std::printf("wrote %s\n", abs.c_str());
+}
+}  // namespace
+
+void add_report(CLI::App& app) {
+  auto o = std::make_shared<ReportOptions>();
+  auto* cmd = app.add_subcommand("report", "Write a self-contained HTML page about a sequence");
+  cmd->add_option("--data", o->data, "Sequence directory")->required();
+  cmd->add_option("--out", o->out, "Output HTML file")->required();
+  cmd->add_option("--frames", o->frames, "Number of evenly spaced frames to render (default 4)");
+  cmd->add_option("--title", o->title, "Page title");
+  cmd->add_option("--model", o->model,
+                  "Broccoli model: add detection, precision-recall, field-map, size and timing sections");
+  add_config_options(cmd, o->common);
+  add_json_flag(cmd, o->common);
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace cropsight::cli

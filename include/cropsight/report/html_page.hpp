@@ -1,0 +1,70 @@
+#pragma once
+// HtmlPage: builds ONE self-contained HTML file (inline CSS, images as base64 PNG data URIs,
+// inline SVG; nothing fetched from the network), so a report can be mailed or opened offline.
+//
+//   HtmlPage page("Sequence uk-seq");
+//   page.section("Summary");
+//   page.table({"field", "value"}, {{"frames", "30"}});
+//   page.figures({{depth_png, "depth 0"}, {color_png, "colour 0"}});
+//   page.svg(svg_line_plot(...));
+//   page.write("page.html");   // atomic
+//
+// All text arguments are HTML-escaped; only raw_html() and svg() insert markup as given.
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cropsight/core/image.hpp"
+
+namespace cropsight::report {
+
+/// One image of a row of figures, with its caption.
+struct Figure {
+  std::string png;        ///< PNG file bytes (io::encode_png)
+  std::string caption;    ///< plain text
+  int display_width = 0;  ///< CSS pixels; 0 = natural width
+};
+/// Figure from an image (encoded as PNG).
+Figure make_figure(const ColorImage& image, std::string caption, int display_width = 0);
+
+class HtmlPage {
+ public:
+  explicit HtmlPage(std::string title);
+
+  /// Starts a new <section> with an <h2> heading (closing the previous one).
+  void section(const std::string& heading);
+  void heading(const std::string& text, int level = 3);
+  void paragraph(const std::string& text);
+  /// A table; every row should have header.size() cells. Cells are plain text.
+  void table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows,
+             const std::string& caption = "");
+  /// Two-column field/value table.
+  void key_values(const std::vector<std::pair<std::string, std::string>>& rows, const std::string& caption = "");
+  /// A row of images (wraps on narrow screens).
+  void figures(const std::vector<Figure>& row);
+  /// Inline SVG markup (e.g. from svg_line_plot), inserted as given.
+  void svg(const std::string& svg_markup, const std::string& caption = "");
+  /// Markup inserted as given.
+  void raw_html(const std::string& html);
+
+  /// The complete document.
+  std::string html() const;
+  /// Writes html() atomically. Throws Error(path, ...).
+  void write(const std::filesystem::path& path) const;
+
+ private:
+  void close_section();
+  std::string title_;
+  std::string body_;
+  bool in_section_ = false;
+};
+
+/// Escapes & < > " ' for HTML text and attributes.
+std::string html_escape(const std::string& text);
+/// Standard base64 (RFC 4648, with padding).
+std::string base64_encode(const std::string& bytes);
+/// "data:image/png;base64,..." for PNG bytes.
+std::string png_data_uri(const std::string& png_bytes);
+
+}  // namespace cropsight::report
