@@ -6,8 +6,11 @@
 //   [45, 90)   f2 = v·n (a cosine)         binned with the same formula as an angle (PCL's rule,
 //   [90, 135)  f3 = u·d/|d| (a cosine)      so only the middle bins are used)
 //   [135, 180) distance component: zeros unless size_component (PCL default false); then
-//              floor(45·|d|/max|d|) with normalize_distances, else round(100·|d|) (cm)
-//   [180, 308) viewpoint component: floor(128·(n·v̂ + 1)/2), v̂ = unit vector centroid → camera
+//              floor(45·|d|/sqrt(max|d|² + 1)) with normalize_distances (PCL's 4-vector norm
+//              again includes a w difference of 1), else round(100·|d|) (cm)
+//   [180, 308) viewpoint component: floor(128·(n·v + 1)/2), v = -c / sqrt(|c|² + 1) for the
+//              centroid c (camera at the origin). NOT a unit vector: PCL normalises the 4-vector
+//              (viewpoint(w=0) - centroid(w=1)) = (-c, -1); we reproduce that quirk exactly
 // where the pair (centroid c, mean normal n̄) → (point p, normal n) gives d = p - c and the
 // Darboux frame u, v, w of PCL's computePairFeatures (source/target swapped when the target's
 // normal is closer to parallel with d). With normalize_bins each f-bin adds 100/(N-1) and each
