@@ -12,4 +12,10 @@ void add_export(CLI::App& app);
 void add_render(CLI::App& app);
 void add_report(CLI::App& app);
 
+// Broccoli heads (issue 3): train / detect / eval / bench broccoli
+void add_train_broccoli(CLI::App& train);
+void add_detect_broccoli(CLI::App& detect);
+void add_eval_broccoli(CLI::App& eval);
+void add_bench_broccoli(CLI::App& bench);
+
 }  // namespace cropsight::cli

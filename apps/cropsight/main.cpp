@@ -27,6 +27,19 @@ int main(int argc, char** argv) {
   add_export(app);
   add_render(app);
   add_report(app);
+  // Verbs shared by the pipelines (broccoli, stereo, grape...): each adds its sub-command.
+  auto* train = app.add_subcommand("train", "Train a model on labelled data");
+  train->require_subcommand(1);
+  auto* detect = app.add_subcommand("detect", "Run a trained detector");
+  detect->require_subcommand(1);
+  auto* eval = app.add_subcommand("eval", "Evaluate a model against ground truth");
+  eval->require_subcommand(1);
+  auto* bench = app.add_subcommand("bench", "Time pipelines against their reference implementations");
+  bench->require_subcommand(1);
+  add_train_broccoli(*train);
+  add_detect_broccoli(*detect);
+  add_eval_broccoli(*eval);
+  add_bench_broccoli(*bench);
 
   try {
     app.parse(argc, argv);

@@ -68,10 +68,6 @@ void add_sequence_sections(HtmlPage& page, const io::SequenceReader& reader, con
   }
 
   page.section("Frames");
-  page.paragraph("Depth colour map: near = red, far = blue, black = no return; one depth range for all frames shown (" +
-                 fmt(s.depth_min_m, "%.3f") + " .. " + fmt(s.depth_max_m, "%.3f") +
-                 " m, robust percentiles of the first frame shown widened to the sequence range)." +
-                 (s.info.has_labels ? " White outlines: ground-truth instances." : ""));
   const std::vector<int> shown = evenly_spaced_frames(s.info.frames, o.frames_shown);
   const int factor = std::max(1, (o.min_display_width + cam.width - 1) / cam.width);
   DepthRange range{s.depth_min_m, s.depth_max_m};
@@ -82,6 +78,10 @@ void add_sequence_sections(HtmlPage& page, const io::SequenceReader& reader, con
     const DepthRange r = robust_depth_range(first.depth, cam.depth_scale);
     if (r.near_m >= s.depth_min_m && r.far_m <= s.depth_max_m) range = r;
   }
+  page.paragraph("Depth colour map: near = red, far = blue, black = no return; the same range, " +
+                 fmt(range.near_m, "%.3f") + " .. " + fmt(range.far_m, "%.3f") +
+                 " m, for every frame shown (2nd-98th percentile of the first one)." +
+                 (s.info.has_labels ? " White outlines: ground-truth instances." : ""));
   for (int i : shown) {
     const RgbdFrame f = reader.read(i);
     std::vector<Figure> row;

@@ -1,0 +1,156 @@
+// cropsight bench broccoli: times the OES, ORG and FEC detectors and the PCL reference pipeline
+// (pcl_reference.hpp) on the same frames in the same process, single-threaded, and prints the
+// per-stage milliseconds, fps and each detector's speedup over the PCL reference.
+//
+// Frames are read into memory first (I/O excluded). Each pipeline uses its preset
+// configs/broccoli-<pipeline>-<variety>.yaml; every pipeline scores its clusters with the
+// given model's classifier (timing only: the model must use VFH features, the only feature PCL
+// computes; its pipeline tag is ignored here). Statistical outlier removal is off for FEC and the
+// PCL reference unless --sor, so that both do the same work as the reference
+// (normals + Euclidean clustering + VFH + SVM).
+#include <oneapi/tbb/global_control.h>
+
+#include <chrono>
+#include <cstdio>
+
+#include "broccoli_cli.hpp"
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "cropsight/core/error.hpp"
+#include "cropsight/io/config_yaml.hpp"
+#include "cropsight/io/sequence.hpp"
+#include "cropsight/pipeline/broccoli_detector.hpp"
+#include "cropsight/pipeline/pcl_reference.hpp"
+
+namespace cropsight::cli {
+
+namespace {
+struct BenchOptions {
+  CommonOptions common;
+  std::string data, model, variety = "uk";
+  int frames = 0;
+  int repeat = 1;
+  bool sor = false;
+};
+
+struct Timing {
+  double ms = 0;  // wall-clock total over the timed frames
+  long frames = 0;
+  long clusters = 0;
+  std::vector<StageTimer::Stage> stages;
+  double ms_per_frame() const { return frames ? ms / double(frames) : 0.0; }
+  double fps() const { return ms > 0 ? 1000.0 * double(frames) / ms : 0.0; }
+};
+
+template <class Pipeline>
+Timing time_pipeline(Pipeline& p, const std::vector<RgbdFrame>& frames, int repeat) {
+  p.process(frames.front());  // warm-up: buffers sized, caches touched
+  p.timer().clear();
+  Timing t;
+  for (int r = 0; r < repeat; ++r)
+    for (const RgbdFrame& f : frames) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const auto out = p.process(f);
+      t.ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      if constexpr (std::is_integral_v<decltype(out)>)
+        t.clusters += long(out);
+      else
+        t.clusters += long(out.size());
+      ++t.frames;
+    }
+  t.stages = p.timer().stages();
+  return t;
+}
+
+void run(const BenchOptions& o) {
+  if (o.repeat < 1) throw Error("--repeat", "must be at least 1");
+  if (o.variety != "uk" && o.variety != "spain") throw Error("--variety", "must be uk or spain");
+  // Single-threaded: no stage may use TBB's pool (the paper's numbers are single-threaded too).
+  tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+  const auto model = load_broccoli_model(o.model);
+  io::SequenceReader reader(o.data);
+  const int n = o.frames > 0 ? std::min(o.frames, reader.size()) : reader.size();
+  std::vector<RgbdFrame> frames;
+  for (int i = 0; i < n; ++i) frames.push_back(reader.read(i));
+  if (frames.empty()) throw Error(o.data, "sequence has no frames");
+
+  auto config_of = [&](const std::string& pipe) {
+    pipeline::BroccoliDetectorConfig cfg;
+    apply_config(cfg, io::load_config_map(io::find_preset("broccoli-" + pipe + "-" + o.variety)),
+                 "broccoli-" + pipe + "-" + o.variety);
+    apply_config(cfg, o.common.config_map(), "--set");
+    cfg.features = "vfh";
+    cfg.outliers.enabled = o.sor;
+    return cfg;
+  };
+  nlohmann::json out{{"data", o.data},
+                     {"model", o.model},
+                     {"frames", n},
+                     {"repeat", o.repeat},
+                     {"variety", o.variety},
+                     {"threads", 1},
+                     {"sor", o.sor},
+                     {"width", frames[0].depth.width},
+                     {"height", frames[0].depth.height}};
+  std::map<std::string, Timing> timings;
+  for (const std::string pipe : {"oes", "org", "fec"}) {
+    const auto cfg = config_of(pipe);
+    pipeline::BroccoliDetector det(cfg);
+    std::shared_ptr<const learning::Model> scored = model;
+    if (model->info.pipeline != pipe) {
+      // The same classifier under this pipeline's tag (rebuilt from its own serialisation).
+      auto shim = std::make_shared<learning::Model>();
+      shim->info = model->info;
+      shim->info.pipeline = pipe;
+      shim->standardizer = model->standardizer;
+      shim->params = model->params;
+      shim->classifier = learning::deserialize_classifier(model->params, model->info.feature_dim,
+                                                          model->classifier->serialize(), o.model);
+      scored = shim;
+    }
+    det.set_model(scored, o.model);
+    timings[pipe] = time_pipeline(det, frames, o.repeat);
+  }
+  {
+    pipeline::PclReferencePipeline pcl(config_of("fec"), model, o.model);
+    timings["pcl_reference"] = time_pipeline(pcl, frames, o.repeat);
+  }
+  const double pcl_ms = timings["pcl_reference"].ms_per_frame();
+  for (const auto& [name, t] : timings) {
+    nlohmann::json j{{"ms_per_frame", t.ms_per_frame()},
+                     {"fps", t.fps()},
+                     {"clusters_per_frame", t.frames ? double(t.clusters) / double(t.frames) : 0.0},
+                     {"stages_ms", stages_json(t.stages, t.frames)}};
+    if (name != "pcl_reference") j["speedup_vs_pcl"] = t.ms_per_frame() > 0 ? pcl_ms / t.ms_per_frame() : 0.0;
+    out["pipelines"][name] = j;
+  }
+  if (o.common.json) {
+    print_json(out);
+    return;
+  }
+  std::printf("%d frames x %d, %dx%d, single-threaded\n", n, o.repeat, frames[0].depth.width, frames[0].depth.height);
+  for (const auto& [name, t] : timings) {
+    std::printf("  %-14s %8.2f ms/frame %8.1f fps", name.c_str(), t.ms_per_frame(), t.fps());
+    if (name != "pcl_reference") std::printf("  %6.1fx vs PCL", pcl_ms / t.ms_per_frame());
+    std::printf("   [");
+    for (const auto& s : t.stages) std::printf(" %s %.2f", s.name.c_str(), s.total_ms / double(t.frames));
+    std::printf(" ]\n");
+  }
+}
+}  // namespace
+
+void add_bench_broccoli(CLI::App& bench) {
+  auto o = std::make_shared<BenchOptions>();
+  auto* cmd = bench.add_subcommand("broccoli", "Time OES, ORG, FEC and the PCL reference pipeline");
+  cmd->add_option("--data", o->data, "Sequence directory")->required();
+  cmd->add_option("--model", o->model, "Model file with VFH features (cropsight train broccoli)")->required();
+  cmd->add_option("--frames", o->frames, "Frames to time (default: all)");
+  cmd->add_option("--repeat", o->repeat, "Passes over the frames (default 1)");
+  cmd->add_option("--variety", o->variety, "Presets to use: uk | spain (default uk)");
+  cmd->add_flag("--sor", o->sor, "Run statistical outlier removal in FEC and the PCL reference");
+  add_config_options(cmd, o->common);
+  add_json_flag(cmd, o->common);
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace cropsight::cli

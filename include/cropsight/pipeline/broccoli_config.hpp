@@ -1,0 +1,113 @@
+#pragma once
+// One configuration struct for the broccoli head detector (every stage; YAML presets
+// configs/broccoli-{oes,org,fec}-{uk,spain}.yaml; --set key=value on the CLI). Defaults are the
+// papers' values; each field's documentation names its source:
+//   [montes]  Montes, Le Louëdec, Cielniak, Duckett, "Real-time detection of broccoli crops in 3D
+//             point clouds for autonomous robotic harvesting", IROS 2020 (OES / ORG / FEC)
+//   [kusumam] Kusumam, Krajník, Pearson, Duckett, Cielniak, "3D-vision based detection,
+//             localization, and sizing of broccoli heads in the field", J. Field Robotics 2017
+#include <cstdint>
+#include <string>
+
+#include "cropsight/features/feature_set.hpp"
+#include "cropsight/geometry/depth_filter.hpp"
+#include "cropsight/geometry/integral_normals.hpp"
+#include "cropsight/geometry/organized_edges.hpp"
+#include "cropsight/geometry/statistical_outlier.hpp"
+#include "cropsight/learning/classifier.hpp"
+#include "cropsight/segmentation/euclidean_clustering.hpp"
+#include "cropsight/segmentation/organized_clustering.hpp"
+
+namespace cropsight::pipeline {
+
+/// Statistical outlier removal before Euclidean clustering (FEC variant only).
+struct OutlierStageConfig {
+  bool enabled = true;
+  geometry::StatisticalOutlierConfig sor;
+
+  template <class V>
+  void visit(V& v) {
+    v("enabled", enabled, "run statistical outlier removal before FEC clustering (paper: yes, [kusumam] §4.1)");
+    sor.visit(v);  // flat: outliers.mean_k, outliers.std_mul
+  }
+};
+
+/// High-curvature edges for OES: pixels whose surface variation (from the integral-image
+/// normals) exceeds `threshold` get edge label kHighCurvatureEdge, which OES treats as a barrier
+/// when oes.barrier_labels includes it — the role of the HIGH_CURVATURE label of PCL's
+/// OrganizedEdgeFromNormals. Creases where a head meets the leaves around it have no depth jump
+/// but do have high curvature.
+struct CurvatureEdgeConfig {
+  float threshold = 0.0f;  ///< surface variation in [0, 1/3]; 0 disables
+
+  template <class V>
+  void visit(V& v) {
+    v("threshold", threshold,
+      "surface variation above which a pixel is a high-curvature edge for OES (0 = off; ours, tuned on the "
+      "simulator; PCL OrganizedEdgeFromNormals has the same label)");
+  }
+};
+
+/// Edge label bit for high-curvature pixels (PCL's EDGELABEL_HIGH_CURVATURE value).
+inline constexpr std::uint8_t kHighCurvatureEdge = 8;
+
+struct BroccoliDetectionConfig {
+  float score_margin = 0.0f;       ///< added to the classifier's threshold (0 SVM, 0.5 KNN)
+  float min_head_fraction = 0.5f;  ///< cluster-truth rule, see broccoli_truth.hpp
+  int min_truth_points = 0;        ///< AP: ground-truth heads with fewer visible points are not counted
+
+  template <class V>
+  void visit(V& v) {
+    v("score_margin", score_margin,
+      "score units; a cluster is a head when score > classifier threshold + margin (0: the classifier's own "
+      "decision, as in [montes])");
+    v("min_head_fraction", min_head_fraction,
+      "fraction; a cluster is a true head when at least this share of its points lies on one labelled head "
+      "(ours: 0.5, the majority rule)");
+    v("min_truth_points", min_truth_points,
+      "points; ground-truth heads with fewer visible (valid, in depth range) points are left out of AP "
+      "(0 = every labelled head counts)");
+  }
+};
+
+struct BroccoliDetectorConfig {
+  std::string pipeline = "oes";  ///< oes | org | fec
+  std::string features = "vfh";  ///< FeatureSet spec, e.g. "vfh" or "vfh,va,geom"
+  geometry::DepthRangeConfig depth;
+  geometry::IntegralNormalConfig normals;
+  geometry::OrganizedEdgeConfig edges;
+  CurvatureEdgeConfig curvature_edges;
+  segmentation::OesConfig oes;
+  segmentation::OrgConfig org;
+  segmentation::EuclideanClusterConfig fec;
+  OutlierStageConfig outliers;
+  features::FeatureConfig feature_options;
+  learning::ClassifierParams classifier;
+  BroccoliDetectionConfig detection;
+
+  template <class V>
+  void visit(V& v) {
+    v("pipeline", pipeline,
+      "oes | org | fec: organised edge segmentation, organised region growing, "
+      "Euclidean clustering ([montes] §III)");
+    v("features", features, "comma list of vfh, va, geom, cvfh (paper: vfh, [montes] §III-D)");
+    v("depth", depth, "depth-range filter");
+    v("normals", normals, "integral-image normals");
+    v("edges", edges, "organised edges (OES)");
+    v("curvature_edges", curvature_edges, "high-curvature edges (OES)");
+    v("oes", oes, "OES clustering");
+    v("org", org, "ORG clustering");
+    v("fec", fec, "FEC Euclidean clustering");
+    v("outliers", outliers, "statistical outlier removal (FEC)");
+    v("feature_options", feature_options, "feature options");
+    v("classifier", classifier, "classifier (used by training; a model file records its own)");
+    v("detection", detection, "decision and ground-truth rules");
+  }
+
+  /// Throws Error(where, ...) for an unknown pipeline or feature spec.
+  void validate(const std::string& where) const;
+  /// Feature block names in order, e.g. {"vfh", "va"} (the model file's "features").
+  std::vector<std::string> feature_names() const;
+};
+
+}  // namespace cropsight::pipeline

@@ -1,0 +1,101 @@
+#pragma once
+// BroccoliDetector: the broccoli head pipelines of Montes et al. 2020 composed from the stage
+// modules, one frame at a time:
+//
+//   depth image → organised cloud (metres, camera frame) → depth-range filter
+//     → integral-image normals
+//     → OES: organised edges + flood fill bounded by edges
+//       ORG: flood fill on normal angle, grown from low-curvature points
+//       FEC: [statistical outlier removal] + Euclidean clustering (k-d tree)
+//     → features per cluster (VFH [, viewpoint angle, geometric, CVFH])
+//     → classifier score (SVM decision value / KNN vote) → detections
+//
+// Every stage is timed (StageTimer, names: "cloud", "normals", "edges", "outliers",
+// "clustering", "features", "classify"). All buffers (cloud, normals' integral images, edge
+// labels, flood-fill stacks, feature vectors, candidate list) live in the detector and are
+// reused from frame to frame: after the first frame of a given size, the stages allocate only
+// what the segmentation functions return (the segments' index lists).
+//
+// Not thread-safe: one detector per thread.
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "cropsight/core/detection.hpp"
+#include "cropsight/core/organized_cloud.hpp"
+#include "cropsight/core/rgbd_frame.hpp"
+#include "cropsight/core/segment.hpp"
+#include "cropsight/core/timer.hpp"
+#include "cropsight/learning/model.hpp"
+#include "cropsight/pipeline/broccoli_config.hpp"
+#include "cropsight/pipeline/broccoli_truth.hpp"
+#include "cropsight/segmentation/flood_fill.hpp"
+
+namespace cropsight::pipeline {
+
+/// Task name recorded in model files.
+inline constexpr const char* kBroccoliTask = "broccoli-heads";
+
+/// One cluster of one frame.
+struct BroccoliCandidate {
+  Segment segment;              ///< pixel indices (ascending) + centroid (m, camera) + boxes
+  std::vector<float> features;  ///< concatenated features (FeatureSet order)
+  float score = 0.0f;           ///< classifier score (0 when no model)
+  bool head = false;            ///< score > threshold + margin
+  ClusterTruth truth;           ///< filled when the frame has labels
+};
+
+class BroccoliDetector {
+ public:
+  /// Validates the config; throws Error("config", ...) when it is invalid.
+  explicit BroccoliDetector(BroccoliDetectorConfig cfg);
+  ~BroccoliDetector();
+  BroccoliDetector(const BroccoliDetector&) = delete;
+  BroccoliDetector& operator=(const BroccoliDetector&) = delete;
+
+  const BroccoliDetectorConfig& config() const { return cfg_; }
+  std::size_t feature_dimension() const;
+
+  /// Uses `model` to score clusters. Throws Error(where, ...) when it was trained for another
+  /// task, pipeline or feature set (learning::require_compatible).
+  void set_model(std::shared_ptr<const learning::Model> model, const std::string& where = "model");
+  bool has_model() const { return model_ != nullptr; }
+
+  /// Runs every stage on `frame`. The result refers to internal storage valid until the next
+  /// call. Without a model, candidates carry features but score 0 and head = false.
+  std::span<const BroccoliCandidate> process(const RgbdFrame& frame);
+  /// The candidates of the last processed frame (same as process() returned).
+  std::span<const BroccoliCandidate> candidates() const { return {candidates_.data(), count_}; }
+
+  /// The cloud of the last processed frame (depth-filtered, with normals; labels when present).
+  const OrganizedCloud& cloud() const { return cloud_; }
+  /// Detections (candidates classified as heads) of the last processed frame, best score first.
+  std::vector<Detection> detections() const;
+
+  StageTimer& timer() { return timer_; }
+  const StageTimer& timer() const { return timer_; }
+
+ private:
+  void make_cloud(const RgbdFrame& frame);
+  void cluster();
+
+  BroccoliDetectorConfig cfg_;
+  features::FeatureSet feature_set_;
+  std::shared_ptr<const learning::Model> model_;
+  StageTimer timer_;
+
+  // Workspaces reused across frames.
+  OrganizedCloud cloud_;
+  std::vector<float> ray_x_, ray_y_;  // per pixel (u - cx)/fx, (v - cy)/fy for the current camera
+  CameraIntrinsics ray_camera_;
+  std::unique_ptr<geometry::IntegralNormalEstimator> normals_;
+  std::vector<std::uint8_t> edges_;
+  segmentation::FloodFillWorkspace flood_;
+  std::vector<Segment> segments_;
+  std::vector<int> valid_;
+  std::vector<BroccoliCandidate> candidates_;  // a pool: only grows, so its buffers are reused
+  std::size_t count_ = 0;                      // candidates of the last frame
+  std::vector<float> scratch_;
+};
+
+}  // namespace cropsight::pipeline

@@ -1,0 +1,77 @@
+#pragma once
+// Training and evaluation of broccoli head detectors over frames with ground truth. Frame
+// sources are the caller's (a SequenceReader in the CLI, simulated frames in tests), so these
+// classes take one RgbdFrame at a time.
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cropsight/core/timer.hpp"
+#include "cropsight/eval/binary_metrics.hpp"
+#include "cropsight/eval/detection_ap.hpp"
+#include "cropsight/learning/dataset.hpp"
+#include "cropsight/learning/model.hpp"
+#include "cropsight/pipeline/broccoli_detector.hpp"
+
+namespace cropsight::pipeline {
+
+/// Every cluster of every added frame as a (features, head?) sample, labelled by the cluster
+/// rule of broccoli_truth.hpp.
+class BroccoliDatasetBuilder {
+ public:
+  explicit BroccoliDatasetBuilder(const BroccoliDetectorConfig& cfg);
+  /// Throws Error("frame N", ...) when the frame has no label image.
+  void add_frame(const RgbdFrame& frame);
+  const learning::Dataset& dataset() const { return data_; }
+  long frames() const { return frames_; }
+
+ private:
+  BroccoliDetector detector_;
+  learning::Dataset data_;
+  long frames_ = 0;
+};
+
+/// The detector configuration as a flat map (what a model file records).
+ConfigMap config_map(const BroccoliDetectorConfig& cfg);
+
+/// Trains cfg.classifier on `data` and fills the model's metadata (task, pipeline, features,
+/// config, provenance).
+learning::Model train_broccoli_model(const learning::Dataset& data, const BroccoliDetectorConfig& cfg,
+                                     std::map<std::string, std::string> provenance);
+
+/// The detector configuration a model was trained with, overlaid with `overrides` (a preset and
+/// --set values): defaults ← model ← overrides. Throws Error(where, ...) on an unknown key.
+BroccoliDetectorConfig config_for_model(const learning::Model& model, const ConfigMap& overrides,
+                                        const std::string& where);
+
+struct BroccoliEvalResult {
+  long frames = 0;
+  long clusters = 0;
+  std::int64_t truth_heads = 0;       ///< ground-truth heads counted by AP
+  std::int64_t detections = 0;        ///< clusters classified as heads
+  eval::BinaryConfusion confusion;    ///< per cluster (Table I)
+  double ap50 = 0.0, map50_95 = 0.0;  ///< Table II
+  double pipeline_ms = 0.0;           ///< total wall-clock time in BroccoliDetector::process (I/O excluded)
+  double fps() const { return pipeline_ms > 0 ? 1000.0 * double(frames) / pipeline_ms : 0.0; }
+  std::vector<StageTimer::Stage> stages;  ///< per-stage totals
+};
+
+/// Runs a detector (with a model) over frames with labels and accumulates Table I and II metrics.
+/// AP ranks every cluster by its score (all candidates, not only those above the threshold).
+class BroccoliEvaluator {
+ public:
+  explicit BroccoliEvaluator(BroccoliDetector& detector);
+  /// Throws Error("frame N", ...) when the frame has no label image.
+  void add_frame(const RgbdFrame& frame);
+  BroccoliEvalResult result() const;
+
+ private:
+  BroccoliDetector& det_;
+  BroccoliEvalResult r_;
+  eval::DetectionApAccumulator ap_;
+  std::vector<TruthInstance> truth_;
+  std::vector<std::vector<int>> truth_sets_;
+};
+
+}  // namespace cropsight::pipeline

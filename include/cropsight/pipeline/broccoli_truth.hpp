@@ -1,0 +1,40 @@
+#pragma once
+// Ground truth for broccoli clusters, from a frame's label image (instance id per pixel, 0 =
+// not a head).
+//
+// Cluster rule (used for training labels and for the cluster confusion matrix, Table I of
+// Montes et al. 2020): a cluster is a head when at least `min_fraction` (default one half) of
+// its points lie on ONE labelled head; its truth id is that head's id. A cluster spread over two
+// heads with 40 % each is therefore not a head: it would not give a usable head position.
+//
+// Instance truth (for AP, Table II): the point set of head id h is every pixel labelled h that
+// has a valid point after the depth filter — what the sensor actually saw of the head, the same
+// kind of set a detection is.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "cropsight/core/organized_cloud.hpp"
+
+namespace cropsight::pipeline {
+
+struct ClusterTruth {
+  int head_id = 0;        ///< majority head id, 0 when the cluster is not a head
+  float fraction = 0.0f;  ///< share of the cluster's points on that head id
+};
+
+/// `labels`: width·height instance ids. Throws nothing; an empty `labels` gives "not a head".
+ClusterTruth cluster_truth(std::span<const int> indices, std::span<const std::uint16_t> labels,
+                           float min_fraction = 0.5f);
+
+struct TruthInstance {
+  int id = 0;
+  std::vector<int> indices;  ///< ascending pixel indices of valid points labelled `id`
+};
+
+/// Visible point sets of the labelled heads of `cloud` (which holds labels and depth-filtered
+/// positions), ordered by id; heads with fewer than `min_points` visible points are left out.
+/// Reuses `out`'s storage.
+void truth_instances(const OrganizedCloud& cloud, int min_points, std::vector<TruthInstance>& out);
+
+}  // namespace cropsight::pipeline

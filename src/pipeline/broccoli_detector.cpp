@@ -1,0 +1,161 @@
+#include "cropsight/pipeline/broccoli_detector.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/geometry/depth_filter.hpp"
+#include "cropsight/geometry/integral_normals.hpp"
+#include "cropsight/geometry/organized_edges.hpp"
+#include "cropsight/geometry/statistical_outlier.hpp"
+#include "cropsight/segmentation/euclidean_clustering.hpp"
+#include "cropsight/segmentation/organized_clustering.hpp"
+
+namespace cropsight::pipeline {
+
+namespace {
+bool same_camera(const CameraIntrinsics& a, const CameraIntrinsics& b) {
+  return a.width == b.width && a.height == b.height && a.fx == b.fx && a.fy == b.fy && a.cx == b.cx && a.cy == b.cy;
+}
+}  // namespace
+
+BroccoliDetector::BroccoliDetector(BroccoliDetectorConfig cfg) : cfg_(std::move(cfg)) {
+  cfg_.validate("config");
+  feature_set_ = features::FeatureSet::parse(cfg_.features, "config");
+  normals_ = std::make_unique<geometry::IntegralNormalEstimator>(cfg_.normals);
+}
+
+BroccoliDetector::~BroccoliDetector() = default;
+
+std::size_t BroccoliDetector::feature_dimension() const { return feature_set_.dimension(); }
+
+void BroccoliDetector::set_model(std::shared_ptr<const learning::Model> model, const std::string& where) {
+  if (model) {
+    learning::require_compatible(model->info, kBroccoliTask, cfg_.pipeline, cfg_.feature_names(),
+                                 int(feature_set_.dimension()), where);
+  }
+  model_ = std::move(model);
+}
+
+void BroccoliDetector::make_cloud(const RgbdFrame& frame) {
+  const int w = frame.depth.width, h = frame.depth.height;
+  if (w != frame.camera.width || h != frame.camera.height)
+    throw Error("frame " + std::to_string(frame.index), "depth image size differs from the camera's");
+  const std::size_t n = std::size_t(w) * std::size_t(h);
+  if (!same_camera(ray_camera_, frame.camera) || ray_x_.size() != n) {
+    // Per-pixel ray slopes, computed once per camera: deprojection is then two multiplies.
+    ray_x_.resize(n);
+    ray_y_.resize(n);
+    for (int v = 0; v < h; ++v)
+      for (int u = 0; u < w; ++u) {
+        ray_x_[std::size_t(v) * w + u] = float((u - frame.camera.cx) / frame.camera.fx);
+        ray_y_[std::size_t(v) * w + u] = float((v - frame.camera.cy) / frame.camera.fy);
+      }
+    ray_camera_ = frame.camera;
+  }
+  cloud_.width = w;
+  cloud_.height = h;
+  cloud_.x.resize(n);
+  cloud_.y.resize(n);
+  cloud_.z.resize(n);
+  const float scale = float(frame.camera.depth_scale);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::uint16_t* d = frame.depth.data.data();
+  for (std::size_t i = 0; i < n; ++i) {
+    const float z = d[i] ? float(d[i]) * scale : nan;
+    cloud_.z[i] = z;
+    cloud_.x[i] = ray_x_[i] * z;
+    cloud_.y[i] = ray_y_[i] * z;
+  }
+  if (!frame.labels.empty()) {
+    if (frame.labels.width != w || frame.labels.height != h)
+      throw Error("frame " + std::to_string(frame.index), "label image size differs from the depth image");
+    cloud_.labels.assign(frame.labels.data.begin(), frame.labels.data.end());
+  } else {
+    cloud_.labels.clear();
+  }
+}
+
+void BroccoliDetector::cluster() {
+  if (cfg_.pipeline == "oes") {
+    {
+      auto t = timer_.scope("edges");
+      geometry::detect_organized_edges(cloud_, cfg_.edges, edges_);
+      if (cfg_.curvature_edges.threshold > 0.0f) {
+        const float th = cfg_.curvature_edges.threshold;
+        const std::size_t n = edges_.size();
+        for (std::size_t i = 0; i < n; ++i)
+          if (cloud_.curvature[i] > th) edges_[i] |= kHighCurvatureEdge;  // NaN compares false
+      }
+    }
+    auto t = timer_.scope("clustering");
+    segments_ = segmentation::segment_oes(cloud_, edges_, cfg_.oes, flood_);
+  } else if (cfg_.pipeline == "org") {
+    auto t = timer_.scope("clustering");
+    segments_ = segmentation::segment_org(cloud_, cfg_.org, flood_);
+  } else {
+    valid_ = geometry::valid_indices(cloud_);
+    if (cfg_.outliers.enabled) {
+      auto t = timer_.scope("outliers");
+      valid_ = geometry::remove_statistical_outliers(cloud_, valid_, cfg_.outliers.sor);
+    }
+    auto t = timer_.scope("clustering");
+    segments_ = segmentation::euclidean_clusters(cloud_, valid_, cfg_.fec);
+  }
+}
+
+std::span<const BroccoliCandidate> BroccoliDetector::process(const RgbdFrame& frame) {
+  {
+    auto t = timer_.scope("cloud");
+    make_cloud(frame);
+    geometry::filter_depth_range(cloud_, cfg_.depth);
+  }
+  {
+    auto t = timer_.scope("normals");
+    normals_->compute(cloud_);
+  }
+  cluster();
+  count_ = segments_.size();
+  if (candidates_.size() < count_) candidates_.resize(count_);
+  {
+    auto t = timer_.scope("features");
+    for (std::size_t k = 0; k < count_; ++k) {
+      BroccoliCandidate& c = candidates_[k];
+      std::swap(c.segment, segments_[k]);  // keeps the pool's old index buffer in segments_
+      std::sort(c.segment.indices.begin(), c.segment.indices.end());
+      feature_set_.compute(cloud_, c.segment.indices, cfg_.feature_options, c.features);
+      c.truth = cloud_.has_labels() ? cluster_truth(c.segment.indices, cloud_.labels, cfg_.detection.min_head_fraction)
+                                    : ClusterTruth{};
+    }
+  }
+  {
+    auto t = timer_.scope("classify");
+    const float threshold = model_ ? model_->threshold() + cfg_.detection.score_margin : 0.0f;
+    for (std::size_t k = 0; k < count_; ++k) {
+      BroccoliCandidate& c = candidates_[k];
+      c.score = model_ ? model_->score(c.features, scratch_) : 0.0f;
+      c.head = model_ && c.score > threshold;
+    }
+  }
+  return {candidates_.data(), count_};
+}
+
+std::vector<Detection> BroccoliDetector::detections() const {
+  std::vector<Detection> out;
+  for (std::size_t k = 0; k < count_; ++k) {
+    const BroccoliCandidate& c = candidates_[k];
+    if (!c.head) continue;
+    Detection d;
+    d.score = c.score;
+    d.label = 1;
+    d.centroid = c.segment.centroid;
+    d.box = c.segment.box;
+    d.indices = c.segment.indices;
+    out.push_back(std::move(d));
+  }
+  std::stable_sort(out.begin(), out.end(), [](const Detection& a, const Detection& b) { return a.score > b.score; });
+  return out;
+}
+
+}  // namespace cropsight::pipeline

@@ -1,0 +1,141 @@
+#include "cropsight/pipeline/pcl_reference.hpp"
+
+#include <pcl/features/integral_image_normal.h>
+#include <pcl/features/vfh.h>
+#include <pcl/filters/statistical_outlier_removal.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/search/kdtree.h>
+#include <pcl/segmentation/extract_clusters.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "cropsight/core/error.hpp"
+
+namespace cropsight::pipeline {
+
+struct PclReferencePipeline::Impl {
+  BroccoliDetectorConfig cfg;
+  std::shared_ptr<const learning::Model> model;
+  StageTimer timer;
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud{new pcl::PointCloud<pcl::PointXYZ>};
+  pcl::PointCloud<pcl::Normal>::Ptr normals{new pcl::PointCloud<pcl::Normal>};
+  std::vector<std::vector<int>> clusters;
+  std::vector<float> scores, feature, scratch;
+};
+
+PclReferencePipeline::PclReferencePipeline(const BroccoliDetectorConfig& cfg,
+                                           std::shared_ptr<const learning::Model> model, const std::string& where)
+    : impl_(std::make_unique<Impl>()) {
+  cfg.validate("config");
+  if (!model) throw Error(where, "the PCL reference pipeline needs a model");
+  if (model->info.features != std::vector<std::string>{"vfh"} || model->info.feature_dim != 308)
+    throw Error(where, "the PCL reference pipeline computes VFH only; this model uses other features");
+  impl_->cfg = cfg;
+  impl_->model = std::move(model);
+}
+
+PclReferencePipeline::~PclReferencePipeline() = default;
+
+const std::vector<std::vector<int>>& PclReferencePipeline::clusters() const { return impl_->clusters; }
+const std::vector<float>& PclReferencePipeline::scores() const { return impl_->scores; }
+StageTimer& PclReferencePipeline::timer() { return impl_->timer; }
+
+std::size_t PclReferencePipeline::process(const RgbdFrame& frame) {
+  Impl& m = *impl_;
+  const BroccoliDetectorConfig& cfg = m.cfg;
+  const int w = frame.depth.width, h = frame.depth.height;
+  pcl::Indices valid;
+  {
+    auto t = m.timer.scope("cloud");
+    // Organised cloud with the depth-range filter applied in place (NaN = filtered / no return).
+    m.cloud->width = std::uint32_t(w);
+    m.cloud->height = std::uint32_t(h);
+    m.cloud->is_dense = false;
+    m.cloud->points.resize(std::size_t(w) * std::size_t(h));
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const auto& cam = frame.camera;
+    for (int v = 0; v < h; ++v)
+      for (int u = 0; u < w; ++u) {
+        const std::size_t i = std::size_t(v) * std::size_t(w) + std::size_t(u);
+        const float z = float(frame.depth.data[i]) * float(cam.depth_scale);
+        pcl::PointXYZ& p = (*m.cloud)[i];
+        if (frame.depth.data[i] == 0 || z < cfg.depth.min_depth || z > cfg.depth.max_depth) {
+          p.x = p.y = p.z = nan;
+        } else {
+          p.x = float((u - cam.cx) / cam.fx) * z;
+          p.y = float((v - cam.cy) / cam.fy) * z;
+          p.z = z;
+          valid.push_back(int(i));
+        }
+      }
+  }
+  {
+    auto t = m.timer.scope("normals");
+    pcl::IntegralImageNormalEstimation<pcl::PointXYZ, pcl::Normal> ne;
+    ne.setNormalEstimationMethod(ne.COVARIANCE_MATRIX);
+    ne.setMaxDepthChangeFactor(cfg.normals.max_depth_change_factor);
+    ne.setNormalSmoothingSize(cfg.normals.normal_smoothing_size);
+    ne.setInputCloud(m.cloud);
+    ne.compute(*m.normals);
+  }
+  pcl::IndicesPtr kept(new pcl::Indices);
+  if (cfg.outliers.enabled) {
+    auto t = m.timer.scope("outliers");
+    pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
+    sor.setInputCloud(m.cloud);
+    sor.setIndices(pcl::IndicesPtr(new pcl::Indices(valid)));
+    sor.setMeanK(cfg.outliers.sor.mean_k);
+    sor.setStddevMulThresh(cfg.outliers.sor.std_mul);
+    sor.filter(*kept);
+  } else {
+    *kept = std::move(valid);
+  }
+  std::vector<pcl::PointIndices> found;
+  pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
+  {
+    auto t = m.timer.scope("clustering");
+    tree->setInputCloud(m.cloud, kept);
+    pcl::EuclideanClusterExtraction<pcl::PointXYZ> ec;
+    ec.setClusterTolerance(cfg.fec.tolerance);
+    ec.setMinClusterSize(cfg.fec.min_size);
+    ec.setMaxClusterSize(cfg.fec.max_size);
+    ec.setSearchMethod(tree);
+    ec.setInputCloud(m.cloud);
+    ec.setIndices(kept);
+    ec.extract(found);
+  }
+  m.clusters.resize(found.size());
+  m.scores.resize(found.size());
+  std::vector<std::vector<float>> hists(found.size());
+  {
+    auto t = m.timer.scope("features");
+    pcl::VFHEstimation<pcl::PointXYZ, pcl::Normal, pcl::VFHSignature308> vfh;
+    vfh.setInputCloud(m.cloud);
+    vfh.setInputNormals(m.normals);
+    vfh.setSearchMethod(pcl::search::KdTree<pcl::PointXYZ>::Ptr(new pcl::search::KdTree<pcl::PointXYZ>));
+    pcl::PointCloud<pcl::VFHSignature308> sig;
+    for (std::size_t k = 0; k < found.size(); ++k) {
+      // Points whose normal is undefined (next to depth changes) would put NaN into VFH's bins.
+      pcl::IndicesPtr idx(new pcl::Indices);
+      for (int i : found[k].indices)
+        if (std::isfinite((*m.normals)[std::size_t(i)].normal_x)) idx->push_back(i);
+      m.clusters[k].assign(found[k].indices.begin(), found[k].indices.end());
+      std::sort(m.clusters[k].begin(), m.clusters[k].end());
+      hists[k].assign(308, 0.0f);
+      if (idx->size() < 2) continue;
+      vfh.setIndices(idx);
+      vfh.compute(sig);
+      std::copy(sig[0].histogram, sig[0].histogram + 308, hists[k].begin());
+    }
+  }
+  {
+    auto t = m.timer.scope("classify");
+    for (std::size_t k = 0; k < found.size(); ++k) m.scores[k] = m.model->score(hists[k], m.scratch);
+  }
+  return found.size();
+}
+
+}  // namespace cropsight::pipeline
