@@ -1,0 +1,244 @@
+#include "cropsight/report/broccoli_report.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <unordered_map>
+
+#include "cropsight/report/svg_charts.hpp"
+#include "cropsight/report/svg_plot.hpp"
+
+namespace cropsight::report {
+
+std::vector<double> coco_thresholds() {
+  std::vector<double> t;
+  for (int i = 0; i < 10; ++i) t.push_back(0.5 + 0.05 * i);
+  return t;
+}
+
+std::vector<PrCurve> pr_curves(const std::vector<PrFrame>& frames, const std::vector<double>& thresholds) {
+  // IoU of every (detection, truth) pair that overlaps, once.
+  struct Det {
+    float score;
+    std::size_t frame, index;
+    std::vector<std::pair<int, double>> ious;  // truth index, IoU (descending IoU)
+  };
+  std::vector<std::vector<Det>> per_frame(frames.size());
+  std::int64_t num_truth = 0;
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    const auto& fr = frames[f];
+    num_truth += std::int64_t(fr.truth.size());
+    std::unordered_map<int, int> owner;
+    for (std::size_t t = 0; t < fr.truth.size(); ++t)
+      for (int i : fr.truth[t]) owner[i] = int(t);
+    for (std::size_t d = 0; d < fr.detections.size(); ++d) {
+      std::unordered_map<int, int> inter;
+      for (int i : fr.detections[d].indices) {
+        auto it = owner.find(i);
+        if (it != owner.end()) ++inter[it->second];
+      }
+      Det det{fr.detections[d].score, f, d, {}};
+      for (const auto& [t, n] : inter) {
+        const double uni = double(fr.detections[d].indices.size() + fr.truth[std::size_t(t)].size()) - n;
+        det.ious.emplace_back(t, uni > 0 ? n / uni : 0.0);
+      }
+      std::sort(det.ious.begin(), det.ious.end(), [](const auto& a, const auto& b) {
+        return a.second > b.second || (a.second == b.second && a.first < b.first);
+      });
+      per_frame[f].push_back(std::move(det));
+    }
+    std::stable_sort(per_frame[f].begin(), per_frame[f].end(),
+                     [](const Det& a, const Det& b) { return a.score > b.score; });
+  }
+  // Global ranking (score descending; ties by frame then input order).
+  std::vector<const Det*> ranked;
+  for (const auto& v : per_frame)
+    for (const auto& d : v) ranked.push_back(&d);
+  std::stable_sort(ranked.begin(), ranked.end(), [](const Det* a, const Det* b) {
+    if (a->score != b->score) return a->score > b->score;
+    if (a->frame != b->frame) return a->frame < b->frame;
+    return a->index < b->index;
+  });
+
+  std::vector<PrCurve> curves;
+  for (double t : thresholds) {
+    std::unordered_map<const Det*, bool> correct;
+    for (const auto& v : per_frame) {
+      std::vector<char> used(64, 0);
+      for (const auto& d : v) {
+        bool ok = false;
+        for (const auto& [truth, iou] : d.ious) {
+          if (std::size_t(truth) >= used.size()) used.resize(std::size_t(truth) + 1, 0);
+          if (used[std::size_t(truth)]) continue;
+          if (iou >= t) {
+            used[std::size_t(truth)] = 1;
+            ok = true;
+          }
+          break;  // the best unmatched truth decides
+        }
+        correct[&d] = ok;
+      }
+    }
+    PrCurve c;
+    c.iou = t;
+    std::int64_t tp = 0;
+    for (std::size_t i = 0; i < ranked.size(); ++i) {
+      tp += correct[ranked[i]] ? 1 : 0;
+      c.recall.push_back(num_truth ? double(tp) / double(num_truth) : NAN);
+      c.precision.push_back(double(tp) / double(i + 1));
+    }
+    if (num_truth == 0) {
+      c.ap = NAN;
+    } else {
+      double ap = 0, prev_r = 0, pmax = 0;
+      std::vector<double> env(c.precision.size());
+      for (std::size_t i = c.precision.size(); i-- > 0;) env[i] = pmax = std::max(pmax, c.precision[i]);
+      for (std::size_t i = 0; i < c.recall.size(); ++i) {
+        ap += (c.recall[i] - prev_r) * env[i];
+        prev_r = c.recall[i];
+      }
+      c.ap = ap;
+    }
+    curves.push_back(std::move(c));
+  }
+  return curves;
+}
+
+namespace {
+
+std::string fmt(double v, const char* f = "%.3f") {
+  if (!std::isfinite(v)) return "n/a";
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+
+std::string pr_plot(const std::vector<PrCurve>& curves, const std::string& title) {
+  std::vector<Series> series;
+  for (std::size_t i = 0; i < curves.size(); ++i) {
+    Series s;
+    char name[64];
+    std::snprintf(name, sizeof name, "IoU %.2f (AP %.2f)", curves[i].iou, curves[i].ap);
+    s.name = name;
+    // From (0, first precision) so that a curve with few detections is still visible.
+    s.x.push_back(0.0);
+    s.y.push_back(curves[i].precision.empty() ? 1.0 : curves[i].precision.front());
+    s.x.insert(s.x.end(), curves[i].recall.begin(), curves[i].recall.end());
+    s.y.insert(s.y.end(), curves[i].precision.begin(), curves[i].precision.end());
+    const double k = curves.size() > 1 ? double(i) / double(curves.size() - 1) : 0.0;  // green → purple
+    char col[16];
+    std::snprintf(col, sizeof col, "#%02x%02x%02x", int(40 + 120 * k), int(160 - 120 * k), int(80 + 120 * k));
+    s.color = col;
+    series.push_back(std::move(s));
+  }
+  PlotOptions o;
+  o.title = title;
+  o.x_label = "recall";
+  o.y_label = "precision";
+  o.height = 340;
+  o.y_from_zero = true;
+  return svg_line_plot(series, o);
+}
+
+}  // namespace
+
+void add_broccoli_sections(HtmlPage& page, const BroccoliReportData& d) {
+  page.section("Broccoli heads: detection, sizing and field map");
+  page.paragraph("Sequence " + d.sequence + ", model " + d.model + ", " + std::to_string(d.frames) +
+                 " frames. Size estimator: " + d.estimator + ".");
+  page.key_values(d.metrics, "Key figures (map and size metrics per head; ap50 per frame and point set)");
+
+  page.section("Precision–recall (IoU 0.50 … 0.95)");
+  if (!d.pr_single.empty()) page.svg(pr_plot(d.pr_single, "single-frame detection"), "Every cluster ranked by score");
+  if (!d.pr_tracked.empty())
+    page.svg(pr_plot(d.pr_tracked, "with the temporal filter"),
+             "Detections of heads confirmed by the temporal filter ranked first");
+  std::vector<std::vector<std::string>> rows;
+  for (std::size_t i = 0; i < d.pr_single.size(); ++i)
+    rows.push_back({fmt(d.pr_single[i].iou, "%.2f"), fmt(d.pr_single[i].ap),
+                    i < d.pr_tracked.size() ? fmt(d.pr_tracked[i].ap) : "n/a"});
+  page.table({"IoU", "AP single frame", "AP temporal filter"}, rows);
+
+  page.section("Field map");
+  {
+    ScatterSeries truth{"true heads", {}, {}, {}, "#777", true};
+    for (const auto& h : d.true_heads) {
+      truth.x.push_back(h.x);
+      truth.y.push_back(h.y);
+      truth.r.push_back(h.diameter_mm / 2000.0);
+    }
+    ScatterSeries hit{"mapped (matched)", {}, {}, {}, "#2a7", false};
+    ScatterSeries miss{"mapped (no true head within 5 cm)", {}, {}, {}, "#d33", false};
+    for (const auto& h : d.map_heads) {
+      auto& s = h.matched ? hit : miss;
+      s.x.push_back(h.x);
+      s.y.push_back(h.y);
+      s.r.push_back(h.diameter_mm / 2000.0);
+    }
+    ScatterSeries cam{"camera", {}, {}, {}, "#36c", false};
+    for (const auto& [x, y] : d.camera_path) {
+      cam.x.push_back(x);
+      cam.y.push_back(y);
+      cam.r.push_back(0.004);
+    }
+    ScatterOptions o;
+    o.title = "field map (circle = head diameter)";
+    o.x_label = "field x (m, along the row)";
+    o.y_label = "field y (m)";
+    o.equal_aspect = true;
+    o.width = 900;
+    o.height = 420;
+    page.svg(svg_scatter_plot({truth, cam, hit, miss}, o),
+             "True heads (grey outlines, visible in at least one frame) and the map of the temporal filter");
+  }
+
+  page.section("Size");
+  {
+    ScatterSeries s{"heads", {}, {}, {}, "#2a7", false};
+    for (const auto& p : d.head_sizes) {
+      s.x.push_back(p.truth_mm);
+      s.y.push_back(p.estimate_mm);
+    }
+    ScatterOptions o;
+    o.title = "estimated against true diameter, per mapped head";
+    o.x_label = "true diameter (mm)";
+    o.y_label = "estimated diameter (mm)";
+    o.diagonal = true;
+    o.width = 420;
+    o.height = 420;
+    page.svg(svg_scatter_plot({s}, o), "Dashed: estimate = truth");
+    ScatterSeries b{"bounding box", {}, {}, {}, "#2a7", false}, h{"convex hull", {}, {}, {}, "#a3c", true};
+    for (const auto& e : d.frame_errors) {
+      b.x.push_back(e.distance_m);
+      b.y.push_back(e.bbox_error_mm);
+      h.x.push_back(e.distance_m);
+      h.y.push_back(e.hull_error_mm);
+    }
+    ScatterOptions q;
+    q.title = "per-frame size error against distance from the optical axis";
+    q.x_label = "distance of the head centroid from the optical axis (m)";
+    q.y_label = "raw estimate − truth (mm)";
+    page.svg(svg_scatter_plot({b, h}, q), "Raw estimators, before bias correction");
+  }
+
+  page.section("Timing");
+  {
+    std::vector<Bar> bars;
+    const double n = d.frames > 0 ? double(d.frames) : 1.0;
+    for (const auto& s : d.stages) bars.push_back({s.name, s.total_ms / n});
+    bars.push_back({"sizing + tracking", d.tracking_ms / n});
+    page.svg(svg_bar_chart(bars, "mean milliseconds per frame", "ms"),
+             "Detector stages and the sizing + tracking step");
+  }
+
+  if (!d.overlays.empty()) {
+    page.section("Frames");
+    page.paragraph(
+        "Depth with detections: green = head confirmed by the temporal filter, red = not confirmed; white "
+        "outlines = ground-truth heads.");
+    page.figures(d.overlays);
+  }
+}
+
+}  // namespace cropsight::report

@@ -1,0 +1,189 @@
+// The broccoli report: precision–recall curves against eval::DetectionApAccumulator, the charts,
+// and the page rendered by headless Chromium (skipped with a message when chromium is absent).
+// With ../shared/data holding a simulated sequence and a model, the CLI report is checked too.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <regex>
+#include <span>
+
+#include "cropsight/eval/detection_ap.hpp"
+#include "cropsight/io/files.hpp"
+#include "cropsight/io/image_io.hpp"
+#include "cropsight/report/broccoli_report.hpp"
+#include "cropsight/report/svg_charts.hpp"
+#include "testing/testing.hpp"
+
+using namespace cropsight;
+using namespace cropsight::report;
+
+namespace {
+
+std::vector<PrFrame> random_frames(unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> start(0, 900), len(5, 60), count(0, 4);
+  std::uniform_real_distribution<float> score(-1.0f, 1.0f);
+  std::vector<PrFrame> frames(12);
+  for (auto& f : frames) {
+    const int n_truth = count(rng);
+    for (int t = 0; t < n_truth; ++t) {
+      std::vector<int> s;
+      const int a = 1000 * t + start(rng) / 10, n = len(rng);
+      for (int i = 0; i < n; ++i) s.push_back(a + i);
+      f.truth.push_back(s);
+      // a detection overlapping it by a random shift, sometimes two (a duplicate)
+      for (int k = 0; k < 1 + (t % 2); ++k) {
+        const int shift = std::uniform_int_distribution<int>(0, n)(rng);
+        std::vector<int> d;
+        for (int i = 0; i < n; ++i) d.push_back(a + shift + i);
+        f.detections.push_back({score(rng), d});
+      }
+    }
+    for (int k = 0; k < count(rng); ++k) {  // false positives
+      std::vector<int> d;
+      const int a = 50000 + start(rng);
+      for (int i = 0; i < len(rng); ++i) d.push_back(a + i);
+      f.detections.push_back({score(rng), d});
+    }
+  }
+  return frames;
+}
+
+std::string run(const std::string& cmd) {
+  std::string out;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return out;
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  pclose(p);
+  return out;
+}
+
+const char* kChromium = "/usr/bin/chromium";
+
+std::string chromium(const std::filesystem::path& profile) {
+  return std::string(kChromium) +
+         " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run --disable-background-networking "
+         "--disable-component-update --disable-sync --user-data-dir=" +
+         profile.string() + " ";
+}
+
+int count_of(const std::string& text, const std::string& what) {
+  int n = 0;
+  for (std::size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
+  return n;
+}
+
+BroccoliReportData sample_data() {
+  BroccoliReportData d;
+  d.sequence = "uk-test";
+  d.model = "models/broccoli-uk-oes.json";
+  d.estimator = "bbox";
+  d.frames = 10;
+  d.metrics = {{"map_precision", "0.960"}, {"map_recall", "0.920"}};
+  const auto frames = random_frames(3);
+  d.pr_single = pr_curves(frames, coco_thresholds());
+  d.pr_tracked = pr_curves(frames, coco_thresholds());
+  for (int i = 0; i < 8; ++i) {
+    d.true_heads.push_back({0.38 * i, (i % 2) * 0.6, 100.0 + 8 * i, i != 3});
+    if (i != 3) d.map_heads.push_back({0.38 * i + 0.01, (i % 2) * 0.6 - 0.01, 104.0 + 8 * i, true});
+    d.head_sizes.push_back({100.0 + 8 * i, 104.0 + 8 * i});
+    d.frame_errors.push_back({0.05 * i, 3.0 - i, -20.0 + i});
+    d.camera_path.emplace_back(0.3 * i, 0.3);
+  }
+  d.map_heads.push_back({1.1, 0.2, 90, false});
+  d.stages = {{"cloud", 5.0, 10}, {"normals", 12.0, 10}, {"clustering", 8.0, 10}};
+  d.tracking_ms = 0.2;
+  ColorImage img(64, 48, Rgb8{30, 120, 60});
+  d.overlays.push_back(make_figure(img, "frame 0"));
+  return d;
+}
+
+}  // namespace
+
+TEST(BroccoliReport, PrCurvesAgreeWithTheApAccumulator) {
+  for (unsigned seed : {1u, 2u, 3u, 4u}) {
+    const auto frames = random_frames(seed);
+    eval::DetectionApAccumulator acc;
+    for (const auto& f : frames) {
+      std::vector<eval::DetectionApAccumulator::Scored> s;
+      for (const auto& d : f.detections) s.push_back({d.score, std::span<const int>(d.indices)});
+      acc.add_frame(f.truth, s);
+    }
+    const auto curves = pr_curves(frames, coco_thresholds());
+    ASSERT_EQ(curves.size(), 10u);
+    for (const auto& c : curves) {
+      EXPECT_NEAR(c.ap, acc.ap(c.iou), 1e-12) << "seed " << seed << " IoU " << c.iou;
+      ASSERT_EQ(c.recall.size(), std::size_t(acc.num_detections()));
+      for (std::size_t i = 1; i < c.recall.size(); ++i) EXPECT_GE(c.recall[i], c.recall[i - 1]);
+    }
+    EXPECT_GE(curves.front().ap, curves.back().ap);  // stricter IoU never helps
+  }
+}
+
+TEST(BroccoliReport, ChartsDrawEveryMark) {
+  ScatterSeries a{"a", {0, 1, 2, NAN}, {0, 1, 4, 1}, {}, "#123", false};
+  ScatterSeries b{"b", {0.5}, {0.5}, {0.1}, "#456", true};
+  ScatterOptions o;
+  o.diagonal = true;
+  o.equal_aspect = true;
+  const std::string svg = svg_scatter_plot({a, b}, o);
+  EXPECT_EQ(count_of(svg, "class=\"cs-mark\""), 4);  // the NaN point is skipped
+  EXPECT_EQ(svg.rfind("<svg", 0), 0u);
+  EXPECT_NE(svg.find("stroke-dasharray"), std::string::npos);
+  const std::string bars = svg_bar_chart({{"cloud", 1.5}, {"normals <&>", 3.0}}, "t", "ms");
+  EXPECT_EQ(count_of(bars, "class=\"cs-mark\""), 2);
+  EXPECT_NE(bars.find("normals &lt;&amp;&gt;"), std::string::npos);
+}
+
+TEST(BroccoliReport, PageRendersInHeadlessChromium) {
+  HtmlPage page("broccoli report test");
+  add_broccoli_sections(page, sample_data());
+  const std::string html = page.html();
+  EXPECT_EQ(count_of(html, "<svg"), 6);  // PR ×2, field map, size, error vs distance, timing
+  EXPECT_EQ(html.find("src=\"http"), std::string::npos);  // self-contained: nothing fetched
+  EXPECT_EQ(html.find("href=\"http"), std::string::npos);
+  cropsight::testing::TempDir dir;
+  page.write(dir / "report.html");
+  if (!std::filesystem::exists(kChromium)) GTEST_SKIP() << "chromium not installed at " << kChromium;
+  const std::string dom = run(chromium(dir / "profile-dom") + "--dump-dom file://" + (dir / "report.html").string() +
+                              " 2>/dev/null");
+  ASSERT_FALSE(dom.empty()) << "chromium produced no DOM";
+  EXPECT_EQ(count_of(dom, "<svg"), count_of(html, "<svg"));
+  EXPECT_GE(count_of(dom, "cs-mark"), 20);
+  EXPECT_NE(dom.find("Field map"), std::string::npos);
+  EXPECT_NE(dom.find("Precision"), std::string::npos);
+
+  // A screenshot: the plots must paint something other than the white page.
+  run(chromium(dir / "profile-shot") + "--window-size=1000,3000 --screenshot=" + (dir / "shot.png").string() +
+      " file://" + (dir / "report.html").string() + " 2>/dev/null");
+  ASSERT_TRUE(std::filesystem::exists(dir / "shot.png")) << "chromium wrote no screenshot";
+  const ColorImage shot = io::read_color(dir / "shot.png");
+  long coloured = 0;
+  for (const auto& p : shot.data)
+    if (std::abs(int(p.r) - int(p.g)) > 40 || std::abs(int(p.g) - int(p.b)) > 40) ++coloured;
+  EXPECT_GT(coloured, 2000) << "the screenshot shows almost no coloured plot marks";
+}
+
+TEST(BroccoliReport, CliReportWithModel) {
+  const auto data = cropsight::testing::shared_data_dir() / "sim" / "broccoli-uk-test";
+  const auto model = cropsight::testing::source_dir() / "models" / "broccoli-uk-oes.json";
+  CROPSIGHT_REQUIRE_DATA(data);
+  CROPSIGHT_REQUIRE_DATA(model);
+  cropsight::testing::TempDir dir;
+  const auto r = cropsight::testing::run_cli("report --data " + data.string() + " --model " + model.string() +
+                                             " --frames 3 --out " + (dir / "r.html").string() + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = io::read_file(dir / "r.html");
+  EXPECT_GE(count_of(html, "<svg"), 6);
+  EXPECT_NE(html.find("Field map"), std::string::npos);
+  const auto bad = cropsight::testing::run_cli("report --data " + data.string() + " --model " +
+                                               (dir / "missing.json").string() + " --out " +
+                                               (dir / "x.html").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.html"));
+}
