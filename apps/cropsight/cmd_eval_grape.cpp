@@ -1,0 +1,64 @@
+// cropsight eval grape: OAcc / mAcc / mIoU, per-class accuracy and IoU and time per cloud of a
+// trained grape segmentation model on labelled text clouds.
+//
+//   cropsight eval grape --data DIR --model MODEL [--fold k/K] [--limit N] [--json]
+//
+// --fold k/K evaluates only the clouds of fold k (the split of `train grape --val-fold k/K`),
+// so that a model is only ever scored on clouds it was not trained on.
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "cropsight/core/error.hpp"
+#include "cropsight/io/grape_text.hpp"
+#include "cropsight/pipeline/grape_eval.hpp"
+#include "cropsight/pipeline/grape_model.hpp"
+
+namespace cropsight::cli {
+namespace {
+struct EvalGrapeOptions {
+  CommonOptions common;
+  std::string data, model, fold;
+  int limit = 0, threads = 2;
+  std::uint64_t split_seed = 1;
+};
+
+void run(const EvalGrapeOptions& o) {
+  const auto model = pipeline::GrapeModel::load(o.model, o.threads);
+  auto files = io::list_grape_clouds(o.data);
+  if (o.limit > 0 && std::size_t(o.limit) < files.size()) files.resize(std::size_t(o.limit));
+  if (!o.fold.empty()) {
+    const auto [k, K] = pipeline::parse_fold(o.fold, "--fold");
+    const auto fold = pipeline::grape_folds(files.size(), K, o.split_seed);
+    std::vector<std::filesystem::path> keep;
+    for (std::size_t i = 0; i < files.size(); ++i)
+      if (fold[i] == k) keep.push_back(files[i]);
+    files = keep;
+  }
+  const auto clouds = pipeline::load_grape_clouds(files);
+  const auto ev = pipeline::evaluate_grape(model, clouds);
+  if (o.common.json) {
+    auto j = nlohmann::json::parse(ev.json());
+    j["model"] = model.kind();
+    print_json(j);
+  } else {
+    std::printf("model %s (%s)\n%s", o.model.c_str(), model.kind().c_str(), ev.text().c_str());
+  }
+}
+}  // namespace
+
+void add_eval_grape(CLI::App& eval) {
+  auto o = std::make_shared<EvalGrapeOptions>();
+  auto* cmd = eval.add_subcommand("grape", "Evaluate a grape segmentation model on labelled text clouds");
+  cmd->add_option("--data", o->data, "Folder of labelled text clouds (directly or under points/)")->required();
+  cmd->add_option("--model", o->model, "Model file (gbdt .json or network .pt)")->required();
+  cmd->add_option("--fold", o->fold, "k/K: evaluate only fold k of the by-cloud split");
+  cmd->add_option("--split-seed", o->split_seed, "Seed of the fold split (as in train grape)");
+  cmd->add_option("--limit", o->limit, "Use only the first N clouds");
+  cmd->add_option("--threads", o->threads, "Threads (default 2)");
+  add_json_flag(cmd, o->common);
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace cropsight::cli

@@ -1,0 +1,48 @@
+#pragma once
+// A trained grape segmentation model of either kind behind one interface, plus the dataset
+// helpers the train / eval commands share (loading clouds, k-fold split by cloud).
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cropsight/core/cloud.hpp"
+
+namespace cropsight::pipeline {
+
+class GrapeModel {
+ public:
+  /// Loads a network model (*.pt, nn::PointSegmenter) or a GBDT model (XGBoost JSON written by
+  /// `train grape --model gbdt`). Throws Error(path, ...) for anything else.
+  static GrapeModel load(const std::filesystem::path& path, int threads = 2);
+  ~GrapeModel();
+  GrapeModel(GrapeModel&&) noexcept;
+  GrapeModel& operator=(GrapeModel&&) noexcept;
+
+  /// "gbdt", "pointresnet" or "pointnet2".
+  const std::string& kind() const { return kind_; }
+  /// Feature set of a network ("xyzrgbn" …); "gbdt-features" for the GBDT.
+  const std::string& features() const { return features_; }
+  /// Label of every point. The cloud is used as given (the dataset's clouds are already
+  /// unit-sphere normalised; ROI clouds are normalised by the caller).
+  std::vector<int> segment(const Cloud& cloud) const;
+
+ private:
+  GrapeModel() = default;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::string kind_, features_;
+};
+
+/// Fold (0..K-1) of each of `n` clouds: a seeded shuffle dealt round-robin, so folds differ in
+/// size by at most one. Split is by cloud, never by point.
+std::vector<int> grape_folds(std::size_t n, int k, std::uint64_t seed = 1);
+
+/// Parses "k/K" (1-based k) → (k-1, K). Throws Error(option, ...).
+std::pair<int, int> parse_fold(const std::string& text, const std::string& option);
+
+/// Loads every cloud (io::read_grape_text) of `files`.
+std::vector<Cloud> load_grape_clouds(const std::vector<std::filesystem::path>& files);
+
+}  // namespace cropsight::pipeline

@@ -1,0 +1,83 @@
+#include "cropsight/pipeline/grape_model.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <numeric>
+#include <random>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/io/grape_text.hpp"
+#include "cropsight/learning/gbdt.hpp"
+#include "cropsight/nn/point_segmenter.hpp"
+#include "cropsight/pipeline/grape_gbdt.hpp"
+
+namespace cropsight::pipeline {
+
+struct GrapeModel::Impl {
+  std::unique_ptr<learning::Gbdt> gbdt;
+  std::unique_ptr<nn::PointSegmenter> net;
+  int threads = 2;
+};
+
+GrapeModel::~GrapeModel() = default;
+GrapeModel::GrapeModel(GrapeModel&&) noexcept = default;
+GrapeModel& GrapeModel::operator=(GrapeModel&&) noexcept = default;
+
+GrapeModel GrapeModel::load(const std::filesystem::path& path, int threads) {
+  const std::string where = path.string();
+  if (!std::filesystem::is_regular_file(path)) throw Error(where, "no such model file");
+  GrapeModel m;
+  m.impl_ = std::make_unique<Impl>();
+  m.impl_->threads = threads;
+  // XGBoost JSON models start with '{'; torch archives are zip files ("PK").
+  char first = 0;
+  std::ifstream(path, std::ios::binary).get(first);
+  if (first == '{') {
+    m.impl_->gbdt = std::make_unique<learning::Gbdt>(learning::Gbdt::load(path, threads));
+    if (m.impl_->gbdt->attribute("cropsight.kind") != "grape-gbdt") throw Error(where, "not a grape GBDT model");
+    m.kind_ = "gbdt";
+    m.features_ = "gbdt-features";
+  } else {
+    m.impl_->net = std::make_unique<nn::PointSegmenter>(nn::PointSegmenter::load(path, threads));
+    m.kind_ = m.impl_->net->config().arch;
+    m.features_ = m.impl_->net->config().features;
+  }
+  return m;
+}
+
+std::vector<int> GrapeModel::segment(const Cloud& cloud) const {
+  if (impl_->gbdt) return segment_grape_gbdt(*impl_->gbdt, cloud, impl_->threads);
+  return impl_->net->segment(cloud);
+}
+
+std::vector<int> grape_folds(std::size_t n, int k, std::uint64_t seed) {
+  if (k < 2) throw Error("folds", "need at least 2 folds");
+  std::vector<int> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::mt19937_64 rng(seed);
+  std::shuffle(order.begin(), order.end(), rng);
+  std::vector<int> fold(n);
+  for (std::size_t i = 0; i < n; ++i) fold[std::size_t(order[i])] = int(i % std::size_t(k));
+  return fold;
+}
+
+std::pair<int, int> parse_fold(const std::string& text, const std::string& option) {
+  const auto slash = text.find('/');
+  try {
+    if (slash == std::string::npos) throw std::invalid_argument("");
+    const int k = std::stoi(text.substr(0, slash)), K = std::stoi(text.substr(slash + 1));
+    if (K < 2 || k < 1 || k > K) throw std::invalid_argument("");
+    return {k - 1, K};
+  } catch (const std::exception&) {
+    throw Error(option, "expected k/K with 1 <= k <= K and K >= 2, got '" + text + "'");
+  }
+}
+
+std::vector<Cloud> load_grape_clouds(const std::vector<std::filesystem::path>& files) {
+  std::vector<Cloud> out;
+  out.reserve(files.size());
+  for (const auto& f : files) out.push_back(io::read_grape_text(f));
+  return out;
+}
+
+}  // namespace cropsight::pipeline
