@@ -82,12 +82,6 @@ void BroccoliDetector::cluster() {
     {
       auto t = timer_.scope("edges");
       geometry::detect_organized_edges(cloud_, cfg_.edges, edges_);
-      if (cfg_.curvature_edges.threshold > 0.0f) {
-        const float th = cfg_.curvature_edges.threshold;
-        const std::size_t n = edges_.size();
-        for (std::size_t i = 0; i < n; ++i)
-          if (cloud_.curvature[i] > th) edges_[i] |= kHighCurvatureEdge;  // NaN compares false
-      }
     }
     auto t = timer_.scope("clustering");
     segments_ = segmentation::segment_oes(cloud_, edges_, cfg_.oes, flood_);

@@ -32,25 +32,6 @@ struct OutlierStageConfig {
   }
 };
 
-/// High-curvature edges for OES: pixels whose surface variation (from the integral-image
-/// normals) exceeds `threshold` get edge label kHighCurvatureEdge, which OES treats as a barrier
-/// when oes.barrier_labels includes it — the role of the HIGH_CURVATURE label of PCL's
-/// OrganizedEdgeFromNormals. Creases where a head meets the leaves around it have no depth jump
-/// but do have high curvature.
-struct CurvatureEdgeConfig {
-  float threshold = 0.0f;  ///< surface variation in [0, 1/3]; 0 disables
-
-  template <class V>
-  void visit(V& v) {
-    v("threshold", threshold,
-      "surface variation above which a pixel is a high-curvature edge for OES (0 = off; ours, tuned on the "
-      "simulator; PCL OrganizedEdgeFromNormals has the same label)");
-  }
-};
-
-/// Edge label bit for high-curvature pixels (PCL's EDGELABEL_HIGH_CURVATURE value).
-inline constexpr std::uint8_t kHighCurvatureEdge = 8;
-
 struct BroccoliDetectionConfig {
   float score_margin = 0.0f;       ///< added to the classifier's threshold (0 SVM, 0.5 KNN)
   float min_head_fraction = 0.5f;  ///< cluster-truth rule, see broccoli_truth.hpp
@@ -76,7 +57,6 @@ struct BroccoliDetectorConfig {
   geometry::DepthRangeConfig depth;
   geometry::IntegralNormalConfig normals;
   geometry::OrganizedEdgeConfig edges;
-  CurvatureEdgeConfig curvature_edges;
   segmentation::OesConfig oes;
   segmentation::OrgConfig org;
   segmentation::EuclideanClusterConfig fec;
@@ -94,7 +74,6 @@ struct BroccoliDetectorConfig {
     v("depth", depth, "depth-range filter");
     v("normals", normals, "integral-image normals");
     v("edges", edges, "organised edges (OES)");
-    v("curvature_edges", curvature_edges, "high-curvature edges (OES)");
     v("oes", oes, "OES clustering");
     v("org", org, "ORG clustering");
     v("fec", fec, "FEC Euclidean clustering");

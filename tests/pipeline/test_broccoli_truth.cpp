@@ -1,0 +1,43 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cropsight/pipeline/broccoli_truth.hpp"
+
+using namespace cropsight;
+using namespace cropsight::pipeline;
+
+TEST(BroccoliTruth, MajorityOfOneHeadMakesAHeadCluster) {
+  // 10 pixels: labels 0 0 3 3 3 3 3 5 5 0
+  const std::vector<std::uint16_t> labels{0, 0, 3, 3, 3, 3, 3, 5, 5, 0};
+  const std::vector<int> all{0, 1, 2, 3, 4, 5, 6, 7, 8, 9};
+  ClusterTruth t = cluster_truth(all, labels);
+  EXPECT_EQ(t.head_id, 3);  // exactly half (5 of 10) on head 3 counts
+  EXPECT_FLOAT_EQ(t.fraction, 0.5f);
+  const std::vector<int> leafy{0, 1, 2, 3, 7, 8, 9};  // 2 on head 3, 2 on head 5, 3 on nothing
+  t = cluster_truth(leafy, labels);
+  EXPECT_EQ(t.head_id, 0);  // 2/7 < 0.5 on any one head
+  EXPECT_NEAR(t.fraction, 2.0 / 7.0, 1e-6);
+  // Two heads 40 % each: not a head (the rule asks for one head).
+  const std::vector<std::uint16_t> two{1, 1, 2, 2, 0};
+  EXPECT_EQ(cluster_truth(std::vector<int>{0, 1, 2, 3, 4}, two).head_id, 0);
+  EXPECT_EQ(cluster_truth(std::vector<int>{0, 1, 2, 3, 4}, two, 0.4f).head_id, 1);
+  EXPECT_EQ(cluster_truth(all, {}).head_id, 0);  // no labels: not a head
+}
+
+TEST(BroccoliTruth, InstancesAreTheVisiblePointsOfEachHead) {
+  OrganizedCloud c(4, 2);
+  c.labels = {7, 7, 0, 2, 7, 2, 2, 0};
+  for (int i = 0; i < 8; ++i) c.x[i] = c.y[i] = 0.0f, c.z[i] = 1.0f;
+  c.z[1] = NAN;  // a labelled pixel without a return is not part of the visible head
+  std::vector<TruthInstance> inst;
+  truth_instances(c, 0, inst);
+  ASSERT_EQ(inst.size(), 2u);
+  EXPECT_EQ(inst[0].id, 2);
+  EXPECT_EQ(inst[0].indices, (std::vector<int>{3, 5, 6}));
+  EXPECT_EQ(inst[1].id, 7);
+  EXPECT_EQ(inst[1].indices, (std::vector<int>{0, 4}));
+  truth_instances(c, 3, inst);  // heads with fewer than 3 visible points are left out
+  ASSERT_EQ(inst.size(), 1u);
+  EXPECT_EQ(inst[0].id, 2);
+}
