@@ -48,7 +48,11 @@ class IntegralNormalEstimator {
   IntegralNormalConfig cfg_;
   std::vector<double> integral_;      // (w+1)·(h+1) cells × 10 sums: n, x, y, z, xx, xy, xz, yy, yz, zz
   std::vector<float> distance_;       // chamfer distance to the nearest depth change, pixels
+  std::vector<float> scratch_;        // one row of the distance passes
   std::vector<std::uint8_t> change_;  // 0 = depth change / NaN pixel
+  std::vector<std::uint8_t> flags_;   // per-row depth-change test results
+  std::vector<float> row_;            // per-row scatter matrices (structure of arrays) for the solver
+  std::vector<float> ok_;             // per-row: 1 when the pixel has a window
 };
 
 /// One-shot convenience wrapper (allocates its workspace).

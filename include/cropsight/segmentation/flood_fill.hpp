@@ -34,7 +34,8 @@ namespace cropsight::segmentation {
 struct FloodFillWorkspace {
   /// Per pixel: index into the returned segments, or -1 (unlabelled / in a rejected segment).
   std::vector<int> labels;
-  std::vector<int> stack;
+  std::vector<int> stack;    // pixel indices to expand (each pixel is pushed at most once)
+  std::vector<int> columns;  // their columns (saves a division per pixel)
   std::vector<int> members;  // pixels of the segment being grown
 };
 
@@ -49,45 +50,54 @@ std::vector<Segment> flood_fill(int width, int height, const Pred& pred, int min
   if (min_size < 1 || max_size < min_size)
     throw Error("flood fill", "size range must satisfy 1 <= min_size <= max_size");
   const int n = width * height;
-  // Pixels that were tried and rejected get -2 so that they are never seeded again.
+  // Pixels of rejected segments get -2 while filling so that they are never seeded again.
   ws.labels.assign(std::size_t(n), -1);
-  ws.stack.clear();
+  // Every pixel enters the stack and the member list at most once: fixed-size buffers, no
+  // capacity checks in the loop.
+  if (ws.stack.size() < std::size_t(n)) ws.stack.resize(std::size_t(n));
+  if (ws.columns.size() < std::size_t(n)) ws.columns.resize(std::size_t(n));
+  if (ws.members.size() < std::size_t(n)) ws.members.resize(std::size_t(n));
+  int* labels = ws.labels.data();
+  int* stack = ws.stack.data();
+  int* cols = ws.columns.data();
+  int* members = ws.members.data();
   std::vector<Segment> out;
   int seg_id = 0;
-  for (int s = 0; s < n; ++s) {
-    if (ws.labels[s] != -1 || !pred.seed(s)) continue;
-    ws.members.clear();
-    ws.members.push_back(s);
-    ws.labels[s] = seg_id;
-    ws.stack.push_back(s);
-    while (!ws.stack.empty()) {
-      const int p = ws.stack.back();
-      ws.stack.pop_back();
+  bool rejected_any = false;
+  for (int s = 0, su = 0; s < n; ++s, su = (su + 1 == width ? 0 : su + 1)) {
+    if (labels[s] != -1 || !pred.seed(s)) continue;
+    int top = 0, count = 0;
+    labels[s] = seg_id;
+    members[count++] = s;
+    stack[top] = s, cols[top] = su, ++top;
+    while (top > 0) {
+      --top;
+      const int p = stack[top], u = cols[top];
       if (!pred.expands(p)) continue;
-      const int u = p % width;
-      // Neighbours: left, right, up, down (bounds checked on the grid, not by index wrap).
-      const int nb[4] = {u > 0 ? p - 1 : -1, u + 1 < width ? p + 1 : -1, p >= width ? p - width : -1,
-                         p + width < n ? p + width : -1};
-      for (int q : nb) {
-        if (q < 0 || ws.labels[q] != -1) continue;
-        if (!pred.member(q) || !pred.similar(p, q)) continue;
-        ws.labels[q] = seg_id;
-        ws.members.push_back(q);
-        ws.stack.push_back(q);
-      }
+      // 4-neighbours, bounds checked on the grid (no wrap from a row end to the next row).
+      auto visit = [&](int q, int qu) {
+        if (labels[q] != -1 || !pred.member(q) || !pred.similar(p, q)) return;
+        labels[q] = seg_id;
+        members[count++] = q;
+        stack[top] = q, cols[top] = qu, ++top;
+      };
+      if (u > 0) visit(p - 1, u - 1);
+      if (u + 1 < width) visit(p + 1, u + 1);
+      if (p >= width) visit(p - width, u);
+      if (p + width < n) visit(p + width, u);
     }
-    const int size = int(ws.members.size());
-    if (size >= min_size && size <= max_size) {
+    if (count >= min_size && count <= max_size) {
       Segment seg;
-      seg.indices = ws.members;
+      seg.indices.assign(members, members + count);
       out.push_back(std::move(seg));
       ++seg_id;
     } else {
-      for (int q : ws.members) ws.labels[q] = -2;
+      for (int k = 0; k < count; ++k) labels[members[k]] = -2;
+      rejected_any = true;
     }
   }
-  for (int& l : ws.labels)
-    if (l == -2) l = -1;
+  if (rejected_any)
+    for (int i = 0; i < n; ++i) labels[i] = labels[i] == -2 ? -1 : labels[i];
   return out;
 }
 
