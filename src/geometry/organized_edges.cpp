@@ -10,6 +10,41 @@
 
 namespace cropsight::geometry {
 
+namespace {
+
+constexpr std::uint8_t kSearch = 0x80;  // temporary mark: valid pixel with a NaN neighbour
+
+// One image row (pixels 1..w-2 of `z`, neighbours at z ± stride): PCL's all-neighbours-valid
+// rule, branch-free. dmin/dmax over the 8 differences |z_p| - |z_q|; the dominant one decides.
+__attribute__((target_clones("avx2", "default"))) void row_fast_path(int w, const float* __restrict z, int stride,
+                                                                     float th, std::uint8_t occluded,
+                                                                     std::uint8_t occluding,
+                                                                     std::uint8_t* __restrict out) {
+  const float* up = z - stride;
+  const float* dn = z + stride;
+  out[0] = out[w - 1] = kEdgeNone;
+  for (int c = 1; c < w - 1; ++c) {
+    const float zc = z[c];
+    const float cur = std::abs(zc);
+    const float q[8] = {z[c - 1], up[c - 1], up[c], up[c + 1], z[c + 1], dn[c + 1], dn[c], dn[c - 1]};
+    bool invalid = false;
+    float dmin = cur - std::abs(q[0]), dmax = dmin;
+    for (int k = 0; k < 8; ++k) {
+      invalid |= !std::isfinite(q[k]);
+      const float d = cur - std::abs(q[k]);
+      dmin = std::min(dmin, d);
+      dmax = std::max(dmax, d);
+    }
+    const float dominant = std::abs(dmin) > std::abs(dmax) ? dmin : dmax;
+    const bool edge = std::abs(dominant) > th * cur;
+    const std::uint8_t label = edge ? (dominant > 0.0f ? occluded : occluding) : std::uint8_t(kEdgeNone);
+    const bool valid = std::isfinite(zc);
+    out[c] = !valid ? std::uint8_t(kEdgeNone) : (invalid ? kSearch : label);
+  }
+}
+
+}  // namespace
+
 void detect_organized_edges(const OrganizedCloud& cloud, const OrganizedEdgeConfig& cfg,
                             std::vector<std::uint8_t>& labels) {
   if (!(cfg.depth_discontinuity >= 0.0f)) throw Error("organized edges", "depth_discontinuity must be >= 0");
@@ -19,14 +54,13 @@ void detect_organized_edges(const OrganizedCloud& cloud, const OrganizedEdgeConf
   const std::uint8_t occluded = cfg.detect_occluded ? kEdgeOccluded : 0;
   const std::uint8_t occluding = cfg.detect_occluding ? kEdgeOccluding : 0;
   const std::uint8_t nan_boundary = cfg.detect_nan_boundary ? kEdgeNanBoundary : 0;
-  if (cfg.high_curvature_threshold > 0.0f && cloud.curvature.size() == cloud.size()) {
-    const float* C = cloud.curvature.data();
-    const float th = cfg.high_curvature_threshold;
-    // NaN curvature compares false: pixels without a normal are not creases.
-    for (std::size_t i = 0; i < cloud.size(); ++i)
-      if (C[i] > th) labels[i] = kEdgeHighCurvature;
+  const bool curvature_bits = cfg.high_curvature_threshold > 0.0f && cloud.curvature.size() == cloud.size();
+  if ((occluded | occluding | nan_boundary) == 0) {
+    if (curvature_bits)
+      for (std::size_t i = 0; i < cloud.size(); ++i)
+        if (cloud.curvature[i] > cfg.high_curvature_threshold) labels[i] = kEdgeHighCurvature;
+    return;
   }
-  if ((occluded | occluding | nan_boundary) == 0) return;
   const float th = cfg.depth_discontinuity;
   const float* Z = cloud.z.data();
   // PCL's neighbour order: W, NW, N, NE, E, SE, S, SW.
@@ -36,28 +70,14 @@ void detect_organized_edges(const OrganizedCloud& cloud, const OrganizedEdgeConf
   for (int k = 0; k < 8; ++k) doff[k] = ddy[k] * w + ddx[k];
 
   for (int row = 1; row < h - 1; ++row) {
+    std::uint8_t* lrow = labels.data() + std::size_t(row) * w;
+    // Fast path for the whole row (branch-free, vectorised): pixels whose 8 neighbours are all
+    // valid get their label; pixels with a NaN neighbour are marked kSearch for the walk below.
+    row_fast_path(w, Z + std::size_t(row) * w, w, th, occluded, occluding, lrow);
     for (int col = 1; col < w - 1; ++col) {
+      if (lrow[col] != kSearch) continue;
       const int i = row * w + col;
-      const float zc = Z[i];
-      if (!std::isfinite(zc)) continue;
-      const float cur = std::abs(zc);
-      float dmin = 0.0f, dmax = 0.0f;
-      bool invalid = false;
-      for (int k = 0; k < 8; ++k) {
-        const float zn = Z[i + doff[k]];
-        if (!std::isfinite(zn)) {
-          invalid = true;
-          break;
-        }
-        const float d = cur - std::abs(zn);
-        if (k == 0 || d < dmin) dmin = d;
-        if (k == 0 || d > dmax) dmax = d;
-      }
-      if (!invalid) {
-        const float dominant = std::abs(dmin) > std::abs(dmax) ? dmin : dmax;
-        if (std::abs(dominant) > th * cur) labels[i] |= dominant > 0.0f ? occluded : occluding;
-        continue;
-      }
+      const float cur = std::abs(Z[i]);
       // Some neighbour is NaN: look across the hole along the mean direction of the NaN ones.
       int dx = 0, dy = 0, count = 0;
       for (int k = 0; k < 8; ++k) {
@@ -79,13 +99,22 @@ void detect_organized_edges(const OrganizedCloud& cloud, const OrganizedEdgeConf
           break;
         }
       }
+      std::uint8_t l = kEdgeNone;
       if (!std::isnan(corr)) {
         const float d = cur - corr;
-        if (std::abs(d) > th * cur) labels[i] |= d > 0.0f ? occluded : occluding;
+        if (std::abs(d) > th * cur) l = d > 0.0f ? occluded : occluding;
       } else {
-        labels[i] |= nan_boundary;
+        l = nan_boundary;
       }
+      lrow[col] = l;
     }
+  }
+  if (curvature_bits) {
+    const float* C = cloud.curvature.data();
+    const float tc = cfg.high_curvature_threshold;
+    // NaN curvature compares false: pixels without a normal are not creases.
+    for (std::size_t i = 0; i < cloud.size(); ++i)
+      if (C[i] > tc) labels[i] |= kEdgeHighCurvature;
   }
 }
 

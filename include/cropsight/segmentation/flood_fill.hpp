@@ -4,9 +4,9 @@
 // one labeller, a pluggable similarity predicate). A 4-neighbour flood fill over the pixel grid:
 //
 //   for every pixel s in raster order that is unlabelled and pred.seed(s):
-//     new label L; push s
-//     while the stack is not empty: pop p; if pred.expands(p): for each 4-neighbour q of p
-//       that is unlabelled and pred.member(q) and pred.similar(p, q): label q with L, push q
+//     new label L; enqueue s
+//     while the queue is not empty: take p; if pred.expands(p): for each 4-neighbour q of p
+//       that is unlabelled and pred.member(q) and pred.similar(p, q): label q with L, enqueue q
 //   keep the labels whose size lies in [min_size, max_size]
 //
 // The predicate is a template parameter (inlined, no virtual call per pixel):
@@ -34,14 +34,14 @@ namespace cropsight::segmentation {
 struct FloodFillWorkspace {
   /// Per pixel: index into the returned segments, or -1 (unlabelled / in a rejected segment).
   std::vector<int> labels;
-  std::vector<int> stack;    // pixel indices to expand (each pixel is pushed at most once)
+  std::vector<int> members;  // pixels of the segment being grown, in BFS order (also the queue)
   std::vector<int> columns;  // their columns (saves a division per pixel)
-  std::vector<int> members;  // pixels of the segment being grown
+  std::vector<int> remap;    // fill attempt → kept segment id or -1
 };
 
 /// Labels `width`×`height` pixels with `pred`; returns the segments with
 /// min_size ≤ size ≤ max_size, in order of their seed pixel (raster order), indices in fill
-/// order. ws.labels holds the segment id per pixel afterwards. Does not fill the summaries
+/// (breadth-first) order. ws.labels holds the segment id per pixel afterwards. Does not fill the summaries
 /// (call summarize() on the ones you keep, or use flood_fill_segments below).
 template <class Pred>
 std::vector<Segment> flood_fill(int width, int height, const Pred& pred, int min_size, int max_size,
@@ -50,36 +50,38 @@ std::vector<Segment> flood_fill(int width, int height, const Pred& pred, int min
   if (min_size < 1 || max_size < min_size)
     throw Error("flood fill", "size range must satisfy 1 <= min_size <= max_size");
   const int n = width * height;
-  // Pixels of rejected segments get -2 while filling so that they are never seeded again.
-  ws.labels.assign(std::size_t(n), -1);
-  // Every pixel enters the stack and the member list at most once: fixed-size buffers, no
+  // One pass evaluates member() for every pixel, so that the fill loop tests a neighbour with a
+  // single load: -1 = unlabelled member, -3 = not a member, >= 0 = fill attempt number. Attempts
+  // whose size is out of range are not relabelled pixel by pixel (scattered writes over e.g. the
+  // whole ground); one sequential pass at the end maps attempts to kept segment ids or -1.
+  ws.labels.resize(std::size_t(n));
+  int* labels = ws.labels.data();
+  for (int i = 0; i < n; ++i) labels[i] = pred.member(i) ? -1 : -3;
+  // Every pixel enters the member list (the BFS queue) at most once: fixed-size buffers, no
   // capacity checks in the loop.
-  if (ws.stack.size() < std::size_t(n)) ws.stack.resize(std::size_t(n));
   if (ws.columns.size() < std::size_t(n)) ws.columns.resize(std::size_t(n));
   if (ws.members.size() < std::size_t(n)) ws.members.resize(std::size_t(n));
-  int* labels = ws.labels.data();
-  int* stack = ws.stack.data();
   int* cols = ws.columns.data();
   int* members = ws.members.data();
   std::vector<Segment> out;
-  int seg_id = 0;
-  bool rejected_any = false;
+  ws.remap.clear();
+  int attempt = 0;
   for (int s = 0, su = 0; s < n; ++s, su = (su + 1 == width ? 0 : su + 1)) {
-    if (labels[s] != -1 || !pred.seed(s)) continue;
-    int top = 0, count = 0;
-    labels[s] = seg_id;
-    members[count++] = s;
-    stack[top] = s, cols[top] = su, ++top;
-    while (top > 0) {
-      --top;
-      const int p = stack[top], u = cols[top];
+    if (labels[s] != -1 || !pred.seed(s)) continue;  // seed() implies member()
+    // Breadth-first: the member list is the queue (each pixel enters it once), which keeps the
+    // frontier compact in memory.
+    int head = 0, count = 0;
+    labels[s] = attempt;
+    members[count] = s, cols[count] = su, ++count;
+    while (head < count) {
+      const int p = members[head], u = cols[head];
+      ++head;
       if (!pred.expands(p)) continue;
       // 4-neighbours, bounds checked on the grid (no wrap from a row end to the next row).
       auto visit = [&](int q, int qu) {
-        if (labels[q] != -1 || !pred.member(q) || !pred.similar(p, q)) return;
-        labels[q] = seg_id;
-        members[count++] = q;
-        stack[top] = q, cols[top] = qu, ++top;
+        if (labels[q] != -1 || !pred.similar(p, q)) return;
+        labels[q] = attempt;
+        members[count] = q, cols[count] = qu, ++count;
       };
       if (u > 0) visit(p - 1, u - 1);
       if (u + 1 < width) visit(p + 1, u + 1);
@@ -87,17 +89,17 @@ std::vector<Segment> flood_fill(int width, int height, const Pred& pred, int min
       if (p + width < n) visit(p + width, u);
     }
     if (count >= min_size && count <= max_size) {
+      ws.remap.push_back(int(out.size()));
       Segment seg;
       seg.indices.assign(members, members + count);
       out.push_back(std::move(seg));
-      ++seg_id;
     } else {
-      for (int k = 0; k < count; ++k) labels[members[k]] = -2;
-      rejected_any = true;
+      ws.remap.push_back(-1);
     }
+    ++attempt;
   }
-  if (rejected_any)
-    for (int i = 0; i < n; ++i) labels[i] = labels[i] == -2 ? -1 : labels[i];
+  const int* remap = ws.remap.data();
+  for (int i = 0; i < n; ++i) labels[i] = labels[i] < 0 ? -1 : remap[labels[i]];
   return out;
 }
 
