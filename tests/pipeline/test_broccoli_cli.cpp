@@ -1,0 +1,121 @@
+// CLI tests of train / detect / eval / bench broccoli: success paths on a small simulated
+// sequence and every error path (missing model, wrong pipeline, bad --set, missing data).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "broccoli_sim_frames.hpp"
+#include "cropsight/io/config_yaml.hpp"
+#include "cropsight/io/sequence.hpp"
+#include "cropsight/learning/model.hpp"
+#include "cropsight/pipeline/broccoli_training.hpp"
+#include "testing/testing.hpp"
+
+namespace fs = std::filesystem;
+using namespace cropsight;
+using cropsight::testing::run_cli;
+
+namespace {
+class BroccoliCli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    tmp_ = new cropsight::testing::TempDir;
+    sim::BroccoliSimulator s(sim::BroccoliSimConfig{}, 21, 6);
+    io::SequenceWriter w(seq(), s.camera());
+    for (int i = 0; i < s.frames(); ++i) w.write(s.render(i));
+    w.set_groundtruth(s.groundtruth());
+    w.finish();
+  }
+  static void TearDownTestSuite() {
+    delete tmp_;
+    tmp_ = nullptr;
+  }
+  static fs::path seq() { return *tmp_ / "seq"; }
+  static fs::path dir() { return tmp_->path(); }
+  static std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+  static cropsight::testing::TempDir* tmp_;
+};
+cropsight::testing::TempDir* BroccoliCli::tmp_ = nullptr;
+}  // namespace
+
+TEST_F(BroccoliCli, TrainEvalDetectAndErrors) {
+  const fs::path model = dir() / "oes.json";
+  auto r = run_cli("train broccoli --data " + q(seq()) +
+                   " --pipeline oes --features vfh --classifier svm-rbf --config broccoli-oes-uk --out " + q(model) +
+                   " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto tj = nlohmann::json::parse(r.out);
+  EXPECT_EQ(tj["frames"], 6);
+  EXPECT_GT(tj["positives"].get<int>(), 0);
+  const learning::Model m = learning::load_model(model);
+  EXPECT_EQ(m.info.pipeline, "oes");
+  EXPECT_EQ(m.info.features, std::vector<std::string>{"vfh"});
+  EXPECT_NEAR(std::stod(m.info.config.at("oes.distance_tolerance")), 0.005, 1e-9);  // the preset value was recorded
+  EXPECT_EQ(m.info.provenance.at("seeds"), "21");
+
+  r = run_cli("eval broccoli --data " + q(seq()) + " --model " + q(model) + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto ej = nlohmann::json::parse(r.out);
+  for (const char* k : {"frames", "clusters", "accuracy", "precision", "recall", "specificity", "npv", "kappa", "ap50",
+                        "map50_95", "fps"})
+    EXPECT_TRUE(ej.contains(k)) << k;
+  EXPECT_EQ(ej["frames"], 6);
+  EXPECT_GT(ej["fps"].get<double>(), 0.0);
+
+  const fs::path out = dir() / "det.jsonl", masks = dir() / "masks";
+  r = run_cli("detect broccoli --data " + q(seq()) + " --model " + q(model) + " --out " + q(out) + " --masks " +
+              q(masks));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(out);
+  int lines = 0;
+  for (std::string line; std::getline(in, line); ++lines) {
+    const auto j = nlohmann::json::parse(line);
+    EXPECT_EQ(j["frame"], lines);
+    for (const auto& d : j["detections"]) {
+      EXPECT_EQ(d["centroid"].size(), 3u);
+      EXPECT_EQ(d["box"].size(), 4u);
+      EXPECT_GT(d["points"].get<int>(), 0);
+    }
+  }
+  EXPECT_EQ(lines, 6);
+  EXPECT_TRUE(fs::exists(masks / "000005.png"));
+
+  // Errors: one line naming the problem, exit 2, no output file.
+  const fs::path none = dir() / "none.jsonl";
+  r = run_cli("detect broccoli --data " + q(seq()) + " --model " + q(dir() / "missing.json") + " --out " + q(none));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("missing.json"), std::string::npos) << r.err;
+  r = run_cli("detect broccoli --data " + q(seq()) + " --model " + q(model) + " --out " + q(none) +
+              " --set pipeline=fec");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("pipeline 'oes'"), std::string::npos) << r.err;
+  r = run_cli("eval broccoli --data " + q(seq()) + " --model " + q(model) + " --set oes.no_such_key=1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no_such_key"), std::string::npos) << r.err;
+  r = run_cli("eval broccoli --data " + q(dir() / "no-seq") + " --model " + q(model));
+  EXPECT_EQ(r.exit_code, 2);
+  r = run_cli("train broccoli --data " + q(seq()) + " --pipeline watershed --out " + q(dir() / "x.json"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("watershed"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(none));
+  EXPECT_FALSE(fs::exists(dir() / "x.json"));
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+TEST_F(BroccoliCli, BenchReportsEveryPipelineAndThePclReference) {
+  const fs::path model = dir() / "bench.json";
+  auto r = run_cli("train broccoli --data " + q(seq()) +
+                   " --config broccoli-fec-uk --set outliers.enabled=false --out " + q(model) + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_cli("bench broccoli --data " + q(seq()) + " --model " + q(model) + " --frames 2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* p : {"oes", "org", "fec", "pcl_reference"}) {
+    ASSERT_TRUE(j["pipelines"].contains(p)) << p;
+    EXPECT_GT(j["pipelines"][p]["fps"].get<double>(), 0.0) << p;
+    EXPECT_TRUE(j["pipelines"][p]["stages_ms"].contains("normals")) << p;
+  }
+  EXPECT_TRUE(j["pipelines"]["oes"].contains("speedup_vs_pcl"));
+}
