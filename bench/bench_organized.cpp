@@ -225,21 +225,22 @@ BENCHMARK(BM_Vfh_Ours)->Unit(benchmark::kMillisecond);
 void BM_Vfh_PCL(benchmark::State& st) {
   const OrganizedCloud& c = input_with_normals();
   const auto segs = oes_segments(c);
-  auto pc = pcl_input();
-  auto normals = pcl::make_shared<pcl::PointCloud<pcl::Normal>>();
-  normals_to_pcl(c, *normals);
   pcl::PointCloud<pcl::VFHSignature308> out;
   for (auto _ : st)
     for (const auto& s : segs) {
-      // The PCL user's way: indices into the organised cloud; our segments only hold points
-      // with finite normals when the ORG/OES predicate requires them, so filter like compute_vfh.
-      auto idx = pcl::make_shared<pcl::Indices>();
+      // The PCL user's way: the cluster's points and normals copied into their own clouds (so
+      // that the k-d tree VFHEstimation insists on building covers the cluster only), the same
+      // points compute_vfh uses (finite normals).
+      auto pts = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+      auto nrm = pcl::make_shared<pcl::PointCloud<pcl::Normal>>();
       for (int i : s.indices)
-        if (std::isfinite(c.nx[i])) idx->push_back(i);
+        if (std::isfinite(c.nx[i])) {
+          pts->push_back(pcl::PointXYZ(c.x[i], c.y[i], c.z[i]));
+          nrm->push_back(pcl::Normal(c.nx[i], c.ny[i], c.nz[i], c.curvature[i]));
+        }
       pcl::VFHEstimation<pcl::PointXYZ, pcl::Normal, pcl::VFHSignature308> vfh;
-      vfh.setInputCloud(pc);
-      vfh.setInputNormals(normals);
-      vfh.setIndices(idx);
+      vfh.setInputCloud(pts);
+      vfh.setInputNormals(nrm);
       vfh.setSearchMethod(pcl::make_shared<pcl::search::KdTree<pcl::PointXYZ>>());
       vfh.compute(out);
       benchmark::DoNotOptimize(out.data());
