@@ -16,10 +16,15 @@ FrameAssociation HeadMapper::add_frame(int frame, const OrganizedCloud& cloud, s
                                        const std::optional<Eigen::Vector3d>& camera_position) {
   if (finished_) throw Error("frame " + std::to_string(frame), "head mapper already finished");
   std::vector<HeadObservation> obs(detections.size());
+  const int margin = filter_.config().border_margin_px;
   for (std::size_t k = 0; k < detections.size(); ++k) {
+    const Box2D& b = detections[k].box;
     obs[k].centroid = detections[k].centroid;
     obs[k].score = detections[k].score;
-    obs[k].size = sizer_.measure(cloud, detections[k].indices);
+    obs[k].partial = margin >= 0 && (b.x <= margin || b.y <= margin || b.x + b.width >= cloud.width - margin ||
+                                     b.y + b.height >= cloud.height - margin);
+    // A head cut by the border is not measured: its width would be the visible part's.
+    if (!obs[k].partial) obs[k].size = sizer_.measure(cloud, detections[k].indices);
     detections[k].size_m = obs[k].size.valid ? float(obs[k].size.diameter_mm / 1000.0) : 0.0f;
   }
   FrameAssociation a = filter_.update(frame, obs, camera_position);
@@ -33,6 +38,7 @@ FrameAssociation HeadMapper::add_frame(int frame, const OrganizedCloud& cloud, s
     m.centroid = detections[k].centroid;
     m.field_position = filter_.transform().to_field(a.camera_position, detections[k].centroid);
     m.size = obs[k].size;
+    m.partial = obs[k].partial;
     measured_.push_back(m);
   }
   return a;

@@ -116,7 +116,7 @@ FrameAssociation TemporalFilter::update(int frame, const std::vector<HeadObserva
   std::vector<Eigen::Vector3d> rel;
   for (int j = 0; j < int(detections.size()); ++j) {
     const auto& d = detections[std::size_t(j)];
-    if (!(double(d.score) >= cfg_.min_detection_score) || !d.centroid.allFinite()) continue;
+    if (!(double(d.score) >= cfg_.min_detection_score) || !d.centroid.allFinite() || d.partial) continue;
     used.push_back(j);
     rel.push_back(transform_.rotation * d.centroid.cast<double>());
   }
@@ -194,6 +194,19 @@ FrameAssociation TemporalFilter::update(int frame, const std::vector<HeadObserva
       tracked_.push_back(h);
       out.track_ids[std::size_t(used[k])] = h.id;
       out.new_track[std::size_t(used[k])] = true;
+    }
+  }
+
+  // Partial detections: the id of the nearest tracked head, nothing else.
+  const double pr2 = cfg_.partial_association_radius_m * cfg_.partial_association_radius_m;
+  for (std::size_t j = 0; j < detections.size(); ++j) {
+    const auto& d = detections[j];
+    if (!d.partial || !(double(d.score) >= cfg_.min_detection_score) || !d.centroid.allFinite()) continue;
+    const Eigen::Vector3d p = transform_.to_field(x_c_, d.centroid);
+    double best = pr2;
+    for (const auto& h : tracked_) {
+      const double d2 = (h.position - p).squaredNorm();
+      if (d2 <= best) best = d2, out.track_ids[j] = h.id;
     }
   }
 

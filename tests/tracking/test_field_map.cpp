@@ -73,7 +73,7 @@ TEST(HeadMapper, SizesTracksAndRescores) {
       c.y[std::size_t(i)] = 0.005f * float(v - 20);
       c.z[std::size_t(i)] = 0.7f;
       if (u >= 10 && u <= 30 && v >= 10 && v <= 30) head.push_back(i);
-      if (u < 6 && v < 6) fp.push_back(i);
+      if (u >= 32 && u < 38 && v >= 32 && v < 38) fp.push_back(i);
     }
   HeadMapperConfig cfg;
   ConfigMap m{{"sizing.compute_hull", "false"}, {"tracking.min_track_score", "3"}, {"detector.other", "1"}};
@@ -85,11 +85,13 @@ TEST(HeadMapper, SizesTracksAndRescores) {
     d[0].indices = head;
     d[0].centroid = {0.0f, 0.0f, 0.7f};
     d[0].score = 0.5f;
+    d[0].box = {10, 10, 21, 21};
     if (f == 2) {
       Detection x;
       x.indices = fp;
-      x.centroid = {-0.09f, -0.09f, 0.7f};
+      x.centroid = {0.07f, 0.07f, 0.7f};
       x.score = 0.9f;
+      x.box = {32, 32, 6, 6};
       d.push_back(x);
     }
     mapper.add_frame(f, c, d, Eigen::Vector3d(0, 0, 0.8));
@@ -107,4 +109,30 @@ TEST(HeadMapper, SizesTracksAndRescores) {
         d.track_id == 1 ? std::min(worst_tp, mapper.filtered_score(d)) : std::max(best_fp, mapper.filtered_score(d));
   EXPECT_GT(worst_tp, best_fp);  // the confirmed head now outranks the brighter false detection
   EXPECT_THROW(mapper.finish(), Error);
+}
+
+TEST(HeadMapper, DetectionsAtTheBorderArePartial) {
+  OrganizedCloud c(40, 40);
+  std::vector<int> edge;
+  for (int v = 0; v < 40; ++v)
+    for (int u = 0; u < 40; ++u) {
+      const int i = c.index(u, v);
+      c.x[std::size_t(i)] = 0.005f * float(u - 20);
+      c.y[std::size_t(i)] = 0.005f * float(v - 20);
+      c.z[std::size_t(i)] = 0.7f;
+      if (u < 8 && v >= 10 && v < 30) edge.push_back(i);
+    }
+  HeadMapper mapper;
+  std::vector<Detection> d(1);
+  d[0].indices = edge;
+  d[0].centroid = {-0.08f, 0.0f, 0.7f};
+  d[0].box = {0, 10, 8, 20};  // touches the left border
+  d[0].score = 1.0f;
+  mapper.add_frame(0, c, d);
+  EXPECT_EQ(d[0].size_m, 0.0f);  // not measured
+  EXPECT_EQ(d[0].track_id, -1);  // and it started no head
+  ASSERT_EQ(mapper.detections().size(), 1u);
+  EXPECT_TRUE(mapper.detections()[0].partial);
+  EXPECT_TRUE(mapper.finish().empty());
+  EXPECT_TRUE(mapper.filter().all_heads().empty());
 }

@@ -252,6 +252,29 @@ TEST(TemporalFilter, SizesAreRunningAveragesAndCorrected) {
   EXPECT_EQ(harvestable, 2);
 }
 
+TEST(TemporalFilter, PartialDetectionsOnlyTakeAnId) {
+  TemporalFilter tf;
+  HeadObservation whole;
+  whole.centroid = {0.0f, 0.0f, 0.7f};
+  whole.score = 1.0f;
+  HeadObservation part = whole;
+  part.partial = true;
+  part.centroid = {0.07f, 0.0f, 0.7f};  // 7 cm off: beyond the 5 cm radius, within the partial one
+  HeadObservation far = part;
+  far.centroid = {0.3f, 0.0f, 0.7f};
+  auto a = tf.update(0, {whole, part, far});
+  EXPECT_EQ(a.track_ids[0], 1);
+  EXPECT_EQ(a.track_ids[1], 1);
+  EXPECT_EQ(a.track_ids[2], -1);
+  EXPECT_EQ(a.associated, 0);
+  ASSERT_EQ(tf.tracked().size(), 1u);
+  EXPECT_EQ(tf.tracked()[0].frames_seen, 1);
+  a = tf.update(1, {part});  // a partial view alone does not keep the head alive or move it
+  EXPECT_EQ(a.track_ids[0], 1);
+  EXPECT_EQ(tf.tracked()[0].missed, 1);
+  EXPECT_NEAR(tf.tracked()[0].position.norm(), 0.7, 1e-6);
+}
+
 TEST(TemporalFilter, BadInputIsAnError) {
   TemporalFilterConfig cfg;
   cfg.camera_to_field = "x,y,y";

@@ -49,7 +49,8 @@ struct MeasuredDetection {
   float score = 0.0f;
   Eigen::Vector3f centroid = Eigen::Vector3f::Zero();  ///< camera frame
   Eigen::Vector3d field_position = Eigen::Vector3d::Zero();
-  measure::HeadSize size;
+  measure::HeadSize size;  ///< invalid for partial detections (not measured)
+  bool partial = false;    ///< box within tracking.border_margin_px of the image border
 };
 
 class HeadMapper {

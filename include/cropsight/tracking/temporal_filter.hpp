@@ -19,6 +19,11 @@
 //   6. heads undetected for max_missed_frames frames move from T to M.
 // At the end T moves to M and heads whose score is below min_track_score are dropped.
 //
+// Partial detections (extension): a head cut by the image border has its centroid off the head's
+// centre by up to its radius, which breaks the 5 cm association and drags the camera estimate.
+// Detections flagged `partial` therefore take part in none of the steps above; afterwards each
+// takes the id of the nearest tracked head within partial_association_radius_m (no update).
+//
 // When the first frame carries a camera position (poses.csv) and anchor_first_pose is set, x_c
 // starts there so that the map is in the same field frame as the ground truth; otherwise the
 // field frame's origin is the camera position at the first frame. Positions of heads are the
@@ -47,6 +52,8 @@ struct TemporalFilterConfig {
   double motion_search_radius_m = 0.30;
   std::vector<double> initial_velocity = {0.0, 0.0, 0.0};
   std::string camera_to_field = "y,x,-z";
+  int border_margin_px = 2;
+  double partial_association_radius_m = 0.10;
 
   template <class V>
   void visit(V& v) {
@@ -70,6 +77,12 @@ struct TemporalFilterConfig {
     v("initial_velocity", initial_velocity, "m/frame, field frame [x, y, z]; v_c before the first estimate (0)");
     v("camera_to_field", camera_to_field,
       "axes; field X,Y,Z as signed camera axes (camera looks straight down; simulator: y,x,-z)");
+    v("border_margin_px", border_margin_px,
+      "px; a detection whose box comes this close to the image border is partial: it is neither sized nor used "
+      "to move heads or the camera (extension; -1 = off, every detection is whole as in the paper)");
+    v("partial_association_radius_m", partial_association_radius_m,
+      "m; a partial detection takes the id of the nearest tracked head within this distance (its centroid is "
+      "off-centre) so that it is credited to that head");
   }
 };
 
@@ -78,6 +91,7 @@ struct HeadObservation {
   Eigen::Vector3f centroid = Eigen::Vector3f::Zero();  ///< metres, camera frame
   float score = 0.0f;                                  ///< classifier score
   measure::HeadSize size;                              ///< per-frame size (may be invalid)
+  bool partial = false;  ///< cut by the image border: labelled with a head id, never updates state
 };
 
 /// A head of T or M.
