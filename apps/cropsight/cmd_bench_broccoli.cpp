@@ -10,6 +10,8 @@
 // (normals + Euclidean clustering + VFH + SVM).
 #include <oneapi/tbb/global_control.h>
 
+#include <time.h>
+
 #include <chrono>
 #include <cstdio>
 
@@ -33,13 +35,24 @@ struct BenchOptions {
   bool sor = false;
 };
 
+// CPU time of this thread: on a shared machine it counts only the cycles the pipeline itself
+// used (single-threaded), so it is robust against other processes; wall-clock is reported too.
+double thread_cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
+}
+
 struct Timing {
-  double ms = 0;  // wall-clock total over the timed frames
+  double ms = 0;      // wall-clock total over the timed frames
+  double cpu_ms = 0;  // thread CPU time total
   long frames = 0;
   long clusters = 0;
   std::vector<StageTimer::Stage> stages;
   double ms_per_frame() const { return frames ? ms / double(frames) : 0.0; }
   double fps() const { return ms > 0 ? 1000.0 * double(frames) / ms : 0.0; }
+  double cpu_ms_per_frame() const { return frames ? cpu_ms / double(frames) : 0.0; }
+  double cpu_fps() const { return cpu_ms > 0 ? 1000.0 * double(frames) / cpu_ms : 0.0; }
 };
 
 template <class Pipeline>
@@ -49,9 +62,11 @@ Timing time_pipeline(Pipeline& p, const std::vector<RgbdFrame>& frames, int repe
   Timing t;
   for (int r = 0; r < repeat; ++r)
     for (const RgbdFrame& f : frames) {
+      const double c0 = thread_cpu_ms();
       const auto t0 = std::chrono::steady_clock::now();
       const auto out = p.process(f);
       t.ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      t.cpu_ms += thread_cpu_ms() - c0;
       if constexpr (std::is_integral_v<decltype(out)>)
         t.clusters += long(out);
       else
@@ -116,12 +131,18 @@ void run(const BenchOptions& o) {
     timings["pcl_reference"] = time_pipeline(pcl, frames, o.repeat);
   }
   const double pcl_ms = timings["pcl_reference"].ms_per_frame();
+  const double pcl_cpu_ms = timings["pcl_reference"].cpu_ms_per_frame();
   for (const auto& [name, t] : timings) {
     nlohmann::json j{{"ms_per_frame", t.ms_per_frame()},
                      {"fps", t.fps()},
+                     {"cpu_ms_per_frame", t.cpu_ms_per_frame()},
+                     {"cpu_fps", t.cpu_fps()},
                      {"clusters_per_frame", t.frames ? double(t.clusters) / double(t.frames) : 0.0},
                      {"stages_ms", stages_json(t.stages, t.frames)}};
-    if (name != "pcl_reference") j["speedup_vs_pcl"] = t.ms_per_frame() > 0 ? pcl_ms / t.ms_per_frame() : 0.0;
+    if (name != "pcl_reference") {
+      j["speedup_vs_pcl"] = t.ms_per_frame() > 0 ? pcl_ms / t.ms_per_frame() : 0.0;
+      j["cpu_speedup_vs_pcl"] = t.cpu_ms_per_frame() > 0 ? pcl_cpu_ms / t.cpu_ms_per_frame() : 0.0;
+    }
     out["pipelines"][name] = j;
   }
   if (o.common.json) {
@@ -130,7 +151,8 @@ void run(const BenchOptions& o) {
   }
   std::printf("%d frames x %d, %dx%d, single-threaded\n", n, o.repeat, frames[0].depth.width, frames[0].depth.height);
   for (const auto& [name, t] : timings) {
-    std::printf("  %-14s %8.2f ms/frame %8.1f fps", name.c_str(), t.ms_per_frame(), t.fps());
+    std::printf("  %-14s %8.2f ms/frame %8.1f fps (CPU %.2f ms, %.1f fps)", name.c_str(), t.ms_per_frame(), t.fps(),
+                t.cpu_ms_per_frame(), t.cpu_fps());
     if (name != "pcl_reference") std::printf("  %6.1fx vs PCL", pcl_ms / t.ms_per_frame());
     std::printf("   [");
     for (const auto& s : t.stages) std::printf(" %s %.2f", s.name.c_str(), s.total_ms / double(t.frames));

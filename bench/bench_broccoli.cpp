@@ -1,0 +1,89 @@
+// End-to-end broccoli head detection on simulated 512x424 frames (rendered in-process by the sim
+// module): OES, ORG, FEC (no outlier removal) and the PCL reference pipeline, single-threaded,
+// each scoring clusters with the same RBF SVM (trained once at start-up on other frames).
+//
+//   build/bin/bench_broccoli [--benchmark_filter=Oes]
+#include <benchmark/benchmark.h>
+#include <oneapi/tbb/global_control.h>
+
+#include <memory>
+
+#include "cropsight/io/config_yaml.hpp"
+#include "cropsight/pipeline/broccoli_training.hpp"
+#include "cropsight/pipeline/pcl_reference.hpp"
+#include "cropsight/sim/broccoli_sim.hpp"
+
+using namespace cropsight;
+
+namespace {
+struct Fixture {
+  std::vector<RgbdFrame> frames;                 // timed frames (seed 7)
+  std::shared_ptr<const learning::Model> model;  // trained on seed 5 with FEC clusters
+  static const Fixture& get() {
+    static const Fixture f;
+    return f;
+  }
+
+ private:
+  Fixture() {
+    sim::BroccoliSimulator test(sim::BroccoliSimConfig{}, 7, 4);
+    for (int i = 0; i < test.frames(); ++i) frames.push_back(test.render(i));
+    sim::BroccoliSimulator train(sim::BroccoliSimConfig{}, 5, 6);
+    auto cfg = config("fec");
+    pipeline::BroccoliDatasetBuilder builder(cfg);
+    for (int i = 0; i < train.frames(); ++i) builder.add_frame(train.render(i));
+    model = std::make_shared<learning::Model>(pipeline::train_broccoli_model(builder.dataset(), cfg, {}));
+  }
+
+ public:
+  static pipeline::BroccoliDetectorConfig config(const std::string& pipe) {
+    pipeline::BroccoliDetectorConfig cfg;
+    apply_config(cfg, io::load_config_map(std::string(CROPSIGHT_SOURCE_DIR) + "/configs/broccoli-" + pipe + "-uk.yaml"),
+                 "preset");
+    cfg.outliers.enabled = false;  // same work as the PCL reference
+    return cfg;
+  }
+  // The model under another pipeline tag (same classifier), for timing only.
+  std::shared_ptr<const learning::Model> as(const std::string& pipe) const {
+    auto m = std::make_shared<learning::Model>();
+    m->info = model->info;
+    m->info.pipeline = pipe;
+    m->standardizer = model->standardizer;
+    m->params = model->params;
+    m->classifier = learning::deserialize_classifier(model->params, model->info.feature_dim,
+                                                     model->classifier->serialize(), "bench");
+    return m;
+  }
+};
+
+void run_detector(benchmark::State& state, const std::string& pipe) {
+  tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+  const Fixture& f = Fixture::get();
+  pipeline::BroccoliDetector det(Fixture::config(pipe));
+  det.set_model(f.as(pipe));
+  std::size_t i = 0, clusters = 0;
+  for (auto _ : state) {
+    clusters += det.process(f.frames[i++ % f.frames.size()]).size();
+  }
+  state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["clusters"] = double(clusters) / double(state.iterations());
+}
+
+void BM_Oes(benchmark::State& s) { run_detector(s, "oes"); }
+void BM_Org(benchmark::State& s) { run_detector(s, "org"); }
+void BM_Fec(benchmark::State& s) { run_detector(s, "fec"); }
+
+void BM_PclReference(benchmark::State& state) {
+  const Fixture& f = Fixture::get();
+  pipeline::PclReferencePipeline pcl(Fixture::config("fec"), f.model);
+  std::size_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(pcl.process(f.frames[i++ % f.frames.size()]));
+  state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
+}
+}  // namespace
+
+BENCHMARK(BM_Oes)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Org)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Fec)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_PclReference)->Unit(benchmark::kMillisecond)->Iterations(4);
+BENCHMARK_MAIN();
