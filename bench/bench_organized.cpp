@@ -9,6 +9,9 @@
 // Input: the synthetic scene of tests/geometry/synthetic_scene.hpp, or a recorded/simulated frame
 // when CROPSIGHT_BENCH_SEQ=DIR[:FRAME] names a sequence (depth-range filtered 0.5–1.0 m).
 // Single-threaded. Run: build/bin/bench_organized --benchmark_counters_tabular=true
+// With CROPSIGHT_BENCH_CHECK=1 it first prints the agreement with PCL on the same input (normal
+// angles, edge labels, VFH L1 of the OES clusters), e.g. on a simulated frame:
+//   CROPSIGHT_BENCH_SEQ=SEQ:10 CROPSIGHT_BENCH_CHECK=1 bench_organized --benchmark_filter=none
 #include <benchmark/benchmark.h>
 #include <pcl/features/integral_image_normal.h>
 #include <pcl/features/organized_edge_detection.h>
@@ -18,6 +21,8 @@
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/extract_clusters.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -281,6 +286,87 @@ void BM_EndToEnd_ORG(benchmark::State& st) { BM_EndToEnd<false>(st); }
 BENCHMARK(BM_EndToEnd_OES)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_EndToEnd_ORG)->Unit(benchmark::kMillisecond);
 
+// Agreement with PCL on the benchmark input (the unit tests assert it on the synthetic scene).
+void print_agreement() {
+  const OrganizedCloud& c = input();
+  const OrganizedCloud& ours = input_with_normals();
+  auto pc = pcl_input();
+  pcl::IntegralImageNormalEstimation<pcl::PointXYZ, pcl::Normal> ne;
+  ne.setNormalEstimationMethod(ne.COVARIANCE_MATRIX);
+  ne.setMaxDepthChangeFactor(0.02f);
+  ne.setNormalSmoothingSize(10.0f);
+  ne.setInputCloud(pc);
+  pcl::PointCloud<pcl::Normal> ref;
+  ne.compute(ref);
+  std::vector<double> ang;
+  std::size_t only_ours = 0, only_pcl = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const bool a = std::isfinite(ours.nx[i]), b = std::isfinite(ref[i].normal_x);
+    if (a && b) {
+      const double d = double(ours.nx[i]) * ref[i].normal_x + double(ours.ny[i]) * ref[i].normal_y +
+                       double(ours.nz[i]) * ref[i].normal_z;
+      ang.push_back(std::acos(std::clamp(d, -1.0, 1.0)) * 180.0 / M_PI);
+    } else {
+      only_ours += a, only_pcl += b;
+    }
+  }
+  std::sort(ang.begin(), ang.end());
+  std::cerr << "check normals: valid in both " << ang.size() << ", only ours " << only_ours << ", only PCL "
+            << only_pcl;
+  if (!ang.empty())
+    std::cerr << "; angle median " << ang[ang.size() / 2] << " deg, p95 " << ang[ang.size() * 95 / 100] << " deg";
+  std::cerr << "\n";
+
+  const auto el = geometry::detect_organized_edges(c);
+  pcl::OrganizedEdgeBase<pcl::PointXYZ, pcl::Label> oed;
+  oed.setInputCloud(pc);
+  oed.setDepthDisconThreshold(0.02f);
+  oed.setMaxSearchNeighbors(50);
+  pcl::PointCloud<pcl::Label> lab;
+  std::vector<pcl::PointIndices> li;
+  oed.compute(lab, li);
+  std::size_t agree = 0, edges = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) agree += el[i] == lab[i].label, edges += lab[i].label != 0;
+  std::cerr << "check edges: label agreement " << 100.0 * double(agree) / double(c.size()) << " % (" << edges
+            << " PCL edge pixels)\n";
+
+  double worst = 0, sum = 0;
+  const auto segs = oes_segments(ours);
+  for (const auto& s : segs) {
+    auto pts = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
+    auto nrm = pcl::make_shared<pcl::PointCloud<pcl::Normal>>();
+    std::vector<int> idx;
+    for (int i : s.indices)
+      if (std::isfinite(ours.nx[i])) {
+        idx.push_back(i);
+        pts->push_back(pcl::PointXYZ(ours.x[i], ours.y[i], ours.z[i]));
+        nrm->push_back(pcl::Normal(ours.nx[i], ours.ny[i], ours.nz[i], ours.curvature[i]));
+      }
+    if (idx.size() < 2) continue;
+    pcl::VFHEstimation<pcl::PointXYZ, pcl::Normal, pcl::VFHSignature308> vfh;
+    vfh.setInputCloud(pts);
+    vfh.setInputNormals(nrm);
+    vfh.setSearchMethod(pcl::make_shared<pcl::search::KdTree<pcl::PointXYZ>>());
+    pcl::PointCloud<pcl::VFHSignature308> out;
+    vfh.compute(out);
+    const auto h = features::compute_vfh(ours, idx);
+    double l1 = 0;
+    for (int b = 0; b < features::kVfhBins; ++b) l1 += std::abs(double(h[b]) - out[0].histogram[b]);
+    worst = std::max(worst, l1);
+    sum += l1;
+  }
+  std::cerr << "check VFH: " << segs.size() << " OES clusters, L1 to PCL mean "
+            << (segs.empty() ? 0.0 : sum / double(segs.size())) << ", max " << worst
+            << " (each histogram sums to ~400)\n";
+}
+
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  if (const char* check = std::getenv("CROPSIGHT_BENCH_CHECK"); check && std::string(check) == "1") print_agreement();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

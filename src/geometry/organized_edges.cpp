@@ -14,6 +14,13 @@ namespace {
 
 constexpr std::uint8_t kSearch = 0x80;  // temporary mark: valid pixel with a NaN neighbour
 
+// Exact floor for |f| < 2^31 without a libm call (baseline x86-64 has no roundss): truncate,
+// then step down for negative non-integers. Same result as int(std::floor(f)).
+inline int floor_int(float f) {
+  const int t = int(f);
+  return t - (f < float(t) ? 1 : 0);
+}
+
 // One image row (pixels 1..w-2 of `z`, neighbours at z ± stride): PCL's all-neighbours-valid
 // rule, branch-free. dmin/dmax over the 8 differences |z_p| - |z_q|; the dominant one decides.
 __attribute__((target_clones("avx2", "default"))) void row_fast_path(int w, const float* __restrict z, int stride,
@@ -90,8 +97,8 @@ void detect_organized_edges(const OrganizedCloud& cloud, const OrganizedEdgeConf
       const float fdx = float(dx) / float(count), fdy = float(dy) / float(count);
       float corr = std::numeric_limits<float>::quiet_NaN();
       for (int s = 1; s < cfg.max_search_neighbors; ++s) {
-        const int sr = row + int(std::floor(fdy * float(s)));
-        const int sc = col + int(std::floor(fdx * float(s)));
+        const int sr = row + floor_int(fdy * float(s));
+        const int sc = col + floor_int(fdx * float(s));
         if (sr < 0 || sr >= h || sc < 0 || sc >= w) break;
         const float zs = Z[sr * w + sc];
         if (std::isfinite(zs)) {
