@@ -18,4 +18,10 @@ void add_detect_broccoli(CLI::App& detect);
 void add_eval_broccoli(CLI::App& eval);
 void add_bench_broccoli(CLI::App& bench);
 
+// Grape bunches (issue 6): train / segment / eval grape, roi-cloud
+void add_train_grape(CLI::App& train);
+void add_segment_grape(CLI::App& segment);
+void add_eval_grape(CLI::App& eval);
+void add_roi_cloud(CLI::App& app);
+
 }  // namespace cropsight::cli

@@ -40,6 +40,14 @@ int main(int argc, char** argv) {
   add_detect_broccoli(*detect);
   add_eval_broccoli(*eval);
   add_bench_broccoli(*bench);
+  // Grape bunches (issue 6)
+  auto* segment = app.add_subcommand("segment", "Label the points of a cloud with a trained model");
+  segment->require_subcommand(1);
+  add_train_grape(*train);
+  add_segment_grape(*segment);
+  add_eval_grape(*eval);
+  add_roi_cloud(app);
+
 
   try {
     app.parse(argc, argv);

@@ -1,5 +1,5 @@
 // Per-point features for the grape GBDT. Neighbourhood statistics use our nanoflann index
-// (geometry::PointIndex); FPFH uses PCL's FPFHEstimationOMP on the same radius.
+// (geometry::PointIndex); FPFH uses PCL's FPFHEstimationOMP on the same k neighbourhoods.
 #include "cropsight/pipeline/grape_features.hpp"
 
 #include <pcl/features/fpfh_omp.h>
@@ -17,7 +17,7 @@ namespace cropsight::pipeline {
 
 namespace {
 constexpr std::size_t kBase = 14;       // xyz, radius, rgb, hsv, excess green, normal
-constexpr std::size_t kPerRadius = 17;  // count, 5 eigen, |n_local·n|, mean rgb, d rgb, rgb std, offset xyz
+constexpr std::size_t kPerRadius = 17;  // log radius, 5 eigen, |n_local·n|, mean rgb, d rgb, rgb std, offset xyz
 constexpr std::size_t kFpfh = 33;
 
 void hsv(const Eigen::Vector3f& c, float& h, float& s, float& v) {
@@ -40,7 +40,7 @@ std::string GrapeFeatureConfig::recipe() const {
   std::ostringstream o;
   o.imbue(std::locale::classic());
   o.precision(9);
-  o << "radius_small=" << radius_small << ";radius_large=" << radius_large << ";fpfh=" << (fpfh ? 1 : 0);
+  o << "k_small=" << k_small << ";k_large=" << k_large << ";fpfh=" << (fpfh ? 1 : 0);
   return o.str();
 }
 
@@ -53,10 +53,10 @@ GrapeFeatureConfig GrapeFeatureConfig::from_recipe(const std::string& text, cons
     const auto eq = item.find('=');
     if (eq == std::string::npos) throw Error(where, "bad feature recipe '" + text + "'");
     const std::string k = item.substr(0, eq), v = item.substr(eq + 1);
-    if (k == "radius_small")
-      c.radius_small = std::stod(v), ++seen;
-    else if (k == "radius_large")
-      c.radius_large = std::stod(v), ++seen;
+    if (k == "k_small")
+      c.k_small = std::stoi(v), ++seen;
+    else if (k == "k_large")
+      c.k_large = std::stoi(v), ++seen;
     else if (k == "fpfh")
       c.fpfh = v == "1", ++seen;
     else
@@ -76,7 +76,7 @@ std::vector<std::string> grape_feature_names(const GrapeFeatureConfig& cfg) {
   for (const char* s : {"s", "l"}) {
     const std::string p = std::string(s) + "_";
     for (const char* f :
-         {"log_count", "linearity", "planarity", "scattering", "curvature", "omnivariance", "normal_agreement",
+         {"log_radius", "linearity", "planarity", "scattering", "curvature", "omnivariance", "normal_agreement",
           "mean_r", "mean_g", "mean_b", "d_r", "d_g", "d_b", "rgb_std", "off_x", "off_y", "off_z"})
       n.push_back(p + f);
     if (cfg.fpfh)
@@ -88,7 +88,7 @@ std::vector<std::string> grape_feature_names(const GrapeFeatureConfig& cfg) {
 std::vector<float> grape_point_features(const Cloud& cloud, const GrapeFeatureConfig& cfg,
                                         const std::vector<int>& subset_in) {
   if (!cloud.has_normals() || !cloud.has_colors()) throw Error("grape features", "cloud needs normals and colours");
-  if (cfg.radius_small <= 0 || cfg.radius_large <= 0) throw Error("grape features", "radii must be positive");
+  if (cfg.k_small < 3 || cfg.k_large < 3) throw Error("grape features", "neighbourhoods need at least 3 points");
   const std::size_t n = cloud.size();
   std::vector<int> subset = subset_in;
   if (subset.empty()) {
@@ -118,9 +118,10 @@ std::vector<float> grape_point_features(const Cloud& cloud, const GrapeFeatureCo
     f[11] = nrm.x(), f[12] = nrm.y(), f[13] = nrm.z();
     for (int s = 0; s < 2; ++s) {
       float* g = f + kBase + std::size_t(s) * (kPerRadius + (cfg.fpfh ? kFpfh : 0));
-      index.radius(p, float(s == 0 ? cfg.radius_small : cfg.radius_large), nb);
+      std::vector<float> d2;
+      index.knn(p, s == 0 ? cfg.k_small : cfg.k_large, nb, &d2);
       const double k = double(nb.size());
-      g[0] = float(std::log(k + 1));
+      g[0] = d2.empty() ? 0.f : float(std::log(std::sqrt(double(d2.back())) + 1e-6));  // log radius: density
       if (nb.size() < 3) continue;  // isolated point: leave neighbourhood features at 0
       Eigen::Vector3d m = Eigen::Vector3d::Zero(), mc = Eigen::Vector3d::Zero(), mc2 = Eigen::Vector3d::Zero();
       for (int j : nb) {
@@ -151,7 +152,7 @@ std::vector<float> grape_point_features(const Cloud& cloud, const GrapeFeatureCo
       g[10] = c.x() - g[7], g[11] = c.y() - g[8], g[12] = c.z() - g[9];
       g[13] = float(std::sqrt(var.sum() / 3));
       const Eigen::Vector3d off = p.cast<double>() - m;
-      const double scale = s == 0 ? cfg.radius_small : cfg.radius_large;
+      const double scale = std::sqrt(double(d2.back())) + 1e-9;  // neighbourhood radius
       g[14] = float(off.x() / scale), g[15] = float(off.y() / scale), g[16] = float(off.z() / scale);
     }
   }
@@ -174,7 +175,7 @@ std::vector<float> grape_point_features(const Cloud& cloud, const GrapeFeatureCo
       est.setInputNormals(pn);
       est.setIndices(idx);
       est.setSearchMethod(tree);
-      est.setRadiusSearch(s == 0 ? cfg.radius_small : cfg.radius_large);
+      est.setKSearch(s == 0 ? cfg.k_small : cfg.k_large);
       pcl::PointCloud<pcl::FPFHSignature33> out;
       est.compute(out);
       if (out.size() != rows) throw Error("grape features", "FPFH returned an unexpected number of rows");

@@ -2,7 +2,9 @@
 // Per-point features of the classical grape segmentation model (issue 6, stage 5): colour,
 // normal, position in the normalised ROI cloud, and at two neighbourhood radii the local
 // covariance eigen-features, neighbourhood colour statistics and FPFH (PCL). Radii are in the
-// cloud's units (the dataset's clouds are normalised to the unit sphere).
+// neighbourhood sizes are point counts (k nearest neighbours), not radii: the dataset's clouds
+// are extremely uneven in density (median nearest-neighbour spacing 0.001 unit-sphere units,
+// yet 200-1800 points within 0.01), so a fixed radius gives either empty or huge neighbourhoods.
 #include <string>
 #include <vector>
 
@@ -11,19 +13,19 @@
 namespace cropsight::pipeline {
 
 struct GrapeFeatureConfig {
-  double radius_small = 0.03;  ///< unit-sphere units; fine neighbourhood (berry scale)
-  double radius_large = 0.07;  ///< unit-sphere units; coarse neighbourhood (bunch / leaf scale)
-  bool fpfh = true;            ///< include the 2 × 33 FPFH bins
-  int threads = 2;             ///< OpenMP threads of PCL's FPFH
+  int k_small = 16;  ///< points; fine neighbourhood
+  int k_large = 64;  ///< points; coarse neighbourhood
+  bool fpfh = true;  ///< include the 2 × 33 FPFH bins
+  int threads = 2;   ///< OpenMP threads of PCL's FPFH
 
   template <class V>
   void visit(V& v) {
-    v("radius_small", radius_small, "unit-sphere units; fine neighbourhood radius (ours; tuned by k-fold)");
-    v("radius_large", radius_large, "unit-sphere units; coarse neighbourhood radius (ours; tuned by k-fold)");
+    v("k_small", k_small, "points; fine neighbourhood size (ours)");
+    v("k_large", k_large, "points; coarse neighbourhood size (ours)");
     v("fpfh", fpfh, "bool; add FPFH histograms at both radii");
     v("threads", threads, "count; threads of the FPFH computation");
   }
-  /// "radius_small=0.03;radius_large=0.07;fpfh=1": stored inside model files.
+  /// "k_small=16;k_large=64;fpfh=1": stored inside model files.
   std::string recipe() const;
   static GrapeFeatureConfig from_recipe(const std::string& text, const std::string& where);
 };

@@ -1,0 +1,96 @@
+// Grape pipeline timings per cloud (issue 6): per-point features + GBDT prediction, network
+// forward passes, and our KNN-PCA normals against PCL's NormalEstimation on the same cloud.
+//
+//   build/bin/bench_grape [--benchmark_filter=...]
+//
+// Uses one shared cloud unpacked by scripts/unpack-grape.sh ($CROPSIGHT_GRAPE_DIR, else
+// build-grape/data, else ~/.cache/cropsight/grape) and the shipped models in models/; benchmarks
+// whose input is missing report an error instead of a time.
+#include <benchmark/benchmark.h>
+#include <pcl/features/normal_3d.h>
+#include <pcl/point_types.h>
+#include <pcl/search/kdtree.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+
+#include "cropsight/geometry/knn_normals.hpp"
+#include "cropsight/io/grape_text.hpp"
+#include "cropsight/learning/gbdt.hpp"
+#include "cropsight/nn/point_segmenter.hpp"
+#include "cropsight/pipeline/grape_features.hpp"
+#include "cropsight/pipeline/grape_gbdt.hpp"
+#include "cropsight/pipeline/grape_model.hpp"
+
+namespace {
+namespace fs = std::filesystem;
+using namespace cropsight;
+
+const std::optional<Cloud>& grape_cloud() {
+  static const std::optional<Cloud> cloud = []() -> std::optional<Cloud> {
+    std::vector<fs::path> dirs;
+    if (const char* e = std::getenv("CROPSIGHT_GRAPE_DIR")) dirs.emplace_back(e);
+    dirs.push_back(fs::path(CROPSIGHT_SOURCE_DIR) / "build-grape" / "data");
+    if (const char* h = std::getenv("HOME")) dirs.push_back(fs::path(h) / ".cache" / "cropsight" / "grape");
+    for (const auto& d : dirs)
+      if (fs::exists(d / "points")) return io::read_grape_text(io::list_grape_clouds(d).front());
+    return std::nullopt;
+  }();
+  return cloud;
+}
+
+void BM_GrapeFeatures(benchmark::State& state) {
+  if (!grape_cloud()) return state.SkipWithError("grape data not unpacked (scripts/unpack-grape.sh)");
+  pipeline::GrapeFeatureConfig cfg;
+  cfg.fpfh = state.range(0) != 0;
+  for (auto _ : state) benchmark::DoNotOptimize(pipeline::grape_point_features(*grape_cloud(), cfg));
+  state.counters["points"] = double(grape_cloud()->size());
+}
+BENCHMARK(BM_GrapeFeatures)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+void BM_GrapeGbdtSegment(benchmark::State& state) {
+  const fs::path m = fs::path(CROPSIGHT_SOURCE_DIR) / "models" / "grape-gbdt.json";
+  if (!grape_cloud() || !fs::exists(m)) return state.SkipWithError("needs grape data and models/grape-gbdt.json");
+  const auto model = pipeline::GrapeModel::load(m, 2);
+  for (auto _ : state) benchmark::DoNotOptimize(model.segment(*grape_cloud()));
+}
+BENCHMARK(BM_GrapeGbdtSegment)->Unit(benchmark::kMillisecond);
+
+void BM_GrapeNetworkSegment(benchmark::State& state) {
+  const fs::path m = fs::path(CROPSIGHT_SOURCE_DIR) / "models" / "grape-pointresnet.pt";
+  if (!grape_cloud() || !fs::exists(m)) return state.SkipWithError("needs grape data and models/grape-pointresnet.pt");
+  const auto net = nn::PointSegmenter::load(m, 2);
+  int passes = 0;
+  for (auto _ : state)
+    benchmark::DoNotOptimize(state.range(0) ? net.segment_sampled(*grape_cloud())
+                                            : net.segment(*grape_cloud(), &passes));
+  state.counters["passes"] = state.range(0) ? 1 : passes;
+}
+// 0: every point gets its own pass (shipped mode); 1: paper mode, one FPS pass + carry-back.
+BENCHMARK(BM_GrapeNetworkSegment)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+void BM_KnnNormalsOurs(benchmark::State& state) {
+  if (!grape_cloud()) return state.SkipWithError("grape data not unpacked");
+  for (auto _ : state) benchmark::DoNotOptimize(geometry::knn_normals(grape_cloud()->points));
+}
+BENCHMARK(BM_KnnNormalsOurs)->Unit(benchmark::kMillisecond);
+
+void BM_KnnNormalsPcl(benchmark::State& state) {
+  if (!grape_cloud()) return state.SkipWithError("grape data not unpacked");
+  pcl::PointCloud<pcl::PointXYZ>::Ptr pc(new pcl::PointCloud<pcl::PointXYZ>);
+  for (const auto& p : grape_cloud()->points) pc->push_back({p.x(), p.y(), p.z()});
+  for (auto _ : state) {
+    pcl::NormalEstimation<pcl::PointXYZ, pcl::Normal> ne;
+    ne.setInputCloud(pc);
+    ne.setSearchMethod(pcl::search::KdTree<pcl::PointXYZ>::Ptr(new pcl::search::KdTree<pcl::PointXYZ>));
+    ne.setKSearch(30);
+    pcl::PointCloud<pcl::Normal> out;
+    ne.compute(out);
+    benchmark::DoNotOptimize(out);
+  }
+}
+BENCHMARK(BM_KnnNormalsPcl)->Unit(benchmark::kMillisecond);
+}  // namespace
+
+BENCHMARK_MAIN();
