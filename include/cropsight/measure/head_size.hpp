@@ -15,7 +15,7 @@
 //    median error of −22 mm); the bias correction below removes such offsets.
 //
 // Bias correction: d_corrected = scale · d + offset_mm, one (scale, offset) per estimator, learnt
-// by least squares from heads with measured diameters (fit_size_bias) and stored in the config
+// by a robust line fit from heads with measured diameters (fit_size_bias) and stored in the config
 // (the keys sizing.bbox_scale, sizing.bbox_offset_mm, sizing.hull_scale, sizing.hull_offset_mm)
 // or in a model file. The defaults (1, 0) leave the raw estimate unchanged, as in the paper.
 //
@@ -113,8 +113,9 @@ class HeadSizer {
   SizeEstimator estimator_;
 };
 
-/// Least-squares line truth = scale · estimate + offset (both mm). Throws Error(where, ...) for
-/// fewer than 2 pairs, unequal lengths, or estimates without spread.
+/// Robust line truth = scale · estimate + offset (both mm): Theil–Sen (median pairwise slope,
+/// median intercept), so that a few gross errors (merged clusters) do not tilt it. Throws
+/// Error(where, ...) for fewer than 2 pairs, unequal lengths, or estimates without spread.
 struct BiasFit {
   double scale = 1.0, offset_mm = 0.0;
   int n = 0;
