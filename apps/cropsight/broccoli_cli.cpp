@@ -55,6 +55,9 @@ nlohmann::json eval_json(const pipeline::BroccoliEvalResult& r) {
   j["kappa"] = num(c.kappa());
   j["ap50"] = num(r.ap50);
   j["map50_95"] = num(r.map50_95);
+  j["truth_heads_in_view"] = r.truth_heads_in_view;
+  j["ap50_in_view"] = num(r.ap50_in_view);
+  j["map50_95_in_view"] = num(r.map50_95_in_view);
   j["fps"] = num(r.fps());
   j["ms_per_frame"] = r.frames ? r.pipeline_ms / double(r.frames) : 0.0;
   j["stages_ms"] = stages_json(r.stages, r.frames);

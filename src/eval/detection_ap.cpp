@@ -55,11 +55,14 @@ double average_precision(std::vector<RankedHit> ranked, std::int64_t num_truth) 
 }
 
 void DetectionApAccumulator::add_frame(const std::vector<std::vector<int>>& truth,
-                                       const std::vector<Scored>& detections) {
+                                       const std::vector<Scored>& detections, const std::vector<bool>& ignored) {
   const int frame = int(frame_truths_.size());
   frame_truths_.push_back(int(truth.size()));
   frame_first_det_.push_back(std::int64_t(dets_.size()));
-  num_truth_ += std::int64_t(truth.size());
+  std::vector<char> ign(truth.size(), 0);
+  for (std::size_t t = 0; t < truth.size() && t < ignored.size(); ++t) ign[t] = ignored[t] ? 1 : 0;
+  for (char i : ign) num_truth_ += i ? 0 : 1;
+  frame_ignored_.push_back(std::move(ign));
   for (const Scored& d : detections) {
     Det det{frame, d.score, std::int64_t(pairs_.size()), 0};
     for (std::size_t t = 0; t < truth.size(); ++t) {
@@ -87,17 +90,29 @@ std::vector<char> DetectionApAccumulator::correct_at(double t) const {
       return dets_[std::size_t(x)].score > dets_[std::size_t(y)].score;
     });
     matched.assign(std::size_t(frame_truths_[f]), 0);
+    const std::vector<char>& ign = frame_ignored_[f];
     for (std::int64_t d : order) {
       const Det& det = dets_[std::size_t(d)];
-      // Pairs are sorted by IoU: the first unmatched one is the best not-yet-matched instance.
+      // Pairs are sorted by IoU: the first unmatched counted one is the best not-yet-matched
+      // instance; failing that, an ignored instance reaching t makes the detection ignored.
+      bool found = false;
       for (std::int64_t k = det.first_pair; k < det.first_pair + det.num_pairs; ++k) {
         const Pair& p = pairs_[std::size_t(k)];
-        if (matched[std::size_t(p.truth)]) continue;
+        if (ign[std::size_t(p.truth)] || matched[std::size_t(p.truth)]) continue;
         if (p.iou >= t) {
           matched[std::size_t(p.truth)] = 1;
           correct[std::size_t(d)] = 1;
+          found = true;
         }
         break;
+      }
+      if (found) continue;
+      for (std::int64_t k = det.first_pair; k < det.first_pair + det.num_pairs; ++k) {
+        const Pair& p = pairs_[std::size_t(k)];
+        if (ign[std::size_t(p.truth)] && p.iou >= t) {
+          correct[std::size_t(d)] = 2;
+          break;
+        }
       }
     }
   }
@@ -106,8 +121,10 @@ std::vector<char> DetectionApAccumulator::correct_at(double t) const {
 
 double DetectionApAccumulator::ap(double iou_threshold) const {
   const std::vector<char> correct = correct_at(iou_threshold);
-  std::vector<RankedHit> ranked(dets_.size());
-  for (std::size_t i = 0; i < dets_.size(); ++i) ranked[i] = {dets_[i].score, correct[i] != 0};
+  std::vector<RankedHit> ranked;
+  ranked.reserve(dets_.size());
+  for (std::size_t i = 0; i < dets_.size(); ++i)
+    if (correct[i] != 2) ranked.push_back({dets_[i].score, correct[i] == 1});
   return average_precision(std::move(ranked), num_truth_);
 }
 
@@ -121,7 +138,7 @@ double DetectionApAccumulator::map50_95() const {
 std::int64_t DetectionApAccumulator::true_positives(double iou_threshold, float min_score) const {
   const std::vector<char> correct = correct_at(iou_threshold);
   std::int64_t n = 0;
-  for (std::size_t i = 0; i < dets_.size(); ++i) n += correct[i] && dets_[i].score > min_score;
+  for (std::size_t i = 0; i < dets_.size(); ++i) n += correct[i] == 1 && dets_[i].score > min_score;
   return n;
 }
 

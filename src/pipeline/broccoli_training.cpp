@@ -71,8 +71,13 @@ void BroccoliEvaluator::add_frame(const RgbdFrame& frame) {
   }
   truth_instances(det_.cloud(), det_.config().detection.min_truth_points, truth_);
   truth_sets_.resize(truth_.size());
-  for (std::size_t i = 0; i < truth_.size(); ++i) truth_sets_[i] = truth_[i].indices;
+  cut_.resize(truth_.size());
+  for (std::size_t i = 0; i < truth_.size(); ++i) {
+    truth_sets_[i] = truth_[i].indices;
+    cut_[i] = truth_[i].cut_by_border;
+  }
   ap_.add_frame(truth_sets_, scored);
+  ap_view_.add_frame(truth_sets_, scored, cut_);
 }
 
 BroccoliEvalResult BroccoliEvaluator::result() const {
@@ -80,6 +85,9 @@ BroccoliEvalResult BroccoliEvaluator::result() const {
   r.truth_heads = ap_.num_truth();
   r.ap50 = ap_.ap(0.5);
   r.map50_95 = ap_.map50_95();
+  r.truth_heads_in_view = ap_view_.num_truth();
+  r.ap50_in_view = ap_view_.ap(0.5);
+  r.map50_95_in_view = ap_view_.map50_95();
   r.stages = det_.timer().stages();
   return r;
 }

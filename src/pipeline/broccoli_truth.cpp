@@ -60,6 +60,18 @@ void truth_instances(const OrganizedCloud& cloud, int min_points, std::vector<Tr
     }
     out[slot].indices.push_back(i);  // raster order: ascending
   }
+  // Heads with a labelled pixel on the image border continue outside the view.
+  std::vector<int> border_ids;
+  const int w = cloud.width, h = cloud.height;
+  auto border = [&](int i) {
+    const int id = cloud.labels[std::size_t(i)];
+    if (id != 0) border_ids.push_back(id);
+  };
+  for (int u = 0; u < w; ++u) border(u), border((h - 1) * w + u);
+  for (int v = 0; v < h; ++v) border(v * w), border(v * w + w - 1);
+  std::sort(border_ids.begin(), border_ids.end());
+  for (const auto& [id, slot] : slot_of)
+    out[slot].cut_by_border = std::binary_search(border_ids.begin(), border_ids.end(), id);
   // Order by id and drop heads that are too small to count.
   std::vector<TruthInstance> kept;
   kept.reserve(used);

@@ -66,3 +66,21 @@ TEST(DetectionAp, MissedInstancesLowerRecall) {
   empty.add_frame({}, {});
   EXPECT_TRUE(std::isnan(empty.ap(0.5)));
 }
+
+// Instance B (20..29) is ignored (e.g. cut by the image border): it does not count, and d3
+// (IoU 1 with B) is dropped from the ranking instead of being a false positive; d5 overlaps
+// nothing and stays a false positive.
+TEST(DetectionAp, IgnoredInstancesNeitherCountNorPenalise) {
+  DetectionApAccumulator acc;
+  const std::vector<int> d1 = range(0, 10), d3 = range(20, 30), d5 = range(40, 50);
+  acc.add_frame({range(0, 10), range(20, 30)}, {{0.9f, d1}, {0.8f, d3}, {0.7f, d5}}, {false, true});
+  EXPECT_EQ(acc.num_truth(), 1);
+  // Ranked: d1 T, (d3 dropped), d5 F → AP = 1 (recall 1 reached at precision 1).
+  EXPECT_DOUBLE_EQ(acc.ap(0.5), 1.0);
+  DetectionApAccumulator counted;
+  counted.add_frame({range(0, 10), range(20, 30)}, {{0.9f, d1}, {0.8f, d3}, {0.7f, d5}});
+  EXPECT_DOUBLE_EQ(counted.ap(0.5), 1.0);  // both found: T T F
+  DetectionApAccumulator worse;
+  worse.add_frame({range(0, 10), range(20, 30)}, {{0.9f, d5}, {0.8f, d1}}, {false, true});
+  EXPECT_DOUBLE_EQ(worse.ap(0.5), 0.5);  // F T: precision 1/2 at recall 1
+}

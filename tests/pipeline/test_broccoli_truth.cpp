@@ -37,7 +37,25 @@ TEST(BroccoliTruth, InstancesAreTheVisiblePointsOfEachHead) {
   EXPECT_EQ(inst[0].indices, (std::vector<int>{3, 5, 6}));
   EXPECT_EQ(inst[1].id, 7);
   EXPECT_EQ(inst[1].indices, (std::vector<int>{0, 4}));
-  truth_instances(c, 3, inst);  // heads with fewer than 3 visible points are left out
+  EXPECT_TRUE(inst[1].cut_by_border);  // a 4x2 image: every pixel is on the border
+  truth_instances(c, 3, inst);         // heads with fewer than 3 visible points are left out
   ASSERT_EQ(inst.size(), 1u);
   EXPECT_EQ(inst[0].id, 2);
+}
+
+TEST(BroccoliTruth, HeadsTouchingTheImageBorderAreMarked) {
+  OrganizedCloud c(5, 5);
+  c.labels.assign(25, 0);
+  for (int i = 0; i < 25; ++i) c.x[i] = c.y[i] = 0.0f, c.z[i] = 1.0f;
+  c.labels[12] = 4;               // centre pixel: inside the view
+  c.labels[5] = c.labels[6] = 9;  // (0,1) is on the left border
+  c.z[5] = NAN;                   // even when the border pixel has no return
+  std::vector<TruthInstance> inst;
+  truth_instances(c, 0, inst);
+  ASSERT_EQ(inst.size(), 2u);
+  EXPECT_EQ(inst[0].id, 4);
+  EXPECT_FALSE(inst[0].cut_by_border);
+  EXPECT_EQ(inst[1].id, 9);
+  EXPECT_TRUE(inst[1].cut_by_border);
+  EXPECT_EQ(inst[1].indices, std::vector<int>{6});
 }

@@ -15,6 +15,10 @@
 // over the ranks i, r_0 = 0. Recall is relative to every ground-truth instance passed in, so an
 // instance never detected lowers AP. mAP = mean of AP over t = 0.50, 0.55, …, 0.95 (COCO).
 // With no ground-truth instance at all, AP is NaN.
+//
+// Ignored instances (COCO's "ignore" regions), e.g. heads cut by the image border: they do not
+// count as ground truth; a detection that cannot be matched to a counted instance but reaches
+// the threshold with an ignored one is dropped from the ranking (neither true nor false positive).
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -43,7 +47,9 @@ class DetectionApAccumulator {
   };
 
   /// One frame: ground-truth instances and scored detections (point index sets of that frame).
-  void add_frame(const std::vector<std::vector<int>>& truth, const std::vector<Scored>& detections);
+  /// `ignored` (empty = none) flags instances that are not counted (see above).
+  void add_frame(const std::vector<std::vector<int>>& truth, const std::vector<Scored>& detections,
+                 const std::vector<bool>& ignored = {});
 
   std::int64_t num_truth() const { return num_truth_; }
   std::int64_t num_detections() const { return std::int64_t(dets_.size()); }
@@ -64,11 +70,12 @@ class DetectionApAccumulator {
     int truth;  // truth instance index within the frame
     double iou;
   };
-  std::vector<char> correct_at(double t) const;  // per detection: 1 = true positive at t
+  std::vector<char> correct_at(double t) const;  // per detection: 1 TP, 0 FP, 2 ignored at t
   std::vector<Det> dets_;
   std::vector<Pair> pairs_;
   std::vector<std::int64_t> frame_first_det_;  // det index range per frame
   std::vector<int> frame_truths_;
+  std::vector<std::vector<char>> frame_ignored_;  // per frame, per instance
   std::int64_t num_truth_ = 0;
 };
 

@@ -51,8 +51,12 @@ struct BroccoliEvalResult {
   std::int64_t truth_heads = 0;       ///< ground-truth heads counted by AP
   std::int64_t detections = 0;        ///< clusters classified as heads
   eval::BinaryConfusion confusion;    ///< per cluster (Table I)
-  double ap50 = 0.0, map50_95 = 0.0;  ///< Table II
-  double pipeline_ms = 0.0;           ///< total wall-clock time in BroccoliDetector::process (I/O excluded)
+  double ap50 = 0.0, map50_95 = 0.0;  ///< Table II, every labelled head counts
+  /// Same with heads cut by the image border ignored (COCO-style ignore: they neither count nor
+  /// turn a detection of them into a false positive).
+  double ap50_in_view = 0.0, map50_95_in_view = 0.0;
+  std::int64_t truth_heads_in_view = 0;
+  double pipeline_ms = 0.0;  ///< total wall-clock time in BroccoliDetector::process (I/O excluded)
   double fps() const { return pipeline_ms > 0 ? 1000.0 * double(frames) / pipeline_ms : 0.0; }
   std::vector<StageTimer::Stage> stages;  ///< per-stage totals
 };
@@ -69,7 +73,8 @@ class BroccoliEvaluator {
  private:
   BroccoliDetector& det_;
   BroccoliEvalResult r_;
-  eval::DetectionApAccumulator ap_;
+  eval::DetectionApAccumulator ap_, ap_view_;
+  std::vector<bool> cut_;
   std::vector<TruthInstance> truth_;
   std::vector<std::vector<int>> truth_sets_;
 };

@@ -29,7 +29,8 @@ ClusterTruth cluster_truth(std::span<const int> indices, std::span<const std::ui
 
 struct TruthInstance {
   int id = 0;
-  std::vector<int> indices;  ///< ascending pixel indices of valid points labelled `id`
+  std::vector<int> indices;    ///< ascending pixel indices of valid points labelled `id`
+  bool cut_by_border = false;  ///< a pixel labelled `id` lies on the image border (head partly out of view)
 };
 
 /// Visible point sets of the labelled heads of `cloud` (which holds labels and depth-filtered
