@@ -1,6 +1,6 @@
 // The broccoli report: precision–recall curves against eval::DetectionApAccumulator, the charts,
 // and the page rendered by headless Chromium (skipped with a message when chromium is absent).
-// With ../shared/data holding a simulated sequence and a model, the CLI report is checked too.
+// `cropsight report --model` itself is tested in tests/tracking/test_tracking_cli.cpp.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -144,14 +144,14 @@ TEST(BroccoliReport, PageRendersInHeadlessChromium) {
   HtmlPage page("broccoli report test");
   add_broccoli_sections(page, sample_data());
   const std::string html = page.html();
-  EXPECT_EQ(count_of(html, "<svg"), 6);  // PR ×2, field map, size, error vs distance, timing
+  EXPECT_EQ(count_of(html, "<svg"), 6);                   // PR ×2, field map, size, error vs distance, timing
   EXPECT_EQ(html.find("src=\"http"), std::string::npos);  // self-contained: nothing fetched
   EXPECT_EQ(html.find("href=\"http"), std::string::npos);
   cropsight::testing::TempDir dir;
   page.write(dir / "report.html");
   if (!std::filesystem::exists(kChromium)) GTEST_SKIP() << "chromium not installed at " << kChromium;
-  const std::string dom = run(chromium(dir / "profile-dom") + "--dump-dom file://" + (dir / "report.html").string() +
-                              " 2>/dev/null");
+  const std::string dom =
+      run(chromium(dir / "profile-dom") + "--dump-dom file://" + (dir / "report.html").string() + " 2>/dev/null");
   ASSERT_FALSE(dom.empty()) << "chromium produced no DOM";
   EXPECT_EQ(count_of(dom, "<svg"), count_of(html, "<svg"));
   EXPECT_GE(count_of(dom, "cs-mark"), 20);
@@ -167,23 +167,4 @@ TEST(BroccoliReport, PageRendersInHeadlessChromium) {
   for (const auto& p : shot.data)
     if (std::abs(int(p.r) - int(p.g)) > 40 || std::abs(int(p.g) - int(p.b)) > 40) ++coloured;
   EXPECT_GT(coloured, 2000) << "the screenshot shows almost no coloured plot marks";
-}
-
-TEST(BroccoliReport, CliReportWithModel) {
-  const auto data = cropsight::testing::shared_data_dir() / "sim" / "broccoli-uk-test";
-  const auto model = cropsight::testing::source_dir() / "models" / "broccoli-uk-oes.json";
-  CROPSIGHT_REQUIRE_DATA(data);
-  CROPSIGHT_REQUIRE_DATA(model);
-  cropsight::testing::TempDir dir;
-  const auto r = cropsight::testing::run_cli("report --data " + data.string() + " --model " + model.string() +
-                                             " --frames 3 --out " + (dir / "r.html").string() + " --json");
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::string html = io::read_file(dir / "r.html");
-  EXPECT_GE(count_of(html, "<svg"), 6);
-  EXPECT_NE(html.find("Field map"), std::string::npos);
-  const auto bad = cropsight::testing::run_cli("report --data " + data.string() + " --model " +
-                                               (dir / "missing.json").string() + " --out " +
-                                               (dir / "x.html").string());
-  EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_FALSE(std::filesystem::exists(dir / "x.html"));
 }

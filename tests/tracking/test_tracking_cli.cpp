@@ -1,0 +1,130 @@
+// CLI tests of the sizing / tracking options: detect --track --map, eval --track (map, size and
+// AP figures), report --model, and their error paths. A small simulated uk sequence and a model
+// trained on it are made once for the suite (the figures are not checked against targets here:
+// training and testing on one short sequence says nothing about accuracy; docs/ has the real runs).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "cropsight/io/files.hpp"
+#include "cropsight/io/sequence.hpp"
+#include "cropsight/sim/broccoli_sim.hpp"
+#include "cropsight/tracking/field_map_io.hpp"
+#include "testing/testing.hpp"
+
+namespace fs = std::filesystem;
+using namespace cropsight;
+using cropsight::testing::run_cli;
+
+namespace {
+class TrackingCli : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    tmp_ = new cropsight::testing::TempDir;
+    sim::BroccoliSimulator s(sim::BroccoliSimConfig{}, 21, 14);
+    io::SequenceWriter w(seq(), s.camera());
+    for (int i = 0; i < s.frames(); ++i) w.write(s.render(i));
+    w.set_groundtruth(s.groundtruth());
+    w.finish();
+    const auto r = run_cli("train broccoli --data " + q(seq()) + " --config " +
+                           q(cropsight::testing::source_dir() / "configs" / "broccoli-oes-uk.yaml") + " --out " +
+                           q(model()) + " --quiet");
+    trained_ = r.exit_code == 0;
+    if (!trained_) train_error_ = r.err;
+  }
+  static void TearDownTestSuite() {
+    delete tmp_;
+    tmp_ = nullptr;
+  }
+  void SetUp() override { ASSERT_TRUE(trained_) << "train broccoli failed: " << train_error_; }
+  static fs::path seq() { return *tmp_ / "seq"; }
+  static fs::path model() { return *tmp_ / "oes.json"; }
+  static fs::path dir() { return tmp_->path(); }
+  static std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+  static cropsight::testing::TempDir* tmp_;
+  static bool trained_;
+  static std::string train_error_;
+};
+cropsight::testing::TempDir* TrackingCli::tmp_ = nullptr;
+bool TrackingCli::trained_ = false;
+std::string TrackingCli::train_error_;
+}  // namespace
+
+TEST_F(TrackingCli, DetectWritesTheMap) {
+  const fs::path out = dir() / "det.jsonl", map = dir() / "map.csv";
+  const auto r = run_cli("detect broccoli --data " + q(seq()) + " --model " + q(model()) + " --out " + q(out) +
+                         " --track --map " + q(map) + " --json --set tracking.use_poses=true");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto summary = nlohmann::json::parse(r.out);
+  const auto heads = tracking::read_field_map(map);
+  EXPECT_EQ(summary["map_heads"].get<std::size_t>(), heads.size());
+  for (const auto& h : heads) {
+    EXPECT_GE(h.frames_seen, 3);  // min_track_score = 3
+    EXPECT_GT(h.bbox_mm, 30.0);
+    EXPECT_LT(h.bbox_mm, 300.0);
+  }
+  const std::string lines = io::read_file(out);
+  const auto first = nlohmann::json::parse(lines.substr(0, lines.find('\n')));
+  ASSERT_TRUE(first.contains("heads"));
+  ASSERT_TRUE(first.contains("camera_estimate"));
+  EXPECT_EQ(first["heads"].size(), first["detections"].size());
+}
+
+TEST_F(TrackingCli, EvalReportsMapSizeAndTemporalAp) {
+  const auto r = run_cli("eval broccoli --data " + q(seq()) + " --model " + q(model()) +
+                         " --track --fit-size-bias --json --set tracking.use_poses=true");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* k : {"map_precision", "map_recall", "duplicate_rate", "ap50_single_frame", "ap50_temporal"}) {
+    ASSERT_TRUE(j.contains(k)) << k;
+    ASSERT_TRUE(j[k].is_number()) << k << " = " << j[k];
+    EXPECT_GE(j[k].get<double>(), 0.0) << k;
+    EXPECT_LE(j[k].get<double>(), 1.0) << k;
+  }
+  for (const char* k : {"count_error", "size_mede_mm", "size_mad_mm", "size_pearson_r", "size_frame_mede_mm",
+                        "size_frame_mad_mm", "size_frame_pearson_r", "tracking_ms_per_frame"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_DOUBLE_EQ(j["ap50_single_frame"].get<double>(), j["ap50"].get<double>());  // same AP, two routes
+  ASSERT_TRUE(j.contains("size_bias_fit"));
+  EXPECT_GT(j["size_bias_fit"]["bbox"]["scale"].get<double>(), 0.0);
+}
+
+TEST_F(TrackingCli, ReportWithModel) {
+  const fs::path html = dir() / "report.html";
+  const auto r =
+      run_cli("report --data " + q(seq()) + " --model " + q(model()) + " --frames 2 --out " + q(html) + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string page = io::read_file(html);
+  EXPECT_GE(std::size_t(std::count(page.begin(), page.end(), '<')), 100u);
+  EXPECT_NE(page.find("Field map"), std::string::npos);
+  EXPECT_NE(page.find("Precision"), std::string::npos);
+  EXPECT_NE(page.find("data:image/png;base64"), std::string::npos);  // overlays embedded
+}
+
+TEST_F(TrackingCli, BadInputIsOneLineAndNoOutput) {
+  const fs::path out = dir() / "none.jsonl", map = dir() / "none.csv", html = dir() / "none.html";
+  auto r = run_cli("detect broccoli --data " + q(seq()) + " --model " + q(model()) + " --out " + q(out) + " --map " +
+                   q(map));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--map"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(map));
+  r = run_cli("eval broccoli --data " + q(seq()) + " --model " + q(model()) + " --fit-size-bias");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--track"), std::string::npos) << r.err;
+  r = run_cli("eval broccoli --data " + q(seq()) + " --model " + q(model()) +
+              " --track --set tracking.association_radius_m=0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("association_radius_m"), std::string::npos) << r.err;
+  r = run_cli("eval broccoli --data " + q(seq()) + " --model " + q(model()) + " --track --set sizing.estimator=cube");
+  EXPECT_EQ(r.exit_code, 2);
+  r = run_cli("detect broccoli --data " + q(seq()) + " --model " + q(model()) + " --out " + q(out) +
+              " --track --set tracking.bogus=1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_FALSE(fs::exists(out));
+  r = run_cli("report --data " + q(seq()) + " --model " + q(dir() / "missing.json") + " --out " + q(html));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_FALSE(fs::exists(html));
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
