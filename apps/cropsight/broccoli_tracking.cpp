@@ -81,10 +81,11 @@ void print_tracking_summary(const nlohmann::json& j) {
               f("ap50_single_frame"), f("ap50_temporal"), f("tracking_ms_per_frame"));
   if (j.contains("size_bias_fit"))
     for (const char* e : {"bbox", "hull"})
-      std::printf("  size bias fit (%s): --set %s  (RMS %.1f → %.1f mm)\n", e,
-                  j["size_bias_fit"][e]["set"].get<std::string>().c_str(),
-                  j["size_bias_fit"][e]["rms_before_mm"].get<double>(),
-                  j["size_bias_fit"][e]["rms_after_mm"].get<double>());
+      if (j["size_bias_fit"].contains(e))
+        std::printf("  size bias fit (%s): --set %s  (RMS %.1f → %.1f mm)\n", e,
+                    j["size_bias_fit"][e]["set"].get<std::string>().c_str(),
+                    j["size_bias_fit"][e]["rms_before_mm"].get<double>(),
+                    j["size_bias_fit"][e]["rms_after_mm"].get<double>());
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -319,14 +320,16 @@ nlohmann::json EvalTracking::json(bool fit_size_bias) {
   j["size_heads"] = head.n;
   j["size_per_head"] = {{"chosen", size_json(head)},
                         {"bbox_raw", size_json(eval::size_metrics(head_bbox_, head_true_))},
-                        {"hull_raw", size_json(eval::size_metrics(head_hull_, head_true_))}};
+                        {"hull_raw", cfg_.sizing.compute_hull ? size_json(eval::size_metrics(head_hull_, head_true_))
+                                                              : nlohmann::json(nullptr)}};
   const auto fr = eval::size_metrics(frame_est_, frame_true_);
   j["size_frame_mede_mm"] = num(fr.mede_mm);
   j["size_frame_mad_mm"] = num(fr.mad_mm);
   j["size_frame_pearson_r"] = num(fr.pearson_r);
   j["size_per_frame"] = {{"chosen", size_json(fr)},
                          {"bbox_raw", size_json(eval::size_metrics(frame_bbox_, frame_true_))},
-                         {"hull_raw", size_json(eval::size_metrics(frame_hull_, frame_true_))}};
+                         {"hull_raw", cfg_.sizing.compute_hull ? size_json(eval::size_metrics(frame_hull_, frame_true_))
+                                                               : nlohmann::json(nullptr)}};
   j["ap50_single_frame"] = num(ap_single_.ap(0.5));
   j["ap50_temporal"] = num(ap_tracked_.ap(0.5));
   j["map50_95_single_frame"] = num(ap_single_.map50_95());
@@ -336,6 +339,7 @@ nlohmann::json EvalTracking::json(bool fit_size_bias) {
     nlohmann::json fit;
     for (const auto& [name, est] : {std::pair<std::string, const std::vector<double>*>{"bbox", &frame_bbox_},
                                     std::pair<std::string, const std::vector<double>*>{"hull", &frame_hull_}}) {
+      if (name == "hull" && !cfg_.sizing.compute_hull) continue;
       const auto f = measure::fit_size_bias(*est, frame_true_, "--fit-size-bias (" + name + ")");
       fit[name] = {{"scale", f.scale},
                    {"offset_mm", f.offset_mm},
