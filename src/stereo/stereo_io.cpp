@@ -21,6 +21,13 @@ ColorImage read_color(const fs::path& path) {
   return detail::to_color(rgb);
 }
 
+GrayImage read_gray(const fs::path& path) {
+  if (!fs::exists(path)) throw Error(path.string(), "file not found");
+  cv::Mat m = cv::imread(path.string(), cv::IMREAD_GRAYSCALE);
+  if (m.empty()) throw Error(path.string(), "cannot decode image");
+  return detail::to_gray(m);
+}
+
 DisparityImage read_disparity(const fs::path& path, double scale) {
   if (!fs::exists(path)) throw Error(path.string(), "file not found");
   cv::Mat m = cv::imread(path.string(), cv::IMREAD_ANYDEPTH | cv::IMREAD_GRAYSCALE);

@@ -9,6 +9,7 @@
 namespace cropsight::stereo {
 
 ColorImage read_color(const std::filesystem::path& path);  ///< any 8-bit image, converted to RGB
+GrayImage read_gray(const std::filesystem::path& path);    ///< any 8-bit image, converted to grey
 /// 8- or 16-bit single-channel ground-truth disparity divided by `scale`; stored 0 → NaN.
 DisparityImage read_disparity(const std::filesystem::path& path, double scale);
 /// 16-bit PNG with value = round(disparity * scale), 0 = no estimate (atomic write).

@@ -1,0 +1,46 @@
+#pragma once
+// The seedling paper's envelope box of a plant's points, defined once for the detector and the
+// simulator's ground truth (header-only so that both use the very same definition).
+//   height: largest distance of a point above the soil plane n . x + d = 0 (n unit, pointing up);
+//   length, width: extents of the points projected on the plane along their two principal axes
+//   (length >= width); volume = length * width * height.
+#include <Eigen/Core>
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <vector>
+
+namespace cropsight::stereo {
+
+struct EnvelopeBox {
+  double length = 0, width = 0, height = 0;                  ///< m
+  double volume() const { return length * width * height; }  ///< m^3
+};
+
+inline EnvelopeBox envelope_box(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& n, double d) {
+  EnvelopeBox box;
+  if (points.size() < 2) return box;
+  const Eigen::Vector3d e1 = n.unitOrthogonal(), e2 = n.cross(e1);
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  std::vector<Eigen::Vector2d> q;
+  q.reserve(points.size());
+  for (const auto& p : points) {
+    box.height = std::max(box.height, n.dot(p) + d);
+    q.emplace_back(e1.dot(p), e2.dot(p));
+    mean += q.back();
+  }
+  mean /= double(q.size());
+  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
+  for (const auto& v : q) cov += (v - mean) * (v - mean).transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
+  const Eigen::Vector2d a = es.eigenvectors().col(1), b = es.eigenvectors().col(0);
+  double amin = 1e300, amax = -1e300, bmin = 1e300, bmax = -1e300;
+  for (const auto& v : q) {
+    amin = std::min(amin, a.dot(v)), amax = std::max(amax, a.dot(v));
+    bmin = std::min(bmin, b.dot(v)), bmax = std::max(bmax, b.dot(v));
+  }
+  box.length = std::max(amax - amin, bmax - bmin);
+  box.width = std::min(amax - amin, bmax - bmin);
+  return box;
+}
+
+}  // namespace cropsight::stereo

@@ -1,0 +1,119 @@
+#pragma once
+// Broccoli-seedling recognition from a rectified stereo pair (issue 5; after "A method for
+// broccoli seedling recognition in natural environment based on binocular stereo vision and
+// Gaussian mixture model"):
+//
+//   disparity (SGBM + LR check + hole filling) → 3D points (invalid removed) → soil plane
+//   (RANSAC) → points above the soil → non-uniform grid down-sampling to exactly 4096 points →
+//   GMM (EM, K = 10) → recognition rule → KNN outlier filter → dense seedling points, top-view
+//   mask, envelope box, per-stage timings.
+//
+// Recognition rule (why: transplanted seedlings stand clearly above the soil and above the low
+// weeds around them, and form one connected plant):
+//   1. Only points higher than `min_height` above the fitted soil plane enter the GMM (the soil
+//      itself would otherwise take most components; this is our change to the paper's order).
+//   2. The seed component is the one whose member points have the largest mean height (among
+//      components with at least `min_component_points` points).
+//   3. Components are added while one of them has a mean height >= `height_ratio` x the seed's
+//      and a member point within `join_distance` of the points chosen so far (the lower leaves
+//      of the same plant touch the upper ones; distant weeds do not).
+//   4. The chosen points go through the KNN outlier filter (mean distance to k neighbours above
+//      mean + alpha sigma removed).
+//   5. Dense result: every reconstructed point above `min_height` whose top-view cell lies
+//      within `topview_dilate` cells of a kept sampled point.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "cropsight/core/image.hpp"
+#include "cropsight/core/timer.hpp"
+#include "cropsight/geometry/grid_sampling.hpp"
+#include "cropsight/geometry/statistical_outlier.hpp"
+#include "cropsight/segmentation/gmm.hpp"
+#include "cropsight/stereo/disparity.hpp"
+#include "cropsight/stereo/envelope.hpp"
+#include "cropsight/stereo/rectification.hpp"
+
+namespace cropsight::stereo {
+
+struct SeedlingConfig {
+  /// 64 disparities cover depths >= 0.3 m for the simulated rig (f = 320 px, B = 60 mm).
+  DisparityConfig disparity = [] {
+    DisparityConfig d;
+    d.num_disparities = 64;
+    return d;
+  }();
+  double min_depth = 0.2;  ///< m; reconstructed points nearer than this are dropped
+  double max_depth = 3.0;  ///< m (paper: working distance up to 2 m)
+  int ransac_iterations = 200;
+  double ransac_threshold = 0.01;  ///< m; soil inlier distance
+  int ransac_sample = 4000;        ///< points the plane is fitted on
+  double min_height = 0.015;       ///< m above the soil for a point to be a plant candidate
+  double max_height = 0.5;         ///< m; higher points are not a seedling
+  geometry::GridSamplingConfig sampling;
+  segmentation::GmmConfig gmm;
+  int min_component_points = 15;
+  double height_ratio = 0.3;     ///< of the seed component's mean height
+  double join_distance = 0.015;  ///< m
+  geometry::StatisticalOutlierConfig outlier{10, 2.0};
+  double topview_cell = 0.004;  ///< m; cell of the top-view mask
+  int topview_dilate = 2;       ///< cells
+
+  template <class V>
+  void visit(V& v) {
+    v("disparity", disparity, "SGM disparity settings");
+    v("min_depth", min_depth, "m; nearest reconstructed point kept");
+    v("max_depth", max_depth, "m; farthest reconstructed point kept (paper: working distance 0.5-2 m)");
+    v("ransac_iterations", ransac_iterations, "RANSAC iterations of the soil plane");
+    v("ransac_threshold", ransac_threshold, "m; soil plane inlier distance");
+    v("ransac_sample", ransac_sample, "points drawn for the plane fit");
+    v("min_height", min_height, "m; points at most this high above the soil are soil or low weeds");
+    v("max_height", max_height, "m; points higher than this are ignored");
+    v("sampling", sampling, "non-uniform grid down-sampling (paper: 4096 points)");
+    v("gmm", gmm, "Gaussian mixture (paper: K = 10, EM)");
+    v("min_component_points", min_component_points, "smallest GMM component that can be the seedling's top");
+    v("height_ratio", height_ratio, "components joined must reach this share of the top component's mean height");
+    v("join_distance", join_distance, "m; a joined component has a point this close to the chosen ones");
+    v("outlier", outlier, "KNN outlier filter: k neighbours, alpha (paper: values not given)");
+    v("topview_cell", topview_cell, "m; top-view mask cell");
+    v("topview_dilate", topview_dilate, "cells; dense points within this many cells of kept samples join");
+  }
+};
+
+/// A raster of the soil plane: cell (i, j) covers plane coordinates origin + (i, j) * cell along
+/// the axes e1 = n.unitOrthogonal(), e2 = n x e1.
+struct TopViewMask {
+  GrayImage mask;  ///< 255 = seedling
+  Eigen::Vector2d origin = Eigen::Vector2d::Zero();
+  double cell = 0;
+  double area() const;  ///< m^2 of set cells
+};
+
+struct SeedlingDetection {
+  bool found = false;
+  std::vector<Eigen::Vector3f> points;  ///< dense seedling points, rectified left camera frame
+  std::vector<int> pixels;              ///< their left-image indices
+  GrayImage image_mask;                 ///< left image, 255 = seedling
+  TopViewMask top_view;
+  EnvelopeBox envelope;
+  Eigen::Vector3d plane_normal = Eigen::Vector3d::UnitZ();  ///< soil: n . x + d = 0, n towards the camera
+  double plane_d = 0;
+  int points_total = 0, points_candidates = 0, points_sampled = 0, points_seedling_sampled = 0;
+  segmentation::GmmResult gmm;
+  std::vector<Eigen::Vector3f> sampled;  ///< the down-sampled candidates the GMM saw
+  std::vector<int> chosen_components;
+  StageTimer timer;  ///< stages: disparity, reconstruct, plane, sample, gmm, recognise, outlier, output
+};
+
+/// Detects the seedling in a rectified pair with the given rectified geometry. Throws
+/// Error(where, ...) for mismatched image sizes or an invalid configuration.
+SeedlingDetection detect_seedling(const ColorImage& left, const ColorImage& right, const RectifiedGeometry& geometry,
+                                  const SeedlingConfig& cfg, const std::string& where = "stereo pair");
+
+/// Rasterises points (any frame, same as the plane) onto the soil plane n . x + d = 0 with the
+/// given cell; `origin` is chosen so that both masks of an IoU share one grid (pass the same
+/// origin and size). Cells holding a point are set, then closed with a 3x3 kernel.
+TopViewMask rasterize_top_view(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& n, double cell,
+                               const Eigen::Vector2d& origin, int width, int height);
+
+}  // namespace cropsight::stereo
