@@ -1,0 +1,295 @@
+#pragma once
+// Every parameter of the broccoli-field simulator (docs/simulator.md explains the model).
+//
+// Defaults are the `uk` preset (variety Ironman; configs/sim-broccoli-uk.yaml repeats them and
+// configs/sim-broccoli-spain.yaml changes what differs). Sources in the doc strings:
+//   [issue2]    issue 2 of this project, which summarises the papers' field set-up
+//   [kusumam]   Kusumam et al. 2017, "3D-vision based detection, localization, and sizing of
+//               broccoli heads in the field", J. Field Robotics (Kinect v2 on a tractor, UK and
+//               Spain datasets, 7.5 / 3.3 / 6.4 fps)
+//   [kinect2]   Kinect v2 ToF specification (512x424, 70.6 x 60 deg, 0.5-4.5 m range)
+//   [tof]       ToF noise theory (Lange 2000: sigma ~ sqrt(A + B) / A for signal amplitude A and
+//               background B) fitted to Kinect v2 studies (Fankhauser et al. 2015: about 1-2 mm
+//               axial noise at 1 m, growing with range and incidence angle)
+//   [agro]      agronomic typical values (plant architecture, soil), chosen by us and stated as
+//               such; change them in the presets.
+//
+// Field frame: x along the row (driving direction), y across the rows (left of the driver),
+// z up; z = 0 is the mean soil surface. Lengths in metres, angles in degrees, unless `_mm`.
+#include <string>
+
+namespace cropsight::sim {
+
+struct SimCameraConfig {
+  int width = 512;
+  int height = 424;
+  double hfov_deg = 70.6;
+  double vfov_deg = 60.0;
+  double height_m = 1.25;
+  double lateral_offset_m = 0.0;
+  int supersample = 2;
+  double min_range_m = 0.5;
+  double max_range_m = 4.5;
+  template <class V>
+  void visit(V& v) {
+    v("width", width, "px; depth image width (kinect2: 512)");
+    v("height", height, "px; depth image height (kinect2: 424)");
+    v("hfov_deg", hfov_deg, "deg; horizontal field of view (kinect2: 70.6)");
+    v("vfov_deg", vfov_deg, "deg; vertical field of view (kinect2: 60)");
+    v("height_m", height_m, "m; camera height above mean soil, looking straight down (issue2: 1.25 uk, 1.40 spain)");
+    v("lateral_offset_m", lateral_offset_m, "m; camera y in the field frame (0 = centred on the row layout)");
+    v("supersample", supersample,
+      "samples per pixel side; >1 renders sub-pixels so edge pixels can mix depths (flying pixels)");
+    v("min_range_m", min_range_m, "m; no return closer than this (kinect2: 0.5)");
+    v("max_range_m", max_range_m, "m; no return farther than this (kinect2: 4.5)");
+  }
+};
+
+struct SimMotionConfig {
+  double speed_mps = 0.3;
+  double fps = 7.5;
+  double start_x_m = 0.0;
+  double speed_jitter = 0.03;
+  double height_jitter_m = 0.004;
+  double lateral_jitter_m = 0.003;
+  template <class V>
+  void visit(V& v) {
+    v("speed_mps", speed_mps, "m/s; tractor speed along the row (issue2/kusumam: about 0.3)");
+    v("fps", fps, "frames per second (kusumam datasets: 7.5, 3.3 and 6.4)");
+    v("start_x_m", start_x_m, "m; camera x at frame 0");
+    v("speed_jitter", speed_jitter, "relative std of the per-frame advance (uneven ground, clutch) [agro]");
+    v("height_jitter_m", height_jitter_m, "m; std of the camera height bounce (suspension) [agro]");
+    v("lateral_jitter_m", lateral_jitter_m, "m; std of the camera lateral sway [agro]");
+  }
+};
+
+struct SimFieldConfig {
+  std::string variety = "uk";
+  int rows_under_camera = 2;
+  double row_spacing_m = 0.60;
+  double in_row_spacing_m = 0.38;
+  double spacing_jitter_m = 0.04;
+  double row_wobble_m = 0.025;
+  double missing_plant_prob = 0.04;
+  double harvested_prob = 0.08;
+  double weed_density_m2 = 6.0;
+  template <class V>
+  void visit(V& v) {
+    v("variety", variety, "name recorded in groundtruth.json (issue2: uk = Ironman, spain = Titanium)");
+    v("rows_under_camera", rows_under_camera,
+      "rows centred in the view: 2 = camera between two rows, 1 = above one (issue2: 2 uk, 1 spain)");
+    v("row_spacing_m", row_spacing_m, "m; distance between rows (issue2: 0.60 uk, 0.90 spain)");
+    v("in_row_spacing_m", in_row_spacing_m, "m; plant spacing within a row (issue2: 0.38 uk, 0.30 spain)");
+    v("spacing_jitter_m", spacing_jitter_m, "m; std of a plant's offset along the row from the nominal spacing [agro]");
+    v("row_wobble_m", row_wobble_m, "m; std of a plant's offset across the row [agro]");
+    v("missing_plant_prob", missing_plant_prob, "probability that a planting position is empty [agro]");
+    v("harvested_prob", harvested_prob,
+      "probability that a plant's head was already cut (stem stump, no head) (issue2: some harvested)");
+    v("weed_density_m2", weed_density_m2, "weeds per square metre (issue2: weeds) [agro]");
+  }
+};
+
+struct SimPlantConfig {
+  double plant_height_m = 0.60;
+  double head_top_min_m = 0.40;
+  double head_top_max_m = 0.50;
+  double stem_radius_m = 0.022;
+  int leaf_count_min = 8;
+  int leaf_count_max = 14;
+  double leaf_length_min_m = 0.28;
+  double leaf_length_max_m = 0.42;
+  double leaf_width_ratio = 0.42;
+  double leaf_elevation_min_deg = 40.0;
+  double leaf_elevation_max_deg = 70.0;
+  double leaf_droop_min_deg = 30.0;
+  double leaf_droop_max_deg = 70.0;
+  double leaf_cup = 0.25;
+  double leaf_ruffle_m = 0.008;
+  int inner_leaves_min = 1;
+  int inner_leaves_max = 3;
+  double inner_leaf_length_min_m = 0.14;
+  double inner_leaf_length_max_m = 0.24;
+  double inner_leaf_curl_min_deg = 100.0;
+  double inner_leaf_curl_max_deg = 135.0;
+  template <class V>
+  void visit(V& v) {
+    v("plant_height_m", plant_height_m,
+      "m; canopy top above soil; leaf tips are scaled to reach about this (issue2: about 0.60)");
+    v("head_top_min_m", head_top_min_m, "m; lowest head apex above soil [agro]");
+    v("head_top_max_m", head_top_max_m, "m; highest head apex above soil [agro]");
+    v("stem_radius_m", stem_radius_m, "m; main stem radius [agro]");
+    v("leaf_count_min", leaf_count_min, "outer leaves per plant, minimum (issue2: 8)");
+    v("leaf_count_max", leaf_count_max, "outer leaves per plant, maximum (issue2: 14)");
+    v("leaf_length_min_m", leaf_length_min_m, "m; outer leaf length incl. petiole, minimum [agro]");
+    v("leaf_length_max_m", leaf_length_max_m, "m; outer leaf length incl. petiole, maximum [agro]");
+    v("leaf_width_ratio", leaf_width_ratio, "blade width / leaf length [agro]");
+    v("leaf_elevation_min_deg", leaf_elevation_min_deg,
+      "deg; outer leaf angle above horizontal at the stem, minimum [agro]");
+    v("leaf_elevation_max_deg", leaf_elevation_max_deg,
+      "deg; outer leaf angle above horizontal at the stem, maximum [agro]");
+    v("leaf_droop_min_deg", leaf_droop_min_deg, "deg; how much the blade bends down from base to tip, minimum [agro]");
+    v("leaf_droop_max_deg", leaf_droop_max_deg, "deg; how much the blade bends down from base to tip, maximum [agro]");
+    v("leaf_cup", leaf_cup, "cupping of the blade across its width, fraction of the half width [agro]");
+    v("leaf_ruffle_m", leaf_ruffle_m, "m; amplitude of the wavy leaf margin [agro]");
+    v("inner_leaves_min", inner_leaves_min,
+      "young inner leaves that curl over the head, minimum (issue2: leaves partly hide the head)");
+    v("inner_leaves_max", inner_leaves_max, "young inner leaves that curl over the head, maximum");
+    v("inner_leaf_length_min_m", inner_leaf_length_min_m, "m; inner leaf length, minimum [agro]");
+    v("inner_leaf_length_max_m", inner_leaf_length_max_m, "m; inner leaf length, maximum [agro]");
+    v("inner_leaf_curl_min_deg", inner_leaf_curl_min_deg,
+      "deg; inner leaf direction at the tip above horizontal (>90 = bends back over the head), minimum");
+    v("inner_leaf_curl_max_deg", inner_leaf_curl_max_deg,
+      "deg; inner leaf direction at the tip above horizontal, maximum");
+  }
+};
+
+struct SimHeadConfig {
+  double diameter_min_mm = 60.0;
+  double diameter_max_mm = 200.0;
+  double immature_prob = 0.3;
+  double mature_min_mm = 100.0;
+  double mature_mean_mm = 140.0;
+  double mature_std_mm = 25.0;
+  double ellipticity_max = 0.12;
+  double dome_ratio_min = 0.45;
+  double dome_ratio_max = 0.70;
+  double tilt_max_deg = 12.0;
+  double floret_ratio = 0.16;
+  double floret_height = 0.55;
+  double purple_prob = 0.1;
+  template <class V>
+  void visit(V& v) {
+    v("diameter_min_mm", diameter_min_mm, "mm; smallest head (issue2: 60)");
+    v("diameter_max_mm", diameter_max_mm, "mm; largest head (issue2: 200)");
+    v("immature_prob", immature_prob, "fraction of heads still immature (issue2: mature and immature)");
+    v("mature_min_mm", mature_min_mm,
+      "mm; immature heads are uniform in [diameter_min, mature_min); mature ones above [agro]");
+    v("mature_mean_mm", mature_mean_mm, "mm; mean diameter of mature heads (normal, clipped) [agro]");
+    v("mature_std_mm", mature_std_mm, "mm; std of mature head diameters [agro]");
+    v("ellipticity_max", ellipticity_max, "max (a-b)/(a+b) of the head outline (issue2: slightly elliptic)");
+    v("dome_ratio_min", dome_ratio_min, "dome height / head radius, minimum [agro]");
+    v("dome_ratio_max", dome_ratio_max, "dome height / head radius, maximum [agro]");
+    v("tilt_max_deg", tilt_max_deg, "deg; largest tilt of the head axis from vertical [agro]");
+    v("floret_ratio", floret_ratio, "floret radius / head radius (florets on a phyllotactic spiral) [agro]");
+    v("floret_height", floret_height, "floret bump height / floret radius [agro]");
+    v("purple_prob", purple_prob, "fraction of heads with an anthocyanin (purple) tinge [agro]");
+  }
+};
+
+struct SimWeedConfig {
+  double size_min_m = 0.02;
+  double size_max_m = 0.10;
+  double height_max_m = 0.08;
+  template <class V>
+  void visit(V& v) {
+    v("size_min_m", size_min_m, "m; smallest weed rosette radius [agro]");
+    v("size_max_m", size_max_m, "m; largest weed rosette radius [agro]");
+    v("height_max_m", height_max_m, "m; highest weed leaf above soil [agro]");
+  }
+};
+
+struct SimSoilConfig {
+  double grid_m = 0.01;
+  double roughness_m = 0.010;
+  double roughness_scale_m = 0.12;
+  double ridge_height_m = 0.03;
+  double clod_density_m2 = 60.0;
+  double clod_size_min_m = 0.01;
+  double clod_size_max_m = 0.045;
+  double moist_fraction = 0.3;
+  double reflectivity_dry = 0.30;
+  double reflectivity_moist = 0.12;
+  template <class V>
+  void visit(V& v) {
+    v("grid_m", grid_m, "m; soil mesh resolution (about 3 px at 1.25 m)");
+    v("roughness_m", roughness_m, "m; amplitude of the fractal soil height noise [agro]");
+    v("roughness_scale_m", roughness_scale_m, "m; horizontal scale of the coarsest noise octave [agro]");
+    v("ridge_height_m", ridge_height_m, "m; height of the planting bed under each row over the furrow [agro]");
+    v("clod_density_m2", clod_density_m2, "clods per square metre (issue2: rough soil) [agro]");
+    v("clod_size_min_m", clod_size_min_m, "m; smallest clod radius [agro]");
+    v("clod_size_max_m", clod_size_max_m, "m; largest clod radius [agro]");
+    v("moist_fraction", moist_fraction, "fraction of the soil in dark moist patches (low NIR return) [agro]");
+    v("reflectivity_dry", reflectivity_dry, "NIR (860 nm) reflectivity of dry soil [agro; typical 0.25-0.35]");
+    v("reflectivity_moist", reflectivity_moist, "NIR reflectivity of moist soil [agro; typical 0.1-0.15]");
+  }
+};
+
+struct SimSensorConfig {
+  double noise_at_1m_m = 0.0015;
+  double reference_reflectivity = 0.5;
+  double background = 0.1;
+  bool sunlight = false;
+  double sunlight_background = 3.0;
+  double sunlight_dropout = 0.03;
+  double amplitude_min = 0.06;
+  double amplitude_softness = 0.02;
+  double random_dropout = 0.003;
+  double edge_threshold_m = 0.02;
+  double flying_prob = 0.5;
+  double edge_dropout_prob = 0.3;
+  double color_noise = 3.0;
+  template <class V>
+  void visit(V& v) {
+    v("noise_at_1m_m", noise_at_1m_m,
+      "m; axial depth noise std for a reference surface head-on at 1 m (tof: Kinect v2 about 1-2 mm)");
+    v("reference_reflectivity", reference_reflectivity, "NIR reflectivity of the reference surface for noise_at_1m_m");
+    v("background", background,
+      "ambient light relative to the reference return at 1 m (tof: B in sigma ~ sqrt(A+B)/A)");
+    v("sunlight", sunlight, "simulate direct sunlight: background rises to sunlight_background, extra dropout");
+    v("sunlight_background", sunlight_background,
+      "ambient light relative to the reference return under direct sun [tof]");
+    v("sunlight_dropout", sunlight_dropout,
+      "extra probability of no return per pixel under direct sun (saturation) [tof]");
+    v("amplitude_min", amplitude_min,
+      "relative amplitude (reflectivity x cos(incidence) / z^2, reference = 1) at which half the returns are lost: "
+      "dark and grazing surfaces [tof]");
+    v("amplitude_softness", amplitude_softness, "width of the logistic amplitude dropout curve [tof]");
+    v("random_dropout", random_dropout, "probability of a missing return anywhere [kinect2]");
+    v("edge_threshold_m", edge_threshold_m, "m; sub-pixel depth spread above which a pixel straddles a discontinuity");
+    v("flying_prob", flying_prob,
+      "probability that a straddling pixel returns a mixed (flying) depth between fore- and background [tof]");
+    v("edge_dropout_prob", edge_dropout_prob,
+      "probability that a straddling pixel is dropped (driver's flying-pixel filter) [kinect2/libfreenect2]");
+    v("color_noise", color_noise, "std of per-channel colour noise, 8-bit levels");
+  }
+};
+
+struct SimLightConfig {
+  double sun_elevation_deg = 55.0;
+  double sun_azimuth_deg = 30.0;
+  double ambient = 0.45;
+  template <class V>
+  void visit(V& v) {
+    v("sun_elevation_deg", sun_elevation_deg, "deg; light direction above the horizon (colour shading only)");
+    v("sun_azimuth_deg", sun_azimuth_deg, "deg; light azimuth from field +x towards +y");
+    v("ambient", ambient, "ambient share of the colour shading (overcast sky)");
+  }
+};
+
+struct BroccoliSimConfig {
+  SimCameraConfig camera;
+  SimMotionConfig motion;
+  SimFieldConfig field;
+  SimPlantConfig plant;
+  SimHeadConfig head;
+  SimWeedConfig weed;
+  SimSoilConfig soil;
+  SimSensorConfig sensor;
+  SimLightConfig light;
+  template <class V>
+  void visit(V& v) {
+    v("camera", camera, "");
+    v("motion", motion, "");
+    v("field", field, "");
+    v("plant", plant, "");
+    v("head", head, "");
+    v("weed", weed, "");
+    v("soil", soil, "");
+    v("sensor", sensor, "");
+    v("light", light, "");
+  }
+  /// Throws Error(where, ...) when a value is out of range.
+  void validate(const std::string& where) const;
+};
+
+}  // namespace cropsight::sim

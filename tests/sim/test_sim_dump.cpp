@@ -1,0 +1,74 @@
+// Not a test: renders a few frames to PNG for eyeballing and for docs/img/ (run with
+//   CROPSIGHT_SIM_DUMP=DIR test_sim --gtest_also_run_disabled_tests --gtest_filter='*Dump*').
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <string>
+
+#include "cropsight/sim/broccoli_sim.hpp"
+
+namespace {
+
+cv::Mat depth_view(const cropsight::RgbdFrame& f, double zmin, double zmax) {
+  cv::Mat gray(f.depth.height, f.depth.width, CV_8UC1);
+  for (int v = 0; v < f.depth.height; ++v)
+    for (int u = 0; u < f.depth.width; ++u) {
+      const double z = f.depth.at(u, v) * f.camera.depth_scale;
+      gray.at<std::uint8_t>(v, u) =
+          z <= 0 ? 0 : std::uint8_t(std::clamp(255.0 * (zmax - z) / (zmax - zmin), 1.0, 255.0));
+    }
+  cv::Mat out;
+  cv::applyColorMap(gray, out, cv::COLORMAP_TURBO);
+  for (int v = 0; v < f.depth.height; ++v)
+    for (int u = 0; u < f.depth.width; ++u)
+      if (f.depth.at(u, v) == 0) out.at<cv::Vec3b>(v, u) = {0, 0, 0};
+  return out;
+}
+
+cv::Mat color_view(const cropsight::RgbdFrame& f, bool outline) {
+  cv::Mat out(f.color.height, f.color.width, CV_8UC3);
+  for (int v = 0; v < f.color.height; ++v)
+    for (int u = 0; u < f.color.width; ++u) {
+      const auto c = f.color.at(u, v);
+      out.at<cv::Vec3b>(v, u) = {c.b, c.g, c.r};
+      if (outline && f.labels.at(u, v)) {
+        const auto l = f.labels.at(u, v);
+        const bool edge = u == 0 || v == 0 || u + 1 == f.color.width || v + 1 == f.color.height ||
+                          f.labels.at(u - 1, v) != l || f.labels.at(u + 1, v) != l || f.labels.at(u, v - 1) != l ||
+                          f.labels.at(u, v + 1) != l;
+        if (edge) out.at<cv::Vec3b>(v, u) = {0, 255, 255};
+      }
+    }
+  return out;
+}
+
+void dump(const std::string& variety, const std::filesystem::path& dir, int frames) {
+  cropsight::sim::BroccoliSimConfig cfg;
+  if (variety == "spain") {
+    cfg.camera.height_m = 1.40;
+    cfg.field.rows_under_camera = 1;
+    cfg.field.row_spacing_m = 0.9;
+    cfg.field.in_row_spacing_m = 0.3;
+  }
+  cropsight::sim::BroccoliSimulator sim(cfg, 1, frames);
+  for (int i = 0; i < frames; i += std::max(1, frames / 3)) {
+    const auto f = sim.render(i);
+    const std::string stem = (dir / (variety + "_" + std::to_string(i))).string();
+    cv::imwrite(stem + "_depth.png", depth_view(f, 0.5, 1.4));
+    cv::imwrite(stem + "_color.png", color_view(f, false));
+    cv::imwrite(stem + "_labels.png", color_view(f, true));
+  }
+}
+
+}  // namespace
+
+TEST(SimDump, DISABLED_Dump) {
+  const char* dir = std::getenv("CROPSIGHT_SIM_DUMP");
+  ASSERT_NE(dir, nullptr) << "set CROPSIGHT_SIM_DUMP";
+  std::filesystem::create_directories(dir);
+  dump("uk", dir, 9);
+  dump("spain", dir, 9);
+}
