@@ -1,0 +1,58 @@
+// End-to-end checks of the grape sub-commands through the CLI binary (skipped until it is built).
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "cropsight/io/grape_text.hpp"
+#include "testing/testing.hpp"
+
+namespace {
+using namespace cropsight;
+
+Cloud two_blobs(std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> g;
+  Cloud c;
+  for (int i = 0; i < 400; ++i) {
+    const int l = i < 200 ? 1 : 3;
+    const Eigen::Vector3f d = Eigen::Vector3f(g(rng), g(rng), g(rng)).normalized();
+    c.points.push_back(0.3f * d + Eigen::Vector3f(l == 1 ? -0.4f : 0.4f, 0, 0));
+    c.normals.push_back(d);
+    c.colors.emplace_back(l == 1 ? 0.2f : 0.3f, l == 1 ? 0.1f : 0.7f, 0.2f);
+    c.labels.push_back(l);
+  }
+  return c;
+}
+
+TEST(GrapeCli, TrainEvalSegmentAndBadInput) {
+  if (!std::filesystem::exists(cropsight::testing::cli_path())) GTEST_SKIP() << "CLI not built";
+  cropsight::testing::TempDir t;
+  std::filesystem::create_directories(t / "data" / "points");
+  for (int i = 0; i < 4; ++i)
+    io::write_grape_text(t / "data" / "points" / ("c" + std::to_string(i) + ".txt"), two_blobs(std::uint32_t(i)));
+  const std::string data = (t / "data").string(), model = (t / "m.json").string();
+  auto r = cropsight::testing::run_cli("train grape --data '" + data + "' --model gbdt --val-fold 1/2 --out '" + model +
+                            "' --set gbdt.rounds=5 --set points_per_cloud=300 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = cropsight::testing::run_cli("eval grape --data '" + data + "' --model '" + model + "' --fold 1/2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* k : {"clouds", "points", "oacc", "macc", "miou", "per_class", "ms_per_cloud"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_EQ(j["clouds"], 2);
+  EXPECT_EQ(j["per_class"].size(), 6u);
+  r = cropsight::testing::run_cli("segment grape --model '" + model + "' --input '" + data + "/points/c0.txt' --out '" +
+                       (t / "lab.txt").string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(io::read_grape_text(t / "lab.txt").size(), 400u);
+
+  std::ofstream(t / "bad.txt") << "1 2 3\n";
+  r = cropsight::testing::run_cli("segment grape --model '" + model + "' --input '" + (t / "bad.txt").string() + "' --out '" +
+                       (t / "never.txt").string() + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("bad.txt: line 1"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(t / "never.txt"));
+}
+}  // namespace
