@@ -48,8 +48,8 @@ void run_simulate_broccoli(const SimulateBroccoliOptions& o) {
   } else {
     std::cout << "wrote " << o.out << ": " << summary.frames << " frames, " << summary.instances
               << " ground-truth heads (" << summary.plants << " plants, " << summary.harvested
-              << " harvested), mean occlusion " << summary.mean_occlusion << ", valid depth "
-              << summary.valid_fraction << ", " << summary.seconds << " s\n";
+              << " harvested), mean occlusion " << summary.mean_occlusion << ", valid depth " << summary.valid_fraction
+              << ", " << summary.seconds << " s\n";
   }
 }
 }  // namespace
