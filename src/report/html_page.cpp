@@ -21,7 +21,7 @@ td.num{text-align:right;font-variant-numeric:tabular-nums}
 caption{caption-side:bottom;font-size:.85em;color:#666;padding-top:.3em;text-align:left}
 .figs{display:flex;flex-wrap:wrap;gap:.8em;margin:.5em 0 1em 0}
 figure{margin:0;background:#fff;border:1px solid #ddd;padding:.4em}
-figure img{display:block;image-rendering:pixelated}
+figure img{display:block;max-width:372px;height:auto}
 figcaption{font-size:.85em;color:#555;padding-top:.3em}
 .svg{background:#fff;border:1px solid #ddd;display:inline-block;padding:.4em;margin:.5em 0}
 footer{margin-top:2em;font-size:.8em;color:#888}
