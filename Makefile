@@ -14,6 +14,10 @@ JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
 CTEST_ARGS ?=
 
+# ccache: rewrite absolute paths under the checkout so that caches are shared between clones.
+export CCACHE_BASEDIR := $(CURDIR)
+export CCACHE_NOHASHDIR := 1
+
 .PHONY: all deps configure build test demo bench asan format format-check clean
 
 all: build

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# `make demo` (as scripts/demo.sh BUILD_DIR): simulates a short UK-like broccoli sequence,
-# validates it with `cropsight info`, and writes one self-contained HTML page about it with
-# `cropsight report`. The last line printed is the absolute path of the page.
-# Later pipelines add their steps (train/detect/eval) before the report and pass their outputs
-# to `cropsight report`.
+# `make demo` (as scripts/demo.sh BUILD_DIR): simulates a short UK-like broccoli sequence (a
+# seed the shipped models never saw), validates it with `cropsight info`, runs the OES broccoli
+# head detector with the shipped model (detections, masks, temporal filter and field map),
+# evaluates it against the simulator's ground truth, and writes one self-contained HTML report
+# with `cropsight report --model`. The last line printed is the absolute path of the page.
 set -euo pipefail
 
 BUILD=${1:-build}
@@ -32,8 +32,16 @@ echo "== cropsight simulate broccoli --variety uk --frames 30 --seed 7 --out $SE
 echo "== cropsight info $SEQ"
 "$CLI" info "$SEQ"
 
-echo "== cropsight report --data $SEQ --out $PAGE"
-"$CLI" report --data "$SEQ" --out "$PAGE" >/dev/null
+MODEL=models/broccoli-oes-uk.json
+echo "== cropsight detect broccoli --data $SEQ --model $MODEL --track --map $DEMO/map.csv"
+"$CLI" detect broccoli --data "$SEQ" --model "$MODEL" --out "$DEMO/detections.jsonl" --masks "$DEMO/masks" \
+  --track --map "$DEMO/map.csv" --quiet
+
+echo "== cropsight eval broccoli --data $SEQ --model $MODEL --track"
+"$CLI" eval broccoli --data "$SEQ" --model "$MODEL" --track --quiet
+
+echo "== cropsight report --data $SEQ --model $MODEL --out $PAGE"
+"$CLI" report --data "$SEQ" --model "$MODEL" --out "$PAGE" >/dev/null
 
 echo "demo page:"
 realpath "$PAGE"
