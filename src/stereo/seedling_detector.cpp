@@ -226,6 +226,19 @@ SeedlingDetection detect_seedling(const ColorImage& left, const ColorImage& righ
       cv::dilate(om, om,
                  cv::getStructuringElement(cv::MORPH_ELLIPSE,
                                            cv::Size(2 * cfg.topview_dilate + 1, 2 * cfg.topview_dilate + 1)));
+    // One plant is one connected region seen from above: keep the largest connected region of
+    // the occupancy, so that stray samples (a touching weed leaf, mismatched edge points) cannot
+    // stretch the envelope box.
+    cv::Mat labels, stats, centroids;
+    const int nl = cv::connectedComponentsWithStats(om, labels, stats, centroids, 8, CV_32S);
+    if (nl > 2) {
+      int best = 1;
+      for (int l = 2; l < nl; ++l)
+        if (stats.at<int>(l, cv::CC_STAT_AREA) > stats.at<int>(best, cv::CC_STAT_AREA)) best = l;
+      for (int y = 0; y < om.rows; ++y)
+        for (int x = 0; x < om.cols; ++x)
+          if (labels.at<int>(y, x) != best) om.at<std::uint8_t>(y, x) = 0;
+    }
     std::vector<Eigen::Vector3d> dense;
     for (int i : cand) {
       const Eigen::Vector3d p = sp.points[i].cast<double>();

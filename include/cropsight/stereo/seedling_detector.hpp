@@ -20,7 +20,8 @@
 //   4. The chosen points go through the KNN outlier filter (mean distance to k neighbours above
 //      mean + alpha sigma removed).
 //   5. Dense result: every reconstructed point above `min_height` whose top-view cell lies
-//      within `topview_dilate` cells of a kept sampled point.
+//      within `topview_dilate` cells of a kept sampled point, restricted to the largest connected
+//      top-view region (one plant is one connected region seen from above).
 #include <Eigen/Core>
 #include <string>
 #include <vector>
