@@ -24,4 +24,11 @@ void add_segment_grape(CLI::App& segment);
 void add_eval_grape(CLI::App& eval);
 void add_roi_cloud(CLI::App& app);
 
+// Broccoli seedlings from stereo (issue 5): stereo calibrate|disparity, detect / eval / simulate seedling, eval stereo
+void add_stereo(CLI::App& app);
+void add_detect_seedling(CLI::App& detect);
+void add_eval_seedling(CLI::App& eval);
+void add_eval_stereo(CLI::App& eval);
+void add_simulate_seedling(CLI::App& simulate);
+
 }  // namespace cropsight::cli

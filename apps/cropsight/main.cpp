@@ -48,6 +48,12 @@ int main(int argc, char** argv) {
   add_eval_grape(*eval);
   add_roi_cloud(app);
 
+  // Broccoli seedlings from stereo (issue 5)
+  add_stereo(app);
+  add_detect_seedling(*detect);
+  add_eval_seedling(*eval);
+  add_eval_stereo(*eval);
+  add_simulate_seedling(*simulate);
 
   try {
     app.parse(argc, argv);
