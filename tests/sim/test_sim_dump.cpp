@@ -45,6 +45,16 @@ cv::Mat color_view(const cropsight::RgbdFrame& f, bool outline) {
   return out;
 }
 
+// Docs copy: 3/4 size, 5 bits per channel, so that each PNG stays well under 200 KB.
+void write_small(const std::string& path, const cv::Mat& img) {
+  cv::Mat small;
+  cv::resize(img, small, cv::Size(), 0.75, 0.75, cv::INTER_AREA);
+  small.forEach<cv::Vec3b>([](cv::Vec3b& p, const int*) {
+    for (int k = 0; k < 3; ++k) p[k] = std::uint8_t((p[k] & 0xF8) | 4);
+  });
+  cv::imwrite(path, small, {cv::IMWRITE_PNG_COMPRESSION, 9});
+}
+
 void dump(const std::string& variety, const std::filesystem::path& dir, int frames) {
   cropsight::sim::BroccoliSimConfig cfg;
   if (variety == "spain") {
@@ -60,6 +70,8 @@ void dump(const std::string& variety, const std::filesystem::path& dir, int fram
     cv::imwrite(stem + "_depth.png", depth_view(f, 0.5, 1.4));
     cv::imwrite(stem + "_color.png", color_view(f, false));
     cv::imwrite(stem + "_labels.png", color_view(f, true));
+    write_small(stem + "_depth_small.png", depth_view(f, 0.5, 1.4));
+    write_small(stem + "_labels_small.png", color_view(f, true));
   }
 }
 
