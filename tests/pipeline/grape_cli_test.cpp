@@ -34,7 +34,7 @@ TEST(GrapeCli, TrainEvalSegmentAndBadInput) {
     io::write_grape_text(t / "data" / "points" / ("c" + std::to_string(i) + ".txt"), two_blobs(std::uint32_t(i)));
   const std::string data = (t / "data").string(), model = (t / "m.json").string();
   auto r = cropsight::testing::run_cli("train grape --data '" + data + "' --model gbdt --val-fold 1/2 --out '" + model +
-                            "' --set gbdt.rounds=5 --set points_per_cloud=300 --json");
+                                       "' --set gbdt.rounds=5 --set points_per_cloud=300 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = cropsight::testing::run_cli("eval grape --data '" + data + "' --model '" + model + "' --fold 1/2 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -44,13 +44,13 @@ TEST(GrapeCli, TrainEvalSegmentAndBadInput) {
   EXPECT_EQ(j["clouds"], 2);
   EXPECT_EQ(j["per_class"].size(), 6u);
   r = cropsight::testing::run_cli("segment grape --model '" + model + "' --input '" + data + "/points/c0.txt' --out '" +
-                       (t / "lab.txt").string() + "'");
+                                  (t / "lab.txt").string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(io::read_grape_text(t / "lab.txt").size(), 400u);
 
   std::ofstream(t / "bad.txt") << "1 2 3\n";
-  r = cropsight::testing::run_cli("segment grape --model '" + model + "' --input '" + (t / "bad.txt").string() + "' --out '" +
-                       (t / "never.txt").string() + "'");
+  r = cropsight::testing::run_cli("segment grape --model '" + model + "' --input '" + (t / "bad.txt").string() +
+                                  "' --out '" + (t / "never.txt").string() + "'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("bad.txt: line 1"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(t / "never.txt"));
