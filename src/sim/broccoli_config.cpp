@@ -42,6 +42,15 @@ void BroccoliSimConfig::validate(const std::string& where) const {
           "plant.head_top_min/max_m must satisfy 0.05 < min <= max");
   require(plant.leaf_length_min_m > 0 && plant.leaf_length_max_m >= plant.leaf_length_min_m, where,
           "plant.leaf_length_min/max_m must satisfy 0 < min <= max");
+  require(plant.leaf_rim_step_min_m >= 0 && plant.leaf_rim_step_max_m >= plant.leaf_rim_step_min_m &&
+              plant.leaf_rim_step_max_m <= 0.3,
+          where, "plant.leaf_rim_step_min/max_m must satisfy 0 <= min <= max <= 0.3");
+  require(plant.leaf_rim_clearance_m >= 0 && plant.leaf_rim_clearance_m <= 0.2, where,
+          "plant.leaf_rim_clearance_m must be in [0, 0.2] m");
+  require(plant.inner_leaf_gap_max_m >= 0 && plant.inner_leaf_gap_max_m <= 0.2, where,
+          "plant.inner_leaf_gap_max_m must be in [0, 0.2] m");
+  require(plant.leaf_rim_touch_prob >= 0 && plant.leaf_rim_touch_prob <= 1, where,
+          "plant.leaf_rim_touch_prob must be in [0, 1]");
   require(head.diameter_min_mm >= 10 && head.diameter_max_mm > head.diameter_min_mm && head.diameter_max_mm <= 400,
           where, "head.diameter_min/max_mm must satisfy 10 <= min < max <= 400");
   require(head.mature_min_mm >= head.diameter_min_mm && head.mature_min_mm <= head.diameter_max_mm, where,

@@ -5,21 +5,40 @@
 
 namespace cropsight::sim::detail {
 
+Eigen::Vector3d midrib_tangent(const LeafShape& L, double s) {
+  const double az = L.azimuth + L.yaw_bend * s;
+  const double el = L.elevation0 + (L.elevation1 - L.elevation0) * std::pow(s, L.bend_power);
+  return {std::cos(el) * std::cos(az), std::cos(el) * std::sin(az), std::sin(el)};
+}
+
+double midrib_z_at_radius(const LeafShape& L, const Eigen::Vector2d& axis, double radius) {
+  const int ns = std::max(3, L.segments);
+  const double step = L.length / (ns - 1);
+  Eigen::Vector3d p = L.start;
+  double r_prev = (p.head<2>() - axis).norm();
+  if (r_prev >= radius) return std::nan("");
+  for (int i = 1; i < ns; ++i) {
+    const Eigen::Vector3d q = p + midrib_tangent(L, double(i) / (ns - 1)) * step;
+    const double r = (q.head<2>() - axis).norm();
+    if (r >= radius) return p.z() + (q.z() - p.z()) * (radius - r_prev) / (r - r_prev);
+    p = q;
+    r_prev = r;
+  }
+  return std::nan("");
+}
+
 void add_leaf(Mesh& mesh, const LeafShape& L, SurfaceKind kind, Rng& rng) {
   const int ns = std::max(3, L.segments), nt = std::max(3, L.across | 1);
   const double step = L.length / (ns - 1);
   const double ruffle_freq = 3.0 + 4.0 * rng.uniform();  // waves along the margin
   const double ruffle_phase = 6.283185307 * rng.uniform();
   const double petiole_w = std::min(0.014, 0.12 * L.width);
-  const Eigen::Vector3d up(0, 0, 1);
   Eigen::Vector3d p = L.start;
   std::vector<std::uint32_t> idx(std::size_t(ns) * std::size_t(nt));
   for (int i = 0; i < ns; ++i) {
     const double s = double(i) / (ns - 1);
     const double az = L.azimuth + L.yaw_bend * s;
-    const double el = L.elevation0 + (L.elevation1 - L.elevation0) * std::pow(s, L.bend_power);
-    const Eigen::Vector3d h(std::cos(az), std::sin(az), 0.0);
-    const Eigen::Vector3d tangent = std::cos(el) * h + std::sin(el) * up;
+    const Eigen::Vector3d tangent = midrib_tangent(L, s);
     if (i > 0) p += tangent * step;
     // Blade axes: `side` horizontal and perpendicular to the leaf direction, rolled by the twist;
     // `nb` = tangent x side points up for a leaf that goes outward.

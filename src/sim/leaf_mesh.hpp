@@ -1,6 +1,7 @@
 #pragma once
 // A curved, cupped, ruffled leaf as a triangle strip grid (used for broccoli leaves and weeds).
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "cropsight/sim/mesh.hpp"
 #include "cropsight/sim/random.hpp"
@@ -29,5 +30,13 @@ struct LeafShape {
 
 /// Appends the leaf to `mesh` (label 0, `kind`); per-vertex colour speckle from `rng`.
 void add_leaf(Mesh& mesh, const LeafShape& leaf, SurfaceKind kind, Rng& rng);
+
+/// Unit direction of the midrib at arc-length fraction s in [0, 1] (what add_leaf follows).
+Eigen::Vector3d midrib_tangent(const LeafShape& leaf, double s);
+
+/// Field z of the leaf's midrib where its horizontal distance from the vertical line through
+/// `axis` (x, y) first reaches `radius`, interpolated between the vertices add_leaf places; NaN
+/// when the midrib never gets that far (or starts beyond it).
+double midrib_z_at_radius(const LeafShape& leaf, const Eigen::Vector2d& axis, double radius);
 
 }  // namespace cropsight::sim::detail

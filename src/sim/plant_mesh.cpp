@@ -169,6 +169,26 @@ void add_head(Mesh& m, HeadSpec& h, const SimHeadConfig& cfg, Rng& rng) {
   (void)cfg;
 }
 
+/// Moves an outer leaf down the stem so that its midrib leaves the head's outline (`radius` from
+/// the stem axis `axis`) at or below `z_max`. A leaf too steep to get there while attached above
+/// kMinAttachZ leans outward in 5-degree steps: a petiole growing below a head wider than the
+/// stem has to go out before it can rise past the head.
+void keep_below_rim(detail::LeafShape& L, const Eigen::Vector2d& axis, double radius, double z_max) {
+  constexpr double kMinAttachZ = 0.05;  // lowest leaf base above soil, as drawn for the oldest leaves
+  for (int tries = 0; tries < 12; ++tries) {
+    const double z_out = detail::midrib_z_at_radius(L, axis, radius);
+    if (std::isnan(z_out) || z_out <= z_max) return;
+    const double z_start = L.start.z() - (z_out - z_max);
+    if (z_start >= kMinAttachZ) {
+      L.start.z() = z_start;
+      return;
+    }
+    L.elevation0 -= 5 * kDeg;
+    L.elevation1 -= 5 * kDeg;
+  }
+  L.start.z() = kMinAttachZ;
+}
+
 Eigen::Vector3f leaf_color(Rng& rng) {
   // Waxy, glaucous blue-green of brassica leaves; some older leaves yellower.
   const float g = float(rng.uniform(0.85, 1.12));
@@ -186,6 +206,8 @@ std::shared_ptr<const Mesh> BroccoliField::build_plant(PlantSpec& spec) const {
   auto mesh = std::make_shared<Mesh>();
   Mesh& m = *mesh;
   const Eigen::Vector3d foot(spec.xy.x(), spec.xy.y(), soil_base_height(spec.xy.x(), spec.xy.y()) - 0.02);
+  // The head first: its final size and rim height decide where the leaves may pass.
+  if (spec.has_head) add_head(m, spec.head, cfg_.head, rng);
   const double head_r = spec.has_head ? 0.5e-3 * spec.head.target_diameter_mm : 0.05;
   const double apex_z = spec.has_head ? spec.head.apex.z() : spec.stump_height + 0.1;
   const double stem_top = spec.has_head ? apex_z - 0.5 * head_r : spec.stump_height;
@@ -200,6 +222,14 @@ std::shared_ptr<const Mesh> BroccoliField::build_plant(PlantSpec& spec) const {
   const int n = rng.uniform_int(P.leaf_count_min, P.leaf_count_max);
   const double az0 = rng.uniform(0.0, 2 * kPi);
   const double attach_top = std::max(0.08, stem_top - 0.06);
+  // Rim step: where an outer leaf's midrib leaves the head's outline it must lie a drawn step
+  // below the lowest point of the (tilted) rim; leaves drawn higher are moved down the stem.
+  double rim_low = 0, rim_radius = 0;
+  if (spec.has_head) {
+    const HeadSpec& h = spec.head;
+    rim_radius = std::max(h.semi_a, h.semi_b);
+    rim_low = h.base.z() - rim_radius * std::sin(h.tilt_deg * kDeg);
+  }
   for (int i = 0; i < n; ++i) {
     const double rank = n > 1 ? double(i) / (n - 1) : 0.5;  // 0 = oldest
     detail::LeafShape L;
@@ -219,6 +249,9 @@ std::shared_ptr<const Mesh> BroccoliField::build_plant(PlantSpec& spec) const {
     L.twist = rng.normal(0.0, 15 * kDeg);
     L.color = leaf_color(rng);
     L.reflectivity = float(rng.uniform(0.5, 0.6));
+    const bool touches = rng.bernoulli(P.leaf_rim_touch_prob);
+    const double step = touches ? 0.0 : rng.uniform(P.leaf_rim_step_min_m, P.leaf_rim_step_max_m);
+    if (spec.has_head) keep_below_rim(L, spec.xy, rim_radius + P.leaf_rim_clearance_m, rim_low - step);
     detail::add_leaf(m, L, SurfaceKind::leaf, rng);
   }
 
@@ -229,7 +262,11 @@ std::shared_ptr<const Mesh> BroccoliField::build_plant(PlantSpec& spec) const {
     detail::LeafShape L;
     L.azimuth = rng.uniform(0.0, 2 * kPi);
     L.yaw_bend = rng.normal(0.0, 15 * kDeg);
-    const double out = head_r * rng.uniform(0.9, 1.2) + 0.01;
+    // Outside the head's outline (widest semi-axis plus floret bumps): a leaf cannot grow through
+    // the head, and one that did would join the head's surface without any depth step.
+    const double gap = rng.uniform(0.003, std::max(0.003, P.inner_leaf_gap_max_m));
+    const double out = spec.has_head ? rim_radius + spec.head.floret_height * spec.head.floret_radius + gap
+                                     : head_r * rng.uniform(0.9, 1.2) + 0.01;
     L.start = Eigen::Vector3d(spec.xy.x(), spec.xy.y(), stem_top - rng.uniform(0.0, 0.06)) +
               Eigen::Vector3d(std::cos(L.azimuth), std::sin(L.azimuth), 0) * out;
     L.length = rng.uniform(P.inner_leaf_length_min_m, P.inner_leaf_length_max_m);
@@ -246,7 +283,6 @@ std::shared_ptr<const Mesh> BroccoliField::build_plant(PlantSpec& spec) const {
     detail::add_leaf(m, L, SurfaceKind::leaf, rng);
   }
 
-  if (spec.has_head) add_head(m, spec.head, cfg_.head, rng);
   m.compute_normals();
   m.shade(light_direction(cfg_.light), float(cfg_.light.ambient));
   return mesh;

@@ -3,18 +3,18 @@
 #include <vector>
 
 #include "cropsight/core/rgbd_frame.hpp"
+#include "cropsight/io/config_yaml.hpp"
 #include "cropsight/sim/broccoli_sim.hpp"
+#include "testing/testing.hpp"
 
 namespace cropsight::testdata {
 
-/// Simulator config of the `spain` variety (what configs/sim-broccoli-spain.yaml changes).
+/// Simulator config of the `spain` variety: configs/sim-broccoli-spain.yaml applied to the
+/// defaults (= the `uk` preset), as `simulate broccoli --variety spain` does.
 inline sim::BroccoliSimConfig spain_config() {
   sim::BroccoliSimConfig c;
-  c.field.variety = "spain";
-  c.camera.height_m = 1.40;
-  c.field.rows_under_camera = 1;
-  c.field.row_spacing_m = 0.90;
-  c.field.in_row_spacing_m = 0.30;
+  const auto path = testing::source_dir() / "configs" / "sim-broccoli-spain.yaml";
+  apply_config(c, io::load_config_map(path), path.string());
   return c;
 }
 

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/sim/broccoli_sim.hpp"
@@ -15,15 +16,16 @@
 using namespace cropsight;
 
 namespace {
-sim::BroccoliSimConfig spain() {
+// The shipped presets (configs/sim-broccoli-<variety>.yaml), as `simulate broccoli --variety`
+// applies them.
+sim::BroccoliSimConfig preset(const std::string& variety) {
   sim::BroccoliSimConfig c;
-  c.field.variety = "spain";
-  c.camera.height_m = 1.40;
-  c.field.rows_under_camera = 1;
-  c.field.row_spacing_m = 0.90;
-  c.field.in_row_spacing_m = 0.30;
+  const auto path = cropsight::testing::source_dir() / "configs" / ("sim-broccoli-" + variety + ".yaml");
+  apply_config(c, io::load_config_map(path), path.string());
+  c.validate(path.string());
   return c;
 }
+sim::BroccoliSimConfig spain() { return preset("spain"); }
 
 // Camera frame -> field frame for the downward-looking camera (broccoli_sim.hpp):
 // field x = camera y, field y = camera x, field z = -camera z, plus the camera position.
@@ -37,8 +39,8 @@ TEST(BroccoliSim, SameSeedGivesIdenticalFramesAndFiles) {
   sim::BroccoliSimConfig cfg;
   sim::simulate_broccoli_sequence(cfg, 5, 2, tmp / "a", false);
   sim::simulate_broccoli_sequence(cfg, 5, 2, tmp / "b", false);
-  for (const char* f : {"camera.yaml", "poses.csv", "groundtruth.json", "depth/000001.png", "color/000001.png",
-                        "labels/000001.png"})
+  for (const char* f :
+       {"camera.yaml", "poses.csv", "groundtruth.json", "depth/000001.png", "color/000001.png", "labels/000001.png"})
     EXPECT_EQ(io::read_file(tmp / "a" / f), io::read_file(tmp / "b" / f)) << f;
   sim::simulate_broccoli_sequence(cfg, 6, 2, tmp / "c", false);
   EXPECT_NE(io::read_file(tmp / "a" / "depth/000001.png"), io::read_file(tmp / "c" / "depth/000001.png"));
@@ -86,8 +88,8 @@ TEST(BroccoliSim, GroundTruthIsConsistent) {
           ASSERT_TRUE(by_id.count(id)) << "label " << id << " has no ground-truth instance";
           const std::uint16_t d = f.depth.at(u, v);
           if (d == 0) continue;  // labelled but no return (dropout): allowed, counted below
-          const Eigen::Vector3d p = to_field(f.camera.deproject(float(u), float(v), float(d * f.camera.depth_scale)),
-                                             *f.camera_position);
+          const Eigen::Vector3d p =
+              to_field(f.camera.deproject(float(u), float(v), float(d * f.camera.depth_scale)), *f.camera_position);
           const auto& t = *by_id[id];
           if ((p - t.position).norm() > t.diameter_mm / 1000.0) ++far;
         }
@@ -98,8 +100,9 @@ TEST(BroccoliSim, GroundTruthIsConsistent) {
   }
 }
 
-// Known gap (docs/simulator.md): with the current presets spain occludes heads LESS than uk
-// (about 0.09 vs 0.15); the issue asks for more. Only the range is asserted here.
+// Occlusion lies in [0, 1] per head, and the spain preset's larger canopy (longer outer leaves,
+// more and longer inner leaves) hides the heads more than uk's, as the issue describes
+// (docs/simulator.md measures both over more seeds and frames).
 TEST(BroccoliSim, OcclusionWithinRange) {
   auto mean_occlusion = [](const sim::BroccoliSimConfig& cfg) {
     sim::BroccoliSimulator s(cfg, 11, 12);
@@ -123,6 +126,7 @@ TEST(BroccoliSim, OcclusionWithinRange) {
   EXPECT_LT(uk, 0.8);
   EXPECT_GT(es, 0.02);
   EXPECT_LT(es, 0.9);
+  EXPECT_GT(es, uk) << "spain's larger canopy must hide the heads more than uk's";
   std::printf("mean occlusion: uk %.3f spain %.3f\n", uk, es);
 }
 

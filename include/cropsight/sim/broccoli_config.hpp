@@ -105,12 +105,17 @@ struct SimPlantConfig {
   double leaf_droop_max_deg = 70.0;
   double leaf_cup = 0.25;
   double leaf_ruffle_m = 0.008;
+  double leaf_rim_step_min_m = 0.03;
+  double leaf_rim_step_max_m = 0.08;
+  double leaf_rim_clearance_m = 0.015;
+  double leaf_rim_touch_prob = 0.1;
   int inner_leaves_min = 1;
   int inner_leaves_max = 3;
   double inner_leaf_length_min_m = 0.14;
   double inner_leaf_length_max_m = 0.24;
   double inner_leaf_curl_min_deg = 100.0;
   double inner_leaf_curl_max_deg = 135.0;
+  double inner_leaf_gap_max_m = 0.03;
   template <class V>
   void visit(V& v) {
     v("plant_height_m", plant_height_m,
@@ -131,6 +136,18 @@ struct SimPlantConfig {
     v("leaf_droop_max_deg", leaf_droop_max_deg, "deg; how much the blade bends down from base to tip, maximum [agro]");
     v("leaf_cup", leaf_cup, "cupping of the blade across its width, fraction of the half width [agro]");
     v("leaf_ruffle_m", leaf_ruffle_m, "m; amplitude of the wavy leaf margin [agro]");
+    v("leaf_rim_step_min_m", leaf_rim_step_min_m,
+      "m; an outer leaf's midrib leaves the head's outline (+ leaf_rim_clearance_m) at least this far (drawn per "
+      "leaf up to leaf_rim_step_max_m) below the lowest point of the head's rim: the petioles attach to the thick "
+      "stem below the head and must go out before they rise past it, so the head rim stands on a visible depth "
+      "step over the leaves next to it (papers' field images). Leaves drawn higher move down the stem (and lean "
+      "outward when too steep); leaves drawn lower are kept [agro]");
+    v("leaf_rim_step_max_m", leaf_rim_step_max_m, "m; largest drawn rim step of an outer leaf [agro]");
+    v("leaf_rim_clearance_m", leaf_rim_clearance_m,
+      "m; horizontal distance beyond the head's widest semi-axis at which the rim step is enforced [agro]");
+    v("leaf_rim_touch_prob", leaf_rim_touch_prob,
+      "probability that an outer leaf's rim step is 0: it meets the head rim at the rim's height with no depth step "
+      "(young leaves pressed against the head) [agro]");
     v("inner_leaves_min", inner_leaves_min,
       "young inner leaves that curl over the head, minimum (issue2: leaves partly hide the head)");
     v("inner_leaves_max", inner_leaves_max, "young inner leaves that curl over the head, maximum");
@@ -140,6 +157,9 @@ struct SimPlantConfig {
       "deg; inner leaf direction at the tip above horizontal (>90 = bends back over the head), minimum");
     v("inner_leaf_curl_max_deg", inner_leaf_curl_max_deg,
       "deg; inner leaf direction at the tip above horizontal, maximum");
+    v("inner_leaf_gap_max_m", inner_leaf_gap_max_m,
+      "m; an inner leaf rises outside the head's outline (widest semi-axis plus floret bumps) with a gap drawn in "
+      "[3 mm, this] [agro]");
   }
 };
 

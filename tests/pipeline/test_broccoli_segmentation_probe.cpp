@@ -1,0 +1,157 @@
+// Not a test: measures how well a detector preset SEGMENTS the labelled heads of recorded
+// sequences, independently of any classifier (the upper bound of AP50 recall). Used to tune the
+// simulator's plant geometry and the OES/ORG presets on training seeds (docs/simulator.md,
+// docs/pipelines/broccoli-heads.md "Tuning"). Run with
+//
+//   CROPSIGHT_SEG_PROBE=seq1[,seq2] CROPSIGHT_SEG_PRESET=broccoli-oes-uk [CROPSIGHT_SEG_FRAMES=10]
+//   [CROPSIGHT_SEG_SET="key=value;key=value"]
+//     test_pipeline --gtest_also_run_disabled_tests --gtest_filter='*SegmentationProbe*'
+//
+// Per labelled head instance (every head with a visible point in a frame, as AP counts them) it
+// finds the cluster overlapping it most and prints how many reach IoU >= 0.5 ("found"), how many
+// lie mostly inside a larger cluster ("merged": under half of that cluster is this head) and how
+// many are broken or too small ("split / small"); the same for heads not cut by the image border
+// with at least `min_size` visible points ("clear"). CROPSIGHT_SEG_DUMP=DIR also writes the first
+// frames as PNG: depth (turbo), cluster borders black, head outlines white, merged heads' clusters
+// magenta.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+#include <string>
+
+#include "cropsight/io/config_yaml.hpp"
+#include "cropsight/io/sequence.hpp"
+#include "cropsight/pipeline/broccoli_detector.hpp"
+#include "cropsight/pipeline/broccoli_truth.hpp"
+#include "testing/testing.hpp"
+
+using namespace cropsight;
+using namespace cropsight::pipeline;
+
+namespace {
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  for (std::string item; std::getline(ss, item, sep);)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+void dump(const std::string& dir, int frame, const OrganizedCloud& cloud, std::span<const BroccoliCandidate> cands,
+          const std::vector<int>& merged_clusters, const std::vector<int>& merged_heads) {
+  const int w = cloud.width, h = cloud.height;
+  cv::Mat gray(h, w, CV_8UC1, cv::Scalar(0)), cluster(h, w, CV_32SC1, cv::Scalar(-1));
+  for (int i = 0; i < w * h; ++i) {
+    const float z = cloud.z[std::size_t(i)];
+    if (std::isfinite(z))
+      gray.at<std::uint8_t>(i / w, i % w) = std::uint8_t(std::clamp(255.0 * (1.0 - z) / 0.4, 1.0, 255.0));
+  }
+  cv::Mat out;
+  cv::applyColorMap(gray, out, cv::COLORMAP_TURBO);
+  for (int i = 0; i < w * h; ++i)
+    if (!std::isfinite(cloud.z[std::size_t(i)])) out.at<cv::Vec3b>(i / w, i % w) = {60, 60, 60};
+  for (std::size_t c = 0; c < cands.size(); ++c)
+    for (int idx : cands[c].segment.indices) cluster.at<int>(idx / w, idx % w) = int(c);
+  for (int c : merged_clusters)
+    for (int idx : cands[std::size_t(c)].segment.indices) out.at<cv::Vec3b>(idx / w, idx % w) = {255, 0, 255};
+  for (int v = 1; v < h; ++v)
+    for (int u = 1; u < w; ++u) {
+      const int c = cluster.at<int>(v, u);
+      if (c != cluster.at<int>(v - 1, u) || c != cluster.at<int>(v, u - 1)) out.at<cv::Vec3b>(v, u) = {0, 0, 0};
+      const auto l = cloud.labels[std::size_t(v * w + u)];
+      if (l != cloud.labels[std::size_t(v * w + u - 1)] || l != cloud.labels[std::size_t((v - 1) * w + u)])
+        out.at<cv::Vec3b>(v, u) = {255, 255, 255};
+    }
+  cv::imwrite(dir + "/probe-" + std::to_string(frame) + ".png", out);
+  // Enlarged crops around the merged clusters' heads.
+  for (std::size_t k = 0; k < merged_heads.size(); ++k) {
+    long su = 0, sv = 0, n = 0;
+    for (int i = 0; i < w * h; ++i)
+      if (cloud.labels[std::size_t(i)] == merged_heads[k]) su += i % w, sv += i / w, ++n;
+    if (!n) continue;
+    const int cu = int(su / n), cv_ = int(sv / n), r = 45;
+    const cv::Rect box = cv::Rect(cu - r, cv_ - r, 2 * r, 2 * r) & cv::Rect(0, 0, w, h);
+    cv::Mat crop;
+    cv::resize(out(box), crop, {}, 4, 4, cv::INTER_NEAREST);
+    cv::imwrite(dir + "/probe-" + std::to_string(frame) + "-head" + std::to_string(merged_heads[k]) + ".png", crop);
+  }
+}
+}  // namespace
+
+TEST(BroccoliSegmentationProbe, DISABLED_HeadsFoundPerPreset) {
+  const char* seqs = std::getenv("CROPSIGHT_SEG_PROBE");
+  if (!seqs) GTEST_SKIP() << "set CROPSIGHT_SEG_PROBE=seq[,seq]";
+  const char* preset_env = std::getenv("CROPSIGHT_SEG_PRESET");
+  const std::string preset = preset_env ? preset_env : "broccoli-oes-uk";
+  const int max_frames = std::getenv("CROPSIGHT_SEG_FRAMES") ? std::atoi(std::getenv("CROPSIGHT_SEG_FRAMES")) : 10;
+  ConfigMap values = io::load_config_map(cropsight::testing::source_dir() / "configs" / (preset + ".yaml"));
+  if (const char* set = std::getenv("CROPSIGHT_SEG_SET"))
+    for (const auto& kv : split(set, ';')) {
+      const auto eq = kv.find('=');
+      ASSERT_NE(eq, std::string::npos) << kv;
+      values[kv.substr(0, eq)] = kv.substr(eq + 1);
+    }
+  BroccoliDetectorConfig cfg;
+  apply_config(cfg, values, preset);
+  cfg.validate(preset);
+  const int min_size = cfg.pipeline == "oes"   ? cfg.oes.min_size
+                       : cfg.pipeline == "org" ? cfg.org.min_size
+                                               : cfg.fec.min_size;
+  BroccoliDetector det(cfg);
+  long all = 0, found = 0, merged = 0, clear = 0, clear_found = 0, clear_merged = 0, clear_split = 0, clusters = 0,
+       frames = 0;
+  std::vector<TruthInstance> truth;
+  for (const auto& dir : split(seqs, ',')) {
+    io::SequenceReader reader(dir);
+    for (int i = 0; i < std::min(max_frames, reader.size()); ++i) {
+      const auto cands = det.process(reader.read(i));
+      ++frames;
+      clusters += long(cands.size());
+      truth_instances(det.cloud(), 1, truth);
+      const auto& labels = det.cloud().labels;
+      std::vector<int> merged_clusters, merged_heads;
+      for (const auto& t : truth) {
+        // The cluster holding most of this head's points, and the IoU of the best cluster.
+        double best_iou = 0.0, best_overlap = 0.0, share_of_cluster = 0.0;
+        int best_cluster = -1;
+        for (std::size_t ci = 0; ci < cands.size(); ++ci) {
+          const auto& c = cands[ci];
+          long inter = 0;
+          for (int idx : c.segment.indices) inter += labels[std::size_t(idx)] == t.id;
+          if (inter == 0) continue;
+          const double iou = double(inter) / double(c.segment.indices.size() + t.indices.size() - inter);
+          best_iou = std::max(best_iou, iou);
+          if (inter > best_overlap) {
+            best_overlap = double(inter);
+            share_of_cluster = double(inter) / double(c.segment.indices.size());
+            best_cluster = int(ci);
+          }
+        }
+        const bool ok = best_iou >= 0.5;
+        const bool merge = !ok && best_overlap >= 0.5 * double(t.indices.size()) && share_of_cluster < 0.5;
+        // Neither: the head is in pieces, or its best cluster is below min_size (or it has none).
+        if (!t.cut_by_border && int(t.indices.size()) >= min_size && !ok && !merge) ++clear_split;
+        ++all;
+        found += ok;
+        merged += merge;
+        if (merge) merged_clusters.push_back(best_cluster), merged_heads.push_back(t.id);
+        if (!t.cut_by_border && int(t.indices.size()) >= min_size) {
+          ++clear;
+          clear_found += ok;
+          clear_merged += merge;
+        }
+      }
+      if (const char* d = std::getenv("CROPSIGHT_SEG_DUMP"); d && frames <= 3)
+        dump(d, int(frames), det.cloud(), cands, merged_clusters, merged_heads);
+    }
+  }
+  std::printf(
+      "SEGPROBE preset=%s frames=%ld clusters/frame=%.1f heads: found %ld / %ld (%.3f), merged %ld | "
+      "clear heads (in view, >= %d points): found %ld / %ld (%.3f), merged %ld, split/small %ld\n",
+      preset.c_str(), frames, frames ? double(clusters) / double(frames) : 0.0, found, all,
+      all ? double(found) / double(all) : 0.0, merged, min_size, clear_found, clear,
+      clear ? double(clear_found) / double(clear) : 0.0, clear_merged, clear_split);
+}
