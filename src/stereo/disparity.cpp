@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "census_sgm.hpp"
 #include "cropsight/core/error.hpp"
 #include "cv_convert.hpp"
 
@@ -142,7 +143,58 @@ cv::Mat rank_features(const cv::Mat& image, int radius) {
   return merged;
 }
 
+// Removes small disparity islands (OpenCV's filterSpeckles on a 1/16 px fixed-point copy): the
+// census engine's equivalent of SGBM's built-in speckle filter.
+void remove_speckles(DisparityImage& disp, int window, int range) {
+  if (window <= 0) return;
+  cv::Mat d16(disp.height, disp.width, CV_16S);
+  for (int y = 0; y < disp.height; ++y) {
+    const float* s = disp.row(y);
+    short* o = d16.ptr<short>(y);
+    for (int x = 0; x < disp.width; ++x) o[x] = std::isnan(s[x]) ? short(-16) : short(std::lround(s[x] * 16.0f));
+  }
+  cv::filterSpeckles(d16, -16, window, range * 16);
+  for (int y = 0; y < disp.height; ++y) {
+    const short* o = d16.ptr<short>(y);
+    float* s = disp.row(y);
+    for (int x = 0; x < disp.width; ++x)
+      if (o[x] == -16) s[x] = kNaN;
+  }
+}
+
+DisparityImage run_census(const cv::Mat& left, const cv::Mat& right, const DisparityConfig& c,
+                          const std::string& where) {
+  check_config(c, where);
+  if (c.min_disparity != 0) throw Error(where, "the census engine searches from disparity 0 (min_disparity must be 0)");
+  auto gray = [](const cv::Mat& m) {
+    if (m.channels() == 1) return m;
+    cv::Mat g;
+    cv::cvtColor(m, g, cv::COLOR_RGB2GRAY);
+    return g;
+  };
+  detail::CensusSgmParams p;
+  p.num_disparities = c.num_disparities;
+  p.census_width = c.census_width;
+  p.census_height = c.census_height;
+  p.p1 = c.census_p1;
+  p.p2 = c.census_p2;
+  p.uniqueness_ratio = c.uniqueness_ratio;
+  p.lr_check = c.lr_check;
+  DisparityImage out;
+  try {
+    out = detail::census_sgm(gray(left), gray(right), p);
+  } catch (const Error& e) {
+    throw Error(where, e.problem());
+  }
+  remove_speckles(out, c.speckle_window, c.speckle_range);
+  if (c.fill_holes) fill_disparity_holes(out, c.median);
+  return out;
+}
+
 DisparityImage match(const cv::Mat& left, const cv::Mat& right, const DisparityConfig& c, const std::string& where) {
+  if (c.engine == "census") return run_census(left, right, c, where);
+  if (c.engine != "opencv")
+    throw Error(where, "unknown disparity engine '" + c.engine + "' (expected census or opencv)");
   if (c.rank_radius > 0)
     return run_sgbm(rank_features(left, c.rank_radius), rank_features(right, c.rank_radius), c, where);
   return run_sgbm(left, right, c, where);

@@ -25,26 +25,37 @@ namespace cropsight::stereo {
 using DisparityImage = Image<float>;
 
 struct DisparityConfig {
-  int num_disparities = 128;  ///< search range [min_disparity, min_disparity + num_disparities); multiple of 16
-  int min_disparity = 0;      ///< pixels
-  int block_size = 5;         ///< matching window side (odd)
-  double p1 = 32;             ///< SGM small-jump penalty per channel per window pixel (P1 = p1*cn*bs^2)
-  double p2 = 64;             ///< SGM large-jump penalty per channel per window pixel (P2 = p2*cn*bs^2)
-  int uniqueness_ratio = 10;  ///< percent margin of best over second-best cost
-  int speckle_window = 100;   ///< pixels; connected regions smaller than this are invalidated
-  int speckle_range = 2;      ///< pixels; max disparity step inside one speckle region
-  int disp12_max_diff = 1;    ///< pixels; OpenCV's internal left-right check tolerance (-1 off)
-  int pre_filter_cap = 63;    ///< clip of OpenCV's x-Sobel prefilter
-  int lr_check = 1;           ///< px; explicit left-right check against the mirrored match (-1 off)
-  std::string mode = "3way";  ///< "sgbm" (5 paths), "hh" (8 paths), "hh4", "3way"
-  bool pad_left = true;       ///< pad left so the left-most columns get a disparity
-  bool fill_holes = true;     ///< fill invalid pixels (background-favouring scan-line fill + median)
-  int median = 5;             ///< median window (0/1 = none) applied after filling
-  bool use_color = true;      ///< match on colour when both images have colour (ignored when rank_radius > 0)
-  int rank_radius = 3;        ///< px; rank-transform window radius of the matching features (0 = raw image)
+  std::string engine = "census";  ///< "census" (ours, see below) or "opencv" (StereoSGBM)
+  int census_width = 9;           ///< px; census window (census engine), odd, width*height <= 65
+  int census_height = 7;          ///< px; odd
+  int census_p1 = 10;             ///< Hamming bits; SGM penalty of a +-1 px step (census engine)
+  int census_p2 = 120;            ///< Hamming bits; SGM penalty of a larger step (census engine)
+  int num_disparities = 128;      ///< search range [min_disparity, min_disparity + num_disparities); multiple of 16
+  int min_disparity = 0;          ///< pixels
+  int block_size = 5;             ///< matching window side (odd)
+  double p1 = 32;                 ///< SGM small-jump penalty per channel per window pixel (P1 = p1*cn*bs^2)
+  double p2 = 64;                 ///< SGM large-jump penalty per channel per window pixel (P2 = p2*cn*bs^2)
+  int uniqueness_ratio = 10;      ///< percent margin of best over second-best cost
+  int speckle_window = 100;       ///< pixels; connected regions smaller than this are invalidated
+  int speckle_range = 2;          ///< pixels; max disparity step inside one speckle region
+  int disp12_max_diff = 1;        ///< pixels; OpenCV's internal left-right check tolerance (-1 off)
+  int pre_filter_cap = 63;        ///< clip of OpenCV's x-Sobel prefilter
+  int lr_check = 1;               ///< px; explicit left-right check against the mirrored match (-1 off)
+  std::string mode = "3way";      ///< "sgbm" (5 paths), "hh" (8 paths), "hh4", "3way"
+  bool pad_left = true;           ///< pad left so the left-most columns get a disparity
+  bool fill_holes = true;         ///< fill invalid pixels (background-favouring scan-line fill + median)
+  int median = 5;                 ///< median window (0/1 = none) applied after filling
+  bool use_color = true;          ///< match on colour when both images have colour (ignored when rank_radius > 0)
+  int rank_radius = 3;            ///< px; rank-transform window radius of the matching features (0 = raw image)
 
   template <class V>
   void visit(V& v) {
+    v("engine", engine,
+      "census = our census-cost SGM (5 paths, one sweep, LR check from the same costs) | opencv = StereoSGBM");
+    v("census_width", census_width, "px; census window width, odd (census engine; libSGM and Spangenberg 2014: 9)");
+    v("census_height", census_height, "px; census window height, odd (census engine; 7 as in 9x7 census)");
+    v("census_p1", census_p1, "Hamming bits; SGM penalty for +-1 px disparity changes (census engine)");
+    v("census_p2", census_p2, "Hamming bits; SGM penalty for larger disparity jumps (census engine)");
     v("num_disparities", num_disparities, "px; disparity search range, multiple of 16 (paper: 128 at 640x480)");
     v("min_disparity", min_disparity, "px; smallest disparity searched");
     v("block_size", block_size, "px; SGBM matching window side, odd");
