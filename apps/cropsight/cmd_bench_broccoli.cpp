@@ -16,6 +16,7 @@
 #include <cstdio>
 
 #include "broccoli_cli.hpp"
+#include "broccoli_tracking.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
@@ -91,9 +92,15 @@ void run(const BenchOptions& o) {
 
   auto config_of = [&](const std::string& pipe) {
     pipeline::BroccoliDetectorConfig cfg;
-    apply_config(cfg, io::load_config_map(io::find_preset("broccoli-" + pipe + "-" + o.variety)),
-                 "broccoli-" + pipe + "-" + o.variety);
-    apply_config(cfg, o.common.config_map(), "--set");
+    // The sizing.* / tracking.* keys (issue 4) a preset or --set may hold are not the detector's.
+    // They are still checked, so that a typo is an error here too.
+    const std::string name = "broccoli-" + pipe + "-" + o.variety;
+    ConfigMap preset = io::load_config_map(io::find_preset(name));
+    tracking::HeadMapperConfig{}.apply(take_tracking_keys(preset), name);
+    apply_config(cfg, preset, name);
+    ConfigMap overrides = o.common.config_map();
+    tracking::HeadMapperConfig{}.apply(take_tracking_keys(overrides), "--set");
+    apply_config(cfg, overrides, "--set");
     cfg.features = "vfh";
     cfg.outliers.enabled = o.sor;
     return cfg;

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "broccoli_cli.hpp"
+#include "broccoli_tracking.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
@@ -25,6 +26,8 @@ struct TrainOptions {
 void run(const TrainOptions& o) {
   // defaults ← preset ← --set ← explicit flags; keys "grid.*" configure the grid search.
   ConfigMap all = o.common.config_map();
+  // sizing.* / tracking.* (issue 4) configure detect/eval --track, not training; checked all the same.
+  tracking::HeadMapperConfig{}.apply(take_tracking_keys(all), o.common.config.empty() ? "--set" : o.common.config);
   ConfigMap grid_keys, detector_keys;
   for (const auto& [k, v] : all) (k.rfind("grid.", 0) == 0 ? grid_keys : detector_keys)[k] = v;
   pipeline::BroccoliDetectorConfig cfg;

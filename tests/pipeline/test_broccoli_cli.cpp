@@ -119,3 +119,35 @@ TEST_F(BroccoliCli, BenchReportsEveryPipelineAndThePclReference) {
   }
   EXPECT_TRUE(j["pipelines"]["oes"].contains("speedup_vs_pcl"));
 }
+
+// A preset may carry the sizing.* / tracking.* keys of issue 4 (detect/eval --track read them):
+// train and bench must split them off before configuring the detector, and still reject typos.
+TEST_F(BroccoliCli, TrainAndBenchIgnoreTrackingKeysOfAPreset) {
+  const fs::path preset = dir() / "with-tracking.yaml";
+  {
+    std::ofstream f(preset);
+    f << "pipeline: oes\nfeatures: vfh\noes:\n  min_size: 500\nsizing:\n  estimator: hull\n"
+         "  bbox_offset_mm: 12.5\ntracking:\n  use_poses: true\n";
+  }
+  const fs::path model = dir() / "tracking-keys.json";
+  auto r = run_cli("train broccoli --data " + q(seq()) + " --config " + q(preset) + " --out " + q(model) + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const learning::Model m = learning::load_model(model);
+  for (const auto& [k, v] : m.info.config) {
+    EXPECT_NE(k.rfind("sizing.", 0), 0u) << k;
+    EXPECT_NE(k.rfind("tracking.", 0), 0u) << k;
+  }
+  r = run_cli("bench broccoli --data " + q(seq()) + " --model " + q(model) +
+              " --frames 1 --json --set tracking.use_poses=true --set sizing.estimator=bbox");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(nlohmann::json::parse(r.out)["pipelines"].contains("oes"));
+  // A misspelt tracking key is still an error, with one line.
+  r = run_cli("train broccoli --data " + q(seq()) + " --config " + q(preset) + " --set tracking.no_such_key=1 --out " +
+              q(dir() / "typo.json"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no_such_key"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir() / "typo.json"));
+  r = run_cli("bench broccoli --data " + q(seq()) + " --model " + q(model) + " --frames 1 --set sizing.estimmator=x");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("estimmator"), std::string::npos) << r.err;
+}
