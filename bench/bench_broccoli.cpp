@@ -3,12 +3,22 @@
 // each scoring clusters with the same RBF SVM (trained once at start-up on other frames).
 //
 //   build/bin/bench_broccoli [--benchmark_filter=Oes]
+//
+// CROPSIGHT_BENCH_SEQ=DIR times the first (up to) 20 frames of a recorded/simulated sequence
+// instead, and CROPSIGHT_BENCH_MODEL=FILE scores with that model (VFH features) instead of the
+// one trained at start-up, e.g. the shipped models on the uk test seed:
+//   CROPSIGHT_BENCH_SEQ=uk-test CROPSIGHT_BENCH_MODEL=models/broccoli-oes-uk.json \
+//     build/bin/bench_broccoli --benchmark_filter='Oes|Org'
+// Counters: fps and clusters per frame, plus each stage's wall-clock ms per frame.
 #include <benchmark/benchmark.h>
 #include <oneapi/tbb/global_control.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <memory>
 
 #include "cropsight/io/config_yaml.hpp"
+#include "cropsight/io/sequence.hpp"
 #include "cropsight/pipeline/broccoli_training.hpp"
 #include "cropsight/pipeline/pcl_reference.hpp"
 #include "cropsight/sim/broccoli_sim.hpp"
@@ -26,8 +36,17 @@ struct Fixture {
 
  private:
   Fixture() {
-    sim::BroccoliSimulator test(sim::BroccoliSimConfig{}, 7, 4);
-    for (int i = 0; i < test.frames(); ++i) frames.push_back(test.render(i));
+    if (const char* seq = std::getenv("CROPSIGHT_BENCH_SEQ")) {
+      io::SequenceReader reader(seq);
+      for (int i = 0; i < std::min(reader.size(), 20); ++i) frames.push_back(reader.read(i));
+    } else {
+      sim::BroccoliSimulator test(sim::BroccoliSimConfig{}, 7, 4);
+      for (int i = 0; i < test.frames(); ++i) frames.push_back(test.render(i));
+    }
+    if (const char* file = std::getenv("CROPSIGHT_BENCH_MODEL")) {
+      model = std::make_shared<learning::Model>(learning::load_model(file));
+      return;
+    }
     sim::BroccoliSimulator train(sim::BroccoliSimConfig{}, 5, 6);
     auto cfg = config("fec");
     pipeline::BroccoliDatasetBuilder builder(cfg);
@@ -61,12 +80,15 @@ void run_detector(benchmark::State& state, const std::string& pipe) {
   const Fixture& f = Fixture::get();
   pipeline::BroccoliDetector det(Fixture::config(pipe));
   det.set_model(f.as(pipe));
+  det.process(f.frames.front());  // warm-up: buffers sized
+  det.timer().clear();
   std::size_t i = 0, clusters = 0;
   for (auto _ : state) {
     clusters += det.process(f.frames[i++ % f.frames.size()]).size();
   }
   state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["clusters"] = double(clusters) / double(state.iterations());
+  for (const auto& s : det.timer().stages()) state.counters[s.name] = s.total_ms / double(state.iterations());
 }
 
 void BM_Oes(benchmark::State& s) { run_detector(s, "oes"); }

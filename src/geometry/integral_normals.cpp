@@ -9,7 +9,9 @@
 // float) and the scatter matrix stays in double (PCL subtracts in float, which loses digits), and
 // the eigenpair comes from Newton's method on the characteristic polynomial instead of PCL's
 // trigonometric closed form (no transcendental call per pixel), in float after centring, in a
-// branch-free loop over each row that the compiler vectorises.
+// branch-free loop over each row's list of pixels that need a normal (valid, with a window, and
+// selected when the caller passes a selection), which the compiler vectorises. Invalid and
+// unselected pixels skip steps 3's window sums and the solver entirely.
 #include "cropsight/geometry/integral_normals.hpp"
 
 #include <algorithm>
@@ -24,9 +26,9 @@ namespace {
 
 constexpr int kSums = 10;  // n, x, y, z, xx, xy, xz, yy, yz, zz
 
-// Smallest eigenpair of the scatter matrices of one row of pixels, structure of arrays:
-// m[0..5][i] = xx, xy, xz, yy, yz, zz of pixel i (float, already centred in double), p = its
-// position, ok = whether pixel i has a window at all. Writes the unit normal (towards the camera)
+// Smallest eigenpair of the scatter matrices of a list of pixels (those of one row that need a
+// normal), structure of arrays: m[0..5][i] = xx, xy, xz, yy, yz, zz of pixel i (float, already
+// centred in double), p = its position. Writes the unit normal (towards the camera)
 // and λ0/trace, or NaN. Branch-free over i so that it vectorises; compiled for AVX2 and for the
 // baseline ISA, picked at run time (target_clones).
 //  - eigenvalue: the matrix is scaled to trace 1 and λ0 is the smallest root of
@@ -36,9 +38,9 @@ constexpr int kSums = 10;  // n, x, y, z, xx, xy, xz, yy, yz, zz
 //  - eigenvector: the longest cross product of two rows of (A - λ0·I) (PCL's eigen33 does the same).
 __attribute__((target_clones("avx2", "default"))) void solve_row(int n, const float* __restrict m, std::size_t stride,
                                                                  const float* __restrict px, const float* __restrict py,
-                                                                 const float* __restrict pz, const float* __restrict ok,
-                                                                 float* __restrict nx, float* __restrict ny,
-                                                                 float* __restrict nz, float* __restrict cv) {
+                                                                 const float* __restrict pz, float* __restrict nx,
+                                                                 float* __restrict ny, float* __restrict nz,
+                                                                 float* __restrict cv) {
   const float* M0 = m;
   const float* M1 = m + stride;
   const float* M2 = m + 2 * stride;
@@ -74,7 +76,7 @@ __attribute__((target_clones("avx2", "default"))) void solve_row(int n, const fl
     x = t02 ? r02x : x, y = t02 ? r02y : y, z = t02 ? r02z : z, nn = t02 ? n02 : nn;
     const bool t01 = n01 >= nn;
     x = t01 ? r01x : x, y = t01 ? r01y : y, z = t01 ? r01z : z, nn = t01 ? n01 : nn;
-    const bool good = (ok[i] > 0.5f) & (tr0 > 0.0f) & (nn > 1e-30f);
+    const bool good = (tr0 > 0.0f) & (nn > 1e-30f);
     const float inv = 1.0f / std::sqrt(nn > 1e-30f ? nn : 1.0f);
     // Towards the viewpoint (camera origin): (0 - p)·n ≥ 0.
     const float flip = (px[i] * x + py[i] * y + pz[i] * z) > 0.0f ? -inv : inv;
@@ -85,30 +87,34 @@ __attribute__((target_clones("avx2", "default"))) void solve_row(int n, const fl
   }
 }
 
-// Window sums for a row of pixels that all use the full S×S window (pixel k of the run sits at
-// column S + k) and their centred scatter matrices, written as floats into six planes of
-// `stride`; the caller overwrites the pixels whose window is smaller. Branch-free and unit-stride over k: vectorised
-// (AVX2 clone at run time).
-__attribute__((target_clones("avx2", "default"))) void full_windows(int run, int off, int S,
-                                                                    const double* __restrict top_row,
-                                                                    const double* __restrict bottom_row,
-                                                                    float* __restrict out, std::size_t stride) {
-  // Window of pixel u = S + k: columns [u - S/2, u - S/2 + S) → integral columns u - S/2 and
-  // u - S/2 + S, i.e. k + off and k + off + S with off = S - S/2.
-  for (int k = 0; k < run; ++k) {
-    const double* a0 = top_row + std::size_t(k + off) * kSums;
-    const double* a1 = a0 + std::size_t(S) * kSums;
-    const double* c0 = bottom_row + std::size_t(k + off) * kSums;
-    const double* c1 = c0 + std::size_t(S) * kSums;
-    double m[kSums];
-    for (int q = 0; q < kSums; ++q) m[q] = c1[q] + a0[q] - a1[q] - c0[q];
-    const double ic = 1.0 / (m[0] > 0.5 ? m[0] : 1.0);
-    out[k] = float(m[4] - m[1] * m[1] * ic);
-    out[stride + k] = float(m[5] - m[1] * m[2] * ic);
-    out[2 * stride + k] = float(m[6] - m[1] * m[3] * ic);
-    out[3 * stride + k] = float(m[7] - m[2] * m[2] * ic);
-    out[4 * stride + k] = float(m[8] - m[2] * m[3] * ic);
-    out[5 * stride + k] = float(m[9] - m[3] * m[3] * ic);
+// One sweep of the chamfer distance along a row (forward: c[i] = min(t[i], c[i-1] + 1) for
+// i = 1..w-1, c[0] = t[0]; the backward sweep is the same on the reversed row), computed without
+// the sequential dependency: c[i] = min over j of g^j(t[i-j]) with g(x) = fl(x + 1), because
+// fl(· + 1) is monotone, so fl(min(a, b) + 1) = min(fl(a + 1), fl(b + 1)); the same float sums as
+// the sequential loop, hence bit-identical. Terms with j > `reach` exceed the cap that every t
+// is below, so `reach` passes (each a vectorised shift-add-min over the row) suffice. `a` and `b`
+// are scratch rows of w floats.
+__attribute__((target_clones("avx2", "default"))) void sweep_forward(int w, float* __restrict c, int reach,
+                                                                     float* __restrict a, float* __restrict b) {
+  for (int i = 0; i < w; ++i) a[i] = c[i];
+  for (int j = 1; j <= reach; ++j) {
+    // b[i] = g^j(t[i - j]) from a[i] = g^(j-1)(t[i - j + 1]).
+    for (int i = w - 1; i >= j; --i) {
+      b[i] = a[i - 1] + 1.0f;
+      c[i] = std::min(c[i], b[i]);
+    }
+    std::swap(a, b);
+  }
+}
+__attribute__((target_clones("avx2", "default"))) void sweep_backward(int w, float* __restrict c, int reach,
+                                                                      float* __restrict a, float* __restrict b) {
+  for (int i = 0; i < w; ++i) a[i] = c[i];
+  for (int j = 1; j <= reach; ++j) {
+    for (int i = 0; i < w - j; ++i) {
+      b[i] = a[i + 1] + 1.0f;
+      c[i] = std::min(c[i], b[i]);
+    }
+    std::swap(a, b);
   }
 }
 
@@ -116,10 +122,12 @@ __attribute__((target_clones("avx2", "default"))) void full_windows(int run, int
 
 IntegralNormalEstimator::IntegralNormalEstimator(IntegralNormalConfig cfg) : cfg_(cfg) {}
 
-void IntegralNormalEstimator::compute(OrganizedCloud& cloud) {
+void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int> select) {
   if (!(cfg_.normal_smoothing_size >= 1.0f) || !std::isfinite(cfg_.normal_smoothing_size))
     throw Error("normals", "normal_smoothing_size must be at least 1 pixel");
   if (!(cfg_.max_depth_change_factor >= 0.0f)) throw Error("normals", "max_depth_change_factor must be >= 0");
+  if (!select.empty() && select.size() != cloud.size())
+    throw Error("normals", "selection size differs from the cloud size");
   constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
   const int w = cloud.width, h = cloud.height;
   const std::size_t n = cloud.size();
@@ -171,37 +179,34 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud) {
   // reads that wrap into the neighbouring row). Values are capped at `cap` (> smoothing size):
   // the passes are a min-plus recursion, so capping the start values gives min(PCL's value, cap),
   // and only min(distance, smoothing) is used. Each row is split into a vectorised part (the
-  // three neighbours in the previous row) and a sequential sweep along the row, which skips the
-  // dependency chain where nothing within reach is closer than the cap.
+  // three neighbours in the previous row) and the sweep along the row (sweep_forward/backward:
+  // vectorised too, same float sums as PCL's sequential loop).
   const float cap = float(S) + 2.0f;
+  const int reach = int(cap) + 1;  // g^j(x) >= j - tiny > cap for j >= reach
   distance_.resize(n);
-  scratch_.resize(std::size_t(w));
+  scratch_.resize(3 * std::size_t(w));
   float* dist = distance_.data();
   float* t = scratch_.data();
+  float* sa = t + w;
+  float* sb = sa + w;
   for (std::size_t i = 0; i < n; ++i) dist[i] = ch[i] ? cap : 0.0f;
   for (int ri = 1; ri < h; ++ri) {
     const float* prev = dist + std::size_t(ri - 1) * w;
     float* cur = dist + std::size_t(ri) * w;
     for (int ci = 1; ci < w; ++ci)  // prev[w] is cur[0], as in PCL
       t[ci] = std::min(std::min(prev[ci - 1] + 1.4f, prev[ci] + 1.0f), std::min(prev[ci + 1] + 1.4f, cur[ci]));
-    float carry = cur[0] + 1.0f;
-    for (int ci = 1; ci < w; ++ci) {
-      const float v = carry < cap ? std::min(t[ci], carry) : t[ci];
-      cur[ci] = v;
-      carry = v + 1.0f;
-    }
+    t[0] = cur[0];
+    sweep_forward(w, t, reach, sa, sb);
+    std::copy(t + 1, t + w, cur + 1);
   }
   for (int ri = h - 2; ri >= 0; --ri) {
     float* cur = dist + std::size_t(ri) * w;
     const float* next = cur + w;
     for (int ci = w - 2; ci >= 0; --ci)  // next[-1] is cur[w-1], as in PCL
       t[ci] = std::min(std::min(next[ci - 1] + 1.4f, next[ci] + 1.0f), std::min(next[ci + 1] + 1.4f, cur[ci]));
-    float carry = cur[w - 1] + 1.0f;
-    for (int ci = w - 2; ci >= 0; --ci) {
-      const float v = carry < cap ? std::min(t[ci], carry) : t[ci];
-      cur[ci] = v;
-      carry = v + 1.0f;
-    }
+    t[w - 1] = cur[w - 1];
+    sweep_backward(w, t, reach, sa, sb);
+    std::copy(t, t + w - 1, cur);
   }
 
   // 3. Ring of integral rows I(r), r = 0..h: I(r)[u] = sums over rows < r and columns < u, each
@@ -254,29 +259,55 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud) {
   float* NY = cloud.ny.data();
   float* NZ = cloud.nz.data();
   float* CV = cloud.curvature.data();
-  // Per row: window sums with the full window for every pixel (vectorised), then a fix-up pass
-  // for the pixels near depth changes whose window is smaller, then solve_row().
+  // Per row: the list of pixels that get a normal (valid, window larger than 2, selected), their
+  // window sums and scatter matrices (one scalar pass: the window size varies near depth
+  // changes), then solve_row() on the compacted list (vectorised) and a scatter of the results.
+  // Invalid and unselected pixels cost one test each.
   const int run = w - 2 * S;
   const std::size_t stride = std::size_t(run);
-  row_.resize(6 * stride);
-  ok_.resize(stride);
+  row_.resize(13 * stride);  // 6 scatter planes, 3 positions, 4 results
+  cols_.resize(stride);
+  sizes_.resize(stride);
+  float* M = row_.data();
+  float* PX = M + 6 * stride;
+  float* PY = PX + stride;
+  float* PZ = PY + stride;
+  float* RX = PZ + stride;
+  float* RY = RX + stride;
+  float* RZ = RY + stride;
+  float* RC = RZ + stride;
+  int* cols = cols_.data();
+  int* sizes = sizes_.data();
+  const int* sel = select.empty() ? nullptr : select.data();
   for (int v = S; v < h - S; ++v) {
-    build_until(v + S - S / 2);
-    const double* top_row = irow(v - S / 2);
-    const double* bottom_row = irow(v - S / 2 + S);
-    full_windows(run, S - S / 2, S, top_row, bottom_row, row_.data(), stride);
-    for (int k = 0; k < run; ++k) {
-      const int u = S + k;
-      const std::size_t i = std::size_t(v) * w + u;
+    const std::size_t o = std::size_t(v) * w;
+    int count = 0;
+    for (int u = S; u < w - S; ++u) {
+      const std::size_t i = o + u;
       const float sm = std::min(dist[i], smoothing);
       // NaN points have distance 0, so this also skips them.
-      const bool window = std::isfinite(Z[i]) && sm > 2.0f;
-      ok_[k] = window ? 1.0f : 0.0f;
-      const int s = int(sm);
-      if (window && s != S) scatter(irow(v - s / 2), irow(v - s / 2 + s), u - s / 2, s, row_.data() + k, stride);
+      const bool window = std::isfinite(Z[i]) && sm > 2.0f && (!sel || sel[i] >= 0);
+      cols[count] = u, sizes[count] = int(sm);
+      count += window ? 1 : 0;
     }
-    const std::size_t o = std::size_t(v) * w + S;
-    solve_row(run, row_.data(), stride, X + o, Y + o, Z + o, ok_.data(), NX + o, NY + o, NZ + o, CV + o);
+    if (count == 0) continue;
+    build_until(v + S - S / 2);
+    // Window rows per size (s = 2..S; sm > 2 gives s >= 2): top v - s/2, bottom v - s/2 + s.
+    const double* tops[64];
+    const double* bottoms[64];
+    for (int s = 2; s <= S && s < 64; ++s) tops[s] = irow(v - s / 2), bottoms[s] = irow(v - s / 2 + s);
+    for (int k = 0; k < count; ++k) {
+      const int u = cols[k], s = sizes[k];
+      const double* top_row = s < 64 ? tops[s] : irow(v - s / 2);
+      const double* bottom_row = s < 64 ? bottoms[s] : irow(v - s / 2 + s);
+      scatter(top_row, bottom_row, u - s / 2, s, M + k, stride);
+      PX[k] = X[o + u], PY[k] = Y[o + u], PZ[k] = Z[o + u];
+    }
+    solve_row(count, M, stride, PX, PY, PZ, RX, RY, RZ, RC);
+    for (int k = 0; k < count; ++k) {
+      const std::size_t i = o + cols[k];
+      NX[i] = RX[k], NY[i] = RY[k], NZ[i] = RZ[k], CV[i] = RC[k];
+    }
   }
 }
 

@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/geometry/depth_filter.hpp"
+#include "cropsight/geometry/depth_filter.hpp"  // valid_indices
 #include "cropsight/geometry/integral_normals.hpp"
 #include "cropsight/geometry/organized_edges.hpp"
 #include "cropsight/geometry/statistical_outlier.hpp"
@@ -59,14 +59,25 @@ void BroccoliDetector::make_cloud(const RgbdFrame& frame) {
   cloud_.x.resize(n);
   cloud_.y.resize(n);
   cloud_.z.resize(n);
+  // Deprojection and the depth-range filter in one pass: the same float values as deprojecting
+  // and then calling geometry::filter_depth_range (z = d·scale, NaN outside [min, max]).
+  if (!(cfg_.depth.min_depth <= cfg_.depth.max_depth))
+    throw Error("depth range", "min_depth must not exceed max_depth");
   const float scale = float(frame.camera.depth_scale);
   const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float lo = cfg_.depth.min_depth, hi = cfg_.depth.max_depth;
   const std::uint16_t* d = frame.depth.data.data();
+  const float* rx = ray_x_.data();
+  const float* ry = ray_y_.data();
+  float* X = cloud_.x.data();
+  float* Y = cloud_.y.data();
+  float* Z = cloud_.z.data();
   for (std::size_t i = 0; i < n; ++i) {
-    const float z = d[i] ? float(d[i]) * scale : nan;
-    cloud_.z[i] = z;
-    cloud_.x[i] = ray_x_[i] * z;
-    cloud_.y[i] = ray_y_[i] * z;
+    const float zd = float(d[i]) * scale;
+    const float z = (d[i] != 0 && zd >= lo && zd <= hi) ? zd : nan;
+    Z[i] = z;
+    X[i] = rx[i] * z;
+    Y[i] = ry[i] * z;
   }
   if (!frame.labels.empty()) {
     if (frame.labels.width != w || frame.labels.height != h)
@@ -77,18 +88,32 @@ void BroccoliDetector::make_cloud(const RgbdFrame& frame) {
   }
 }
 
+void BroccoliDetector::normals(std::span<const int> select) {
+  auto t = timer_.scope("normals");
+  normals_->compute(cloud_, select);
+}
+
 void BroccoliDetector::cluster() {
   if (cfg_.pipeline == "oes") {
+    // OES segments without normals (unless crease edges need the curvature): the normals are
+    // then computed only for the pixels of the kept segments, the only ones VFH reads.
+    const bool lazy = !(cfg_.edges.high_curvature_threshold > 0.0f);
+    if (!lazy) normals();
     {
       auto t = timer_.scope("edges");
       geometry::detect_organized_edges(cloud_, cfg_.edges, edges_);
     }
-    auto t = timer_.scope("clustering");
-    segments_ = segmentation::segment_oes(cloud_, edges_, cfg_.oes, flood_);
+    {
+      auto t = timer_.scope("clustering");
+      segments_ = segmentation::segment_oes(cloud_, edges_, cfg_.oes, flood_);
+    }
+    if (lazy) normals(flood_.labels);
   } else if (cfg_.pipeline == "org") {
+    normals();
     auto t = timer_.scope("clustering");
     segments_ = segmentation::segment_org(cloud_, cfg_.org, flood_);
   } else {
+    normals();
     valid_ = geometry::valid_indices(cloud_);
     if (cfg_.outliers.enabled) {
       auto t = timer_.scope("outliers");
@@ -103,11 +128,6 @@ std::span<const BroccoliCandidate> BroccoliDetector::process(const RgbdFrame& fr
   {
     auto t = timer_.scope("cloud");
     make_cloud(frame);
-    geometry::filter_depth_range(cloud_, cfg_.depth);
-  }
-  {
-    auto t = timer_.scope("normals");
-    normals_->compute(cloud_);
   }
   cluster();
   count_ = segments_.size();
@@ -117,7 +137,9 @@ std::span<const BroccoliCandidate> BroccoliDetector::process(const RgbdFrame& fr
     for (std::size_t k = 0; k < count_; ++k) {
       BroccoliCandidate& c = candidates_[k];
       std::swap(c.segment, segments_[k]);  // keeps the pool's old index buffer in segments_
-      std::sort(c.segment.indices.begin(), c.segment.indices.end());
+      // The organised clusterings return ascending indices already; FEC's are sorted here.
+      if (!std::is_sorted(c.segment.indices.begin(), c.segment.indices.end()))
+        std::sort(c.segment.indices.begin(), c.segment.indices.end());
       feature_set_.compute(cloud_, c.segment.indices, cfg_.feature_options, c.features);
       c.truth = cloud_.has_labels() ? cluster_truth(c.segment.indices, cloud_.labels, cfg_.detection.min_head_fraction)
                                     : ClusterTruth{};

@@ -130,3 +130,32 @@ TEST(IntegralNormals, TinyCloudIsAllNaN) {
   ASSERT_TRUE(c.has_normals());
   for (std::size_t i = 0; i < c.size(); ++i) EXPECT_TRUE(std::isnan(c.nx[i]));
 }
+
+TEST(IntegralNormals, SelectionGivesTheSameValuesOnSelectedPixelsOnly) {
+  // The lazy path OES uses: normals only where select[i] >= 0, bit-identical to the full run.
+  const auto scene = cropsight::testing::make_synthetic_scene();
+  OrganizedCloud full = scene.cloud, part = scene.cloud;
+  geometry::IntegralNormalEstimator est;
+  est.compute(full);
+  std::vector<int> select(part.size(), -1);
+  std::size_t chosen = 0;
+  for (std::size_t i = 0; i < select.size(); ++i)
+    if (scene.cloud.labels[i] != 0 || (i / 7) % 3 == 0) select[i] = 0, ++chosen;
+  est.compute(part, select);
+  std::size_t finite = 0;
+  for (std::size_t i = 0; i < part.size(); ++i) {
+    if (select[i] < 0) {
+      EXPECT_TRUE(std::isnan(part.nx[i]) && std::isnan(part.curvature[i])) << i;
+      continue;
+    }
+    ASSERT_EQ(std::isfinite(part.nx[i]), std::isfinite(full.nx[i])) << i;
+    if (!std::isfinite(full.nx[i])) continue;
+    ++finite;
+    EXPECT_EQ(part.nx[i], full.nx[i]);
+    EXPECT_EQ(part.ny[i], full.ny[i]);
+    EXPECT_EQ(part.nz[i], full.nz[i]);
+    EXPECT_EQ(part.curvature[i], full.curvature[i]);
+  }
+  EXPECT_GT(finite, chosen / 3);
+  EXPECT_THROW(est.compute(part, std::vector<int>(3, 0)), Error);
+}

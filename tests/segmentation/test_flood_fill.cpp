@@ -36,7 +36,7 @@ TEST(FloodFill, LabelsFourConnectedRegionsInRasterOrder) {
                                    -1, -1, 2,  2,  //
                                    3,  -1, 2,  -1};
   EXPECT_EQ(ws.labels, expect);
-  EXPECT_EQ(segs[0].indices, (std::vector<int>{0, 1, 4}));  // fill order from the seed
+  EXPECT_EQ(segs[0].indices, (std::vector<int>{0, 1, 4}));  // ascending (raster order)
   EXPECT_EQ(segs[3].indices, (std::vector<int>{12}));
 }
 
@@ -138,4 +138,32 @@ TEST(OrgPredicate, NormalAngleAndCurvatureRule) {
   EXPECT_EQ(ws.labels, (std::vector<int>{0, 0, 0, 1, 1, 2}));
   OrganizedCloud no_normals(6, 1);
   EXPECT_THROW(segmentation::segment_org(no_normals, cfg, ws), Error);
+}
+
+TEST(FloodFill, IndicesAscendAndSummaryMatchesSummarize) {
+  // A U-shaped region filled from its top-left seed: breadth-first order would visit the two
+  // arms alternately; the returned indices are ascending, and flood_fill_segments' summary is
+  // the one summarize() gives.
+  const std::vector<int> g = {1, 0, 1, 0,  //
+                              1, 0, 1, 0,  //
+                              1, 1, 1, 0,  //
+                              0, 0, 0, 2};
+  OrganizedCloud c(4, 4);
+  for (int i = 0; i < 16; ++i)
+    c.x[i] = 0.01f * float(i % 4), c.y[i] = 0.013f * float(i / 4), c.z[i] = 0.8f + 0.001f * float(i);
+  FloodFillWorkspace ws;
+  const auto segs = segmentation::flood_fill_segments(c, GridPredicate{g}, 1, 100, ws);
+  ASSERT_EQ(segs.size(), 2u);
+  EXPECT_EQ(segs[0].indices, (std::vector<int>{0, 2, 4, 6, 8, 9, 10}));
+  EXPECT_EQ(segs[1].indices, (std::vector<int>{15}));
+  for (const auto& s : segs) {
+    Segment ref;
+    ref.indices = s.indices;
+    summarize(ref, c);
+    EXPECT_EQ(s.centroid, ref.centroid);
+    EXPECT_EQ(s.min, ref.min);
+    EXPECT_EQ(s.max, ref.max);
+    EXPECT_EQ(s.box, ref.box);
+  }
+  EXPECT_EQ(segs[0].box, (Box2D{0, 0, 3, 3}));
 }

@@ -12,6 +12,7 @@
 // border of int(normal_smoothing_size) pixels give NaN. Normals point towards the viewpoint (the
 // camera origin): n·(0 - p) ≥ 0. Curvature = λ0 / (λ0 + λ1 + λ2) (surface variation, in [0, 1/3]).
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "cropsight/core/organized_cloud.hpp"
@@ -41,8 +42,12 @@ class IntegralNormalEstimator {
   const IntegralNormalConfig& config() const { return cfg_; }
 
   /// Fills cloud.nx/ny/nz/curvature (allocated when absent; NaN where undefined).
-  /// Throws Error("normals", ...) for a bad config (smoothing size < 1, negative factor).
-  void compute(OrganizedCloud& cloud);
+  /// With a non-empty `select` (one int per pixel, e.g. segmentation::FloodFillWorkspace::labels),
+  /// only pixels with select[i] >= 0 get a normal (the others stay NaN); each of them gets exactly
+  /// the value the full computation gives (the depth-change and distance maps still cover the
+  /// whole image). Throws Error("normals", ...) for a bad config (smoothing size < 1, negative
+  /// factor) or a selection of another size.
+  void compute(OrganizedCloud& cloud, std::span<const int> select = {});
 
  private:
   IntegralNormalConfig cfg_;
@@ -51,8 +56,9 @@ class IntegralNormalEstimator {
   std::vector<float> scratch_;        // one row of the distance passes
   std::vector<std::uint8_t> change_;  // 0 = depth change / NaN pixel
   std::vector<std::uint8_t> flags_;   // per-row depth-change test results
-  std::vector<float> row_;            // per-row scatter matrices (structure of arrays) for the solver
-  std::vector<float> ok_;             // per-row: 1 when the pixel has a window
+  std::vector<float> row_;            // per-row scatter matrices, positions, results (structure of arrays)
+  std::vector<int> cols_;             // per-row: columns of the pixels that get a normal
+  std::vector<int> sizes_;            // per-row: their window sizes
 };
 
 /// One-shot convenience wrapper (allocates its workspace).

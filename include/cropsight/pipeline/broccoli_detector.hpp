@@ -11,10 +11,12 @@
 //     → classifier score (SVM decision value / KNN vote) → detections
 //
 // Every stage is timed (StageTimer, names: "cloud", "normals", "edges", "outliers",
-// "clustering", "features", "classify"). All buffers (cloud, normals' integral images, edge
-// labels, flood-fill stacks, feature vectors, candidate list) live in the detector and are
-// reused from frame to frame: after the first frame of a given size, the stages allocate only
-// what the segmentation functions return (the segments' index lists).
+// "clustering", "features", "classify"). OES needs no normals to segment (unless crease edges
+// are on): it computes them after the flood fill, only for the pixels of the kept segments (the
+// only ones the features read), so its cloud() has NaN normals elsewhere. All buffers (cloud, normals' integral images,
+// edge labels, flood-fill stacks, feature vectors, candidate list) live in the detector and are reused from frame to
+// frame: after the first frame of a given size, the stages allocate only what the segmentation functions return (the
+// segments' index lists).
 //
 // Not thread-safe: one detector per thread.
 #include <memory>
@@ -67,7 +69,8 @@ class BroccoliDetector {
   /// The candidates of the last processed frame (same as process() returned).
   std::span<const BroccoliCandidate> candidates() const { return {candidates_.data(), count_}; }
 
-  /// The cloud of the last processed frame (depth-filtered, with normals; labels when present).
+  /// The cloud of the last processed frame (depth-filtered, with normals — OES: only on the
+  /// pixels of its candidates; labels when present).
   const OrganizedCloud& cloud() const { return cloud_; }
   /// Detections (candidates classified as heads) of the last processed frame, best score first.
   std::vector<Detection> detections() const;
@@ -76,8 +79,9 @@ class BroccoliDetector {
   const StageTimer& timer() const { return timer_; }
 
  private:
-  void make_cloud(const RgbdFrame& frame);
-  void cluster();
+  void make_cloud(const RgbdFrame& frame);  // deprojection + depth-range filter
+  void normals(std::span<const int> select = {});
+  void cluster();  // normals (all pixels, or only the kept OES segments' pixels) + edges + clustering
 
   BroccoliDetectorConfig cfg_;
   features::FeatureSet feature_set_;

@@ -22,6 +22,7 @@
 // of the segment, as in PCL's region growing) but never grows it further.
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "cropsight/core/error.hpp"
@@ -37,11 +38,12 @@ struct FloodFillWorkspace {
   std::vector<int> members;  // pixels of the segment being grown, in BFS order (also the queue)
   std::vector<int> columns;  // their columns (saves a division per pixel)
   std::vector<int> remap;    // fill attempt → kept segment id or -1
+  std::vector<int> fill;     // per kept segment: indices written so far (final pass)
 };
 
 /// Labels `width`×`height` pixels with `pred`; returns the segments with
-/// min_size ≤ size ≤ max_size, in order of their seed pixel (raster order), indices in fill
-/// (breadth-first) order. ws.labels holds the segment id per pixel afterwards. Does not fill the summaries
+/// min_size ≤ size ≤ max_size, in order of their seed pixel (raster order), indices ascending
+/// (raster order). ws.labels holds the segment id per pixel afterwards. Does not fill the summaries
 /// (call summarize() on the ones you keep, or use flood_fill_segments below).
 template <class Pred>
 std::vector<Segment> flood_fill(int width, int height, const Pred& pred, int min_size, int max_size,
@@ -91,24 +93,61 @@ std::vector<Segment> flood_fill(int width, int height, const Pred& pred, int min
     if (count >= min_size && count <= max_size) {
       ws.remap.push_back(int(out.size()));
       Segment seg;
-      seg.indices.assign(members, members + count);
+      seg.indices.resize(std::size_t(count));  // filled in raster order below
       out.push_back(std::move(seg));
     } else {
       ws.remap.push_back(-1);
     }
     ++attempt;
   }
+  // One sequential pass: attempt → kept segment id (or -1), and each kept segment's indices in
+  // ascending (raster) order, written into the buffers sized above.
   const int* remap = ws.remap.data();
-  for (int i = 0; i < n; ++i) labels[i] = labels[i] < 0 ? -1 : remap[labels[i]];
+  ws.fill.assign(out.size(), 0);
+  int* fill = ws.fill.data();
+  for (int i = 0; i < n; ++i) {
+    const int l = labels[i] < 0 ? -1 : remap[labels[i]];
+    labels[i] = l;
+    if (l >= 0) out[std::size_t(l)].indices[std::size_t(fill[l]++)] = i;
+  }
   return out;
 }
 
-/// flood_fill over `cloud`'s grid, then summarize() on every kept segment.
+/// summarize() for a segment whose indices are ascending (as flood_fill returns them): the same
+/// sums in the same order, with the pixel row tracked instead of divided out.
+inline void summarize_raster(Segment& seg, const OrganizedCloud& cloud) {
+  if (seg.indices.empty()) {
+    summarize(seg, cloud);
+    return;
+  }
+  const int w = cloud.width;
+  double sx = 0, sy = 0, sz = 0;
+  float lx = std::numeric_limits<float>::max(), ly = lx, lz = lx, hx = -lx, hy = -lx, hz = -lx;
+  int u0 = w, u1 = -1;
+  int v = seg.indices.front() / w, row_start = v * w;
+  const int v0 = v;
+  for (int i : seg.indices) {
+    while (i >= row_start + w) ++v, row_start += w;
+    const float x = cloud.x[std::size_t(i)], y = cloud.y[std::size_t(i)], z = cloud.z[std::size_t(i)];
+    sx += double(x), sy += double(y), sz += double(z);
+    lx = std::min(lx, x), ly = std::min(ly, y), lz = std::min(lz, z);
+    hx = std::max(hx, x), hy = std::max(hy, y), hz = std::max(hz, z);
+    const int u = i - row_start;
+    u0 = std::min(u0, u), u1 = std::max(u1, u);
+  }
+  const double k = double(seg.indices.size());
+  seg.centroid = Eigen::Vector3f(float(sx / k), float(sy / k), float(sz / k));
+  seg.min = Eigen::Vector3f(lx, ly, lz);
+  seg.max = Eigen::Vector3f(hx, hy, hz);
+  seg.box = {u0, v0, u1 - u0 + 1, v - v0 + 1};
+}
+
+/// flood_fill over `cloud`'s grid, then the summary (centroid, bounds, box) of every kept segment.
 template <class Pred>
 std::vector<Segment> flood_fill_segments(const OrganizedCloud& cloud, const Pred& pred, int min_size, int max_size,
                                          FloodFillWorkspace& ws) {
   auto segs = flood_fill(cloud.width, cloud.height, pred, min_size, max_size, ws);
-  for (auto& s : segs) summarize(s, cloud);
+  for (auto& s : segs) summarize_raster(s, cloud);
   return segs;
 }
 
