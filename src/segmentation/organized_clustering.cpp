@@ -7,6 +7,77 @@
 namespace cropsight::segmentation {
 
 namespace {
+
+// Link bits (flood_fill.hpp LinkBits) of every pixel from the per-pair similarity of the OES or
+// ORG predicate, computed row by row in branch-free loops (vectorised; AVX2 clone at run time).
+// The float expressions are those of OesPredicate / OrgPredicate::similar(p, q) with p the left
+// / upper pixel; they are symmetric (exactly: only squares and products of the same operands),
+// so the link serves both directions. NaN positions or normals compare false: no link.
+template <bool kOrg>
+inline void row_links(int w, const float* __restrict x, const float* __restrict y, const float* __restrict z,
+                      const float* __restrict nx, const float* __restrict ny, const float* __restrict nz, int step,
+                      int count, float tol2, float cos_angle, std::uint8_t* __restrict out) {
+  for (int i = 0; i < count; ++i) {
+    const float dx = x[i] - x[i + step], dy = y[i] - y[i + step], dz = z[i] - z[i + step];
+    bool ok = dx * dx + dy * dy + dz * dz < tol2;
+    if constexpr (kOrg) ok = ok & (nx[i] * nx[i + step] + ny[i] * ny[i + step] + nz[i] * nz[i + step] > cos_angle);
+    out[i] = std::uint8_t(ok);
+  }
+}
+
+template <bool kOrg>
+__attribute__((target_clones("avx2", "default"))) void compute_links_impl(
+    int w, int h, const float* x, const float* y, const float* z, const float* nx, const float* ny, const float* nz,
+    const std::uint8_t* edges, std::uint8_t barrier, float tol2, float cos_angle, std::uint8_t* right,
+    std::uint8_t* down, std::uint8_t* links) {
+  const std::size_t n = std::size_t(w) * std::size_t(h);
+  // right[i]: pixel i and i + 1 (same row) join; down[i]: i and i + w join.
+  for (int v = 0; v < h; ++v) {
+    const std::size_t o = std::size_t(v) * w;
+    row_links<kOrg>(w, x + o, y + o, z + o, nx + o, ny + o, nz + o, 1, w - 1, tol2, cos_angle, right + o);
+    right[o + w - 1] = 0;
+  }
+  if (h > 1) row_links<kOrg>(w, x, y, z, nx, ny, nz, w, int(n) - w, tol2, cos_angle, down);
+  for (std::size_t i = n - std::size_t(w); i < n; ++i) down[i] = 0;
+  for (int v = 0; v < h; ++v) {
+    const std::size_t o = std::size_t(v) * w;
+    const std::uint8_t* up = v > 0 ? down + o - w : down + o;  // row 0: masked out below
+    const std::uint8_t up_mask = v > 0 ? kLinkUp : 0;
+    for (int u = 0; u < w; ++u) {
+      const std::size_t i = o + u;
+      // OES: valid and not a barrier edge; ORG: valid with a normal (OesPredicate / OrgPredicate::member).
+      const bool member =
+          kOrg ? (std::isfinite(z[i]) && std::isfinite(nx[i])) : (std::isfinite(z[i]) && (edges[i] & barrier) == 0);
+      const std::uint8_t left = u > 0 ? right[i - 1] : 0;
+      links[i] = std::uint8_t((member ? kLinkMember : 0) | (right[i] ? kLinkRight : 0) | (left ? kLinkLeft : 0) |
+                              (down[i] ? kLinkDown : 0) | (up[u] ? up_mask : 0));
+    }
+  }
+}
+
+// Flood-fill predicates over the link bits (same answers as OesPredicate / OrgPredicate).
+struct OesLinks {
+  const std::uint8_t* bits;
+  bool member(int q) const { return bits[q] & kLinkMember; }
+  bool seed(int s) const { return member(s); }
+  bool expands(int) const { return true; }
+  std::uint8_t links(int p) const { return bits[p]; }
+};
+struct OrgLinks {
+  const std::uint8_t* bits;
+  const float* curvature;
+  float max_curvature;
+  bool member(int q) const { return bits[q] & kLinkMember; }
+  bool seed(int s) const { return member(s) && expands(s); }
+  bool expands(int p) const { return curvature[p] < max_curvature; }
+  std::uint8_t links(int p) const { return bits[p]; }
+};
+
+std::uint8_t* link_buffers(const OrganizedCloud& cloud, FloodFillWorkspace& ws) {
+  ws.links.resize(3 * cloud.size());
+  return ws.links.data();
+}
+
 void check_sizes(const char* where, float tolerance, int min_size, int max_size) {
   if (!(tolerance > 0.0f)) throw Error(where, "distance_tolerance must be > 0");
   if (min_size < 1 || max_size < min_size) throw Error(where, "size range must satisfy 1 <= min_size <= max_size");
@@ -19,13 +90,14 @@ std::vector<Segment> segment_oes(const OrganizedCloud& cloud, const std::vector<
   if (edges.size() != cloud.size()) throw Error("oes", "edge label image size differs from the cloud size");
   if (cfg.barrier_labels < 0 || cfg.barrier_labels > 255)
     throw Error("oes", "barrier_labels must be a bit mask in 0..255");
-  const OesPredicate pred{cloud.x.data(),
-                          cloud.y.data(),
-                          cloud.z.data(),
-                          edges.data(),
-                          std::uint8_t(cfg.barrier_labels),
-                          cfg.distance_tolerance * cfg.distance_tolerance};
-  return flood_fill_segments(cloud, pred, cfg.min_size, cfg.max_size, ws);
+  // The flood fill reads precomputed link bits (same answers as OesPredicate, one byte per pixel).
+  const std::size_t n = cloud.size();
+  std::uint8_t* buf = link_buffers(cloud, ws);
+  const float* z = cloud.z.data();
+  compute_links_impl<false>(cloud.width, cloud.height, cloud.x.data(), cloud.y.data(), z, z, z, z, edges.data(),
+                            std::uint8_t(cfg.barrier_labels), cfg.distance_tolerance * cfg.distance_tolerance, 0.0f,
+                            buf + n, buf + 2 * n, buf);
+  return flood_fill_segments(cloud, OesLinks{buf}, cfg.min_size, cfg.max_size, ws);
 }
 
 std::vector<Segment> segment_org(const OrganizedCloud& cloud, const OrgConfig& cfg, FloodFillWorkspace& ws) {
@@ -34,12 +106,15 @@ std::vector<Segment> segment_org(const OrganizedCloud& cloud, const OrgConfig& c
     throw Error("org", "the cloud has no normals (estimate them first)");
   if (!(cfg.angle_threshold >= 0.0f && cfg.angle_threshold <= 3.14159265f))
     throw Error("org", "angle_threshold must be in [0, pi] radians");
-  const OrgPredicate pred{cloud.x.data(),          cloud.y.data(),
-                          cloud.z.data(),          cloud.nx.data(),
-                          cloud.ny.data(),         cloud.nz.data(),
-                          cloud.curvature.data(),  std::cos(cfg.angle_threshold),
-                          cfg.curvature_threshold, cfg.distance_tolerance * cfg.distance_tolerance};
-  return flood_fill_segments(cloud, pred, cfg.min_size, cfg.max_size, ws);
+  // The flood fill reads precomputed link bits (same answers as OrgPredicate, one byte per pixel).
+  const std::size_t n = cloud.size();
+  std::uint8_t* buf = link_buffers(cloud, ws);
+  compute_links_impl<true>(cloud.width, cloud.height, cloud.x.data(), cloud.y.data(), cloud.z.data(), cloud.nx.data(),
+                           cloud.ny.data(), cloud.nz.data(), nullptr, 0,
+                           cfg.distance_tolerance * cfg.distance_tolerance, std::cos(cfg.angle_threshold), buf + n,
+                           buf + 2 * n, buf);
+  return flood_fill_segments(cloud, OrgLinks{buf, cloud.curvature.data(), cfg.curvature_threshold}, cfg.min_size,
+                             cfg.max_size, ws);
 }
 
 }  // namespace cropsight::segmentation

@@ -60,3 +60,44 @@ TEST(OrganizedClustering, OesAndOrgFindTheDomes) {
   check_domes("org", c, org, scene.domes);
   for (const auto& s : oes) EXPECT_LE(s.size(), 20000u);
 }
+
+TEST(OrganizedClustering, PrecomputedLinksGiveThePredicatesSegments) {
+  // segment_oes / segment_org flood-fill over precomputed link bits; the plain predicates
+  // (OesPredicate, OrgPredicate evaluated per neighbour pair) must give the same segments.
+  auto scene = cropsight::testing::make_synthetic_scene();
+  auto& c = scene.cloud;
+  geometry::estimate_normals_integral(c);
+  const auto edges = geometry::detect_organized_edges(c, {.high_curvature_threshold = 0.02f});
+  segmentation::FloodFillWorkspace ws, ref_ws;
+  auto same = [](const std::vector<Segment>& a, const std::vector<Segment>& b) {
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      EXPECT_EQ(a[k].indices, b[k].indices) << k;
+      EXPECT_EQ(a[k].centroid, b[k].centroid) << k;
+      EXPECT_EQ(a[k].box, b[k].box) << k;
+    }
+  };
+  for (float tol : {0.005f, 0.01f}) {
+    const segmentation::OesConfig oes{
+        .distance_tolerance = tol, .barrier_labels = 15, .min_size = 50, .max_size = 20000};
+    const auto got = segmentation::segment_oes(c, edges, oes, ws);
+    const segmentation::OesPredicate pred{c.x.data(), c.y.data(), c.z.data(), edges.data(), 15, tol * tol};
+    const auto ref = segmentation::flood_fill_segments(c, pred, oes.min_size, oes.max_size, ref_ws);
+    EXPECT_GT(got.size(), 2u);
+    same(got, ref);
+    EXPECT_EQ(ws.labels, ref_ws.labels);
+
+    const segmentation::OrgConfig org{.angle_threshold = 0.2f,
+                                      .curvature_threshold = 0.03f,
+                                      .distance_tolerance = tol,
+                                      .min_size = 50,
+                                      .max_size = 20000};
+    const auto got_org = segmentation::segment_org(c, org, ws);
+    const segmentation::OrgPredicate org_pred{c.x.data(),  c.y.data(),         c.z.data(),     c.nx.data(), c.ny.data(),
+                                              c.nz.data(), c.curvature.data(), std::cos(0.2f), 0.03f,       tol * tol};
+    const auto ref_org = segmentation::flood_fill_segments(c, org_pred, org.min_size, org.max_size, ref_ws);
+    EXPECT_GT(got_org.size(), 2u);
+    same(got_org, ref_org);
+    EXPECT_EQ(ws.labels, ref_ws.labels);
+  }
+}

@@ -20,6 +20,11 @@
 //
 // A pixel that does not expand can still be absorbed by a neighbour's segment (it becomes part
 // of the segment, as in PCL's region growing) but never grows it further.
+//
+// A predicate may instead provide `std::uint8_t links(int p) const` (LinkBits: similar() and the
+// grid bounds for the four neighbours of p, and member() — precomputed for the whole image in a
+// vectorised pass, which requires similar() to be symmetric); the fill then reads one byte per
+// pixel instead of evaluating similar() per neighbour.
 #include <algorithm>
 #include <cstdint>
 #include <limits>
@@ -35,11 +40,17 @@ namespace cropsight::segmentation {
 struct FloodFillWorkspace {
   /// Per pixel: index into the returned segments, or -1 (unlabelled / in a rejected segment).
   std::vector<int> labels;
-  std::vector<int> members;  // pixels of the segment being grown, in BFS order (also the queue)
-  std::vector<int> columns;  // their columns (saves a division per pixel)
-  std::vector<int> remap;    // fill attempt → kept segment id or -1
-  std::vector<int> fill;     // per kept segment: indices written so far (final pass)
+  std::vector<int> members;         // pixels of the segment being grown, in BFS order (also the queue)
+  std::vector<int> columns;         // their columns (saves a division per pixel)
+  std::vector<int> remap;           // fill attempt → kept segment id or -1
+  std::vector<int> fill;            // per kept segment: indices written so far (final pass)
+  std::vector<std::uint8_t> links;  // per pixel link bits of a LinkPredicate (organized_clustering)
 };
+
+/// Link bits of a pixel for predicates that precompute similar() per 4-neighbour pair (see
+/// flood_fill's LinkPredicate below): neighbour to the right / left / below / above joins, and
+/// "member". Links across the grid border are 0.
+enum LinkBits : std::uint8_t { kLinkRight = 1, kLinkLeft = 2, kLinkDown = 4, kLinkUp = 8, kLinkMember = 16 };
 
 /// Labels `width`×`height` pixels with `pred`; returns the segments with
 /// min_size ≤ size ≤ max_size, in order of their seed pixel (raster order), indices ascending
@@ -79,16 +90,29 @@ std::vector<Segment> flood_fill(int width, int height, const Pred& pred, int min
       const int p = members[head], u = cols[head];
       ++head;
       if (!pred.expands(p)) continue;
-      // 4-neighbours, bounds checked on the grid (no wrap from a row end to the next row).
-      auto visit = [&](int q, int qu) {
-        if (labels[q] != -1 || !pred.similar(p, q)) return;
-        labels[q] = attempt;
-        members[count] = q, cols[count] = qu, ++count;
-      };
-      if (u > 0) visit(p - 1, u - 1);
-      if (u + 1 < width) visit(p + 1, u + 1);
-      if (p >= width) visit(p - width, u);
-      if (p + width < n) visit(p + width, u);
+      if constexpr (requires { pred.links(p); }) {
+        const std::uint8_t b = pred.links(p);
+        auto visit = [&](int q, int qu) {
+          if (labels[q] != -1) return;
+          labels[q] = attempt;
+          members[count] = q, cols[count] = qu, ++count;
+        };
+        if (b & kLinkLeft) visit(p - 1, u - 1);
+        if (b & kLinkRight) visit(p + 1, u + 1);
+        if (b & kLinkUp) visit(p - width, u);
+        if (b & kLinkDown) visit(p + width, u);
+      } else {
+        // 4-neighbours, bounds checked on the grid (no wrap from a row end to the next row).
+        auto visit = [&](int q, int qu) {
+          if (labels[q] != -1 || !pred.similar(p, q)) return;
+          labels[q] = attempt;
+          members[count] = q, cols[count] = qu, ++count;
+        };
+        if (u > 0) visit(p - 1, u - 1);
+        if (u + 1 < width) visit(p + 1, u + 1);
+        if (p >= width) visit(p - width, u);
+        if (p + width < n) visit(p + width, u);
+      }
     }
     if (count >= min_size && count <= max_size) {
       ws.remap.push_back(int(out.size()));
