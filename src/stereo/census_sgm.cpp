@@ -21,6 +21,7 @@ namespace {
 
 using i16 = std::int16_t;
 using v16 = i16 __attribute__((vector_size(32)));  // 16 disparities
+using v16u32 = std::uint32_t __attribute__((vector_size(64)));
 constexpr int kLanes = 16;
 constexpr i16 kBig = 0x3FFF;  // sentinel / "no value"; kBig + p1 and 5 * (62 + p2) fit in int16
 constexpr int kOff = 16;      // data offset of one disparity run inside a padded buffer
@@ -51,8 +52,22 @@ CS_INLINE v16 sgm_step(const i16* src, v16 c, v16 p1, v16 mp_p2, v16 mp) {
   return c + vmin(t, mp_p2) - mp;
 }
 
+// Bits set in v: the popcnt instruction where the kernel is compiled for it, else the SWAR sum
+// (a libgcc call per cost would dominate the portable kernel).
+template <bool kPopcnt>
+CS_INLINE int popcount(std::uint64_t v) {
+  if constexpr (kPopcnt) {
+    return __builtin_popcountll(v);
+  } else {
+    v = v - ((v >> 1) & 0x5555555555555555ULL);
+    v = (v & 0x3333333333333333ULL) + ((v >> 2) & 0x3333333333333333ULL);
+    v = (v + (v >> 4)) & 0x0F0F0F0F0F0F0F0FULL;
+    return int((v * 0x0101010101010101ULL) >> 56);
+  }
+}
+
 struct Geometry {
-  int W, H, D, rx, ry;
+  int W, H, D, rx, ry, bits;
 };
 
 using v32u8 = std::uint8_t __attribute__((vector_size(32)));
@@ -99,6 +114,7 @@ struct BandJob {
   const cv::Mat* pad_right;
   Geometry g;
   int p1, p2, uniqueness, lr_check, outside_cost;
+  const int* p2_of_step;      // [256]: P2 for a grey-level step |I(p) - I(p - r)| along the path
   int first_row, rows, step;  // rows first_row, first_row + step, ... (step = +1 or -1)
   DisparityImage* out;
 };
@@ -106,6 +122,7 @@ struct BandJob {
 // One sweep over a band of rows: 5 SGM paths (left->right, right->left, and the vertical and two
 // diagonal ones coming from the previous row of the sweep), then winner-take-all, right-view
 // winner along the diagonals, left-right check and sub-pixel fit per row.
+template <bool kPopcnt>
 CS_INLINE void sweep_band_impl(const BandJob& job) {
   const Geometry& g = job.g;
   const int W = g.W, D = g.D, NB = D / kLanes, P = D + 2 * kOff;
@@ -130,6 +147,7 @@ CS_INLINE void sweep_band_impl(const BandJob& job) {
   std::vector<i16> rmin(std::size_t(W + D + kLanes)), rarg(std::size_t(W + D + kLanes));
   const auto w = std::size_t(W);
   std::vector<std::uint64_t> cl(w), cr(w);
+  std::vector<std::uint32_t> crev(w + std::size_t(D) + kLanes, 0);  // mirrored right census, <= 32 bits
   const int pstride = (W + 63) / 32 * 32;
   std::vector<std::uint8_t> planes(std::size_t(pstride) * 8);
   std::vector<int> best(w);
@@ -147,15 +165,41 @@ CS_INLINE void sweep_band_impl(const BandJob& job) {
     // fit of its neighbours; matches landing there are rejected below.
     census_row(*job.pad_left, y, g, planes.data(), pstride, cl.data());
     census_row(*job.pad_right, y, g, planes.data(), pstride, cr.data());
-    for (int x = 0; x < W; ++x) {
-      const std::uint64_t a = cl[std::size_t(x)];
-      const std::uint64_t* rr = cr.data() + x;
-      i16* c = cost.data() + std::size_t(x) * D;
-      const int dmax = std::min(x - g.rx, D - 1);
-      for (int d = 0; d <= dmax; ++d) c[d] = i16(__builtin_popcountll(a ^ rr[-d]));
-      for (int d = std::max(dmax + 1, 0); d < D; ++d) c[d] = i16(job.outside_cost);
+    if (g.bits <= 32) {
+      // Up to 32 census bits: 16 disparities at a time, SWAR popcount in 32-bit lanes, on the
+      // right census stored mirrored so that x - d for d = d0..d0+15 is 16 consecutive words.
+      for (int x = 0; x < W; ++x) crev[std::size_t(W - 1 - x)] = std::uint32_t(cr[std::size_t(x)]);
+      const v16 outside = splat(job.outside_cost);
+      for (int x = 0; x < W; ++x) {
+        const v16u32 a = v16u32{} + std::uint32_t(cl[std::size_t(x)]);
+        const std::uint32_t* rr = crev.data() + (W - 1 - x);
+        i16* c = cost.data() + std::size_t(x) * D;
+        const v16 dmax = splat(std::min(x - g.rx, D - 1));
+        for (int o = 0; o < D; o += kLanes) {
+          v16u32 v;
+          std::memcpy(&v, rr + o, sizeof v);
+          v ^= a;
+          v = v - ((v >> 1) & 0x55555555u);
+          v = (v & 0x33333333u) + ((v >> 2) & 0x33333333u);
+          v = (v + (v >> 4)) & 0x0F0F0F0Fu;
+          v = (v + (v >> 8) + (v >> 16) + (v >> 24)) & 0x3Fu;
+          const v16 cnt = __builtin_convertvector(v, v16);
+          st(c + o, (iota + i16(o)) > dmax ? outside : cnt);
+        }
+      }
+    } else {
+      for (int x = 0; x < W; ++x) {
+        const std::uint64_t a = cl[std::size_t(x)];
+        const std::uint64_t* rr = cr.data() + x;
+        i16* c = cost.data() + std::size_t(x) * D;
+        const int dmax = std::min(x - g.rx, D - 1);
+        for (int d = 0; d <= dmax; ++d) c[d] = i16(popcount<kPopcnt>(a ^ rr[-d]));
+        for (int d = std::max(dmax + 1, 0); d < D; ++d) c[d] = i16(job.outside_cost);
+      }
     }
 
+    const std::uint8_t* Ic = job.pad_left->ptr<std::uint8_t>(y + g.ry) + g.rx;
+    const std::uint8_t* Ip = r > 0 ? job.pad_left->ptr<std::uint8_t>(y - job.step + g.ry) + g.rx : Ic;
     // Forward pass: the three inter-row paths and left->right; their sum starts S.
     for (int x = 0; x < W; ++x) {
       const i16* C = cost.data() + std::size_t(x) * D;
@@ -171,8 +215,10 @@ CS_INLINE void sweep_band_impl(const BandJob& job) {
       i16* db = Lb[cur] + std::size_t(x) * P + kOff;
       i16* dh = Lh[x & 1] + kOff;
       const v16 vv = splat(mpv), va = splat(mpa), vb = splat(mpb), vh = splat(mph);
-      const v16 vv2 = splat(mpv + job.p2), va2 = splat(mpa + job.p2), vb2 = splat(mpb + job.p2),
-                vh2 = splat(mph + job.p2);
+      const int* q2 = job.p2_of_step;
+      const int ic = Ic[x], xl = std::max(x - 1, 0), xn = std::min(x + 1, W - 1);
+      const v16 vv2 = splat(mpv + q2[std::abs(ic - Ip[x])]), va2 = splat(mpa + q2[std::abs(ic - Ip[xl])]),
+                vb2 = splat(mpb + q2[std::abs(ic - Ip[xn])]), vh2 = splat(mph + q2[std::abs(ic - Ic[xl])]);
       v16 nv = big, na = big, nb = big, nh = big;
       for (int b = 0; b < NB; ++b) {
         const int o = b * kLanes;
@@ -199,7 +245,7 @@ CS_INLINE void sweep_band_impl(const BandJob& job) {
       const i16* sh = start ? zero + kOff : Lh[(x + 1) & 1] + kOff;
       const int mph = start ? 0 : Lh[(x + 1) & 1][0];
       i16* dh = Lh[x & 1] + kOff;
-      const v16 vh = splat(mph), vh2 = splat(mph + job.p2);
+      const v16 vh = splat(mph), vh2 = splat(mph + job.p2_of_step[std::abs(Ic[x] - Ic[std::min(x + 1, W - 1)])]);
       v16 nh = big, bestv = big, besti = v16{};
       i16* rm = rmin.data() + (W - 1 - x);
       i16* ra = rarg.data() + (W - 1 - x);
@@ -258,8 +304,8 @@ CS_INLINE void sweep_band_impl(const BandJob& job) {
   }
 }
 
-__attribute__((target("avx2,popcnt"))) void sweep_band_avx2(const BandJob& job) { sweep_band_impl(job); }
-void sweep_band_portable(const BandJob& job) { sweep_band_impl(job); }
+__attribute__((target("avx2,popcnt"))) void sweep_band_avx2(const BandJob& job) { sweep_band_impl<true>(job); }
+void sweep_band_portable(const BandJob& job) { sweep_band_impl<false>(job); }
 
 }  // namespace
 
@@ -278,20 +324,27 @@ DisparityImage census_sgm(const cv::Mat& left, const cv::Mat& right, const Censu
       p.census_width * p.census_height - 1 > 64)
     throw Error(where, "census window must be odd x odd with at most 65 pixels");
   if (p.p1 < 0 || p.p2 < p.p1 || p.p2 > 1000) throw Error(where, "need 0 <= p1 <= p2 <= 1000");
-  Geometry g{left.cols, left.rows, p.num_disparities, p.census_width / 2, p.census_height / 2};
+  Geometry g{left.cols,          left.rows,           p.num_disparities,
+             p.census_width / 2, p.census_height / 2, p.census_width * p.census_height - 1};
   cv::Mat pl, pr;
   cv::copyMakeBorder(left, pl, g.ry, g.ry, g.rx, g.rx, cv::BORDER_REPLICATE);
   cv::copyMakeBorder(right, pr, g.ry, g.ry, g.rx, g.rx, cv::BORDER_REPLICATE);
   DisparityImage out(g.W, g.H, kNaN);
   const int outside = (p.census_width * p.census_height - 1) / 2;
+  // Intensity-adaptive P2 (Hirschmüller 2008: P2 = P2' / |I(p) - I(p-r)|), here
+  // P2 / (1 + step / p2_step) and at least P1: depth edges usually coincide with grey edges.
+  std::vector<int> lut(256);
+  for (int k = 0; k < 256; ++k)
+    lut[std::size_t(k)] = p.p2_step > 0 ? std::max(p.p1, int(std::lround(p.p2 / (1.0 + double(k) / p.p2_step)))) : p.p2;
   const int bands = (p.bands >= 2 && g.H >= 2) ? 2 : 1;
   std::vector<BandJob> jobs;
   if (bands == 1) {
-    jobs.push_back({&pl, &pr, g, p.p1, p.p2, p.uniqueness_ratio, p.lr_check, outside, 0, g.H, 1, &out});
+    jobs.push_back({&pl, &pr, g, p.p1, p.p2, p.uniqueness_ratio, p.lr_check, outside, lut.data(), 0, g.H, 1, &out});
   } else {
     const int top = g.H / 2;
-    jobs.push_back({&pl, &pr, g, p.p1, p.p2, p.uniqueness_ratio, p.lr_check, outside, 0, top, 1, &out});
-    jobs.push_back({&pl, &pr, g, p.p1, p.p2, p.uniqueness_ratio, p.lr_check, outside, g.H - 1, g.H - top, -1, &out});
+    jobs.push_back({&pl, &pr, g, p.p1, p.p2, p.uniqueness_ratio, p.lr_check, outside, lut.data(), 0, top, 1, &out});
+    jobs.push_back(
+        {&pl, &pr, g, p.p1, p.p2, p.uniqueness_ratio, p.lr_check, outside, lut.data(), g.H - 1, g.H - top, -1, &out});
   }
   const bool avx2 = p.allow_avx2 && census_sgm_uses_avx2();
   tbb::parallel_for(0, int(jobs.size()), [&](int i) {

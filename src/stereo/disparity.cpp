@@ -178,6 +178,8 @@ DisparityImage run_census(const cv::Mat& left, const cv::Mat& right, const Dispa
   p.census_height = c.census_height;
   p.p1 = c.census_p1;
   p.p2 = c.census_p2;
+  p.p2_step = c.census_p2_step;
+  p.allow_avx2 = c.allow_avx2;
   p.uniqueness_ratio = c.uniqueness_ratio;
   p.lr_check = c.lr_check;
   DisparityImage out;

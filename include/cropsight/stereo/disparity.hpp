@@ -26,16 +26,18 @@ using DisparityImage = Image<float>;
 
 struct DisparityConfig {
   std::string engine = "census";  ///< "census" (ours, see below) or "opencv" (StereoSGBM)
-  int census_width = 9;           ///< px; census window (census engine), odd, width*height <= 65
-  int census_height = 7;          ///< px; odd
-  int census_p1 = 10;             ///< Hamming bits; SGM penalty of a +-1 px step (census engine)
+  int census_width = 5;           ///< px; census window (census engine), odd, width*height <= 65
+  int census_height = 5;          ///< px; odd
+  int census_p1 = 15;             ///< Hamming bits; SGM penalty of a +-1 px step (census engine)
   int census_p2 = 120;            ///< Hamming bits; SGM penalty of a larger step (census engine)
+  int census_p2_step = 4;         ///< grey levels; P2 / (1 + |dI| / this) along a path (0 = constant)
+  bool allow_avx2 = true;         ///< census engine: use the AVX2 kernel when the CPU has it (else SSE2)
   int num_disparities = 128;      ///< search range [min_disparity, min_disparity + num_disparities); multiple of 16
   int min_disparity = 0;          ///< pixels
   int block_size = 5;             ///< matching window side (odd)
   double p1 = 32;                 ///< SGM small-jump penalty per channel per window pixel (P1 = p1*cn*bs^2)
   double p2 = 64;                 ///< SGM large-jump penalty per channel per window pixel (P2 = p2*cn*bs^2)
-  int uniqueness_ratio = 10;      ///< percent margin of best over second-best cost
+  int uniqueness_ratio = 15;      ///< percent margin of best over second-best cost
   int speckle_window = 100;       ///< pixels; connected regions smaller than this are invalidated
   int speckle_range = 2;          ///< pixels; max disparity step inside one speckle region
   int disp12_max_diff = 1;        ///< pixels; OpenCV's internal left-right check tolerance (-1 off)
@@ -52,16 +54,22 @@ struct DisparityConfig {
   void visit(V& v) {
     v("engine", engine,
       "census = our census-cost SGM (5 paths, one sweep, LR check from the same costs) | opencv = StereoSGBM");
-    v("census_width", census_width, "px; census window width, odd (census engine; libSGM and Spangenberg 2014: 9)");
-    v("census_height", census_height, "px; census window height, odd (census engine; 7 as in 9x7 census)");
+    v("census_width", census_width,
+      "px; census window width, odd (census engine; 5x5 measured best on Middlebury among 5x5..9x7)");
+    v("census_height", census_height, "px; census window height, odd (census engine)");
     v("census_p1", census_p1, "Hamming bits; SGM penalty for +-1 px disparity changes (census engine)");
     v("census_p2", census_p2, "Hamming bits; SGM penalty for larger disparity jumps (census engine)");
+    v("census_p2_step", census_p2_step,
+      "grey levels; P2 falls as P2 / (1 + |dI| / census_p2_step) across intensity edges (Hirschmueller 2008 "
+      "divides by |dI|; 0 = constant P2)");
+    v("allow_avx2", allow_avx2, "census engine: run the AVX2 kernel when the CPU has it (false = portable SSE2)");
     v("num_disparities", num_disparities, "px; disparity search range, multiple of 16 (paper: 128 at 640x480)");
     v("min_disparity", min_disparity, "px; smallest disparity searched");
     v("block_size", block_size, "px; SGBM matching window side, odd");
     v("p1", p1, "SGM penalty for +-1 px disparity changes, per channel and window pixel (OpenCV sample: 8)");
     v("p2", p2, "SGM penalty for larger disparity jumps, per channel and window pixel (OpenCV sample: 32)");
-    v("uniqueness_ratio", uniqueness_ratio, "percent; best cost must beat the second best by this margin");
+    v("uniqueness_ratio", uniqueness_ratio,
+      "percent; best cost must beat the second best by this margin (OpenCV sample: 10; 15 measured best here)");
     v("speckle_window", speckle_window, "px; disparity regions smaller than this are removed");
     v("speckle_range", speckle_range, "px; disparity variation allowed inside a region");
     v("disp12_max_diff", disp12_max_diff, "px; left-right consistency tolerance (-1 disables)");
