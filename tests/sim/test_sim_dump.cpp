@@ -8,7 +8,9 @@
 #include <opencv2/imgproc.hpp>
 #include <string>
 
+#include "cropsight/io/config_yaml.hpp"
 #include "cropsight/sim/broccoli_sim.hpp"
+#include "testing/testing.hpp"
 
 namespace {
 
@@ -56,13 +58,10 @@ void write_small(const std::string& path, const cv::Mat& img) {
 }
 
 void dump(const std::string& variety, const std::filesystem::path& dir, int frames) {
+  // The shipped preset, as `simulate broccoli --variety` applies it.
   cropsight::sim::BroccoliSimConfig cfg;
-  if (variety == "spain") {
-    cfg.camera.height_m = 1.40;
-    cfg.field.rows_under_camera = 1;
-    cfg.field.row_spacing_m = 0.9;
-    cfg.field.in_row_spacing_m = 0.3;
-  }
+  const auto preset = cropsight::testing::source_dir() / "configs" / ("sim-broccoli-" + variety + ".yaml");
+  cropsight::apply_config(cfg, cropsight::io::load_config_map(preset), preset.string());
   cropsight::sim::BroccoliSimulator sim(cfg, 1, frames);
   for (int i = 0; i < frames; i += std::max(1, frames / 3)) {
     const auto f = sim.render(i);
