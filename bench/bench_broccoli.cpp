@@ -7,8 +7,8 @@
 // CROPSIGHT_BENCH_SEQ=DIR times the first (up to) 20 frames of a recorded/simulated sequence
 // instead, and CROPSIGHT_BENCH_MODEL=FILE scores with that model (VFH features) instead of the
 // one trained at start-up, e.g. the shipped models on the uk test seed:
-//   CROPSIGHT_BENCH_SEQ=uk-test CROPSIGHT_BENCH_MODEL=models/broccoli-oes-uk.json \
-//     build/bin/bench_broccoli --benchmark_filter='Oes|Org'
+//   CROPSIGHT_BENCH_SEQ=uk-test CROPSIGHT_BENCH_MODEL=models/broccoli-oes-uk.json
+//   build/bin/bench_broccoli --benchmark_filter='Oes|Org'
 // Counters: fps and clusters per frame, plus each stage's wall-clock ms per frame.
 #include <benchmark/benchmark.h>
 #include <oneapi/tbb/global_control.h>

@@ -1,6 +1,7 @@
 #include "cropsight/segmentation/organized_clustering.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "cropsight/core/error.hpp"
 
@@ -39,19 +40,27 @@ __attribute__((target_clones("avx2", "default"))) void compute_links_impl(
   }
   if (h > 1) row_links<kOrg>(w, x, y, z, nx, ny, nz, w, int(n) - w, tol2, cos_angle, down);
   for (std::size_t i = n - std::size_t(w); i < n; ++i) down[i] = 0;
+  // Member bit (OES: valid and not a barrier edge; ORG: valid with a normal — OesPredicate /
+  // OrgPredicate::member; |f| <= max is isfinite, false for NaN), in its own loop so that it
+  // vectorises, then the byte-only combination with right/down of the pixel and left/up from
+  // its neighbours (row 0 has no up link, column 0 no left link).
+  constexpr float kMax = std::numeric_limits<float>::max();
+  for (std::size_t i = 0; i < n; ++i) {
+    const float a = kOrg ? nx[i] : 0.0f;
+    const std::uint8_t e = kOrg ? std::uint8_t(0) : std::uint8_t(edges[i] & barrier);
+    links[i] = (std::fabs(z[i]) <= kMax) & (std::fabs(a) <= kMax) & (e == 0) ? kLinkMember : 0;
+  }
   for (int v = 0; v < h; ++v) {
     const std::size_t o = std::size_t(v) * w;
-    const std::uint8_t* up = v > 0 ? down + o - w : down + o;  // row 0: masked out below
-    const std::uint8_t up_mask = v > 0 ? kLinkUp : 0;
-    for (int u = 0; u < w; ++u) {
-      const std::size_t i = o + u;
-      // OES: valid and not a barrier edge; ORG: valid with a normal (OesPredicate / OrgPredicate::member).
-      const bool member =
-          kOrg ? (std::isfinite(z[i]) && std::isfinite(nx[i])) : (std::isfinite(z[i]) && (edges[i] & barrier) == 0);
-      const std::uint8_t left = u > 0 ? right[i - 1] : 0;
-      links[i] = std::uint8_t((member ? kLinkMember : 0) | (right[i] ? kLinkRight : 0) | (left ? kLinkLeft : 0) |
-                              (down[i] ? kLinkDown : 0) | (up[u] ? up_mask : 0));
-    }
+    const std::uint8_t* up = v > 0 ? down + o - w : down + o;
+    const std::uint8_t up_bit = v > 0 ? kLinkUp : 0;
+    std::uint8_t* lr = links + o;
+    const std::uint8_t* rr = right + o;
+    const std::uint8_t* dr = down + o;
+    lr[0] = std::uint8_t(lr[0] | rr[0] * kLinkRight | dr[0] * kLinkDown | (up[0] ? up_bit : 0));
+    for (int u = 1; u < w; ++u)
+      lr[u] =
+          std::uint8_t(lr[u] | rr[u] * kLinkRight | rr[u - 1] * kLinkLeft | dr[u] * kLinkDown | (up[u] ? up_bit : 0));
   }
 }
 

@@ -43,12 +43,12 @@ struct FloodFillWorkspace {
   std::vector<int> members;         // pixels of the segment being grown, in BFS order (also the queue)
   std::vector<int> columns;         // their columns (saves a division per pixel)
   std::vector<int> remap;           // fill attempt → kept segment id or -1
-  std::vector<int> fill;            // per kept segment: indices written so far (final pass)
+  std::vector<int*> slots;          // final pass: next index slot per kept segment (+ a dummy)
   std::vector<std::uint8_t> links;  // per pixel link bits of a LinkPredicate (organized_clustering)
 };
 
 /// Link bits of a pixel for predicates that precompute similar() per 4-neighbour pair (see
-/// flood_fill's LinkPredicate below): neighbour to the right / left / below / above joins, and
+/// flood_fill's header comment): neighbour to the right / left / below / above joins, and
 /// "member". Links across the grid border are 0.
 enum LinkBits : std::uint8_t { kLinkRight = 1, kLinkLeft = 2, kLinkDown = 4, kLinkUp = 8, kLinkMember = 16 };
 
@@ -79,8 +79,9 @@ std::vector<Segment> flood_fill(int width, int height, const Pred& pred, int min
   std::vector<Segment> out;
   ws.remap.clear();
   int attempt = 0;
-  for (int s = 0, su = 0; s < n; ++s, su = (su + 1 == width ? 0 : su + 1)) {
+  for (int s = 0; s < n; ++s) {
     if (labels[s] != -1 || !pred.seed(s)) continue;  // seed() implies member()
+    const int su = s % width;
     // Breadth-first: the member list is the queue (each pixel enters it once), which keeps the
     // frontier compact in memory.
     int head = 0, count = 0;
@@ -125,14 +126,22 @@ std::vector<Segment> flood_fill(int width, int height, const Pred& pred, int min
     ++attempt;
   }
   // One sequential pass: attempt → kept segment id (or -1), and each kept segment's indices in
-  // ascending (raster) order, written into the buffers sized above.
-  const int* remap = ws.remap.data();
-  ws.fill.assign(out.size(), 0);
-  int* fill = ws.fill.data();
+  // ascending (raster) order, written into the buffers sized above. Branch-free (members and
+  // non-members alternate unpredictably): labels -3 / -1 / attempt k map through remap shifted by
+  // 3, and a pixel of no segment writes its index to a dummy slot that does not advance.
+  ws.remap.insert(ws.remap.begin(), 3, -1);
+  const int* remap = ws.remap.data() + 3;
+  ws.slots.resize(out.size() + 1);
+  int** slots = ws.slots.data();
+  int dummy = 0;
+  slots[0] = &dummy;
+  for (std::size_t k = 0; k < out.size(); ++k) slots[k + 1] = out[k].indices.data();
   for (int i = 0; i < n; ++i) {
-    const int l = labels[i] < 0 ? -1 : remap[labels[i]];
+    const int l = remap[labels[i]];
     labels[i] = l;
-    if (l >= 0) out[std::size_t(l)].indices[std::size_t(fill[l]++)] = i;
+    int*& slot = slots[l + 1];
+    *slot = i;
+    slot += l >= 0 ? 1 : 0;
   }
   return out;
 }
