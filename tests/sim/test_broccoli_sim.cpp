@@ -165,3 +165,43 @@ TEST(BroccoliSim, FramesHaveKinectGeometryAndValidDepth) {
   EXPECT_GT(valid, long(0.8 * f.depth.size()));
   EXPECT_GT(holes, 0) << "ToF frames have missing returns";
 }
+
+// Heads stand on a depth step over the leaves next to them (plant.leaf_rim_step_*): with a
+// noise-free sensor, the pixels bordering a head's labelled region are mostly farther than the
+// head's edge pixel by more than 1 cm, while leaves made to meet the head's outline at the rim's
+// height (every leaf touching, no clearance) give continuous head-leaf borders.
+TEST(BroccoliSim, HeadRimsStandAboveTheLeavesNextToThem) {
+  auto continuous_share = [](bool touching) {
+    sim::BroccoliSimConfig cfg;
+    if (touching) cfg.plant.leaf_rim_touch_prob = 1.0, cfg.plant.leaf_rim_clearance_m = 0.0;
+    cfg.plant.inner_leaves_min = cfg.plant.inner_leaves_max = 0;  // they cover rims from above
+    cfg.sensor.noise_at_1m_m = 0;
+    cfg.sensor.flying_prob = cfg.sensor.edge_dropout_prob = 0;
+    cfg.sensor.random_dropout = 0;
+    sim::BroccoliSimulator s(cfg, 8, 1);
+    long border = 0, continuous = 0;
+    for (int i = 0; i < s.frames(); ++i) {
+      const RgbdFrame f = s.render(i);
+      for (int v = 1; v + 1 < f.depth.height; ++v)
+        for (int u = 1; u + 1 < f.depth.width; ++u) {
+          const int id = f.labels.at(u, v);
+          const std::uint16_t d = f.depth.at(u, v);
+          if (!id || !d) continue;
+          for (auto [du, dv] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
+            const std::uint16_t dn = f.depth.at(u + du, v + dv);
+            if (f.labels.at(u + du, v + dv) == id || !dn) continue;
+            ++border;
+            continuous += std::abs(int(dn) - int(d)) * f.camera.depth_scale < 0.01;
+          }
+        }
+    }
+    EXPECT_GT(border, 300);
+    return double(continuous) / double(std::max(1L, border));
+  };
+  const double stepped = continuous_share(false);  // the preset
+  const double touching = continuous_share(true);
+  std::printf("head border pixels with a neighbour within 1 cm: preset %.3f, all leaves touching %.3f\n", stepped,
+              touching);
+  EXPECT_LT(stepped, 0.05);
+  EXPECT_GT(touching, stepped + 0.1);
+}
