@@ -166,11 +166,20 @@ DisparityImage run_census(const cv::Mat& left, const cv::Mat& right, const Dispa
                           const std::string& where) {
   check_config(c, where);
   if (c.min_disparity != 0) throw Error(where, "the census engine searches from disparity 0 (min_disparity must be 0)");
-  auto gray = [](const cv::Mat& m) {
-    if (m.channels() == 1) return m;
+  if (c.census_blur != 0 && (c.census_blur < 3 || c.census_blur % 2 == 0))
+    throw Error(where, "census_blur must be 0 or an odd kernel size >= 3");
+  // Grey levels, optionally Gaussian-smoothed: sensor noise flips census bits wherever the
+  // texture has little contrast (soil, leaves), which shows as off-by-one matches.
+  auto gray = [&c](const cv::Mat& m) {
     cv::Mat g;
-    cv::cvtColor(m, g, cv::COLOR_RGB2GRAY);
-    return g;
+    if (m.channels() == 1)
+      g = m;
+    else
+      cv::cvtColor(m, g, cv::COLOR_RGB2GRAY);
+    if (c.census_blur == 0) return g;
+    cv::Mat s;
+    cv::GaussianBlur(g, s, cv::Size(c.census_blur, c.census_blur), 0);
+    return s;
   };
   detail::CensusSgmParams p;
   p.num_disparities = c.num_disparities;

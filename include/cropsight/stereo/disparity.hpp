@@ -31,6 +31,7 @@ struct DisparityConfig {
   int census_p1 = 15;             ///< Hamming bits; SGM penalty of a +-1 px step (census engine)
   int census_p2 = 120;            ///< Hamming bits; SGM penalty of a larger step (census engine)
   int census_p2_step = 4;         ///< grey levels; P2 / (1 + |dI| / this) along a path (0 = constant)
+  int census_blur = 0;            ///< px; Gaussian kernel applied to the grey images before the census (0 = none)
   bool allow_avx2 = true;         ///< census engine: use the AVX2 kernel when the CPU has it (else SSE2)
   int num_disparities = 128;      ///< search range [min_disparity, min_disparity + num_disparities); multiple of 16
   int min_disparity = 0;          ///< pixels
@@ -62,6 +63,7 @@ struct DisparityConfig {
     v("census_p2_step", census_p2_step,
       "grey levels; P2 falls as P2 / (1 + |dI| / census_p2_step) across intensity edges (Hirschmueller 2008 "
       "divides by |dI|; 0 = constant P2)");
+    v("census_blur", census_blur, "px; odd Gaussian kernel smoothing the grey images before the census (0 = none)");
     v("allow_avx2", allow_avx2, "census engine: run the AVX2 kernel when the CPU has it (false = portable SSE2)");
     v("num_disparities", num_disparities, "px; disparity search range, multiple of 16 (paper: 128 at 640x480)");
     v("min_disparity", min_disparity, "px; smallest disparity searched");
