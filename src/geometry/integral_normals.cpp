@@ -11,7 +11,7 @@
 // trigonometric closed form (no transcendental call per pixel), in float after centring, in a
 // branch-free loop over each row's list of pixels that need a normal (valid, with a window, and
 // selected when the caller passes a selection), which the compiler vectorises. Invalid and
-// unselected pixels skip steps 3's window sums and the solver entirely.
+// unselected pixels skip step 3's window sums and the solver entirely.
 #include "cropsight/geometry/integral_normals.hpp"
 
 #include <algorithm>
@@ -25,6 +25,34 @@ namespace cropsight::geometry {
 namespace {
 
 constexpr int kSums = 10;  // n, x, y, z, xx, xy, xz, yy, yz, zz
+constexpr int kCell = 12;  // doubles per integral-image cell: the 10 sums + 2 padding (three 4-lane vectors)
+
+typedef double v4d __attribute__((vector_size(32)));
+
+// One integral row: out[u + 1] = up[u + 1] + (sums over columns <= u of image row (xr, yr, zr)),
+// out[0] = 0. Three 4-lane vectors per cell (AVX2 clone at run time; SSE pairs otherwise): each
+// lane does the same double operations, in the same order, as a scalar loop over the 10 sums.
+__attribute__((target_clones("avx2", "default"))) void build_row(int w, const float* __restrict xr,
+                                                                 const float* __restrict yr, const float* __restrict zr,
+                                                                 const double* __restrict up, double* __restrict out) {
+  v4d a0 = {0, 0, 0, 0}, a1 = {0, 0, 0, 0}, a2 = {0, 0, 0, 0};
+  for (int q = 0; q < kCell; ++q) out[q] = 0.0;
+  for (int u = 0; u < w; ++u) {
+    // Non-finite points add nothing (PCL's isfinite(x + y + z) test), without a branch.
+    const bool fin = std::isfinite(xr[u] + yr[u] + zr[u]);
+    const double x = fin ? xr[u] : 0.0, y = fin ? yr[u] : 0.0, z = fin ? zr[u] : 0.0;
+    const v4d p0 = {fin ? 1.0 : 0.0, x, y, z};
+    const v4d l1 = {x, x, x, y}, r1 = {x, y, z, y};
+    const v4d l2 = {y, z, 0.0, 0.0}, r2 = {z, z, 0.0, 0.0};
+    a0 += p0, a1 += l1 * r1, a2 += l2 * r2;
+    const double* a = up + std::size_t(u + 1) * kCell;
+    double* o = out + std::size_t(u + 1) * kCell;
+    v4d u0, u1, u2;
+    __builtin_memcpy(&u0, a, 32), __builtin_memcpy(&u1, a + 4, 32), __builtin_memcpy(&u2, a + 8, 32);
+    u0 += a0, u1 += a1, u2 += a2;
+    __builtin_memcpy(o, &u0, 32), __builtin_memcpy(o + 4, &u1, 32), __builtin_memcpy(o + 8, &u2, 32);
+  }
+}
 
 // Smallest eigenpair of the scatter matrices of a list of pixels (those of one row that need a
 // normal), structure of arrays: m[0..5][i] = xx, xy, xz, yy, yz, zz of pixel i (float, already
@@ -176,12 +204,13 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int
   }
 
   // 2. Chamfer distance map (1, 1.4), PCL's two passes on the flat array (including its row-end
-  // reads that wrap into the neighbouring row). Values are capped at `cap` (> smoothing size):
+  // reads that wrap into the neighbouring row). Values are capped at `cap` (= smoothing size):
   // the passes are a min-plus recursion, so capping the start values gives min(PCL's value, cap),
   // and only min(distance, smoothing) is used. Each row is split into a vectorised part (the
   // three neighbours in the previous row) and the sweep along the row (sweep_forward/backward:
   // vectorised too, same float sums as PCL's sequential loop).
-  const float cap = float(S) + 2.0f;
+  // cap = the smoothing size: min(min(PCL, cap), smoothing) = min(PCL, smoothing).
+  const float cap = cfg_.normal_smoothing_size;
   const int reach = int(cap) + 1;  // g^j(x) >= j - tiny > cap for j >= reach
   distance_.resize(n);
   scratch_.resize(3 * std::size_t(w));
@@ -210,43 +239,27 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int
   }
 
   // 3. Ring of integral rows I(r), r = 0..h: I(r)[u] = sums over rows < r and columns < u, each
-  // cell kSums consecutive doubles (one pointer while building; contiguous corner reads).
+  // cell kCell consecutive doubles (the kSums sums + padding; contiguous corner reads).
   // Pixel row v reads rows v - S/2 .. v + S - S/2 (S + 1 rows), so S + 2 slots suffice.
   const int ring = S + 2;
-  const std::size_t row_len = std::size_t(w + 1) * kSums;
+  const std::size_t row_len = std::size_t(w + 1) * kCell;
   integral_.assign(row_len * ring, 0.0);
   auto irow = [&](int r) { return integral_.data() + std::size_t(r % ring) * row_len; };
   int built = 1;  // I(0) (zeros) is in slot 0
   auto build_until = [&](int r_last) {
     for (; built <= r_last; ++built) {
       const int r = built - 1;  // image row added by I(built)
-      const double* up = irow(r);
-      double* out = irow(built);
-      double acc[kSums] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0};
-      for (int q = 0; q < kSums; ++q) out[q] = 0.0;
-      const float* xr = X + std::size_t(r) * w;
-      const float* yr = Y + std::size_t(r) * w;
-      const float* zr = Z + std::size_t(r) * w;
-      for (int u = 0; u < w; ++u) {
-        // Non-finite points add nothing (PCL's isfinite(x + y + z) test), without a branch.
-        const bool fin = std::isfinite(xr[u] + yr[u] + zr[u]);
-        const double x = fin ? xr[u] : 0.0, y = fin ? yr[u] : 0.0, z = fin ? zr[u] : 0.0;
-        acc[0] += fin ? 1.0 : 0.0, acc[1] += x, acc[2] += y, acc[3] += z;
-        acc[4] += x * x, acc[5] += x * y, acc[6] += x * z, acc[7] += y * y, acc[8] += y * z, acc[9] += z * z;
-        const double* a = up + std::size_t(u + 1) * kSums;
-        double* o = out + std::size_t(u + 1) * kSums;
-        for (int q = 0; q < kSums; ++q) o[q] = a[q] + acc[q];
-      }
+      build_row(w, X + std::size_t(r) * w, Y + std::size_t(r) * w, Z + std::size_t(r) * w, irow(r), irow(built));
     }
   };
 
   // Scatter matrix (centred in double, then float) of the window of side s at top-left (left, top).
   auto scatter = [&](const double* top_row, const double* bottom_row, int left, int s, float* r, std::size_t stride) {
     double m[kSums];
-    const double* a0 = top_row + std::size_t(left) * kSums;
-    const double* a1 = top_row + std::size_t(left + s) * kSums;
-    const double* c0 = bottom_row + std::size_t(left) * kSums;
-    const double* c1 = bottom_row + std::size_t(left + s) * kSums;
+    const double* a0 = top_row + std::size_t(left) * kCell;
+    const double* a1 = top_row + std::size_t(left + s) * kCell;
+    const double* c0 = bottom_row + std::size_t(left) * kCell;
+    const double* c1 = bottom_row + std::size_t(left + s) * kCell;
     for (int q = 0; q < kSums; ++q) m[q] = c1[q] + a0[q] - a1[q] - c0[q];
     const double ic = 1.0 / m[0];
     r[0] = float(m[4] - m[1] * m[1] * ic), r[stride] = float(m[5] - m[1] * m[2] * ic);
