@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "cropsight/core/error.hpp"
 
@@ -75,6 +76,9 @@ void detect_organized_edges(const OrganizedCloud& cloud, const OrganizedEdgeConf
   const int ddy[8] = {0, -1, -1, -1, 0, 1, 1, 1};
   int doff[8];
   for (int k = 0; k < 8; ++k) doff[k] = ddy[k] * w + ddx[k];
+  // Walk steps per direction (dx, dy in -8..8, count 1..8 → 17·17·9 keys), filled on first use.
+  std::vector<int> dir_slot(17 * 17 * 9, -1);
+  std::vector<std::pair<int, int>> steps;
 
   for (int row = 1; row < h - 1; ++row) {
     std::uint8_t* lrow = labels.data() + std::size_t(row) * w;
@@ -94,11 +98,22 @@ void detect_organized_edges(const OrganizedCloud& cloud, const OrganizedEdgeConf
           ++count;
         }
       }
-      const float fdx = float(dx) / float(count), fdy = float(dy) / float(count);
+      // The walk's steps depend only on (dx, dy, count): computed once per direction and frame
+      // with PCL's float expressions, then reused (a table lookup per step instead of two float
+      // multiplies and floors).
+      const int key = ((dx + 8) * 17 + (dy + 8)) * 9 + count;
+      int& slot = dir_slot[std::size_t(key)];
+      if (slot < 0) {
+        slot = int(steps.size());
+        const float fdx = float(dx) / float(count), fdy = float(dy) / float(count);
+        for (int s = 1; s < cfg.max_search_neighbors; ++s)
+          steps.push_back({floor_int(fdy * float(s)), floor_int(fdx * float(s))});
+      }
+      const std::pair<int, int>* st = steps.data() + slot;
       float corr = std::numeric_limits<float>::quiet_NaN();
       for (int s = 1; s < cfg.max_search_neighbors; ++s) {
-        const int sr = row + floor_int(fdy * float(s));
-        const int sc = col + floor_int(fdx * float(s));
+        const int sr = row + st[s - 1].first;
+        const int sc = col + st[s - 1].second;
         if (sr < 0 || sr >= h || sc < 0 || sc >= w) break;
         const float zs = Z[sr * w + sc];
         if (std::isfinite(zs)) {
