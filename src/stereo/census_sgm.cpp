@@ -113,7 +113,7 @@ struct BandJob {
   const cv::Mat* pad_left;
   const cv::Mat* pad_right;
   Geometry g;
-  int p1, p2, uniqueness, lr_check, outside_cost;
+  int p1, p2, uniqueness, lr_check, outside_cost, box;
   const int* p2_of_step;      // [256]: P2 for a grey-level step |I(p) - I(p - r)| along the path
   int first_row, rows, step;  // rows first_row, first_row + step, ... (step = +1 or -1)
   DisparityImage* out;
@@ -144,6 +144,7 @@ CS_INLINE void sweep_band_impl(const BandJob& job) {
   i16* mb[2] = {mins.data() + 4 * W, mins.data() + 5 * W};
 
   std::vector<i16> cost(std::size_t(W) * D), sum(std::size_t(W) * D);
+  std::vector<i16> boxsrc(job.box > 1 ? std::size_t(W + job.box) * D : 0);
   std::vector<i16> rmin(std::size_t(W + D + kLanes)), rarg(std::size_t(W + D + kLanes));
   const auto w = std::size_t(W);
   std::vector<std::uint64_t> cl(w), cr(w);
@@ -198,6 +199,25 @@ CS_INLINE void sweep_band_impl(const BandJob& job) {
       }
     }
 
+    if (job.box > 1) {
+      // Horizontal box sum of the costs over `box` columns (same disparity): more support on
+      // low-contrast texture, like SGBM's block window. Border columns repeat the edge cost.
+      const int h = job.box / 2;
+      for (int x = 0; x < W; ++x)
+        std::memcpy(boxsrc.data() + std::size_t(x + h) * D, cost.data() + std::size_t(x) * D,
+                    sizeof(i16) * std::size_t(D));
+      for (int k = 0; k < h; ++k) {
+        std::memcpy(boxsrc.data() + std::size_t(k) * D, cost.data(), sizeof(i16) * std::size_t(D));
+        std::memcpy(boxsrc.data() + std::size_t(W + h + k) * D, cost.data() + std::size_t(W - 1) * D,
+                    sizeof(i16) * std::size_t(D));
+      }
+      for (int x = 0; x < W; ++x)
+        for (int o = 0; o < D; o += kLanes) {
+          v16 acc = v16{};
+          for (int k = 0; k < job.box; ++k) acc += ld(boxsrc.data() + std::size_t(x + k) * D + o);
+          st(cost.data() + std::size_t(x) * D + o, acc);
+        }
+    }
     const std::uint8_t* Ic = job.pad_left->ptr<std::uint8_t>(y + g.ry) + g.rx;
     const std::uint8_t* Ip = r > 0 ? job.pad_left->ptr<std::uint8_t>(y - job.step + g.ry) + g.rx : Ic;
     // Forward pass: the three inter-row paths and left->right; their sum starts S.
@@ -330,7 +350,8 @@ DisparityImage census_sgm(const cv::Mat& left, const cv::Mat& right, const Censu
   cv::copyMakeBorder(left, pl, g.ry, g.ry, g.rx, g.rx, cv::BORDER_REPLICATE);
   cv::copyMakeBorder(right, pr, g.ry, g.ry, g.rx, g.rx, cv::BORDER_REPLICATE);
   DisparityImage out(g.W, g.H, kNaN);
-  const int outside = (p.census_width * p.census_height - 1) / 2;
+  const int outside = std::max(p.cost_box, 1) * ((p.census_width * p.census_height - 1) / 2);
+  if (p.cost_box < 1 || p.cost_box % 2 == 0 || p.cost_box > 9) throw Error(where, "cost_box must be odd, 1..9");
   // Intensity-adaptive P2 (Hirschmüller 2008: P2 = P2' / |I(p) - I(p-r)|), here
   // P2 / (1 + step / p2_step) and at least P1: depth edges usually coincide with grey edges.
   std::vector<int> lut(256);
@@ -339,12 +360,14 @@ DisparityImage census_sgm(const cv::Mat& left, const cv::Mat& right, const Censu
   const int bands = (p.bands >= 2 && g.H >= 2) ? 2 : 1;
   std::vector<BandJob> jobs;
   if (bands == 1) {
-    jobs.push_back({&pl, &pr, g, p.p1, p.p2, p.uniqueness_ratio, p.lr_check, outside, lut.data(), 0, g.H, 1, &out});
+    jobs.push_back(
+        {&pl, &pr, g, p.p1, p.p2, p.uniqueness_ratio, p.lr_check, outside, p.cost_box, lut.data(), 0, g.H, 1, &out});
   } else {
     const int top = g.H / 2;
-    jobs.push_back({&pl, &pr, g, p.p1, p.p2, p.uniqueness_ratio, p.lr_check, outside, lut.data(), 0, top, 1, &out});
     jobs.push_back(
-        {&pl, &pr, g, p.p1, p.p2, p.uniqueness_ratio, p.lr_check, outside, lut.data(), g.H - 1, g.H - top, -1, &out});
+        {&pl, &pr, g, p.p1, p.p2, p.uniqueness_ratio, p.lr_check, outside, p.cost_box, lut.data(), 0, top, 1, &out});
+    jobs.push_back({&pl, &pr, g, p.p1, p.p2, p.uniqueness_ratio, p.lr_check, outside, p.cost_box, lut.data(), g.H - 1,
+                    g.H - top, -1, &out});
   }
   const bool avx2 = p.allow_avx2 && census_sgm_uses_avx2();
   tbb::parallel_for(0, int(jobs.size()), [&](int i) {

@@ -25,6 +25,7 @@ struct CensusSgmParams {
   int p1 = 10;                ///< Hamming-bit units; penalty of a +-1 disparity step
   int p2 = 120;               ///< Hamming-bit units; penalty of a larger step
   int p2_step = 0;            ///< grey levels; P2 / (1 + |dI| / p2_step) along the path (0 = constant P2)
+  int cost_box = 1;           ///< columns; horizontal box sum of the costs before SGM (odd, 1 = none)
   int uniqueness_ratio = 10;  ///< percent (OpenCV's rule); 0 = off
   int lr_check = 1;           ///< px; -1 = off
   bool allow_avx2 = true;     ///< false forces the portable SSE2 kernel (tests compare both)

@@ -189,6 +189,7 @@ DisparityImage run_census(const cv::Mat& left, const cv::Mat& right, const Dispa
   p.p2 = c.census_p2;
   p.p2_step = c.census_p2_step;
   p.allow_avx2 = c.allow_avx2;
+  p.cost_box = c.census_box;
   p.uniqueness_ratio = c.uniqueness_ratio;
   p.lr_check = c.lr_check;
   DisparityImage out;

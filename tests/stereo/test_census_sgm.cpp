@@ -141,6 +141,7 @@ TEST(CensusSgm, Avx2KernelEqualsPortableKernel) {
     p.census_width = cw;
     p.census_height = cw == 9 ? 7 : 5;
     p.p2_step = 4;
+    p.cost_box = cw == 9 ? 3 : 1;  // and the horizontal cost box
     const DisparityImage a = detail::census_sgm(s.left, s.right, p);
     p.allow_avx2 = false;
     const DisparityImage b = detail::census_sgm(s.left, s.right, p);

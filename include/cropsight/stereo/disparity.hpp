@@ -32,6 +32,7 @@ struct DisparityConfig {
   int census_p2 = 120;            ///< Hamming bits; SGM penalty of a larger step (census engine)
   int census_p2_step = 4;         ///< grey levels; P2 / (1 + |dI| / this) along a path (0 = constant)
   int census_blur = 0;            ///< px; Gaussian kernel applied to the grey images before the census (0 = none)
+  int census_box = 1;             ///< columns; horizontal box sum of census costs before SGM (odd; 1 = none)
   bool allow_avx2 = true;         ///< census engine: use the AVX2 kernel when the CPU has it (else SSE2)
   int num_disparities = 128;      ///< search range [min_disparity, min_disparity + num_disparities); multiple of 16
   int min_disparity = 0;          ///< pixels
@@ -64,6 +65,7 @@ struct DisparityConfig {
       "grey levels; P2 falls as P2 / (1 + |dI| / census_p2_step) across intensity edges (Hirschmueller 2008 "
       "divides by |dI|; 0 = constant P2)");
     v("census_blur", census_blur, "px; odd Gaussian kernel smoothing the grey images before the census (0 = none)");
+    v("census_box", census_box, "columns; horizontal box sum of the census costs before SGM (odd, 1 = none)");
     v("allow_avx2", allow_avx2, "census engine: run the AVX2 kernel when the CPU has it (false = portable SSE2)");
     v("num_disparities", num_disparities, "px; disparity search range, multiple of 16 (paper: 128 at 640x480)");
     v("min_disparity", min_disparity, "px; smallest disparity searched");
