@@ -1,9 +1,39 @@
 #include "cropsight/tracking/head_mapper.hpp"
 
+#include <algorithm>
+#include <limits>
+
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/organized_cloud.hpp"
 
 namespace cropsight::tracking {
+
+namespace {
+/// Centroid (camera frame) of the points within `cap` metres of depth of the head's top. The top
+/// is the 2nd percentile of depth, so that a few flying pixels in front of the head do not set it.
+/// Falls back to the centroid of all valid points when fewer than 3 are in the cap.
+Eigen::Vector3f top_centroid(const OrganizedCloud& cloud, const std::vector<int>& indices, double cap,
+                             std::vector<float>& depth) {
+  depth.clear();
+  for (int i : indices)
+    if (cloud.valid(std::size_t(i))) depth.push_back(cloud.z[std::size_t(i)]);
+  Eigen::Vector3d sum_all = Eigen::Vector3d::Zero(), sum_cap = Eigen::Vector3d::Zero();
+  if (depth.empty()) return Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN());
+  const auto nth = depth.begin() + std::ptrdiff_t(0.02 * double(depth.size() - 1));
+  std::nth_element(depth.begin(), nth, depth.end());
+  const double limit = double(*nth) + cap;
+  int n_all = 0, n_cap = 0;
+  for (int i : indices) {
+    const auto u = std::size_t(i);
+    if (!cloud.valid(u)) continue;
+    const Eigen::Vector3d p = cloud.point(u).cast<double>();
+    sum_all += p;
+    ++n_all;
+    if (p.z() <= limit) sum_cap += p, ++n_cap;
+  }
+  return (n_cap >= 3 ? sum_cap / n_cap : sum_all / n_all).cast<float>();
+}
+}  // namespace
 
 void HeadMapperConfig::apply(const ConfigMap& values, const std::string& where) {
   apply_config(sizing, values, where, "sizing.");
@@ -17,9 +47,11 @@ FrameAssociation HeadMapper::add_frame(int frame, const OrganizedCloud& cloud, s
   if (finished_) throw Error("frame " + std::to_string(frame), "head mapper already finished");
   std::vector<HeadObservation> obs(detections.size());
   const int margin = filter_.config().border_margin_px;
+  const double position_cap_m = filter_.config().position_cap_m;
   for (std::size_t k = 0; k < detections.size(); ++k) {
     const Box2D& b = detections[k].box;
-    obs[k].centroid = detections[k].centroid;
+    obs[k].centroid = position_cap_m > 0 ? top_centroid(cloud, detections[k].indices, position_cap_m, depth_scratch_)
+                                         : detections[k].centroid;
     obs[k].score = detections[k].score;
     obs[k].partial = margin >= 0 && (b.x <= margin || b.y <= margin || b.x + b.width >= cloud.width - margin ||
                                      b.y + b.height >= cloud.height - margin);
@@ -35,8 +67,8 @@ FrameAssociation HeadMapper::add_frame(int frame, const OrganizedCloud& cloud, s
     m.index = int(k);
     m.track_id = a.track_ids[k];
     m.score = detections[k].score;
-    m.centroid = detections[k].centroid;
-    m.field_position = filter_.transform().to_field(a.camera_position, detections[k].centroid);
+    m.centroid = obs[k].centroid;
+    m.field_position = filter_.transform().to_field(a.camera_position, obs[k].centroid);
     m.size = obs[k].size;
     m.partial = obs[k].partial;
     measured_.push_back(m);

@@ -136,3 +136,43 @@ TEST(HeadMapper, DetectionsAtTheBorderArePartial) {
   EXPECT_TRUE(mapper.finish().empty());
   EXPECT_TRUE(mapper.filter().all_heads().empty());
 }
+
+// tracking.position_cap_m: a head's position is the centroid of its top, not of everything
+// visible. A dome seen off-axis shows more of one flank; the flank pulls the all-points centroid
+// sideways but not the top's.
+TEST(HeadMapper, PositionIsTheTopOfTheHead) {
+  OrganizedCloud c(60, 60);
+  std::vector<int> head;
+  for (int v = 0; v < 60; ++v)
+    for (int u = 0; u < 60; ++u) {
+      const int i = c.index(u, v);
+      const float x = 0.003f * float(u - 30), y = 0.003f * float(v - 30);
+      c.x[std::size_t(i)] = x;
+      c.y[std::size_t(i)] = y;
+      const float r2 = x * x + y * y;
+      c.z[std::size_t(i)] = 0.7f + r2 / (2 * 0.08f);  // dome, apex at (0, 0), radius of curvature 8 cm
+      // Visible: the top (r < 5 cm) and, on the +x side only, the flank down to r = 8 cm.
+      if (r2 < 0.05f * 0.05f || (x > 0 && r2 < 0.08f * 0.08f)) head.push_back(i);
+    }
+  Eigen::Vector3f mean = Eigen::Vector3f::Zero();  // what the detector reports as the centroid
+  for (int i : head) mean += c.point(std::size_t(i));
+  mean /= float(head.size());
+  auto position = [&](const std::string& cap) {
+    HeadMapperConfig cfg;
+    cfg.apply({{"sizing.compute_hull", "false"}, {"tracking.position_cap_m", cap}}, "test");
+    HeadMapper mapper(cfg);
+    std::vector<Detection> d(1);
+    d[0].indices = head;
+    d[0].centroid = mean;
+    d[0].score = 1.0f;
+    d[0].box = {5, 5, 50, 50};
+    mapper.add_frame(0, c, d, Eigen::Vector3d::Zero());
+    return mapper.detections().at(0).centroid;
+  };
+  const Eigen::Vector3f all = position("0"), top = position("0.01");
+  EXPECT_EQ(all, mean);  // 0: the detector's centroid, as in the paper
+  EXPECT_GT(all.x(), 0.01f) << "the flank pulls the all-points centroid";
+  EXPECT_NEAR(top.x(), 0.0f, 0.002f);
+  EXPECT_NEAR(top.y(), 0.0f, 0.002f);
+  EXPECT_LT(top.z(), 0.7f + 0.01f);
+}

@@ -80,6 +80,7 @@ class HeadMapper {
   std::vector<MeasuredDetection> measured_;
   std::vector<TrackedHead> map_;
   std::set<int> confirmed_;
+  std::vector<float> depth_scratch_;  // top_centroid's depths, reused across detections
   bool finished_ = false;
 };
 
