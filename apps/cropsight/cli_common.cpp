@@ -11,9 +11,7 @@
 namespace cropsight::cli {
 
 namespace {
-double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 }  // namespace
 
 ConfigMap CommonOptions::config_map(const std::string& default_preset) const {
@@ -36,12 +34,15 @@ void add_config_options(CLI::App* cmd, CommonOptions& o) {
   cmd->add_option("--set", o.sets, "Override a parameter: key=value (repeatable)")->take_all();
 }
 
-void print_json(const nlohmann::json& j) {
-  std::cout << j.dump() << std::endl;
-}
+void print_json(const nlohmann::json& j) { std::cout << j.dump() << std::endl; }
 
 Progress::Progress(std::string what, long total, bool quiet, double min_interval_s)
-    : what_(std::move(what)), total_(total), quiet_(quiet), tty_(::isatty(2) != 0), min_interval_s_(min_interval_s), start_(now_s()) {}
+    : what_(std::move(what)),
+      total_(total),
+      quiet_(quiet),
+      tty_(::isatty(2) != 0),
+      min_interval_s_(min_interval_s),
+      start_(now_s()) {}
 
 void Progress::update(long done) {
   if (quiet_) return;

@@ -18,10 +18,13 @@ CameraIntrinsics CameraIntrinsics::from_fov(int width, int height, double hfov_r
 }
 
 void CameraIntrinsics::validate(const std::string& where) const {
-  if (width <= 0 || height <= 0) throw Error(where, "image size must be positive, got " + std::to_string(width) + "x" + std::to_string(height));
-  if (!(std::isfinite(fx) && std::isfinite(fy) && fx > 0 && fy > 0)) throw Error(where, "focal lengths fx, fy must be finite and positive");
+  if (width <= 0 || height <= 0)
+    throw Error(where, "image size must be positive, got " + std::to_string(width) + "x" + std::to_string(height));
+  if (!(std::isfinite(fx) && std::isfinite(fy) && fx > 0 && fy > 0))
+    throw Error(where, "focal lengths fx, fy must be finite and positive");
   if (!(std::isfinite(cx) && std::isfinite(cy))) throw Error(where, "principal point cx, cy must be finite");
-  if (!(std::isfinite(depth_scale) && depth_scale > 0)) throw Error(where, "depth_scale must be finite and positive (metres per depth unit)");
+  if (!(std::isfinite(depth_scale) && depth_scale > 0))
+    throw Error(where, "depth_scale must be finite and positive (metres per depth unit)");
   for (double d : distortion)
     if (!std::isfinite(d)) throw Error(where, "distortion coefficients must be finite");
 }

@@ -23,8 +23,7 @@ void flatten(const YAML::Node& node, const std::string& prefix, ConfigMap& out, 
     case YAML::NodeType::Sequence: {
       std::string text = "[";
       for (std::size_t i = 0; i < node.size(); ++i) {
-        if (!node[i].IsScalar())
-          throw Error(path.string(), "'" + prefix + "' must be a list of scalars");
+        if (!node[i].IsScalar()) throw Error(path.string(), "'" + prefix + "' must be a list of scalars");
         text += (i ? ", " : "") + node[i].as<std::string>();
       }
       out[prefix] = text + "]";

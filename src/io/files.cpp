@@ -17,8 +17,8 @@ namespace fs = std::filesystem;
 namespace {
 fs::path temp_sibling(const fs::path& path) {
   std::random_device rd;
-  return path.parent_path() / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
-                               std::to_string(rd() % 1000000));
+  return path.parent_path() /
+         ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(rd() % 1000000));
 }
 }  // namespace
 

@@ -9,7 +9,8 @@
 using cropsight::CameraIntrinsics;
 
 TEST(Camera, DeprojectProjectRoundTrip) {
-  CameraIntrinsics c = CameraIntrinsics::from_fov(512, 424, 70.6 * std::numbers::pi / 180, 60.0 * std::numbers::pi / 180);
+  CameraIntrinsics c =
+      CameraIntrinsics::from_fov(512, 424, 70.6 * std::numbers::pi / 180, 60.0 * std::numbers::pi / 180);
   const Eigen::Vector3f p = c.deproject(100.0f, 300.0f, 1.25f);
   EXPECT_FLOAT_EQ(p.z(), 1.25f);
   const Eigen::Vector2f uv = c.project(p);
@@ -31,7 +32,8 @@ TEST(Camera, HandComputedDeprojection) {
 }
 
 TEST(Camera, FovGivesExpectedFocal) {
-  CameraIntrinsics c = CameraIntrinsics::from_fov(512, 424, 70.6 * std::numbers::pi / 180, 60.0 * std::numbers::pi / 180);
+  CameraIntrinsics c =
+      CameraIntrinsics::from_fov(512, 424, 70.6 * std::numbers::pi / 180, 60.0 * std::numbers::pi / 180);
   EXPECT_NEAR(c.fx, 256.0 / std::tan(35.3 * std::numbers::pi / 180), 1e-9);
   EXPECT_NEAR(2 * std::atan(0.5 * c.height / c.fy), 60.0 * std::numbers::pi / 180, 1e-9);
 }

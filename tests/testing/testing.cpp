@@ -17,7 +17,8 @@ namespace fs = std::filesystem;
 TempDir::TempDir() {
   std::random_device rd;
   for (int attempt = 0; attempt < 100; ++attempt) {
-    fs::path p = fs::temp_directory_path() / ("cropsight-test-" + std::to_string(::getpid()) + "-" + std::to_string(rd()));
+    fs::path p =
+        fs::temp_directory_path() / ("cropsight-test-" + std::to_string(::getpid()) + "-" + std::to_string(rd()));
     if (fs::create_directory(p)) {
       path_ = p;
       return;
@@ -43,7 +44,8 @@ fs::path cli_path() { return CROPSIGHT_CLI; }
 CommandResult run_cli(const std::string& args) {
   TempDir tmp;
   const fs::path out = tmp / "out.txt", err = tmp / "err.txt";
-  const std::string cmd = "'" + cli_path().string() + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "' </dev/null";
+  const std::string cmd =
+      "'" + cli_path().string() + "' " + args + " >'" + out.string() + "' 2>'" + err.string() + "' </dev/null";
   const int status = std::system(cmd.c_str());
   CommandResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);

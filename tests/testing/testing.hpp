@@ -37,8 +37,8 @@ CommandResult run_cli(const std::string& args);
 }  // namespace cropsight::testing
 
 /// Skips the current test with a message when `path` does not exist.
-#define CROPSIGHT_REQUIRE_DATA(path)                                                      \
-  do {                                                                                     \
-    if (!std::filesystem::exists(path))                                                    \
+#define CROPSIGHT_REQUIRE_DATA(path)                                                              \
+  do {                                                                                            \
+    if (!std::filesystem::exists(path))                                                           \
       GTEST_SKIP() << "shared data not found at " << (path) << " (see ../shared/data/README.md)"; \
   } while (0)

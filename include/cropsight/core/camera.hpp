@@ -10,11 +10,11 @@ namespace cropsight {
 struct CameraIntrinsics {
   int width = 0;
   int height = 0;
-  double fx = 0, fy = 0;  ///< focal lengths, pixels
-  double cx = 0, cy = 0;  ///< principal point, pixels
-  double depth_scale = 0.001;  ///< metres per raw depth unit
+  double fx = 0, fy = 0;           ///< focal lengths, pixels
+  double cx = 0, cy = 0;           ///< principal point, pixels
+  double depth_scale = 0.001;      ///< metres per raw depth unit
   std::vector<double> distortion;  ///< optional OpenCV-order coefficients (k1 k2 p1 p2 [k3...])
-  std::string sensor;  ///< free text, e.g. "kinect-v2"
+  std::string sensor;              ///< free text, e.g. "kinect-v2"
 
   /// 3D point (camera frame, m) of pixel (u, v) at depth z (m).
   Eigen::Vector3f deproject(float u, float v, float z) const {

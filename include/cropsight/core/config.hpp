@@ -27,9 +27,12 @@ namespace detail {
 template <typename T>
 void parse_value(const std::string& where, const std::string& key, const std::string& text, T& out) {
   if constexpr (std::is_same_v<T, bool>) {
-    if (text == "true" || text == "1" || text == "on" || text == "yes") out = true;
-    else if (text == "false" || text == "0" || text == "off" || text == "no") out = false;
-    else throw Error(where, "'" + key + "' expects true/false, got '" + text + "'");
+    if (text == "true" || text == "1" || text == "on" || text == "yes")
+      out = true;
+    else if (text == "false" || text == "0" || text == "off" || text == "no")
+      out = false;
+    else
+      throw Error(where, "'" + key + "' expects true/false, got '" + text + "'");
   } else if constexpr (std::is_same_v<T, std::string>) {
     out = text;
   } else if constexpr (std::is_arithmetic_v<T>) {
@@ -37,8 +40,7 @@ void parse_value(const std::string& where, const std::string& key, const std::st
     in.imbue(std::locale::classic());
     T v{};
     in >> v;
-    if (in.fail() || !(in >> std::ws).eof())
-      throw Error(where, "'" + key + "' expects a number, got '" + text + "'");
+    if (in.fail() || !(in >> std::ws).eof()) throw Error(where, "'" + key + "' expects a number, got '" + text + "'");
     if constexpr (std::is_floating_point_v<T>) {
       if (!(v == v)) throw Error(where, "'" + key + "' is NaN");
     }
@@ -125,15 +127,14 @@ void apply_config(Config& cfg, const ConfigMap& values, const std::string& where
   detail::ApplyVisitor v{values, where, prefix, used};
   cfg.visit(v);
   for (const auto& [key, value] : values) {
-    if (key.rfind(prefix, 0) == 0 && !used.count(key))
-      throw Error(where, "unknown configuration key '" + key + "'");
+    if (key.rfind(prefix, 0) == 0 && !used.count(key)) throw Error(where, "unknown configuration key '" + key + "'");
   }
 }
 
 /// Every field as (dotted key, value text, documentation), in declaration order.
 template <typename Config>
 std::vector<std::tuple<std::string, std::string, std::string>> dump_config(const Config& cfg,
-                                                                            const std::string& prefix = "") {
+                                                                           const std::string& prefix = "") {
   std::vector<std::tuple<std::string, std::string, std::string>> out;
   detail::DumpVisitor v{out, prefix};
   const_cast<Config&>(cfg).visit(v);  // visit() only reads through DumpVisitor

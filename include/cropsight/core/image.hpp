@@ -1,8 +1,8 @@
 #pragma once
 // A minimal owned, row-major image. Kept free of OpenCV so that the public headers stay light;
 // io/ converts to and from cv::Mat inside its .cpp files.
-#include <cstdint>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace cropsight {

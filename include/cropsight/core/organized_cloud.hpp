@@ -19,7 +19,7 @@ struct OrganizedCloud {
   std::vector<float> x, y, z;  ///< metres; NaN = no return
   // Optional channels (empty when absent); same indexing as x/y/z.
   std::vector<float> nx, ny, nz;  ///< unit normals; NaN where undefined
-  std::vector<float> curvature;  ///< surface variation λ0/(λ0+λ1+λ2); NaN where undefined
+  std::vector<float> curvature;   ///< surface variation λ0/(λ0+λ1+λ2); NaN where undefined
   std::vector<Rgb8> color;
   std::vector<std::uint16_t> labels;  ///< ground-truth instance ids, 0 = none
 
@@ -41,7 +41,6 @@ struct OrganizedCloud {
 
 /// Deprojects a depth image with the camera intrinsics; depth 0 (no return) and depths outside
 /// [min_depth, max_depth] (metres) become NaN. Copies colour and labels when the frame has them.
-OrganizedCloud to_organized_cloud(const RgbdFrame& frame, float min_depth = 0.0f,
-                                  float max_depth = INFINITY);
+OrganizedCloud to_organized_cloud(const RgbdFrame& frame, float min_depth = 0.0f, float max_depth = INFINITY);
 
 }  // namespace cropsight

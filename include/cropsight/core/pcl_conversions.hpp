@@ -27,7 +27,7 @@ void normals_to_pcl(const OrganizedCloud& in, pcl::PointCloud<pcl::Normal>& out)
 /// Throws Error("pcl cloud", ...) for an unorganised input.
 OrganizedCloud organized_from_pcl(const pcl::PointCloud<pcl::PointXYZ>& in);
 OrganizedCloud organized_from_pcl(const pcl::PointCloud<pcl::PointXYZRGB>& in);
-Cloud cloud_from_pcl(const pcl::PointCloud<pcl::PointXYZ>& in);  ///< drops non-finite points
+Cloud cloud_from_pcl(const pcl::PointCloud<pcl::PointXYZ>& in);     ///< drops non-finite points
 Cloud cloud_from_pcl(const pcl::PointCloud<pcl::PointXYZRGB>& in);  ///< drops non-finite points
 
 }  // namespace cropsight

@@ -10,8 +10,8 @@ namespace cropsight {
 struct OrganizedCloud;
 
 struct Segment {
-  std::vector<int> indices;  ///< indices into the source cloud
-  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();  ///< metres, source cloud frame
+  std::vector<int> indices;                                                      ///< indices into the source cloud
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();                            ///< metres, source cloud frame
   Eigen::Vector3f min = Eigen::Vector3f::Zero(), max = Eigen::Vector3f::Zero();  ///< 3D AABB, metres
   Box2D box;  ///< pixel box (organised sources only; empty otherwise)
 
