@@ -1,17 +1,22 @@
 #pragma once
 // Dense disparity from a rectified stereo pair (left image is the reference).
 //
-// compute_disparity() is the pipeline's matcher: OpenCV's semi-global block matcher (SGBM,
-// Hirschmüller 2008) as the engine, with
-//   - left padding so that the left-most `num_disparities` columns get a disparity too (OpenCV
-//     leaves them invalid),
-//   - a left-right consistency check (OpenCV's internal one, disp12MaxDiff, plus an optional
-//     explicit check against a second match of the horizontally mirrored pair),
-//   - matching features: rank transform + grey level (robust to exposure differences between
-//     the cameras); measured on Middlebury it lowers mean bad-1 by ~1 point over raw colour,
-//   - sub-pixel disparities (OpenCV's parabola fit, 1/16 px),
-//   - hole filling: every invalid pixel takes the smaller (background) of its nearest valid
-//     left / right neighbours on the scan line, then a median over the filled pixels,
+// compute_disparity() runs one of two semi-global matching engines (Hirschmüller 2008), chosen
+// by DisparityConfig::engine:
+//   - "census" (default): ours (src/stereo/census_sgm.cpp): census cost, 5 paths in one sweep
+//     over the rows (two threads: top band down, bottom band up), intensity-adaptive P2,
+//     uniqueness check, right-view disparities from the same summed costs (minimum along the
+//     diagonals) for the left-right check, parabola sub-pixel fit; then a speckle filter;
+//   - "opencv": OpenCV's StereoSGBM (the seedling pipeline's engine), with
+//     - left padding so that the left-most `num_disparities` columns get a disparity too
+//       (OpenCV leaves them invalid),
+//     - a left-right consistency check (OpenCV's internal one, disp12MaxDiff, plus an optional
+//       explicit check against a second match of the horizontally mirrored pair),
+//     - matching features: rank transform + grey level (robust to exposure differences between
+//       the cameras); measured on Middlebury it lowers mean bad-1 by ~1 point over raw colour,
+//     - sub-pixel disparities (OpenCV's parabola fit, 1/16 px);
+// both then fill holes: every invalid pixel takes the smaller (background) of its nearest valid
+// left / right neighbours on the scan line, then a median over the filled pixels,
 // so that every pixel gets an estimate (the "no holes on textured surfaces" rule and the
 // Middlebury rule where a missing estimate counts as an error).
 //
