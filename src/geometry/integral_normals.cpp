@@ -119,31 +119,55 @@ __attribute__((target_clones("avx2", "default"))) void solve_row(int n, const fl
 // i = 1..w-1, c[0] = t[0]; the backward sweep is the same on the reversed row), computed without
 // the sequential dependency: c[i] = min over j of g^j(t[i-j]) with g(x) = fl(x + 1), because
 // fl(· + 1) is monotone, so fl(min(a, b) + 1) = min(fl(a + 1), fl(b + 1)); the same float sums as
-// the sequential loop, hence bit-identical. Terms with j > `reach` exceed the cap that every t
-// is below, so `reach` passes (each a vectorised shift-add-min over the row) suffice. `a` and `b`
-// are scratch rows of w floats.
-__attribute__((target_clones("avx2", "default"))) void sweep_forward(int w, float* __restrict c, int reach,
-                                                                     float* __restrict a, float* __restrict b) {
+// the sequential loop, hence bit-identical. Terms with j >= `reach` exceed the cap that every t
+// is below, so only j < reach matter. By doubling: after the stages with shifts 1, 2, 4, ..., K
+// (stage K: c[i] = min(c[i], g^K(c_prev[i-K])), K sequential additions) c covers j = 0..2K-1;
+// each stage is one vectorised pass over the row. `a` is a scratch row of w floats.
+template <int K>
+inline void sweep_stage_forward(int w, float* __restrict c, float* __restrict a) {
   for (int i = 0; i < w; ++i) a[i] = c[i];
-  for (int j = 1; j <= reach; ++j) {
-    // b[i] = g^j(t[i - j]) from a[i] = g^(j-1)(t[i - j + 1]).
-    for (int i = w - 1; i >= j; --i) {
-      b[i] = a[i - 1] + 1.0f;
-      c[i] = std::min(c[i], b[i]);
-    }
-    std::swap(a, b);
+  for (int i = K; i < w; ++i) {
+    float v = a[i - K];
+    for (int m = 0; m < K; ++m) v = v + 1.0f;  // g^K: K roundings, as the sequential loop does
+    c[i] = std::min(c[i], v);
   }
 }
-__attribute__((target_clones("avx2", "default"))) void sweep_backward(int w, float* __restrict c, int reach,
-                                                                      float* __restrict a, float* __restrict b) {
+template <int K>
+inline void sweep_stage_backward(int w, float* __restrict c, float* __restrict a) {
   for (int i = 0; i < w; ++i) a[i] = c[i];
-  for (int j = 1; j <= reach; ++j) {
-    for (int i = 0; i < w - j; ++i) {
-      b[i] = a[i + 1] + 1.0f;
-      c[i] = std::min(c[i], b[i]);
-    }
-    std::swap(a, b);
+  for (int i = 0; i + K < w; ++i) {
+    float v = a[i + K];
+    for (int m = 0; m < K; ++m) v = v + 1.0f;
+    c[i] = std::min(c[i], v);
   }
+}
+// Stages with a run-time shift, for smoothing sizes beyond 15 pixels.
+inline void sweep_stage_generic(int w, int k, bool forward, float* __restrict c, float* __restrict a) {
+  for (int i = 0; i < w; ++i) a[i] = c[i];
+  for (int i = 0; i < w; ++i) {
+    const int src = forward ? i - k : i + k;
+    if (src < 0 || src >= w) continue;
+    float v = a[src];
+    for (int m = 0; m < k; ++m) v = v + 1.0f;
+    c[i] = std::min(c[i], v);
+  }
+}
+__attribute__((target_clones("avx2", "default"))) void sweep(int w, float* __restrict c, int reach, bool forward,
+                                                             float* __restrict a) {
+  // Covered j after the stages so far: 0..covered.
+  if (reach <= 0) return;
+  if (forward) {
+    sweep_stage_forward<1>(w, c, a);
+    if (reach > 2) sweep_stage_forward<2>(w, c, a);
+    if (reach > 4) sweep_stage_forward<4>(w, c, a);
+    if (reach > 8) sweep_stage_forward<8>(w, c, a);
+  } else {
+    sweep_stage_backward<1>(w, c, a);
+    if (reach > 2) sweep_stage_backward<2>(w, c, a);
+    if (reach > 4) sweep_stage_backward<4>(w, c, a);
+    if (reach > 8) sweep_stage_backward<8>(w, c, a);
+  }
+  for (int k = 16; reach > k; k *= 2) sweep_stage_generic(w, k, forward, c, a);
 }
 
 // The vertical part of a chamfer pass for pixels [lo, hi) of a row: t[i] = min(a[i-1] + 1.4,
@@ -228,14 +252,13 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int
   float* dist = distance_.data();
   float* t = scratch_.data();
   float* sa = t + w;
-  float* sb = sa + w;
   for (std::size_t i = 0; i < n; ++i) dist[i] = ch[i] ? cap : 0.0f;
   for (int ri = 1; ri < h; ++ri) {
     const float* prev = dist + std::size_t(ri - 1) * w;
     float* cur = dist + std::size_t(ri) * w;
     vertical_pass(1, w, prev, cur, t);  // prev[w] is cur[0], as in PCL
     t[0] = cur[0];
-    sweep_forward(w, t, reach, sa, sb);
+    sweep(w, t, reach, true, sa);
     std::copy(t + 1, t + w, cur + 1);
   }
   for (int ri = h - 2; ri >= 0; --ri) {
@@ -243,7 +266,7 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int
     const float* next = cur + w;
     vertical_pass(0, w - 1, next, cur, t);  // next[-1] is cur[w-1], as in PCL
     t[w - 1] = cur[w - 1];
-    sweep_backward(w, t, reach, sa, sb);
+    sweep(w, t, reach, false, sa);
     std::copy(t, t + w - 1, cur);
   }
 
