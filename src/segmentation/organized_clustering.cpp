@@ -64,14 +64,7 @@ __attribute__((target_clones("avx2", "default"))) void compute_links_impl(
   }
 }
 
-// Flood-fill predicates over the link bits (same answers as OesPredicate / OrgPredicate).
-struct OesLinks {
-  const std::uint8_t* bits;
-  bool member(int q) const { return bits[q] & kLinkMember; }
-  bool seed(int s) const { return member(s); }
-  bool expands(int) const { return true; }
-  std::uint8_t links(int p) const { return bits[p]; }
-};
+// Flood-fill predicate over the link bits (same answers as OrgPredicate).
 struct OrgLinks {
   const std::uint8_t* bits;
   const float* curvature;
@@ -81,6 +74,111 @@ struct OrgLinks {
   bool expands(int p) const { return curvature[p] < max_curvature; }
   std::uint8_t links(int p) const { return bits[p]; }
 };
+
+// Connected components of the OES link graph, the same result as flood_fill over the link bits (OES
+// seeds every member and its links are symmetric, so a fill attempt is exactly the connected
+// component of its seed, and attempts are ordered by their first pixel in raster order), computed
+// without the per-pixel queue: row runs (members joined by right links) are the nodes of a
+// union-find, joined through the up links; the root of a component is its run with the smallest
+// index, i.e. the one holding the component's first pixel. Kept components are numbered in the
+// order of their roots (= the fill's attempt order); each segment's indices are written run by
+// run in raster order (ascending), and ws.labels gets the segment id or -1, as flood_fill does.
+std::vector<Segment> oes_components(int width, int height, const std::uint8_t* bits, int min_size, int max_size,
+                                    FloodFillWorkspace& ws) {
+  if (width <= 0 || height <= 0) return {};
+  const int n = width * height;
+  std::vector<int>& runs = ws.runs;
+  std::vector<int>& parent = ws.parents;
+  runs.clear();
+  parent.clear();
+  // Run id per column of the previous and of the current row (-1: not a member).
+  if (ws.columns.size() < 2 * std::size_t(width)) ws.columns.resize(2 * std::size_t(width));
+  int* prev = ws.columns.data();
+  int* cur = prev + width;
+  std::fill(prev, prev + width, -1);
+  auto find = [&parent](int a) {
+    while (parent[std::size_t(a)] != a) {
+      const int up = parent[std::size_t(parent[std::size_t(a)])];
+      parent[std::size_t(a)] = up;  // path halving
+      a = up;
+    }
+    return a;
+  };
+  for (int v = 0; v < height; ++v) {
+    const std::uint8_t* b = bits + std::size_t(v) * width;
+    int u = 0;
+    while (u < width) {
+      if (!(b[u] & kLinkMember)) {
+        cur[u++] = -1;
+        continue;
+      }
+      const int id = int(parent.size());
+      parent.push_back(id);
+      const int start = u;
+      int last_up = -1;
+      for (;;) {
+        cur[u] = id;
+        // Up link to a member above (prev[u] >= 0 only for members; row 0 has no up bit).
+        const int above = prev[u];
+        if ((b[u] & kLinkUp) && above >= 0 && above != last_up) {
+          last_up = above;
+          const int ra = find(above), rb = find(id);
+          if (ra != rb) parent[std::size_t(std::max(ra, rb))] = std::min(ra, rb);
+        }
+        if (!((b[u] & kLinkRight) && u + 1 < width && (b[u + 1] & kLinkMember))) break;
+        ++u;
+      }
+      ++u;
+      runs.push_back(v * width + start);
+      runs.push_back(u - start);
+    }
+    std::swap(prev, cur);
+  }
+  // Components in the order of their roots. First every run points at its root directly (roots
+  // are final now; a root is the smallest run of its component, so root <= r), then each root gets
+  // the next component id in its own entry and every other run reads its root's (already
+  // numbered, root < r): parent[] ends as the component of each run.
+  const int nruns = int(parent.size());
+  for (int r = 0; r < nruns; ++r) parent[std::size_t(r)] = find(r);
+  std::vector<int>& sizes = ws.sizes;
+  sizes.clear();
+  for (int r = 0; r < nruns; ++r) {
+    const int root = parent[std::size_t(r)];
+    int c;
+    if (root == r) {
+      c = int(sizes.size());
+      sizes.push_back(0);
+    } else {
+      c = parent[std::size_t(root)];
+    }
+    sizes[std::size_t(c)] += runs[2 * std::size_t(r) + 1];
+    parent[std::size_t(r)] = c;
+  }
+  std::vector<Segment> out;
+  for (int& s : sizes) {
+    if (s >= min_size && s <= max_size) {
+      Segment seg;
+      seg.indices.resize(std::size_t(s));
+      s = int(out.size());
+      out.push_back(std::move(seg));
+    } else {
+      s = -1;
+    }
+  }
+  ws.labels.assign(std::size_t(n), -1);
+  int* labels = ws.labels.data();
+  ws.slots.resize(out.size());
+  for (std::size_t k = 0; k < out.size(); ++k) ws.slots[k] = out[k].indices.data();
+  for (int r = 0; r < nruns; ++r) {
+    const int s = sizes[std::size_t(parent[std::size_t(r)])];
+    if (s < 0) continue;
+    const int start = runs[2 * std::size_t(r)], len = runs[2 * std::size_t(r) + 1];
+    int*& slot = ws.slots[std::size_t(s)];
+    for (int i = 0; i < len; ++i) labels[start + i] = s, slot[i] = start + i;
+    slot += len;
+  }
+  return out;
+}
 
 std::uint8_t* link_buffers(const OrganizedCloud& cloud, FloodFillWorkspace& ws) {
   ws.links.resize(3 * cloud.size());
@@ -106,7 +204,9 @@ std::vector<Segment> segment_oes(const OrganizedCloud& cloud, const std::vector<
   compute_links_impl<false>(cloud.width, cloud.height, cloud.x.data(), cloud.y.data(), z, z, z, z, edges.data(),
                             std::uint8_t(cfg.barrier_labels), cfg.distance_tolerance * cfg.distance_tolerance, 0.0f,
                             buf + n, buf + 2 * n, buf);
-  return flood_fill_segments(cloud, OesLinks{buf}, cfg.min_size, cfg.max_size, ws);
+  auto segs = oes_components(cloud.width, cloud.height, buf, cfg.min_size, cfg.max_size, ws);
+  for (auto& s : segs) summarize_raster(s, cloud);
+  return segs;
 }
 
 std::vector<Segment> segment_org(const OrganizedCloud& cloud, const OrgConfig& cfg, FloodFillWorkspace& ws) {

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <iostream>
+#include <limits>
 #include <map>
+#include <random>
 
 #include "cropsight/geometry/integral_normals.hpp"
 #include "cropsight/geometry/organized_edges.hpp"
@@ -99,5 +101,54 @@ TEST(OrganizedClustering, PrecomputedLinksGiveThePredicatesSegments) {
     EXPECT_GT(got_org.size(), 2u);
     same(got_org, ref_org);
     EXPECT_EQ(ws.labels, ref_ws.labels);
+  }
+}
+
+TEST(OrganizedClustering, OesComponentsMatchTheFloodFillOnRandomGrids) {
+  // segment_oes labels the connected components of its link graph by row runs and union-find;
+  // the reference is the plain flood fill with OesPredicate. Random grids with depth steps, NaN
+  // holes and barrier edges give many runs that merge late (U shapes, spirals of links), and the
+  // size range drops both the large and the small components.
+  std::mt19937 rng(12345);
+  for (int trial = 0; trial < 60; ++trial) {
+    const int w = 8 + int(rng() % 90), h = 4 + int(rng() % 70);
+    OrganizedCloud c(w, h);
+    std::vector<std::uint8_t> edges(c.size(), 0);
+    const float nan_rate = 0.02f * float(trial % 7), step_rate = 0.05f * float(trial % 5), edge_rate = 0.03f;
+    std::uniform_real_distribution<float> uni(0.0f, 1.0f);
+    for (int v = 0; v < h; ++v)
+      for (int u = 0; u < w; ++u) {
+        const std::size_t i = std::size_t(v) * w + u;
+        // Piecewise planes: a random step in depth now and then separates neighbours in 3D.
+        const float z = 0.8f + 0.002f * float(u % 17) + (uni(rng) < step_rate ? 0.05f : 0.0f);
+        c.z[i] = uni(rng) < nan_rate ? std::numeric_limits<float>::quiet_NaN() : z;
+        c.x[i] = 0.002f * float(u) * c.z[i];
+        c.y[i] = 0.002f * float(v) * c.z[i];
+        if (uni(rng) < edge_rate) edges[i] = std::uint8_t(1u << (rng() % 4));
+      }
+    const int min_size = 1 + int(rng() % 20);
+    const int max_size = min_size + int(rng() % 400);
+    const segmentation::OesConfig cfg{
+        .distance_tolerance = 0.004f, .barrier_labels = int(rng() % 16), .min_size = min_size, .max_size = max_size};
+    segmentation::FloodFillWorkspace ws, ref_ws;
+    const auto got = segmentation::segment_oes(c, edges, cfg, ws);
+    const segmentation::OesPredicate pred{c.x.data(),
+                                          c.y.data(),
+                                          c.z.data(),
+                                          edges.data(),
+                                          std::uint8_t(cfg.barrier_labels),
+                                          cfg.distance_tolerance * cfg.distance_tolerance};
+    const auto ref = segmentation::flood_fill_segments(c, pred, cfg.min_size, cfg.max_size, ref_ws);
+    ASSERT_EQ(got.size(), ref.size()) << "trial " << trial;
+    for (std::size_t k = 0; k < got.size(); ++k) {
+      EXPECT_EQ(got[k].indices, ref[k].indices) << "trial " << trial << " segment " << k;
+      EXPECT_EQ(got[k].centroid, ref[k].centroid) << "trial " << trial << " segment " << k;
+      EXPECT_EQ(got[k].box, ref[k].box) << "trial " << trial << " segment " << k;
+    }
+    EXPECT_EQ(ws.labels, ref_ws.labels) << "trial " << trial;
+    // The workspace is reused frame to frame: a second call on the same input gives the same.
+    const auto again = segmentation::segment_oes(c, edges, cfg, ws);
+    ASSERT_EQ(again.size(), got.size());
+    for (std::size_t k = 0; k < got.size(); ++k) EXPECT_EQ(again[k].indices, got[k].indices);
   }
 }

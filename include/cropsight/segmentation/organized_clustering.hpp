@@ -103,8 +103,10 @@ struct OrgPredicate {
 
 /// OES segmentation. `edges` from geometry::detect_organized_edges on the same cloud.
 /// segment_oes / segment_org evaluate their predicate once per 4-neighbour pair in a vectorised
-/// pass (flood_fill.hpp's link bits, kept in ws.links) and fill over those bits: the same segments
-/// as flood_fill_segments with OesPredicate / OrgPredicate (tests/segmentation checks it).
+/// pass (flood_fill.hpp's link bits, kept in ws.links); segment_org fills over those bits,
+/// segment_oes labels their connected components by row runs and union-find (OES links are
+/// symmetric and every member seeds, so a fill attempt is a component): the same segments and
+/// ws.labels as flood_fill_segments with OesPredicate / OrgPredicate (tests/segmentation checks it).
 /// Throws Error("oes", ...) when sizes disagree or the config is invalid.
 std::vector<Segment> segment_oes(const OrganizedCloud& cloud, const std::vector<std::uint8_t>& edges,
                                  const OesConfig& cfg, FloodFillWorkspace& ws);
