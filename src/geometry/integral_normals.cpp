@@ -10,7 +10,8 @@
 // the eigenpair comes from Newton's method on the characteristic polynomial instead of PCL's
 // trigonometric closed form (no transcendental call per pixel), in float after centring, in a
 // branch-free loop over each row's list of pixels that need a normal (valid, with a window, and
-// selected when the caller passes a selection), which the compiler vectorises. Invalid and
+// selected when the caller passes a selection), which the compiler vectorises; the window sums and
+// centring run in 4-lane double vectors (scatter_row), lane by lane the scalar operations. Invalid and
 // unselected pixels skip step 3's window sums and the solver entirely.
 #include "cropsight/geometry/integral_normals.hpp"
 
@@ -28,6 +29,7 @@ constexpr int kSums = 10;  // n, x, y, z, xx, xy, xz, yy, yz, zz
 constexpr int kCell = 12;  // doubles per integral-image cell: the 10 sums + 2 padding (three 4-lane vectors)
 
 typedef double v4d __attribute__((vector_size(32)));
+typedef long long v4di __attribute__((vector_size(32)));
 
 // One integral row: out[u + 1] = up[u + 1] + (sums over columns <= u of image row (xr, yr, zr)),
 // out[0] = 0. Three 4-lane vectors per cell (AVX2 clone at run time; SSE pairs otherwise): each
@@ -51,6 +53,40 @@ __attribute__((target_clones("avx2", "default"))) void build_row(int w, const fl
     __builtin_memcpy(&u0, a, 32), __builtin_memcpy(&u1, a + 4, 32), __builtin_memcpy(&u2, a + 8, 32);
     u0 += a0, u1 += a1, u2 += a2;
     __builtin_memcpy(o, &u0, 32), __builtin_memcpy(o + 4, &u1, 32), __builtin_memcpy(o + 8, &u2, 32);
+  }
+}
+
+// Window sums and centred scatter matrices of the `count` listed pixels of one row: pixel k at
+// column cols[k] with window side sizes[k] reads the corner cells of integral rows tops[s] and
+// bottoms[s]; writes xx, xy, xz, yy, yz, zz to m[j * stride + k] (float). The double operations
+// of the scalar form, (c1 + a0 - a1 - c0) per sum and q - (p·p')·(1/n) per entry, each done
+// lane by lane in 4-lane vectors (AVX2 clone at run time; no FMA), so the values are the same.
+__attribute__((target_clones("avx2", "default"))) void scatter_row(int count, const int* __restrict cols,
+                                                                   const int* __restrict sizes,
+                                                                   const double* const* tops,
+                                                                   const double* const* bottoms, float* __restrict m,
+                                                                   std::size_t stride) {
+  for (int k = 0; k < count; ++k) {
+    const int s = sizes[k], left = cols[k] - s / 2;
+    const double* a0 = tops[s] + std::size_t(left) * kCell;
+    const double* a1 = tops[s] + std::size_t(left + s) * kCell;
+    const double* c0 = bottoms[s] + std::size_t(left) * kCell;
+    const double* c1 = bottoms[s] + std::size_t(left + s) * kCell;
+    v4d w[3];
+    for (int j = 0; j < 3; ++j) {
+      v4d p, q, r, t;
+      __builtin_memcpy(&p, c1 + 4 * j, 32), __builtin_memcpy(&q, a0 + 4 * j, 32);
+      __builtin_memcpy(&r, a1 + 4 * j, 32), __builtin_memcpy(&t, c0 + 4 * j, 32);
+      w[j] = p + q - r - t;
+    }
+    // w[0] = n, x, y, z; w[1] = xx, xy, xz, yy; w[2] = yz, zz, -, -.
+    const double ic = 1.0 / w[0][0];
+    const v4d icv = {ic, ic, ic, ic};
+    const v4d l = __builtin_shuffle(w[0], (v4di){1, 1, 1, 2}), r = __builtin_shuffle(w[0], (v4di){1, 2, 3, 2});
+    const v4d c = w[1] - l * r * icv;
+    m[k] = float(c[0]), m[stride + k] = float(c[1]), m[2 * stride + k] = float(c[2]), m[3 * stride + k] = float(c[3]);
+    m[4 * stride + k] = float(w[2][0] - w[0][2] * w[0][3] * ic);
+    m[5 * stride + k] = float(w[2][1] - w[0][3] * w[0][3] * ic);
   }
 }
 
@@ -285,20 +321,6 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int
     }
   };
 
-  // Scatter matrix (centred in double, then float) of the window of side s at top-left (left, top).
-  auto scatter = [&](const double* top_row, const double* bottom_row, int left, int s, float* r, std::size_t stride) {
-    double m[kSums];
-    const double* a0 = top_row + std::size_t(left) * kCell;
-    const double* a1 = top_row + std::size_t(left + s) * kCell;
-    const double* c0 = bottom_row + std::size_t(left) * kCell;
-    const double* c1 = bottom_row + std::size_t(left + s) * kCell;
-    for (int q = 0; q < kSums; ++q) m[q] = c1[q] + a0[q] - a1[q] - c0[q];
-    const double ic = 1.0 / m[0];
-    r[0] = float(m[4] - m[1] * m[1] * ic), r[stride] = float(m[5] - m[1] * m[2] * ic);
-    r[2 * stride] = float(m[6] - m[1] * m[3] * ic), r[3 * stride] = float(m[7] - m[2] * m[2] * ic);
-    r[4 * stride] = float(m[8] - m[2] * m[3] * ic), r[5 * stride] = float(m[9] - m[3] * m[3] * ic);
-  };
-
   const float smoothing = cfg_.normal_smoothing_size;
   float* NX = cloud.nx.data();
   float* NY = cloud.ny.data();
@@ -324,28 +346,37 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int
   int* cols = cols_.data();
   int* sizes = sizes_.data();
   const int* sel = select.empty() ? nullptr : select.data();
+  // Integral rows of each window size s = 2..S for the current pixel row (sm > 2 gives s >= 2).
+  std::vector<const double*> tops(std::size_t(S) + 1, nullptr), bottoms(std::size_t(S) + 1, nullptr);
   for (int v = S; v < h - S; ++v) {
     const std::size_t o = std::size_t(v) * w;
     int count = 0;
-    for (int u = S; u < w - S; ++u) {
-      const std::size_t i = o + u;
-      const float sm = std::min(dist[i], smoothing);
-      // NaN points have distance 0, so this also skips them.
-      const bool window = std::isfinite(Z[i]) && sm > 2.0f && (!sel || sel[i] >= 0);
-      cols[count] = u, sizes[count] = int(sm);
-      count += window ? 1 : 0;
+    // Branch-free (& instead of &&: the tests are cheap and their outcome changes often along a
+    // row); NaN points have distance 0, so the window test also skips them.
+    if (sel) {
+      for (int u = S; u < w - S; ++u) {
+        const std::size_t i = o + u;
+        const float sm = std::min(dist[i], smoothing);
+        const bool window = std::isfinite(Z[i]) & (sm > 2.0f) & (sel[i] >= 0);
+        cols[count] = u, sizes[count] = int(sm);
+        count += window ? 1 : 0;
+      }
+    } else {
+      for (int u = S; u < w - S; ++u) {
+        const std::size_t i = o + u;
+        const float sm = std::min(dist[i], smoothing);
+        const bool window = std::isfinite(Z[i]) & (sm > 2.0f);
+        cols[count] = u, sizes[count] = int(sm);
+        count += window ? 1 : 0;
+      }
     }
     if (count == 0) continue;
     build_until(v + S - S / 2);
-    // Window rows per size (s = 2..S; sm > 2 gives s >= 2): top v - s/2, bottom v - s/2 + s.
-    const double* tops[64];
-    const double* bottoms[64];
-    for (int s = 2; s <= S && s < 64; ++s) tops[s] = irow(v - s / 2), bottoms[s] = irow(v - s / 2 + s);
+    // Window rows per size: top v - s/2, bottom v - s/2 + s.
+    for (int s = 2; s <= S; ++s) tops[std::size_t(s)] = irow(v - s / 2), bottoms[std::size_t(s)] = irow(v - s / 2 + s);
+    scatter_row(count, cols, sizes, tops.data(), bottoms.data(), M, stride);
     for (int k = 0; k < count; ++k) {
-      const int u = cols[k], s = sizes[k];
-      const double* top_row = s < 64 ? tops[s] : irow(v - s / 2);
-      const double* bottom_row = s < 64 ? bottoms[s] : irow(v - s / 2 + s);
-      scatter(top_row, bottom_row, u - s / 2, s, M + k, stride);
+      const int u = cols[k];
       PX[k] = X[o + u], PY[k] = Y[o + u], PZ[k] = Z[o + u];
     }
     solve_row(count, M, stride, PX, PY, PZ, RX, RY, RZ, RC);
