@@ -230,12 +230,27 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int
   constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
   const int w = cloud.width, h = cloud.height;
   const std::size_t n = cloud.size();
-  cloud.nx.assign(n, kNaN);
-  cloud.ny.assign(n, kNaN);
-  cloud.nz.assign(n, kNaN);
-  cloud.curvature.assign(n, kNaN);
+  // Every pixel of the four outputs is written below: NaN row by row just before the row's
+  // results (the row is then still in cache when they are scattered into it), the border rows
+  // and the early return at once.
+  cloud.nx.resize(n);
+  cloud.ny.resize(n);
+  cloud.nz.resize(n);
+  cloud.curvature.resize(n);
+  auto nan_rows = [&cloud, w, kNaN](int v0, int v1) {
+    const std::size_t a = std::size_t(v0) * w, b = std::size_t(v1) * w;
+    std::fill(cloud.nx.begin() + a, cloud.nx.begin() + b, kNaN);
+    std::fill(cloud.ny.begin() + a, cloud.ny.begin() + b, kNaN);
+    std::fill(cloud.nz.begin() + a, cloud.nz.begin() + b, kNaN);
+    std::fill(cloud.curvature.begin() + a, cloud.curvature.begin() + b, kNaN);
+  };
   const int S = int(cfg_.normal_smoothing_size);
-  if (w < 2 || h < 2 || 2 * S >= w || 2 * S >= h) return;  // nothing outside the ignored border
+  if (w < 2 || h < 2 || 2 * S >= w || 2 * S >= h) {  // nothing outside the ignored border
+    nan_rows(0, h);
+    return;
+  }
+  nan_rows(0, S);
+  nan_rows(h - S, h);
   const float* X = cloud.x.data();
   const float* Y = cloud.y.data();
   const float* Z = cloud.z.data();
@@ -350,6 +365,7 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int
   std::vector<const double*> tops(std::size_t(S) + 1, nullptr), bottoms(std::size_t(S) + 1, nullptr);
   for (int v = S; v < h - S; ++v) {
     const std::size_t o = std::size_t(v) * w;
+    nan_rows(v, v + 1);
     int count = 0;
     // Branch-free (& instead of &&: the tests are cheap and their outcome changes often along a
     // row); NaN points have distance 0, so the window test also skips them.
