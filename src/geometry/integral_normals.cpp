@@ -206,15 +206,14 @@ __attribute__((target_clones("avx2", "default"))) void sweep(int w, float* __res
   for (int k = 16; reach > k; k *= 2) sweep_stage_generic(w, k, forward, c, a);
 }
 
-// The vertical part of a chamfer pass for pixels [lo, hi) of a row: t[i] = min(a[i-1] + 1.4,
-// a[i] + 1, a[i+1] + 1.4, self[i]) with `a` the neighbouring row (its reads may run one element
-// past either end, into the row itself, as PCL's flat-array passes do; only reads, so restrict
-// holds). Vectorised (AVX2 clone at run time).
+// The vertical part of a chamfer pass for pixels [lo, hi) of a row, in place: c[i] = min(a[i-1] +
+// 1.4, a[i] + 1, a[i+1] + 1.4, c[i]) with `a` the neighbouring row (its reads may run one element
+// past either end, into c[0] or c[w-1], which this call does not write, as PCL's flat-array
+// passes do; so restrict holds). Vectorised (AVX2 clone at run time).
 __attribute__((target_clones("avx2", "default"))) void vertical_pass(int lo, int hi, const float* __restrict a,
-                                                                     const float* __restrict self,
-                                                                     float* __restrict t) {
+                                                                     float* __restrict c) {
   for (int i = lo; i < hi; ++i)
-    t[i] = std::min(std::min(a[i - 1] + 1.4f, a[i] + 1.0f), std::min(a[i + 1] + 1.4f, self[i]));
+    c[i] = std::min(std::min(a[i - 1] + 1.4f, a[i] + 1.0f), std::min(a[i + 1] + 1.4f, c[i]));
 }
 
 }  // namespace
@@ -301,24 +300,19 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int
   distance_.resize(n);
   scratch_.resize(3 * std::size_t(w));
   float* dist = distance_.data();
-  float* t = scratch_.data();
-  float* sa = t + w;
+  float* sa = scratch_.data();  // the sweep's scratch row
   for (std::size_t i = 0; i < n; ++i) dist[i] = ch[i] ? cap : 0.0f;
   for (int ri = 1; ri < h; ++ri) {
     const float* prev = dist + std::size_t(ri - 1) * w;
     float* cur = dist + std::size_t(ri) * w;
-    vertical_pass(1, w, prev, cur, t);  // prev[w] is cur[0], as in PCL
-    t[0] = cur[0];
-    sweep(w, t, reach, true, sa);
-    std::copy(t + 1, t + w, cur + 1);
+    vertical_pass(1, w, prev, cur);  // prev[w] is cur[0] (not written here), as in PCL
+    sweep(w, cur, reach, true, sa);
   }
   for (int ri = h - 2; ri >= 0; --ri) {
     float* cur = dist + std::size_t(ri) * w;
     const float* next = cur + w;
-    vertical_pass(0, w - 1, next, cur, t);  // next[-1] is cur[w-1], as in PCL
-    t[w - 1] = cur[w - 1];
-    sweep(w, t, reach, false, sa);
-    std::copy(t, t + w - 1, cur);
+    vertical_pass(0, w - 1, next, cur);  // next[-1] is cur[w-1] (not written here), as in PCL
+    sweep(w, cur, reach, false, sa);
   }
 
   // 3. Ring of integral rows I(r), r = 0..h: I(r)[u] = sums over rows < r and columns < u, each
