@@ -4,6 +4,7 @@
 #include "cropsight/geometry/organized_edges.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <utility>
 
@@ -85,8 +86,11 @@ void detect_organized_edges(const OrganizedCloud& cloud, const OrganizedEdgeConf
     // Fast path for the whole row (branch-free, vectorised): pixels whose 8 neighbours are all
     // valid get their label; pixels with a NaN neighbour are marked kSearch for the walk below.
     row_fast_path(w, Z + std::size_t(row) * w, w, th, occluded, occluding, lrow);
-    for (int col = 1; col < w - 1; ++col) {
-      if (lrow[col] != kSearch) continue;
+    // The marked pixels are few: memchr finds them (the walk below writes only lrow[col]).
+    for (std::uint8_t* p = lrow + 1; p < lrow + w - 1; ++p) {
+      p = static_cast<std::uint8_t*>(std::memchr(p, kSearch, std::size_t(lrow + w - 1 - p)));
+      if (!p) break;
+      const int col = int(p - lrow);
       const int i = row * w + col;
       const float cur = std::abs(Z[i]);
       // Some neighbour is NaN: look across the hole along the mean direction of the NaN ones.
