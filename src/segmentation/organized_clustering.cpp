@@ -87,19 +87,22 @@ std::vector<Segment> oes_components(int width, int height, const std::uint8_t* b
                                     FloodFillWorkspace& ws) {
   if (width <= 0 || height <= 0) return {};
   const int n = width * height;
-  std::vector<int>& runs = ws.runs;
-  std::vector<int>& parent = ws.parents;
-  runs.clear();
-  parent.clear();
+  // Run k: runs[2k] = its first pixel, runs[2k + 1] = its length; parent[k]: union-find parent
+  // (at most n runs; raw arrays sized once, no per-run push_back).
+  if (ws.runs.size() < 2 * std::size_t(n)) ws.runs.resize(2 * std::size_t(n));
+  if (ws.parents.size() < std::size_t(n)) ws.parents.resize(std::size_t(n));
+  int* runs = ws.runs.data();
+  int* parent = ws.parents.data();
+  int nruns = 0;
   // Run id per column of the previous and of the current row (-1: not a member).
   if (ws.columns.size() < 2 * std::size_t(width)) ws.columns.resize(2 * std::size_t(width));
   int* prev = ws.columns.data();
   int* cur = prev + width;
   std::fill(prev, prev + width, -1);
-  auto find = [&parent](int a) {
-    while (parent[std::size_t(a)] != a) {
-      const int up = parent[std::size_t(parent[std::size_t(a)])];
-      parent[std::size_t(a)] = up;  // path halving
+  auto find = [parent](int a) {
+    while (parent[a] != a) {
+      const int up = parent[parent[a]];
+      parent[a] = up;  // path halving
       a = up;
     }
     return a;
@@ -112,8 +115,8 @@ std::vector<Segment> oes_components(int width, int height, const std::uint8_t* b
         cur[u++] = -1;
         continue;
       }
-      const int id = int(parent.size());
-      parent.push_back(id);
+      const int id = nruns++;
+      parent[id] = id;
       const int start = u;
       int last_up = -1;
       for (;;) {
@@ -123,14 +126,14 @@ std::vector<Segment> oes_components(int width, int height, const std::uint8_t* b
         if ((b[u] & kLinkUp) && above >= 0 && above != last_up) {
           last_up = above;
           const int ra = find(above), rb = find(id);
-          if (ra != rb) parent[std::size_t(std::max(ra, rb))] = std::min(ra, rb);
+          if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);
         }
         if (!((b[u] & kLinkRight) && u + 1 < width && (b[u + 1] & kLinkMember))) break;
         ++u;
       }
       ++u;
-      runs.push_back(v * width + start);
-      runs.push_back(u - start);
+      runs[2 * id] = v * width + start;
+      runs[2 * id + 1] = u - start;
     }
     std::swap(prev, cur);
   }
@@ -138,21 +141,20 @@ std::vector<Segment> oes_components(int width, int height, const std::uint8_t* b
   // are final now; a root is the smallest run of its component, so root <= r), then each root gets
   // the next component id in its own entry and every other run reads its root's (already
   // numbered, root < r): parent[] ends as the component of each run.
-  const int nruns = int(parent.size());
-  for (int r = 0; r < nruns; ++r) parent[std::size_t(r)] = find(r);
+  for (int r = 0; r < nruns; ++r) parent[r] = find(r);
   std::vector<int>& sizes = ws.sizes;
   sizes.clear();
   for (int r = 0; r < nruns; ++r) {
-    const int root = parent[std::size_t(r)];
+    const int root = parent[r];
     int c;
     if (root == r) {
       c = int(sizes.size());
       sizes.push_back(0);
     } else {
-      c = parent[std::size_t(root)];
+      c = parent[root];
     }
-    sizes[std::size_t(c)] += runs[2 * std::size_t(r) + 1];
-    parent[std::size_t(r)] = c;
+    sizes[std::size_t(c)] += runs[2 * r + 1];
+    parent[r] = c;
   }
   std::vector<Segment> out;
   for (int& s : sizes) {
@@ -170,9 +172,9 @@ std::vector<Segment> oes_components(int width, int height, const std::uint8_t* b
   ws.slots.resize(out.size());
   for (std::size_t k = 0; k < out.size(); ++k) ws.slots[k] = out[k].indices.data();
   for (int r = 0; r < nruns; ++r) {
-    const int s = sizes[std::size_t(parent[std::size_t(r)])];
+    const int s = sizes[std::size_t(parent[r])];
     if (s < 0) continue;
-    const int start = runs[2 * std::size_t(r)], len = runs[2 * std::size_t(r) + 1];
+    const int start = runs[2 * r], len = runs[2 * r + 1];
     int*& slot = ws.slots[std::size_t(s)];
     for (int i = 0; i < len; ++i) labels[start + i] = s, slot[i] = start + i;
     slot += len;
