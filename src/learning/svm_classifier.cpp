@@ -80,7 +80,9 @@ SvmClassifier::~SvmClassifier() {
   if (model_) svm_free_and_destroy_model(&model_);
 }
 
-void SvmClassifier::load_text(const std::string& text, const std::string& where) {
+// A function-try-block: when a check below rejects the model, libsvm's model is freed before the
+// error leaves (the constructors call this, and a constructor that throws runs no destructor).
+void SvmClassifier::load_text(const std::string& text, const std::string& where) try {
   {
     TempFile tmp;
     io::write_file_atomic(tmp.path(), text);
@@ -116,6 +118,9 @@ void SvmClassifier::load_text(const std::string& text, const std::string& where)
     throw Error(where, "SVM model has non-finite values");
   sv_norm2_ = sv_.rowwise().squaredNorm();
   w_ = sv_.transpose() * coef_;
+} catch (...) {
+  if (model_) svm_free_and_destroy_model(&model_);
+  throw;
 }
 
 float SvmClassifier::score(const float* x) const {
