@@ -11,8 +11,29 @@
 #include "cropsight/core/error.hpp"
 #include "gmm_simd.hpp"
 
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+
 namespace cropsight::segmentation {
 namespace {
+
+// Responsibilities of far components are exp(-87) ≈ 1e-38 and below, and the M-step's weighted
+// moments of them are subnormal floats. Intel cores take a microcode assist for every subnormal
+// operand or result (measured: EM 12.1 ms instead of 0.96 ms for 4096 points, K = 10, on a Xeon
+// with AVX-512), so EM runs with flush-to-zero and denormals-are-zero set in this thread's MXCSR
+// and restores the caller's mode on exit. The values flushed are below 1.2e-38, far below
+// anything that changes the fit.
+class FlushSubnormals {
+ public:
+#if defined(__SSE__)
+  FlushSubnormals() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | 0x8040u); }  // FTZ (bit 15) | DAZ (bit 6)
+  ~FlushSubnormals() { _mm_setcsr(saved_); }
+
+ private:
+  unsigned int saved_;
+#endif
+};
 
 using simd::kLanes;
 using simd::splat;
@@ -178,6 +199,7 @@ GmmModel gmm_initial_model(const std::vector<Eigen::Vector3f>& points, const Gmm
 
 GmmResult fit_gmm(const std::vector<Eigen::Vector3f>& points, const GmmConfig& cfg, const std::string& where) {
   check_input(points, cfg, where);
+  const FlushSubnormals flush;
   const Blocks b = make_blocks(points);
   const int k = cfg.components, nb = b.nb;
   GmmModel m = initial_centred(b, cfg);
