@@ -190,7 +190,7 @@ inline void sweep_stage_generic(int w, int k, bool forward, float* __restrict c,
 }
 __attribute__((target_clones("avx2", "default"))) void sweep(int w, float* __restrict c, int reach, bool forward,
                                                              float* __restrict a) {
-  // Covered j after the stages so far: 0..covered.
+  // After the stages with shifts 1..K, j = 0..2K-1 is covered; stop once that reaches reach - 1.
   if (reach <= 0) return;
   if (forward) {
     sweep_stage_forward<1>(w, c, a);
@@ -298,7 +298,7 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int
   const float cap = cfg_.normal_smoothing_size;
   const int reach = int(cap) + 1;  // g^j(x) >= j - tiny > cap for j >= reach
   distance_.resize(n);
-  scratch_.resize(3 * std::size_t(w));
+  scratch_.resize(std::size_t(w));
   float* dist = distance_.data();
   float* sa = scratch_.data();  // the sweep's scratch row
   for (std::size_t i = 0; i < n; ++i) dist[i] = ch[i] ? cap : 0.0f;
