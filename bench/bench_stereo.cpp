@@ -6,16 +6,20 @@
 //   - the previous engine: OpenCV SGBM 3-way on rank features, run twice for the explicit
 //     left-right check, + fill,
 //   - plain OpenCV StereoSGBM (the baseline of eval stereo),
-// and our GMM vs cv::ml::EM on the same 4096 points (K = 10, same tolerance and iteration cap).
+// and our GMM vs cv::ml::EM on the same 4096 points (K = 10, same tolerance and iteration cap),
+// and the whole seedling pipeline (detect_seedling) with the shipped presets: Arg 0 =
+// configs/seedling.yaml (OpenCV engine), Arg 1 = configs/seedling-fast.yaml (census engine).
 //   build/bin/bench_stereo --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
 #include <random>
 
+#include "cropsight/io/config_yaml.hpp"
 #include "cropsight/segmentation/gmm.hpp"
 #include "cropsight/sim/seedling.hpp"
 #include "cropsight/stereo/disparity.hpp"
+#include "cropsight/stereo/seedling_detector.hpp"
 
 using namespace cropsight;
 
@@ -86,6 +90,18 @@ void BM_GmmOpenCvEm(benchmark::State& st) {
   for (auto _ : st) benchmark::DoNotOptimize(segmentation::fit_gmm_opencv(points(), cfg));
 }
 
+void BM_SeedlingPipeline(benchmark::State& st) {
+  const std::string preset = st.range(0) == 0 ? "seedling" : "seedling-fast";
+  const auto path = io::find_preset(std::string(CROPSIGHT_SOURCE_DIR) + "/configs/" + preset + ".yaml");
+  stereo::SeedlingConfig cfg;
+  apply_config(cfg, io::load_config_map(path), path.string());
+  sim::SeedlingSimConfig sc;
+  const auto rig = sc.rig();
+  const stereo::RectifiedGeometry g{rig.width, rig.height, rig.f, rig.cx, rig.cy, rig.cx, rig.baseline()};
+  st.SetLabel(preset);
+  for (auto _ : st) benchmark::DoNotOptimize(stereo::detect_seedling(pair().left, pair().right, g, cfg));
+}
+
 }  // namespace
 
 BENCHMARK(BM_DisparityCensus128)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
@@ -97,6 +113,7 @@ BENCHMARK(BM_CensusSgmMatcherOnly128)
     ->UseRealTime();
 BENCHMARK(BM_DisparityOpenCvEngine128)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 BENCHMARK(BM_DisparityOpenCvSgbm128)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+BENCHMARK(BM_SeedlingPipeline)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 BENCHMARK(BM_GmmOurs)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_GmmOpenCvEm)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 

@@ -120,6 +120,16 @@ SeedlingDetection detect_seedling(const ColorImage& left, const ColorImage& righ
       height[i] = float(pl.n.dot(sp.points[i].cast<double>()) + pl.d);
       if (height[i] > cfg.min_height && height[i] < cfg.max_height) cand.push_back(int(i));
     }
+    if (cfg.candidate_open > 0 && !cand.empty()) {
+      // Disparity errors on low-contrast soil raise single pixels or small clumps above the
+      // height threshold; a plant is a solid region in the image. Opening the candidate mask
+      // drops the clumps narrower than the kernel and keeps the plant (minus thin tips).
+      cv::Mat m(left.height, left.width, CV_8U, cv::Scalar(0));
+      for (int i : cand) m.data[sp.pixels[i]] = 255;
+      const int k = 2 * cfg.candidate_open + 1;
+      cv::morphologyEx(m, m, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(k, k)));
+      std::erase_if(cand, [&](int i) { return m.data[sp.pixels[i]] == 0; });
+    }
   }
   r.plane_normal = pl.n;
   r.plane_d = pl.d;

@@ -61,6 +61,7 @@ struct SeedlingConfig {
   int ransac_sample = 4000;        ///< points the plane is fitted on
   double min_height = 0.015;       ///< m above the soil for a point to be a plant candidate
   double max_height = 0.5;         ///< m; higher points are not a seedling
+  int candidate_open = 0;          ///< px; radius of the image-space opening of the candidate mask (0 = none)
   geometry::GridSamplingConfig sampling;
   segmentation::GmmConfig gmm;
   int min_component_points = 15;
@@ -80,6 +81,9 @@ struct SeedlingConfig {
     v("ransac_sample", ransac_sample, "points drawn for the plane fit");
     v("min_height", min_height, "m; points at most this high above the soil are soil or low weeds");
     v("max_height", max_height, "m; points higher than this are ignored");
+    v("candidate_open", candidate_open,
+      "px; morphological opening (ellipse of this radius) of the left-image mask of candidate pixels: isolated "
+      "soil pixels raised by disparity errors leave the candidates (0 = none; ours)");
     v("sampling", sampling, "non-uniform grid down-sampling (paper: 4096 points)");
     v("gmm", gmm, "Gaussian mixture (paper: K = 10, EM)");
     v("min_component_points", min_component_points, "smallest GMM component that can be the seedling's top");
