@@ -84,7 +84,7 @@ struct OrgLinks {
 // order of their roots (= the fill's attempt order); each segment's indices are written run by
 // run in raster order (ascending), and ws.labels gets the segment id or -1, as flood_fill does.
 std::vector<Segment> oes_components(int width, int height, const std::uint8_t* bits, int min_size, int max_size,
-                                    FloodFillWorkspace& ws) {
+                                    int min_size_border, FloodFillWorkspace& ws) {
   if (width <= 0 || height <= 0) return {};
   const int n = width * height;
   // Run k: runs[2k] = its first pixel, runs[2k + 1] = its length; parent[k]: union-find parent
@@ -156,9 +156,20 @@ std::vector<Segment> oes_components(int width, int height, const std::uint8_t* b
     sizes[std::size_t(c)] += runs[2 * r + 1];
     parent[r] = c;
   }
+  // Components with a run on the image border may use the smaller min_size_border.
+  std::vector<char> border;
+  if (min_size_border > 0 && min_size_border < min_size) {
+    border.assign(sizes.size(), 0);
+    for (int r = 0; r < nruns; ++r) {
+      const int start = runs[2 * r], v = start / width, u0 = start % width;
+      if (v == 0 || v == height - 1 || u0 == 0 || u0 + runs[2 * r + 1] == width) border[std::size_t(parent[r])] = 1;
+    }
+  }
   std::vector<Segment> out;
-  for (int& s : sizes) {
-    if (s >= min_size && s <= max_size) {
+  for (std::size_t c = 0; c < sizes.size(); ++c) {
+    int& s = sizes[c];
+    const int lo = !border.empty() && border[c] ? min_size_border : min_size;
+    if (s >= lo && s <= max_size) {
       Segment seg;
       seg.indices.resize(std::size_t(s));
       s = int(out.size());
@@ -206,7 +217,8 @@ std::vector<Segment> segment_oes(const OrganizedCloud& cloud, const std::vector<
   compute_links_impl<false>(cloud.width, cloud.height, cloud.x.data(), cloud.y.data(), z, z, z, z, edges.data(),
                             std::uint8_t(cfg.barrier_labels), cfg.distance_tolerance * cfg.distance_tolerance, 0.0f,
                             buf + n, buf + 2 * n, buf);
-  auto segs = oes_components(cloud.width, cloud.height, buf, cfg.min_size, cfg.max_size, ws);
+  if (cfg.min_size_border < 0) throw Error("oes", "min_size_border must be >= 0");
+  auto segs = oes_components(cloud.width, cloud.height, buf, cfg.min_size, cfg.max_size, cfg.min_size_border, ws);
   for (auto& s : segs) summarize_raster(s, cloud);
   return segs;
 }

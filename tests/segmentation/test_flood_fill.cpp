@@ -1,6 +1,7 @@
 // The organised flood fill on hand-made grids: exact expected labels, size range, predicates.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <vector>
 
 #include "cropsight/core/error.hpp"
@@ -107,6 +108,32 @@ TEST(OesPredicate, EdgesAreBarriersAndDistanceSplits) {
   ASSERT_EQ(segs.size(), 2u);
   EXPECT_EQ(segs[0].size(), 4u);
   EXPECT_THROW(segmentation::segment_oes(c, std::vector<std::uint8_t>(3), {}, ws), Error);
+}
+
+TEST(OesPredicate, BorderSegmentsMayUseASmallerMinimum) {
+  // 10×6 grid, NaN except two 2×3 patches (6 points): one on the left border, one inside.
+  OrganizedCloud c(10, 6);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (std::size_t i = 0; i < c.size(); ++i) c.x[i] = c.y[i] = c.z[i] = nan;
+  auto set = [&c](int u, int v) {
+    const std::size_t i = std::size_t(v) * 10 + u;
+    c.x[i] = 0.001f * u, c.y[i] = 0.001f * v, c.z[i] = 0.8f;
+  };
+  for (int v = 1; v < 4; ++v)
+    for (int u : {0, 1, 5, 6}) set(u, v);
+  const std::vector<std::uint8_t> edges(c.size(), 0);
+  FloodFillWorkspace ws;
+  segmentation::OesConfig cfg{.distance_tolerance = 0.01f, .barrier_labels = 0, .min_size = 7, .max_size = 100};
+  EXPECT_TRUE(segmentation::segment_oes(c, edges, cfg, ws).empty());
+  cfg.min_size_border = 6;
+  const auto segs = segmentation::segment_oes(c, edges, cfg, ws);
+  ASSERT_EQ(segs.size(), 1u);
+  EXPECT_EQ(segs[0].box, (Box2D{0, 1, 2, 3}));
+  EXPECT_EQ(ws.labels[std::size_t(1 * 10 + 5)], -1);
+  cfg.min_size = 6;  // both kept once the interior minimum allows it
+  EXPECT_EQ(segmentation::segment_oes(c, edges, cfg, ws).size(), 2u);
+  cfg.min_size_border = -1;
+  EXPECT_THROW(segmentation::segment_oes(c, edges, cfg, ws), Error);
 }
 
 TEST(OrgPredicate, NormalAngleAndCurvatureRule) {

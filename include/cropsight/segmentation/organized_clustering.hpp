@@ -26,6 +26,7 @@ struct OesConfig {
   int barrier_labels = 15;  ///< bit mask of geometry::EdgeLabel (1 NaN boundary | 2 occluding | 4 occluded | 8 crease)
   int min_size = 500;       ///< points
   int max_size = 10000;     ///< points
+  int min_size_border = 0;  ///< points; minimum for segments touching the image border (0 = min_size)
 
   template <class V>
   void visit(V& v) {
@@ -38,6 +39,9 @@ struct OesConfig {
     v("min_size", min_size, "points; smaller segments are dropped (paper FEC UK value: 500, Montes et al. 2020)");
     v("max_size", max_size,
       "points; larger segments (ground) are dropped (paper FEC value: 10000, Montes et al. 2020)");
+    v("min_size_border", min_size_border,
+      "points; smaller minimum for segments with a pixel on the image border, where heads are cut and show "
+      "fewer points (ours; 0 = min_size for every segment)");
   }
 };
 
