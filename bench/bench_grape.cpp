@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <optional>
 
+#include "cropsight/geometry/farthest_point.hpp"
 #include "cropsight/geometry/knn_normals.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/learning/gbdt.hpp"
@@ -56,6 +57,51 @@ void BM_GrapeGbdtSegment(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(model.segment(*grape_cloud()));
 }
 BENCHMARK(BM_GrapeGbdtSegment)->Unit(benchmark::kMillisecond);
+
+// Fast recipe (configs/grape-gbdt-fast.yaml): raw cloud to a label on every point, i.e. the
+// pass sample, its features, XGBoost on the sample and the nearest-sample carry-back. Compare
+// with BM_GrapeNetworkSegment/1 (paper mode) of the same run. $CROPSIGHT_GRAPE_FAST_MODEL
+// overrides the model (e.g. a fold model).
+void BM_GrapeGbdtFastSegment(benchmark::State& state) {
+  const char* env = std::getenv("CROPSIGHT_GRAPE_FAST_MODEL");
+  const fs::path m = env ? fs::path(env) : fs::path(CROPSIGHT_SOURCE_DIR) / "models" / "grape-gbdt-fast.json";
+  if (!grape_cloud() || !fs::exists(m)) return state.SkipWithError("needs grape data and models/grape-gbdt-fast.json");
+  const auto model = pipeline::GrapeModel::load(m, 2);
+  for (auto _ : state) benchmark::DoNotOptimize(model.segment(*grape_cloud()));
+}
+BENCHMARK(BM_GrapeGbdtFastSegment)->Unit(benchmark::kMillisecond);
+
+// The fast segment's stages: 0 sample + features, 1 trees on the sample (second argument: 0
+// XGBoost's predictor, 1 the compiled forest that GrapeModel uses), 2 carry-back.
+void BM_GrapeGbdtFastStages(benchmark::State& state) {
+  const char* env = std::getenv("CROPSIGHT_GRAPE_FAST_MODEL");
+  const fs::path m = env ? fs::path(env) : fs::path(CROPSIGHT_SOURCE_DIR) / "models" / "grape-gbdt-fast.json";
+  if (!grape_cloud() || !fs::exists(m)) return state.SkipWithError("needs grape data and models/grape-gbdt-fast.json");
+  const Cloud& c = *grape_cloud();
+  auto model = learning::Gbdt::load(m, 2);
+  if (state.range(1)) model.compile();
+  const auto fc = pipeline::GrapeFeatureConfig::from_recipe(model.attribute("cropsight.features"), "bench");
+  const auto s = pipeline::grape_sample(c.size(), fc, fc.sample_seed);
+  const auto X = pipeline::grape_sample_features(c, fc, s);
+  const auto labels = model.predict(X, s.size(), pipeline::grape_feature_count(fc));
+  std::vector<Eigen::Vector3f> pts;
+  for (int i : s) pts.push_back(c.points[std::size_t(i)]);
+  for (auto _ : state) {
+    if (state.range(0) == 0)
+      benchmark::DoNotOptimize(pipeline::grape_sample_features(c, fc, pipeline::grape_sample(c.size(), fc, 1)));
+    else if (state.range(0) == 1)
+      benchmark::DoNotOptimize(model.predict(X, s.size(), pipeline::grape_feature_count(fc)));
+    else
+      benchmark::DoNotOptimize(geometry::carry_labels_back(pts, labels, c.points));
+  }
+  state.counters["sample"] = double(s.size());
+}
+BENCHMARK(BM_GrapeGbdtFastStages)
+    ->Args({0, 1})
+    ->Args({1, 0})
+    ->Args({1, 1})
+    ->Args({2, 1})
+    ->Unit(benchmark::kMillisecond);
 
 void BM_GrapeNetworkSegment(benchmark::State& state) {
   const fs::path m = fs::path(CROPSIGHT_SOURCE_DIR) / "models" / "grape-pointresnet.pt";

@@ -3,7 +3,13 @@
 #include <xgboost/c_api.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <deque>
 #include <limits>
+#include <nlohmann/json.hpp>
+#include <thread>
+#include <tuple>
 #include <utility>
 
 #include <filesystem>
@@ -30,18 +36,44 @@ struct DMatrix {
 };
 }  // namespace
 
+// The compiled forest: every tree's nodes in breadth-first order, children adjacent, so that a
+// split node sends x to left + !(x < value) (XGBoost's own rule; NaN = missing = default child).
+// A leaf steps to itself whatever x (threshold NaN, left = itself - 1, missing goes right), so every row can
+// take exactly `depth` steps in a tree: rows walk a tree in lock-step groups, without a branch
+// per node, which hides the latency of the dependent loads.
+struct Gbdt::Flat {
+  struct Node {
+    float threshold;
+    std::uint32_t feature;  // bit 31: a missing value goes right
+    std::int32_t left;      // index (within the tree) of the left child; a leaf: its own index
+  };
+  std::vector<Node> nodes;
+  std::vector<float> leaf;  // leaf value per node (0 for split nodes)
+  std::vector<std::uint8_t> is_leaf;
+  std::vector<std::uint32_t> root;  // first node of each tree
+  std::vector<int> depth;           // steps from the root to the deepest leaf
+  std::vector<int> group;           // class of each tree
+  float base_score = 0.5f;
+};
+
 Gbdt::Gbdt() = default;
 Gbdt::~Gbdt() {
   if (booster_) XGBoosterFree(booster_);
 }
 Gbdt::Gbdt(Gbdt&& o) noexcept
-    : booster_(std::exchange(o.booster_, nullptr)), num_class_(o.num_class_), cols_(o.cols_) {}
+    : booster_(std::exchange(o.booster_, nullptr)),
+      num_class_(o.num_class_),
+      cols_(o.cols_),
+      nthread_(o.nthread_),
+      flat_(std::move(o.flat_)) {}
 Gbdt& Gbdt::operator=(Gbdt&& o) noexcept {
   if (this != &o) {
     if (booster_) XGBoosterFree(booster_);
     booster_ = std::exchange(o.booster_, nullptr);
     num_class_ = o.num_class_;
     cols_ = o.cols_;
+    nthread_ = o.nthread_;
+    flat_ = std::move(o.flat_);
   }
   return *this;
 }
@@ -77,6 +109,8 @@ void Gbdt::train(const std::vector<float>& x, std::size_t rows, std::size_t cols
   for (int it = 0; it < p.rounds; ++it) check(XGBoosterUpdateOneIter(booster_, it, d.h), "gbdt");
   num_class_ = p.num_class;
   cols_ = cols;
+  nthread_ = std::max(1, p.nthread);
+  flat_.reset();
 }
 
 std::vector<float> Gbdt::predict_proba(const std::vector<float>& x, std::size_t rows, std::size_t cols) const {
@@ -92,7 +126,140 @@ std::vector<float> Gbdt::predict_proba(const std::vector<float>& x, std::size_t 
   return std::vector<float>(out, out + len);
 }
 
+void Gbdt::compile() {
+  if (!booster_) throw Error("gbdt", "model is not trained");
+  bst_ulong len = 0;
+  const char* buf = nullptr;
+  check(XGBoosterSaveModelToBuffer(booster_, R"({"format": "json"})", &len, &buf), "gbdt");
+  const auto j = nlohmann::json::parse(buf, buf + len);
+  const auto& learner = j.at("learner");
+  auto flat = std::make_shared<Flat>();
+  flat->base_score = std::stof(learner.at("learner_model_param").at("base_score").get<std::string>());
+  const auto& model = learner.at("gradient_booster").at("model");
+  flat->group = model.at("tree_info").get<std::vector<int>>();
+  const auto& trees = model.at("trees");
+  if (trees.size() != flat->group.size()) throw Error("gbdt", "compile: tree_info and trees differ in length");
+  for (const auto& t : trees) {
+    const auto left = t.at("left_children").get<std::vector<int>>();
+    const auto right = t.at("right_children").get<std::vector<int>>();
+    const auto feat = t.at("split_indices").get<std::vector<std::int64_t>>();
+    const auto cond = t.at("split_conditions").get<std::vector<float>>();
+    const auto dleft = t.at("default_left").get<std::vector<int>>();
+    if (t.contains("split_type"))
+      for (int st : t.at("split_type").get<std::vector<int>>())
+        if (st != 0) throw Error("gbdt", "compile: categorical splits are not supported");
+    const std::size_t base = flat->nodes.size();
+    flat->root.push_back(std::uint32_t(base));
+    // Breadth-first re-layout: (old node, new index relative to the tree's first node, depth).
+    std::deque<std::tuple<int, std::size_t, int>> queue{{0, 0, 0}};
+    flat->nodes.emplace_back();
+    int depth = 0;
+    while (!queue.empty()) {
+      const auto [old, idx, d] = queue.front();
+      queue.pop_front();
+      depth = std::max(depth, d);
+      const std::size_t o = std::size_t(old);
+      if (left.at(o) < 0) {
+        // !(x < NaN) holds for every x and a missing x goes right: left + 1 = the leaf itself.
+        flat->nodes[base + idx] = {std::numeric_limits<float>::quiet_NaN(), 0x80000000u, std::int32_t(idx) - 1};
+        flat->leaf.resize(flat->nodes.size(), 0.f);
+        flat->is_leaf.resize(flat->nodes.size(), 0);
+        flat->leaf[base + idx] = cond.at(o);
+        flat->is_leaf[base + idx] = 1;
+        continue;
+      }
+      const std::size_t l = flat->nodes.size() - base;
+      const std::uint32_t f = std::uint32_t(feat.at(o));
+      if (f >= cols_) throw Error("gbdt", "compile: split on a feature beyond the model's count");
+      flat->nodes[base + idx] = {cond.at(o), f | (dleft.at(o) ? 0u : 0x80000000u), std::int32_t(l)};
+      flat->nodes.emplace_back();
+      flat->nodes.emplace_back();
+      queue.emplace_back(left[o], l, d + 1);
+      queue.emplace_back(right.at(o), l + 1, d + 1);
+    }
+    flat->depth.push_back(depth);
+  }
+  flat->leaf.resize(flat->nodes.size(), 0.f);
+  flat->is_leaf.resize(flat->nodes.size(), 0);
+  for (int g : flat->group)
+    if (g < 0 || g >= num_class_) throw Error("gbdt", "compile: tree of an unknown class");
+  flat_ = std::move(flat);
+}
+
+namespace {
+// Rows [begin, end) through every tree, a block of rows per tree (the tree stays in cache) in
+// lock-step groups of kLanes rows, then XGBoost's softmax (common::Softmax: expf, double sum)
+// and the first arg-max. Sums start at base_score and add leaf values in tree order, in float,
+// as XGBoost's CPU predictor does.
+template <class Flat>
+void predict_rows(const Flat& f, const float* x, std::size_t cols, int num_class, std::size_t begin, std::size_t end,
+                  int* out) {
+  constexpr std::size_t kBlock = 256, kLanes = 8;
+  const std::size_t C = std::size_t(num_class);
+  std::vector<float> margin(kBlock * C);
+  std::vector<float> e(C);
+  // One step: the child a row goes to (missing: default child; a leaf stays put for finite x).
+  auto step = [](const typename Flat::Node& nd, const float* row) {
+    const float v = row[nd.feature & 0x7fffffffu];
+    return nd.left + (std::isnan(v) ? std::int32_t(nd.feature >> 31) : std::int32_t(!(v < nd.threshold)));
+  };
+  for (std::size_t b0 = begin; b0 < end; b0 += kBlock) {
+    const std::size_t nb = std::min(kBlock, end - b0);
+    std::fill(margin.begin(), margin.end(), f.base_score);
+    for (std::size_t t = 0; t < f.root.size(); ++t) {
+      const auto* tree = f.nodes.data() + f.root[t];
+      const float* leaf = f.leaf.data() + f.root[t];
+      const std::uint8_t* is_leaf = f.is_leaf.data() + f.root[t];
+      const int depth = f.depth[t];
+      float* m = margin.data() + std::size_t(f.group[t]);
+      std::size_t r = 0;
+      for (; r + kLanes <= nb; r += kLanes) {
+        std::int32_t n[kLanes] = {};
+        const float* row = x + (b0 + r) * cols;
+        for (int d = 0; d < depth; ++d)
+          for (std::size_t j = 0; j < kLanes; ++j) n[j] = step(tree[n[j]], row + j * cols);
+        for (std::size_t j = 0; j < kLanes; ++j) m[(r + j) * C] += leaf[n[j]];
+      }
+      for (; r < nb; ++r) {
+        const float* row = x + (b0 + r) * cols;
+        std::int32_t n = 0;
+        while (!is_leaf[n]) n = step(tree[n], row);
+        m[r * C] += leaf[n];
+      }
+    }
+    for (std::size_t r = 0; r < nb; ++r) {
+      const float* m = margin.data() + r * C;
+      const float wmax = *std::max_element(m, m + C);
+      double wsum = 0.0;
+      for (std::size_t c = 0; c < C; ++c) wsum += (e[c] = std::exp(m[c] - wmax));
+      for (std::size_t c = 0; c < C; ++c) e[c] /= float(wsum);
+      out[b0 + r] = int(std::max_element(e.begin(), e.end()) - e.begin());
+    }
+  }
+}
+}  // namespace
+
 std::vector<int> Gbdt::predict(const std::vector<float>& x, std::size_t rows, std::size_t cols) const {
+  if (flat_) {
+    if (cols != cols_)
+      throw Error("gbdt", "model expects " + std::to_string(cols_) + " features, got " + std::to_string(cols));
+    if (x.size() != rows * cols) throw Error("gbdt", "feature matrix size differs from rows x cols");
+    std::vector<int> out(rows);
+    // A thread per nthread share of the rows; small inputs stay on the calling thread.
+    const std::size_t threads = std::min<std::size_t>(std::size_t(std::max(1, nthread_)), (rows + 255) / 256);
+    if (threads <= 1) {
+      predict_rows(*flat_, x.data(), cols, num_class_, 0, rows, out.data());
+      return out;
+    }
+    std::vector<std::thread> pool;
+    const std::size_t chunk = (rows + threads - 1) / threads;
+    for (std::size_t t = 1; t < threads; ++t)
+      pool.emplace_back(predict_rows<Flat>, std::cref(*flat_), x.data(), cols, num_class_, std::min(rows, t * chunk),
+                        std::min(rows, (t + 1) * chunk), out.data());
+    predict_rows(*flat_, x.data(), cols, num_class_, 0, std::min(rows, chunk), out.data());
+    for (auto& th : pool) th.join();
+    return out;
+  }
   const std::vector<float> p = predict_proba(x, rows, cols);
   std::vector<int> out(rows);
   for (std::size_t i = 0; i < rows; ++i) {
@@ -146,6 +313,7 @@ Gbdt Gbdt::load(const std::filesystem::path& path, int nthread) {
   if (XGBoosterLoadModelFromBuffer(g.booster_, text.data(), bst_ulong(text.size())) != 0)
     throw Error(where, std::string("not an XGBoost model: ") + XGBGetLastError());
   check(XGBoosterSetParam(g.booster_, "nthread", std::to_string(nthread).c_str()), where);
+  g.nthread_ = std::max(1, nthread);
   try {
     g.num_class_ = std::stoi(g.attribute("cropsight.num_class"));
     g.cols_ = std::stoul(g.attribute("cropsight.num_features"));

@@ -7,11 +7,15 @@
 #include <pcl/search/kdtree.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <random>
 #include <sstream>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/geometry/knn_normals.hpp"
+#include "parallel_rows.hpp"
 
 namespace cropsight::pipeline {
 
@@ -41,6 +45,11 @@ std::string GrapeFeatureConfig::recipe() const {
   o.imbue(std::locale::classic());
   o.precision(9);
   o << "k_small=" << k_small << ";k_large=" << k_large << ";fpfh=" << (fpfh ? 1 : 0);
+  // Written only for the fast recipe: the original recipe's text (and so its model files) is
+  // unchanged.
+  if (sample > 0)
+    o << ";sample=" << sample << ";sample_seed=" << sample_seed << ";carry_k=" << carry_k
+      << ";carry_colour=" << carry_colour;
   return o.str();
 }
 
@@ -59,6 +68,14 @@ GrapeFeatureConfig GrapeFeatureConfig::from_recipe(const std::string& text, cons
       c.k_large = std::stoi(v), ++seen;
     else if (k == "fpfh")
       c.fpfh = v == "1", ++seen;
+    else if (k == "sample")
+      c.sample = std::stoi(v);
+    else if (k == "sample_seed")
+      c.sample_seed = std::stoull(v);
+    else if (k == "carry_k")
+      c.carry_k = std::stoi(v);
+    else if (k == "carry_colour")
+      c.carry_colour = std::stod(v);
     else
       throw Error(where, "unknown feature recipe key '" + k + "'");
   }
@@ -85,16 +102,58 @@ std::vector<std::string> grape_feature_names(const GrapeFeatureConfig& cfg) {
   return n;
 }
 
-std::vector<float> grape_point_features(const Cloud& cloud, const GrapeFeatureConfig& cfg,
-                                        const std::vector<int>& subset_in) {
-  if (!cloud.has_normals() || !cloud.has_colors()) throw Error("grape features", "cloud needs normals and colours");
-  if (cfg.k_small < 3 || cfg.k_large < 3) throw Error("grape features", "neighbourhoods need at least 3 points");
-  const std::size_t n = cloud.size();
-  std::vector<int> subset = subset_in;
-  if (subset.empty()) {
-    subset.resize(n);
-    for (std::size_t i = 0; i < n; ++i) subset[i] = int(i);
+namespace {
+// Neighbourhood statistics of one neighbourhood (nb[0..k), squared distances d2, nearest first)
+// of point i, into g[0..kPerRadius).
+void neighbourhood_features(const Cloud& cloud, std::size_t i, const int* nb, const float* d2, std::size_t count,
+                            float* g) {
+  const Eigen::Vector3f& p = cloud.points[i];
+  const Eigen::Vector3f& c = cloud.colors[i];
+  const Eigen::Vector3f& nrm = cloud.normals[i];
+  const double k = double(count);
+  g[0] = count == 0 ? 0.f : float(std::log(std::sqrt(double(d2[count - 1])) + 1e-6));  // log radius: density
+  if (count < 3) return;  // isolated point: leave neighbourhood features at 0
+  Eigen::Vector3d m = Eigen::Vector3d::Zero(), mc = Eigen::Vector3d::Zero(), mc2 = Eigen::Vector3d::Zero();
+  for (std::size_t q = 0; q < count; ++q) {
+    const std::size_t j = std::size_t(nb[q]);
+    m += cloud.points[j].cast<double>();
+    const Eigen::Vector3d cj = cloud.colors[j].cast<double>();
+    mc += cj;
+    mc2 += cj.cwiseProduct(cj);
   }
+  m /= k, mc /= k, mc2 /= k;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (std::size_t q = 0; q < count; ++q) {
+    const Eigen::Vector3d d = cloud.points[std::size_t(nb[q])].cast<double>() - m;
+    cov.noalias() += d * d.transpose();
+  }
+  cov /= k;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+  es.computeDirect(cov);
+  const Eigen::Vector3d l = es.eigenvalues().cwiseMax(1e-12);  // ascending
+  const double sum = l.sum();
+  g[1] = float((l[2] - l[1]) / l[2]);
+  g[2] = float((l[1] - l[0]) / l[2]);
+  g[3] = float(l[0] / l[2]);
+  g[4] = float(l[0] / sum);
+  g[5] = float(std::cbrt(l[0] * l[1] * l[2]) / sum);
+  g[6] = float(std::abs(es.eigenvectors().col(0).dot(nrm.cast<double>())));
+  const Eigen::Vector3d var = (mc2 - mc.cwiseProduct(mc)).cwiseMax(0.0);
+  g[7] = float(mc.x()), g[8] = float(mc.y()), g[9] = float(mc.z());
+  g[10] = c.x() - g[7], g[11] = c.y() - g[8], g[12] = c.z() - g[9];
+  g[13] = float(std::sqrt(var.sum() / 3));
+  const Eigen::Vector3d off = p.cast<double>() - m;
+  const double scale = std::sqrt(double(d2[count - 1])) + 1e-9;  // neighbourhood radius
+  g[14] = float(off.x() / scale), g[15] = float(off.y() / scale), g[16] = float(off.z() / scale);
+}
+
+// Features of the points `subset` of `cloud`, neighbourhoods searched in all of `cloud`.
+// shared_query: one k-NN query of max(k_small, k_large) per point, its nearest k_small being the
+// fine neighbourhood (the fast recipe); otherwise one query per neighbourhood (the original
+// recipe: kept bit for bit, so that models trained with it predict as before).
+std::vector<float> compute_features(const Cloud& cloud, const GrapeFeatureConfig& cfg, const std::vector<int>& subset,
+                                    bool shared_query) {
+  const std::size_t n = cloud.size();
   const std::size_t rows = subset.size(), F = grape_feature_count(cfg);
   std::vector<float> X(rows * F, 0.f);
 
@@ -103,61 +162,103 @@ std::vector<float> grape_point_features(const Cloud& cloud, const GrapeFeatureCo
   cen /= double(std::max<std::size_t>(n, 1));
 
   geometry::PointIndex index(cloud.points);
-  std::vector<int> nb;
-  for (std::size_t r = 0; r < rows; ++r) {
-    const std::size_t i = std::size_t(subset[r]);
-    float* f = X.data() + r * F;
-    const Eigen::Vector3f& p = cloud.points[i];
-    const Eigen::Vector3f& c = cloud.colors[i];
-    const Eigen::Vector3f& nrm = cloud.normals[i];
-    f[0] = p.x(), f[1] = p.y(), f[2] = p.z();
-    f[3] = float((p.cast<double>() - cen).norm());
-    f[4] = c.x(), f[5] = c.y(), f[6] = c.z();
-    hsv(c, f[7], f[8], f[9]);
-    f[10] = 2 * c.y() - c.x() - c.z();
-    f[11] = nrm.x(), f[12] = nrm.y(), f[13] = nrm.z();
-    for (int s = 0; s < 2; ++s) {
-      float* g = f + kBase + std::size_t(s) * (kPerRadius + (cfg.fpfh ? kFpfh : 0));
-      std::vector<float> d2;
-      index.knn(p, s == 0 ? cfg.k_small : cfg.k_large, nb, &d2);
-      const double k = double(nb.size());
-      g[0] = d2.empty() ? 0.f : float(std::log(std::sqrt(double(d2.back())) + 1e-6));  // log radius: density
-      if (nb.size() < 3) continue;  // isolated point: leave neighbourhood features at 0
-      Eigen::Vector3d m = Eigen::Vector3d::Zero(), mc = Eigen::Vector3d::Zero(), mc2 = Eigen::Vector3d::Zero();
-      for (int j : nb) {
-        m += cloud.points[std::size_t(j)].cast<double>();
-        const Eigen::Vector3d cj = cloud.colors[std::size_t(j)].cast<double>();
-        mc += cj;
-        mc2 += cj.cwiseProduct(cj);
+  const int k_max = std::max(cfg.k_small, cfg.k_large);
+  const std::size_t stride = kPerRadius + (cfg.fpfh ? kFpfh : 0);
+  auto rows_range = [&](std::size_t r0, std::size_t r1) {
+    std::vector<int> nb;
+    std::vector<float> d2;
+    for (std::size_t r = r0; r < r1; ++r) {
+      const std::size_t i = std::size_t(subset[r]);
+      float* f = X.data() + r * F;
+      const Eigen::Vector3f& p = cloud.points[i];
+      const Eigen::Vector3f& c = cloud.colors[i];
+      const Eigen::Vector3f& nrm = cloud.normals[i];
+      f[0] = p.x(), f[1] = p.y(), f[2] = p.z();
+      f[3] = float((p.cast<double>() - cen).norm());
+      f[4] = c.x(), f[5] = c.y(), f[6] = c.z();
+      hsv(c, f[7], f[8], f[9]);
+      f[10] = 2 * c.y() - c.x() - c.z();
+      f[11] = nrm.x(), f[12] = nrm.y(), f[13] = nrm.z();
+      if (shared_query) index.knn(p, k_max, nb, &d2);
+      for (int s = 0; s < 2; ++s) {
+        const int k = s == 0 ? cfg.k_small : cfg.k_large;
+        if (!shared_query) index.knn(p, k, nb, &d2);
+        const std::size_t count = std::min(nb.size(), std::size_t(k));
+        neighbourhood_features(cloud, i, nb.data(), d2.data(), count, f + kBase + std::size_t(s) * stride);
       }
-      m /= k, mc /= k, mc2 /= k;
-      Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-      for (int j : nb) {
-        const Eigen::Vector3d d = cloud.points[std::size_t(j)].cast<double>() - m;
-        cov.noalias() += d * d.transpose();
-      }
-      cov /= k;
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
-      es.computeDirect(cov);
-      const Eigen::Vector3d l = es.eigenvalues().cwiseMax(1e-12);  // ascending
-      const double sum = l.sum();
-      g[1] = float((l[2] - l[1]) / l[2]);
-      g[2] = float((l[1] - l[0]) / l[2]);
-      g[3] = float(l[0] / l[2]);
-      g[4] = float(l[0] / sum);
-      g[5] = float(std::cbrt(l[0] * l[1] * l[2]) / sum);
-      g[6] = float(std::abs(es.eigenvectors().col(0).dot(nrm.cast<double>())));
-      const Eigen::Vector3d var = (mc2 - mc.cwiseProduct(mc)).cwiseMax(0.0);
-      g[7] = float(mc.x()), g[8] = float(mc.y()), g[9] = float(mc.z());
-      g[10] = c.x() - g[7], g[11] = c.y() - g[8], g[12] = c.z() - g[9];
-      g[13] = float(std::sqrt(var.sum() / 3));
-      const Eigen::Vector3d off = p.cast<double>() - m;
-      const double scale = std::sqrt(double(d2.back())) + 1e-9;  // neighbourhood radius
-      g[14] = float(off.x() / scale), g[15] = float(off.y() / scale), g[16] = float(off.z() / scale);
     }
-  }
+  };
+  // Rows are independent (read-only index): the fast recipe splits them over cfg.threads; the
+  // original recipe keeps its single thread (FPFH, its main cost, has its own threads).
+  detail::parallel_rows(rows, shared_query ? cfg.threads : 1, 256, rows_range);
+  return X;
+}
 
-  if (cfg.fpfh) {
+void check_input(const Cloud& cloud, const GrapeFeatureConfig& cfg) {
+  if (!cloud.has_normals() || !cloud.has_colors()) throw Error("grape features", "cloud needs normals and colours");
+  if (cfg.k_small < 3 || cfg.k_large < 3) throw Error("grape features", "neighbourhoods need at least 3 points");
+  if (cfg.sample < 0) throw Error("grape features", "sample must be 0 (every point) or a point count");
+  if (cfg.carry_k < 1) throw Error("grape features", "carry_k must be at least 1");
+}
+
+void add_fpfh(const Cloud& cloud, const GrapeFeatureConfig& cfg, const std::vector<int>& subset, std::vector<float>& X);
+}  // namespace
+
+std::vector<float> grape_point_features(const Cloud& cloud, const GrapeFeatureConfig& cfg,
+                                        const std::vector<int>& subset_in) {
+  check_input(cloud, cfg);
+  std::vector<int> subset = subset_in;
+  if (subset.empty()) {
+    subset.resize(cloud.size());
+    for (std::size_t i = 0; i < cloud.size(); ++i) subset[i] = int(i);
+  }
+  std::vector<float> X = compute_features(cloud, cfg, subset, false);
+  if (cfg.fpfh) add_fpfh(cloud, cfg, subset, X);
+  return X;
+}
+
+std::vector<int> grape_sample(std::size_t size, const GrapeFeatureConfig& cfg, std::uint64_t seed) {
+  std::vector<int> idx(size);
+  for (std::size_t i = 0; i < size; ++i) idx[i] = int(i);
+  if (cfg.sample <= 0 || std::size_t(cfg.sample) >= size) return idx;
+  // Partial Fisher-Yates with our own index draw (std::uniform_int_distribution and
+  // std::shuffle are implementation-defined; this is the same on every standard library).
+  std::mt19937_64 rng(seed);
+  const std::size_t m = std::size_t(cfg.sample);
+  for (std::size_t i = 0; i < m; ++i) {
+    const std::size_t j = i + std::size_t(rng() % std::uint64_t(size - i));
+    std::swap(idx[i], idx[j]);
+  }
+  idx.resize(m);
+  std::sort(idx.begin(), idx.end());
+  return idx;
+}
+
+std::vector<float> grape_sample_features(const Cloud& cloud, const GrapeFeatureConfig& cfg,
+                                         const std::vector<int>& sample) {
+  check_input(cloud, cfg);
+  Cloud sub;
+  sub.points.reserve(sample.size());
+  sub.colors.reserve(sample.size());
+  sub.normals.reserve(sample.size());
+  for (int i : sample) {
+    if (i < 0 || std::size_t(i) >= cloud.size()) throw Error("grape features", "sample index out of range");
+    sub.points.push_back(cloud.points[std::size_t(i)]);
+    sub.colors.push_back(cloud.colors[std::size_t(i)]);
+    sub.normals.push_back(cloud.normals[std::size_t(i)]);
+  }
+  std::vector<int> all(sample.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = int(i);
+  std::vector<float> X = compute_features(sub, cfg, all, true);
+  if (cfg.fpfh) add_fpfh(sub, cfg, all, X);
+  return X;
+}
+
+namespace {
+void add_fpfh(const Cloud& cloud, const GrapeFeatureConfig& cfg, const std::vector<int>& subset,
+              std::vector<float>& X) {
+  const std::size_t n = cloud.size(), rows = subset.size(), F = grape_feature_count(cfg);
+  {
     pcl::PointCloud<pcl::PointXYZ>::Ptr pc(new pcl::PointCloud<pcl::PointXYZ>);
     pcl::PointCloud<pcl::Normal>::Ptr pn(new pcl::PointCloud<pcl::Normal>);
     pc->resize(n);
@@ -189,7 +290,7 @@ std::vector<float> grape_point_features(const Cloud& cloud, const GrapeFeatureCo
       }
     }
   }
-  return X;
 }
+}  // namespace
 
 }  // namespace cropsight::pipeline

@@ -7,6 +7,8 @@
 #include <random>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/geometry/knn_normals.hpp"
+#include "parallel_rows.hpp"
 
 namespace cropsight::pipeline {
 
@@ -41,10 +43,21 @@ learning::Gbdt train_grape_gbdt(const std::vector<Cloud>& clouds, const GrapeGbd
   for (std::size_t k = 0; k < clouds.size(); ++k) {
     const Cloud& c = clouds[k];
     if (!c.has_labels()) throw Error("train grape", "cloud " + std::to_string(k) + " has no labels");
-    const std::vector<int> rows = training_rows(c, cfg, rng);
-    const std::vector<float> f = grape_point_features(c, cfg.features, rows);
-    X.insert(X.end(), f.begin(), f.end());
-    for (int r : rows) y.push_back(float(c.labels[std::size_t(r)]));
+    if (cfg.features.sample > 0) {
+      // Fast recipe: rows are whole pass samples, drawn and featurised exactly as at segment
+      // time (only the seed differs), so that training and test features match.
+      for (int d = 0; d < std::max(1, cfg.sample_draws); ++d) {
+        const std::vector<int> rows = grape_sample(c.size(), cfg.features, rng());
+        const std::vector<float> f = grape_sample_features(c, cfg.features, rows);
+        X.insert(X.end(), f.begin(), f.end());
+        for (int r : rows) y.push_back(float(c.labels[std::size_t(r)]));
+      }
+    } else {
+      const std::vector<int> rows = training_rows(c, cfg, rng);
+      const std::vector<float> f = grape_point_features(c, cfg.features, rows);
+      X.insert(X.end(), f.begin(), f.end());
+      for (int r : rows) y.push_back(float(c.labels[std::size_t(r)]));
+    }
     if (log && (k + 1) % 10 == 0) log("features: " + std::to_string(k + 1) + "/" + std::to_string(clouds.size()));
   }
   const std::size_t n = y.size();
@@ -75,7 +88,47 @@ std::vector<int> segment_grape_gbdt(const learning::Gbdt& model, const Cloud& cl
     throw Error("grape model", "not a grape GBDT model (cropsight.kind attribute missing)");
   GrapeFeatureConfig fc = GrapeFeatureConfig::from_recipe(model.attribute("cropsight.features"), "grape model");
   fc.threads = threads;
-  const std::vector<float> X = grape_point_features(cloud, fc);
+  if (fc.sample > 0 && std::size_t(fc.sample) < cloud.size()) {
+    const std::vector<int> sample = grape_sample(cloud.size(), fc, fc.sample_seed);
+    const std::vector<float> X = grape_sample_features(cloud, fc, sample);
+    const std::vector<int> sample_labels = model.predict(X, sample.size(), grape_feature_count(fc));
+    // Carry-back: sample points keep their own label; every other point takes the vote of its
+    // carry_k nearest sample points, weighted by distance and colour likeness (carry_k = 1: the
+    // nearest sample's label, as geometry::carry_labels_back). Split over the threads.
+    std::vector<Eigen::Vector3f> points;
+    points.reserve(sample.size());
+    for (int i : sample) points.push_back(cloud.points[std::size_t(i)]);
+    const geometry::PointIndex index(points);
+    std::vector<int> out(cloud.size(), -1);
+    for (std::size_t s = 0; s < sample.size(); ++s) out[std::size_t(sample[s])] = sample_labels[s];
+    const float wc = float(fc.carry_colour);
+    const std::size_t classes = std::size_t(std::max(model.num_class(), 1));
+    detail::parallel_rows(cloud.size(), threads, 2048, [&](std::size_t b, std::size_t e) {
+      std::vector<int> nb;
+      std::vector<float> d2, vote(classes);
+      for (std::size_t i = b; i < e; ++i) {
+        if (out[i] >= 0) continue;
+        if (fc.carry_k <= 1) {
+          out[i] = sample_labels[std::size_t(index.nearest(cloud.points[i]))];
+          continue;
+        }
+        index.knn(cloud.points[i], fc.carry_k, nb, &d2);
+        std::fill(vote.begin(), vote.end(), 0.f);
+        const float inv_r2 = 1.f / (d2.back() + 1e-12f);
+        for (std::size_t q = 0; q < nb.size(); ++q) {
+          const std::size_t j = std::size_t(sample[std::size_t(nb[q])]);
+          const float dc = (cloud.colors[i] - cloud.colors[j]).squaredNorm();
+          vote[std::size_t(sample_labels[std::size_t(nb[q])])] += std::exp(-d2[q] * inv_r2 - wc * dc);
+        }
+        out[i] = int(std::max_element(vote.begin(), vote.end()) - vote.begin());
+      }
+    });
+    return out;
+  }
+  // Every point (also the fast recipe on a cloud no larger than its sample: the same features).
+  const std::vector<float> X = fc.sample > 0
+                                   ? grape_sample_features(cloud, fc, grape_sample(cloud.size(), fc, fc.sample_seed))
+                                   : grape_point_features(cloud, fc);
   return model.predict(X, cloud.size(), grape_feature_count(fc));
 }
 

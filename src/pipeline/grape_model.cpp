@@ -35,6 +35,10 @@ GrapeModel GrapeModel::load(const std::filesystem::path& path, int threads) {
   if (first == '{') {
     m.impl_->gbdt = std::make_unique<learning::Gbdt>(learning::Gbdt::load(path, threads));
     if (m.impl_->gbdt->attribute("cropsight.kind") != "grape-gbdt") throw Error(where, "not a grape GBDT model");
+    // Fast-recipe models predict through the compiled forest (same labels as XGBoost, faster on
+    // a pass sample); models of the original recipe keep XGBoost's predictor.
+    if (GrapeFeatureConfig::from_recipe(m.impl_->gbdt->attribute("cropsight.features"), where).sample > 0)
+      m.impl_->gbdt->compile();
     m.kind_ = "gbdt";
     m.features_ = "gbdt-features";
   } else {

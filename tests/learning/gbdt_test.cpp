@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <limits>
 #include <random>
 
 #include "cropsight/core/error.hpp"
@@ -45,6 +46,31 @@ TEST(Gbdt, LearnsHeldOutRuleAndRoundTrips) {
   EXPECT_EQ(h.attribute("note"), "hello");
   EXPECT_EQ(h.predict_proba(xt, 500, 4), g.predict_proba(xt, 500, 4));
   EXPECT_THROW(h.predict(xt, 250, 8), cropsight::Error);
+}
+
+TEST(Gbdt, CompiledForestPredictsAsXgboost) {
+  // Deeper trees, six classes, a NaN now and then (missing values take the default child).
+  std::vector<float> x, y, xt, yt;
+  make(3000, 3, x, y);
+  for (std::size_t i = 0; i < y.size(); ++i) y[i] = float((int(y[i]) * 2 + int(x[4 * i + 1] > 0.5f)) % 6);
+  make(2000, 4, xt, yt);
+  for (std::size_t i = 0; i < xt.size(); i += 37) xt[i] = std::numeric_limits<float>::quiet_NaN();
+  GbdtParams p;
+  p.num_class = 6, p.rounds = 40, p.max_depth = 7;
+  Gbdt g;
+  g.train(x, 3000, 4, y, {}, p);
+  const auto ref = g.predict(xt, 2000, 4);
+  EXPECT_FALSE(g.compiled());
+  g.compile();
+  EXPECT_TRUE(g.compiled());
+  EXPECT_EQ(g.predict(xt, 2000, 4), ref);  // two threads (2000 rows)
+  cropsight::testing::TempDir t;
+  g.save(t / "m.json");
+  Gbdt h = Gbdt::load(t / "m.json", 1);
+  h.compile();
+  EXPECT_EQ(h.predict(xt, 2000, 4), ref);  // one thread
+  EXPECT_EQ(h.predict({xt.begin(), xt.begin() + 4}, 1, 4), std::vector<int>{ref[0]});
+  EXPECT_THROW(h.predict(xt, 1000, 8), cropsight::Error);
 }
 
 TEST(Gbdt, BadInputsThrow) {

@@ -9,6 +9,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/grape_text.hpp"
+#include "cropsight/learning/gbdt.hpp"
 #include "cropsight/pipeline/grape_eval.hpp"
 #include "cropsight/pipeline/grape_gbdt.hpp"
 #include "cropsight/pipeline/grape_model.hpp"
@@ -79,6 +80,86 @@ TEST(GrapeGbdt, SegmentsHeldOutSyntheticCloudAndRoundTrips) {
   const auto ev = evaluate_grape(loaded, {test});
   EXPECT_GT(ev.confusion.overall_accuracy(), 0.98);
   EXPECT_NE(ev.json().find("\"per_class\""), std::string::npos);
+}
+
+GrapeGbdtConfig fast_config() {
+  GrapeGbdtConfig cfg = small_config();
+  cfg.features.fpfh = false;
+  cfg.features.k_small = 6;
+  cfg.features.k_large = 16;
+  cfg.features.sample = 300;  // of 1200 points: most points get their label carried back
+  cfg.features.sample_seed = 7;
+  cfg.features.carry_k = 3;
+  cfg.features.carry_colour = 150;
+  cfg.sample_draws = 2;
+  return cfg;
+}
+
+TEST(GrapeFeatures, SampleAndSampleFeaturesAreDeterministic) {
+  const Cloud c = synthetic(1);
+  GrapeFeatureConfig f = fast_config().features;
+  const auto s1 = grape_sample(c.size(), f, 5);
+  EXPECT_EQ(s1, grape_sample(c.size(), f, 5));
+  EXPECT_NE(s1, grape_sample(c.size(), f, 6));
+  ASSERT_EQ(s1.size(), 300u);
+  EXPECT_TRUE(std::is_sorted(s1.begin(), s1.end()));
+  EXPECT_EQ(std::set<int>(s1.begin(), s1.end()).size(), s1.size());
+  EXPECT_GE(s1.front(), 0);
+  EXPECT_LT(s1.back(), int(c.size()));
+  const auto X = grape_sample_features(c, f, s1);
+  ASSERT_EQ(X.size(), s1.size() * grape_feature_count(f));
+  EXPECT_EQ(X, grape_sample_features(c, f, grape_sample(c.size(), f, 5)));
+  for (float v : X) ASSERT_TRUE(std::isfinite(v));
+  // Neighbourhoods are searched within the sample: the features differ from whole-cloud ones.
+  EXPECT_NE(X, grape_point_features(c, f, s1));
+  // A cloud no larger than the sample is taken whole.
+  f.sample = 5000;
+  EXPECT_EQ(grape_sample(c.size(), f, 5).size(), c.size());
+  f.sample = -1;
+  EXPECT_THROW(grape_sample_features(c, f, s1), Error);
+}
+
+TEST(GrapeFeatures, RecipeWithSampleRoundTripsAndOldRecipesMeanEveryPoint) {
+  // Recipes written before the fast recipe existed (models/grape-gbdt.json) parse as sample = 0
+  // and print back unchanged.
+  const std::string old = "k_small=16;k_large=64;fpfh=1";
+  const auto o = GrapeFeatureConfig::from_recipe(old, "test");
+  EXPECT_EQ(o.sample, 0);
+  EXPECT_EQ(o.recipe(), old);
+  EXPECT_EQ(GrapeFeatureConfig{}.recipe(), old);
+  const GrapeFeatureConfig f = fast_config().features;
+  const auto back = GrapeFeatureConfig::from_recipe(f.recipe(), "test");
+  EXPECT_EQ(back.sample, 300);
+  EXPECT_EQ(back.sample_seed, 7u);
+  EXPECT_EQ(back.carry_k, f.carry_k);
+  EXPECT_EQ(back.carry_colour, f.carry_colour);
+  EXPECT_EQ(back.k_small, 6);
+  EXPECT_FALSE(back.fpfh);
+  EXPECT_EQ(back.recipe(), f.recipe());
+}
+
+TEST(GrapeGbdt, FastRecipeSeparatesHeldOutCloudAndCarriesLabelsToEveryPoint) {
+  const GrapeGbdtConfig cfg = fast_config();
+  const auto model = train_grape_gbdt({synthetic(1), synthetic(2)}, cfg);
+  cropsight::testing::TempDir t;
+  model.save(t / "fast.json");
+  const auto loaded = GrapeModel::load(t / "fast.json", 1);
+  // The recipe travels in the file: the loaded model samples as it was trained.
+  const auto recipe = learning::Gbdt::load(t / "fast.json", 1).attribute("cropsight.features");
+  EXPECT_EQ(recipe, cfg.features.recipe());
+  const Cloud test = synthetic(3);
+  const auto pred = loaded.segment(test);
+  ASSERT_EQ(pred.size(), test.size());
+  for (int l : pred) ASSERT_TRUE(l == 1 || l == 3) << l;
+  EXPECT_EQ(pred, loaded.segment(test));  // fixed sample seed: same labels every time
+  EXPECT_EQ(pred, segment_grape_gbdt(model, test, 1));
+  // Sampled points keep the label the trees gave them (each is its own nearest sample).
+  const auto s = grape_sample(test.size(), cfg.features, cfg.features.sample_seed);
+  const auto own =
+      model.predict(grape_sample_features(test, cfg.features, s), s.size(), grape_feature_count(cfg.features));
+  for (std::size_t i = 0; i < s.size(); ++i) EXPECT_EQ(pred[std::size_t(s[i])], own[i]);
+  const auto ev = evaluate_grape(loaded, {test});
+  EXPECT_GT(ev.confusion.overall_accuracy(), 0.97) << ev.text();
 }
 
 TEST(GrapeModel, FoldsAndBadFiles) {

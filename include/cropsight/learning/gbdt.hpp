@@ -51,8 +51,15 @@ class Gbdt {
 
   /// Class probabilities, rows × num_class, row-major.
   std::vector<float> predict_proba(const std::vector<float>& x, std::size_t rows, std::size_t cols) const;
-  /// Arg-max class per row.
+  /// Arg-max class per row (through the compiled forest after compile()).
   std::vector<int> predict(const std::vector<float>& x, std::size_t rows, std::size_t cols) const;
+
+  /// Copies the trees into a compact array (nodes 12 bytes, children adjacent) that predict()
+  /// then walks itself, a block of rows per tree, instead of calling XGBoost: the same sums of
+  /// leaf values in the same (tree) order and the same softmax, so the same arg-max, several
+  /// times faster on a few thousand rows. Numerical features only (no categorical splits).
+  void compile();
+  bool compiled() const { return flat_ != nullptr; }
 
   int num_class() const { return num_class_; }
   std::size_t num_features() const { return cols_; }
@@ -68,9 +75,12 @@ class Gbdt {
   bool trained() const;
 
  private:
+  struct Flat;
   void* booster_ = nullptr;  // BoosterHandle
   int num_class_ = 0;
   std::size_t cols_ = 0;
+  int nthread_ = 1;
+  std::shared_ptr<const Flat> flat_;  // set by compile()
 };
 
 }  // namespace cropsight::learning

@@ -5,6 +5,7 @@
 // neighbourhood sizes are point counts (k nearest neighbours), not radii: the dataset's clouds
 // are extremely uneven in density (median nearest-neighbour spacing 0.001 unit-sphere units,
 // yet 200-1800 points within 0.01), so a fixed radius gives either empty or huge neighbourhoods.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,17 @@ struct GrapeFeatureConfig {
   int k_large = 64;  ///< points; coarse neighbourhood
   bool fpfh = true;  ///< include the 2 × 33 FPFH bins
   int threads = 2;   ///< OpenMP threads of PCL's FPFH
+  /// Points per pass (the fast recipe): 0 = features and predictions on every point, with
+  /// neighbourhoods in the whole cloud (the original recipe). N > 0 = a uniform random sample
+  /// of N points (every point when the cloud has fewer), neighbourhoods searched within the
+  /// sample, and labels carried back to every point by nearest sample.
+  int sample = 0;
+  std::uint64_t sample_seed = 1;  ///< seed of the segment-time sample (fixed: deterministic labels)
+  /// Carry-back (sample > 0): a point outside the sample takes the weighted vote of its
+  /// carry_k nearest sample points, weight exp(-d²/d_k² - carry_colour·|rgb - rgb_s|²) (a joint
+  /// bilateral upsampling guided by colour; d_k = distance to the k-th); carry_k = 1 = nearest.
+  int carry_k = 4;
+  double carry_colour = 200;  ///< 1/(rgb units)², colours in [0, 1]
 
   template <class V>
   void visit(V& v) {
@@ -24,8 +36,15 @@ struct GrapeFeatureConfig {
     v("k_large", k_large, "points; coarse neighbourhood size (ours)");
     v("fpfh", fpfh, "bool; add FPFH histograms at both radii");
     v("threads", threads, "count; threads of the FPFH computation");
+    v("sample", sample, "points; points per pass, 0 = every point (ours)");
+    v("sample_seed", sample_seed, "1; seed of the segment-time sample (ours)");
+    v("carry_k", carry_k, "count; sample points voting for each other point, 1 = nearest only (ours)");
+    v("carry_colour", carry_colour, "1/rgb^2; colour weight of the carry-back vote (ours)");
   }
-  /// "k_small=16;k_large=64;fpfh=1": stored inside model files.
+  /// "k_small=16;k_large=64;fpfh=1" (+ ";sample=N;sample_seed=S;carry_k=K;carry_colour=C"
+  /// when sample > 0): stored
+  /// inside model files, so a model is applied the way it was trained. Recipes without the
+  /// sample keys (every model written before them) mean sample = 0.
   std::string recipe() const;
   static GrapeFeatureConfig from_recipe(const std::string& text, const std::string& where);
 };
@@ -39,5 +58,16 @@ std::vector<std::string> grape_feature_names(const GrapeFeatureConfig& cfg);
 /// normals and colours in `cloud`; neighbourhoods use the whole cloud. Throws Error otherwise.
 std::vector<float> grape_point_features(const Cloud& cloud, const GrapeFeatureConfig& cfg,
                                         const std::vector<int>& subset = {});
+
+/// The pass sample of a cloud of `size` points: cfg.sample indices drawn uniformly without
+/// replacement (std::mt19937_64 seeded by `seed`), sorted ascending; every index when
+/// cfg.sample is 0 or not below `size`. Same seed, same sample.
+std::vector<int> grape_sample(std::size_t size, const GrapeFeatureConfig& cfg, std::uint64_t seed);
+
+/// Features of the points `sample` of `cloud` computed as if the cloud were only those points
+/// (neighbourhoods, centroid searched within the sample): rows in the order of `sample`. This
+/// is what the fast recipe trains and predicts on. Throws Error as grape_point_features.
+std::vector<float> grape_sample_features(const Cloud& cloud, const GrapeFeatureConfig& cfg,
+                                         const std::vector<int>& sample);
 
 }  // namespace cropsight::pipeline

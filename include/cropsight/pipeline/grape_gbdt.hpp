@@ -19,6 +19,7 @@ struct GrapeGbdtConfig {
   int points_per_cloud = 4000;      ///< training rows drawn per cloud (rare classes kept whole)
   int rare_class_max = 400;         ///< classes with fewer points than this in a cloud are kept whole
   double class_weight_power = 0.5;  ///< row weight = (median class share / class share)^power
+  int sample_draws = 4;             ///< fast recipe (features.sample > 0): pass samples drawn per cloud
   std::uint64_t seed = 1;
 
   template <class V>
@@ -28,6 +29,8 @@ struct GrapeGbdtConfig {
     v("points_per_cloud", points_per_cloud, "count; training rows sampled per cloud (ours)");
     v("rare_class_max", rare_class_max, "count; classes smaller than this in a cloud are kept whole (ours)");
     v("class_weight_power", class_weight_power, "1; inverse-frequency class weight exponent (ours)");
+    v("sample_draws", sample_draws,
+      "count; fast recipe only: pass samples per training cloud, each featurised as at segment time (ours)");
     v("seed", seed, "1; sampling seed");
   }
 };
@@ -37,7 +40,9 @@ struct GrapeGbdtConfig {
 learning::Gbdt train_grape_gbdt(const std::vector<Cloud>& clouds, const GrapeGbdtConfig& cfg,
                                 const std::function<void(const std::string&)>& log = {});
 
-/// Labels of every point of `cloud` (needs normals and colours).
+/// Labels of every point of `cloud` (needs normals and colours). With a fast-recipe model
+/// (recipe sample = N > 0) the model classifies a fixed-seed sample of N points and every other
+/// point takes the label of its nearest sample point.
 std::vector<int> segment_grape_gbdt(const learning::Gbdt& model, const Cloud& cloud, int threads = 2);
 
 }  // namespace cropsight::pipeline
