@@ -72,7 +72,7 @@ void BM_GrapeGbdtFastSegment(benchmark::State& state) {
 BENCHMARK(BM_GrapeGbdtFastSegment)->Unit(benchmark::kMillisecond);
 
 // The fast segment's stages: 0 sample + features, 1 trees on the sample (second argument: 0
-// XGBoost's predictor, 1 the compiled forest that GrapeModel uses), 2 carry-back.
+// XGBoost's predictor, 1 the compiled forest that GrapeModel uses), 2 carry-back (2 threads).
 void BM_GrapeGbdtFastStages(benchmark::State& state) {
   const char* env = std::getenv("CROPSIGHT_GRAPE_FAST_MODEL");
   const fs::path m = env ? fs::path(env) : fs::path(CROPSIGHT_SOURCE_DIR) / "models" / "grape-gbdt-fast.json";
@@ -84,15 +84,13 @@ void BM_GrapeGbdtFastStages(benchmark::State& state) {
   const auto s = pipeline::grape_sample(c.size(), fc, fc.sample_seed);
   const auto X = pipeline::grape_sample_features(c, fc, s);
   const auto labels = model.predict(X, s.size(), pipeline::grape_feature_count(fc));
-  std::vector<Eigen::Vector3f> pts;
-  for (int i : s) pts.push_back(c.points[std::size_t(i)]);
   for (auto _ : state) {
     if (state.range(0) == 0)
       benchmark::DoNotOptimize(pipeline::grape_sample_features(c, fc, pipeline::grape_sample(c.size(), fc, 1)));
     else if (state.range(0) == 1)
       benchmark::DoNotOptimize(model.predict(X, s.size(), pipeline::grape_feature_count(fc)));
     else
-      benchmark::DoNotOptimize(geometry::carry_labels_back(pts, labels, c.points));
+      benchmark::DoNotOptimize(pipeline::grape_carry_back(c, s, labels, fc, model.num_class(), 2));
   }
   state.counters["sample"] = double(s.size());
 }

@@ -115,6 +115,11 @@ void Gbdt::train(const std::vector<float>& x, std::size_t rows, std::size_t cols
 
 std::vector<float> Gbdt::predict_proba(const std::vector<float>& x, std::size_t rows, std::size_t cols) const {
   if (!booster_) throw Error("gbdt", "model is not trained");
+  if (flat_) {
+    std::vector<float> out(rows * std::size_t(num_class_));
+    predict_flat(x, rows, cols, nullptr, out.data());
+    return out;
+  }
   if (cols != cols_)
     throw Error("gbdt", "model expects " + std::to_string(cols_) + " features, got " + std::to_string(cols));
   if (rows == 0) return {};
@@ -193,7 +198,7 @@ namespace {
 // as XGBoost's CPU predictor does.
 template <class Flat>
 void predict_rows(const Flat& f, const float* x, std::size_t cols, int num_class, std::size_t begin, std::size_t end,
-                  int* out) {
+                  int* out, float* proba) {
   constexpr std::size_t kBlock = 256, kLanes = 8;
   const std::size_t C = std::size_t(num_class);
   std::vector<float> margin(kBlock * C);
@@ -233,31 +238,37 @@ void predict_rows(const Flat& f, const float* x, std::size_t cols, int num_class
       double wsum = 0.0;
       for (std::size_t c = 0; c < C; ++c) wsum += (e[c] = std::exp(m[c] - wmax));
       for (std::size_t c = 0; c < C; ++c) e[c] /= float(wsum);
-      out[b0 + r] = int(std::max_element(e.begin(), e.end()) - e.begin());
+      if (out) out[b0 + r] = int(std::max_element(e.begin(), e.end()) - e.begin());
+      if (proba) std::copy(e.begin(), e.end(), proba + (b0 + r) * C);
     }
   }
 }
 }  // namespace
 
+void Gbdt::predict_flat(const std::vector<float>& x, std::size_t rows, std::size_t cols, int* labels,
+                        float* proba) const {
+  if (cols != cols_)
+    throw Error("gbdt", "model expects " + std::to_string(cols_) + " features, got " + std::to_string(cols));
+  if (x.size() != rows * cols) throw Error("gbdt", "feature matrix size differs from rows x cols");
+  // A thread per nthread share of the rows; small inputs stay on the calling thread.
+  const std::size_t threads = std::min<std::size_t>(std::size_t(std::max(1, nthread_)), (rows + 255) / 256);
+  if (threads <= 1) {
+    predict_rows(*flat_, x.data(), cols, num_class_, 0, rows, labels, proba);
+    return;
+  }
+  std::vector<std::thread> pool;
+  const std::size_t chunk = (rows + threads - 1) / threads;
+  for (std::size_t t = 1; t < threads; ++t)
+    pool.emplace_back(predict_rows<Flat>, std::cref(*flat_), x.data(), cols, num_class_, std::min(rows, t * chunk),
+                      std::min(rows, (t + 1) * chunk), labels, proba);
+  predict_rows(*flat_, x.data(), cols, num_class_, 0, std::min(rows, chunk), labels, proba);
+  for (auto& th : pool) th.join();
+}
+
 std::vector<int> Gbdt::predict(const std::vector<float>& x, std::size_t rows, std::size_t cols) const {
   if (flat_) {
-    if (cols != cols_)
-      throw Error("gbdt", "model expects " + std::to_string(cols_) + " features, got " + std::to_string(cols));
-    if (x.size() != rows * cols) throw Error("gbdt", "feature matrix size differs from rows x cols");
     std::vector<int> out(rows);
-    // A thread per nthread share of the rows; small inputs stay on the calling thread.
-    const std::size_t threads = std::min<std::size_t>(std::size_t(std::max(1, nthread_)), (rows + 255) / 256);
-    if (threads <= 1) {
-      predict_rows(*flat_, x.data(), cols, num_class_, 0, rows, out.data());
-      return out;
-    }
-    std::vector<std::thread> pool;
-    const std::size_t chunk = (rows + threads - 1) / threads;
-    for (std::size_t t = 1; t < threads; ++t)
-      pool.emplace_back(predict_rows<Flat>, std::cref(*flat_), x.data(), cols, num_class_, std::min(rows, t * chunk),
-                        std::min(rows, (t + 1) * chunk), out.data());
-    predict_rows(*flat_, x.data(), cols, num_class_, 0, std::min(rows, chunk), out.data());
-    for (auto& th : pool) th.join();
+    predict_flat(x, rows, cols, out.data(), nullptr);
     return out;
   }
   const std::vector<float> p = predict_proba(x, rows, cols);

@@ -10,11 +10,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <sstream>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/geometry/knn_normals.hpp"
+#include "geometry/point_kdtree.hpp"
 #include "parallel_rows.hpp"
 
 namespace cropsight::pipeline {
@@ -49,7 +51,7 @@ std::string GrapeFeatureConfig::recipe() const {
   // unchanged.
   if (sample > 0)
     o << ";sample=" << sample << ";sample_seed=" << sample_seed << ";carry_k=" << carry_k
-      << ";carry_colour=" << carry_colour;
+      << ";carry_colour=" << carry_colour << ";carry_soft=" << (carry_soft ? 1 : 0);
   return o.str();
 }
 
@@ -76,6 +78,8 @@ GrapeFeatureConfig GrapeFeatureConfig::from_recipe(const std::string& text, cons
       c.carry_k = std::stoi(v);
     else if (k == "carry_colour")
       c.carry_colour = std::stod(v);
+    else if (k == "carry_soft")
+      c.carry_soft = v == "1";
     else
       throw Error(where, "unknown feature recipe key '" + k + "'");
   }
@@ -161,12 +165,25 @@ std::vector<float> compute_features(const Cloud& cloud, const GrapeFeatureConfig
   for (const auto& p : cloud.points) cen += p.cast<double>();
   cen /= double(std::max<std::size_t>(n, 1));
 
-  geometry::PointIndex index(cloud.points);
-  const int k_max = std::max(cfg.k_small, cfg.k_large);
+  // The original recipe's index (kept as it was, bit for bit), or for the fast recipe a plain
+  // nanoflann tree queried without allocations.
+  std::optional<geometry::PointIndex> index;
+  geometry::detail::PackedPoints packed;
+  std::optional<geometry::detail::PointKdTree> tree;
+  if (shared_query) {
+    packed.xyz.reserve(3 * n);
+    for (const auto& p : cloud.points) packed.xyz.insert(packed.xyz.end(), {p.x(), p.y(), p.z()});
+    tree.emplace(3, packed, geometry::detail::kdtree_params());
+    tree->buildIndex();
+  } else {
+    index.emplace(cloud.points);
+  }
+  const std::size_t k_max = std::min<std::size_t>(std::size_t(std::max(cfg.k_small, cfg.k_large)), n);
   const std::size_t stride = kPerRadius + (cfg.fpfh ? kFpfh : 0);
   auto rows_range = [&](std::size_t r0, std::size_t r1) {
     std::vector<int> nb;
     std::vector<float> d2;
+    std::vector<std::uint32_t> found_idx(k_max);
     for (std::size_t r = r0; r < r1; ++r) {
       const std::size_t i = std::size_t(subset[r]);
       float* f = X.data() + r * F;
@@ -179,10 +196,15 @@ std::vector<float> compute_features(const Cloud& cloud, const GrapeFeatureConfig
       hsv(c, f[7], f[8], f[9]);
       f[10] = 2 * c.y() - c.x() - c.z();
       f[11] = nrm.x(), f[12] = nrm.y(), f[13] = nrm.z();
-      if (shared_query) index.knn(p, k_max, nb, &d2);
+      if (shared_query) {
+        d2.resize(k_max);
+        const std::size_t found = k_max ? tree->knnSearch(p.data(), k_max, found_idx.data(), d2.data()) : 0;
+        nb.assign(found_idx.begin(), found_idx.begin() + long(found));
+        d2.resize(found);
+      }
       for (int s = 0; s < 2; ++s) {
         const int k = s == 0 ? cfg.k_small : cfg.k_large;
-        if (!shared_query) index.knn(p, k, nb, &d2);
+        if (!shared_query) index->knn(p, k, nb, &d2);
         const std::size_t count = std::min(nb.size(), std::size_t(k));
         neighbourhood_features(cloud, i, nb.data(), d2.data(), count, f + kBase + std::size_t(s) * stride);
       }

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/geometry/knn_normals.hpp"
+#include "geometry/point_kdtree.hpp"
 #include "parallel_rows.hpp"
 
 namespace cropsight::pipeline {
@@ -83,6 +83,61 @@ learning::Gbdt train_grape_gbdt(const std::vector<Cloud>& clouds, const GrapeGbd
   return model;
 }
 
+std::vector<int> grape_carry_back(const Cloud& cloud, const std::vector<int>& sample,
+                                  const std::vector<int>& sample_labels, const GrapeFeatureConfig& fc, int num_class,
+                                  int threads, const std::vector<float>* sample_proba) {
+  if (sample_proba && sample_proba->size() != sample.size() * std::size_t(num_class))
+    throw Error("grape carry-back", "probabilities are not sample size x classes");
+  if (sample.size() != sample_labels.size()) throw Error("grape carry-back", "sample and labels differ in count");
+  if (sample.empty()) throw Error("grape carry-back", "empty sample");
+  if (fc.carry_k < 1) throw Error("grape carry-back", "carry_k must be at least 1");
+  // Sample points keep their own label; every other point takes the vote of its carry_k nearest
+  // sample points, weighted by distance and colour likeness (carry_k = 1: the nearest sample's
+  // label, as geometry::carry_labels_back). Rows are split over the threads.
+  geometry::detail::PackedPoints packed;
+  packed.xyz.reserve(3 * sample.size());
+  std::vector<int> out(cloud.size(), -1);
+  for (std::size_t s = 0; s < sample.size(); ++s) {
+    const std::size_t i = std::size_t(sample[s]);
+    if (i >= cloud.size()) throw Error("grape carry-back", "sample index out of range");
+    const int l = sample_labels[s];
+    if (l < 0 || l >= num_class) throw Error("grape carry-back", "label out of range");
+    packed.xyz.insert(packed.xyz.end(), {cloud.points[i].x(), cloud.points[i].y(), cloud.points[i].z()});
+    out[i] = l;
+  }
+  geometry::detail::PointKdTree tree(3, packed, geometry::detail::kdtree_params());
+  tree.buildIndex();
+  const std::size_t k = std::min<std::size_t>(std::size_t(fc.carry_k), sample.size());
+  const float wc = float(fc.carry_colour);
+  const bool colour = k > 1 && cloud.has_colors();
+  detail::parallel_rows(cloud.size(), threads, 2048, [&](std::size_t b, std::size_t e) {
+    std::vector<std::uint32_t> nb(k);
+    std::vector<float> d2(k), vote(static_cast<std::size_t>(num_class));
+    for (std::size_t i = b; i < e; ++i) {
+      if (out[i] >= 0) continue;
+      const std::size_t found = tree.knnSearch(cloud.points[i].data(), k, nb.data(), d2.data());
+      if (!colour || found == 1) {
+        out[i] = sample_labels[nb[0]];
+        continue;
+      }
+      std::fill(vote.begin(), vote.end(), 0.f);
+      const float inv_r2 = 1.f / (d2[found - 1] + 1e-12f);
+      for (std::size_t q = 0; q < found; ++q) {
+        const float dc = (cloud.colors[i] - cloud.colors[std::size_t(sample[nb[q]])]).squaredNorm();
+        const float w = std::exp(-d2[q] * inv_r2 - wc * dc);
+        if (sample_proba) {
+          const float* pr = sample_proba->data() + std::size_t(nb[q]) * vote.size();
+          for (std::size_t c = 0; c < vote.size(); ++c) vote[c] += w * pr[c];
+        } else {
+          vote[std::size_t(sample_labels[nb[q]])] += w;
+        }
+      }
+      out[i] = int(std::max_element(vote.begin(), vote.end()) - vote.begin());
+    }
+  });
+  return out;
+}
+
 std::vector<int> segment_grape_gbdt(const learning::Gbdt& model, const Cloud& cloud, int threads) {
   if (model.attribute("cropsight.kind") != "grape-gbdt")
     throw Error("grape model", "not a grape GBDT model (cropsight.kind attribute missing)");
@@ -91,39 +146,14 @@ std::vector<int> segment_grape_gbdt(const learning::Gbdt& model, const Cloud& cl
   if (fc.sample > 0 && std::size_t(fc.sample) < cloud.size()) {
     const std::vector<int> sample = grape_sample(cloud.size(), fc, fc.sample_seed);
     const std::vector<float> X = grape_sample_features(cloud, fc, sample);
-    const std::vector<int> sample_labels = model.predict(X, sample.size(), grape_feature_count(fc));
-    // Carry-back: sample points keep their own label; every other point takes the vote of its
-    // carry_k nearest sample points, weighted by distance and colour likeness (carry_k = 1: the
-    // nearest sample's label, as geometry::carry_labels_back). Split over the threads.
-    std::vector<Eigen::Vector3f> points;
-    points.reserve(sample.size());
-    for (int i : sample) points.push_back(cloud.points[std::size_t(i)]);
-    const geometry::PointIndex index(points);
-    std::vector<int> out(cloud.size(), -1);
-    for (std::size_t s = 0; s < sample.size(); ++s) out[std::size_t(sample[s])] = sample_labels[s];
-    const float wc = float(fc.carry_colour);
-    const std::size_t classes = std::size_t(std::max(model.num_class(), 1));
-    detail::parallel_rows(cloud.size(), threads, 2048, [&](std::size_t b, std::size_t e) {
-      std::vector<int> nb;
-      std::vector<float> d2, vote(classes);
-      for (std::size_t i = b; i < e; ++i) {
-        if (out[i] >= 0) continue;
-        if (fc.carry_k <= 1) {
-          out[i] = sample_labels[std::size_t(index.nearest(cloud.points[i]))];
-          continue;
-        }
-        index.knn(cloud.points[i], fc.carry_k, nb, &d2);
-        std::fill(vote.begin(), vote.end(), 0.f);
-        const float inv_r2 = 1.f / (d2.back() + 1e-12f);
-        for (std::size_t q = 0; q < nb.size(); ++q) {
-          const std::size_t j = std::size_t(sample[std::size_t(nb[q])]);
-          const float dc = (cloud.colors[i] - cloud.colors[j]).squaredNorm();
-          vote[std::size_t(sample_labels[std::size_t(nb[q])])] += std::exp(-d2[q] * inv_r2 - wc * dc);
-        }
-        out[i] = int(std::max_element(vote.begin(), vote.end()) - vote.begin());
-      }
-    });
-    return out;
+    const std::size_t C = std::size_t(model.num_class());
+    const std::vector<float> proba = model.predict_proba(X, sample.size(), grape_feature_count(fc));
+    std::vector<int> sample_labels(sample.size());
+    for (std::size_t s = 0; s < sample.size(); ++s)
+      sample_labels[s] = int(std::max_element(proba.begin() + long(s * C), proba.begin() + long((s + 1) * C)) -
+                             (proba.begin() + long(s * C)));
+    return grape_carry_back(cloud, sample, sample_labels, fc, model.num_class(), threads,
+                            fc.carry_soft ? &proba : nullptr);
   }
   // Every point (also the fast recipe on a cloud no larger than its sample: the same features).
   const std::vector<float> X = fc.sample > 0

@@ -60,10 +60,14 @@ TEST(Gbdt, CompiledForestPredictsAsXgboost) {
   Gbdt g;
   g.train(x, 3000, 4, y, {}, p);
   const auto ref = g.predict(xt, 2000, 4);
+  const auto ref_p = g.predict_proba(xt, 2000, 4);
   EXPECT_FALSE(g.compiled());
   g.compile();
   EXPECT_TRUE(g.compiled());
   EXPECT_EQ(g.predict(xt, 2000, 4), ref);  // two threads (2000 rows)
+  const auto prob = g.predict_proba(xt, 2000, 4);
+  ASSERT_EQ(prob.size(), ref_p.size());
+  for (std::size_t i = 0; i < prob.size(); ++i) ASSERT_NEAR(prob[i], ref_p[i], 1e-6f) << i;
   cropsight::testing::TempDir t;
   g.save(t / "m.json");
   Gbdt h = Gbdt::load(t / "m.json", 1);

@@ -49,7 +49,8 @@ class Gbdt {
   void train(const std::vector<float>& x, std::size_t rows, std::size_t cols, const std::vector<float>& labels,
              const std::vector<float>& weights, const GbdtParams& params);
 
-  /// Class probabilities, rows × num_class, row-major.
+  /// Class probabilities, rows × num_class, row-major (through the compiled forest after
+  /// compile(): XGBoost's float sums and softmax, so equal to XGBoost's up to rounding).
   std::vector<float> predict_proba(const std::vector<float>& x, std::size_t rows, std::size_t cols) const;
   /// Arg-max class per row (through the compiled forest after compile()).
   std::vector<int> predict(const std::vector<float>& x, std::size_t rows, std::size_t cols) const;
@@ -76,6 +77,7 @@ class Gbdt {
 
  private:
   struct Flat;
+  void predict_flat(const std::vector<float>& x, std::size_t rows, std::size_t cols, int* labels, float* proba) const;
   void* booster_ = nullptr;  // BoosterHandle
   int num_class_ = 0;
   std::size_t cols_ = 0;

@@ -29,6 +29,7 @@ struct GrapeFeatureConfig {
   /// bilateral upsampling guided by colour; d_k = distance to the k-th); carry_k = 1 = nearest.
   int carry_k = 4;
   double carry_colour = 200;  ///< 1/(rgb units)², colours in [0, 1]
+  bool carry_soft = false;    ///< vote with the samples' class probabilities, not their labels
 
   template <class V>
   void visit(V& v) {
@@ -40,6 +41,7 @@ struct GrapeFeatureConfig {
     v("sample_seed", sample_seed, "1; seed of the segment-time sample (ours)");
     v("carry_k", carry_k, "count; sample points voting for each other point, 1 = nearest only (ours)");
     v("carry_colour", carry_colour, "1/rgb^2; colour weight of the carry-back vote (ours)");
+    v("carry_soft", carry_soft, "bool; carry-back votes with class probabilities (ours)");
   }
   /// "k_small=16;k_large=64;fpfh=1" (+ ";sample=N;sample_seed=S;carry_k=K;carry_colour=C"
   /// when sample > 0): stored

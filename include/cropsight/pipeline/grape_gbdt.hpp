@@ -40,6 +40,15 @@ struct GrapeGbdtConfig {
 learning::Gbdt train_grape_gbdt(const std::vector<Cloud>& clouds, const GrapeGbdtConfig& cfg,
                                 const std::function<void(const std::string&)>& log = {});
 
+/// The fast recipe's carry-back: points of `sample` keep `sample_labels`; every other point
+/// takes the vote of its fc.carry_k nearest sample points, weight exp(-d²/d_k² -
+/// fc.carry_colour·|rgb - rgb_s|²) (carry_k = 1, or no colours: the nearest sample's label).
+/// Labels in [0, num_class). With `sample_proba` (sample × num_class, row-major) each voter
+/// adds weight × its class probabilities instead of weight to its label. Every point gets a label.
+std::vector<int> grape_carry_back(const Cloud& cloud, const std::vector<int>& sample,
+                                  const std::vector<int>& sample_labels, const GrapeFeatureConfig& fc, int num_class,
+                                  int threads = 2, const std::vector<float>* sample_proba = nullptr);
+
 /// Labels of every point of `cloud` (needs normals and colours). With a fast-recipe model
 /// (recipe sample = N > 0) the model classifies a fixed-seed sample of N points and every other
 /// point takes the label of its nearest sample point.
