@@ -8,6 +8,7 @@
 #include <set>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/geometry/farthest_point.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/learning/gbdt.hpp"
 #include "cropsight/pipeline/grape_eval.hpp"
@@ -160,6 +161,34 @@ TEST(GrapeGbdt, FastRecipeSeparatesHeldOutCloudAndCarriesLabelsToEveryPoint) {
   for (std::size_t i = 0; i < s.size(); ++i) EXPECT_EQ(pred[std::size_t(s[i])], own[i]);
   const auto ev = evaluate_grape(loaded, {test});
   EXPECT_GT(ev.confusion.overall_accuracy(), 0.97) << ev.text();
+}
+
+TEST(GrapeGbdt, CarryBackLabelsEveryPoint) {
+  const Cloud c = synthetic(4);
+  GrapeFeatureConfig f = fast_config().features;
+  const auto s = grape_sample(c.size(), f, 3);
+  std::vector<int> truth;
+  for (int i : s) truth.push_back(c.labels[std::size_t(i)]);
+  // carry_k = 1: the nearest sample's label, as geometry::carry_labels_back.
+  f.carry_k = 1;
+  std::vector<Eigen::Vector3f> pts;
+  for (int i : s) pts.push_back(c.points[std::size_t(i)]);
+  EXPECT_EQ(grape_carry_back(c, s, truth, f, 6, 2), geometry::carry_labels_back(pts, truth, c.points));
+  // Colour-guided vote, hard and with probabilities (one-hot = hard): every point labelled, the
+  // two touching blobs recovered almost everywhere from a quarter of their points.
+  f.carry_k = 4;
+  const auto hard = grape_carry_back(c, s, truth, f, 6, 2);
+  std::vector<float> onehot(s.size() * 6, 0.f);
+  for (std::size_t i = 0; i < s.size(); ++i) onehot[i * 6 + std::size_t(truth[i])] = 1.f;
+  EXPECT_EQ(grape_carry_back(c, s, truth, f, 6, 1, &onehot), hard);
+  ASSERT_EQ(hard.size(), c.size());
+  std::size_t ok = 0;
+  for (std::size_t i = 0; i < c.size(); ++i) ok += hard[i] == c.labels[i];
+  EXPECT_GT(double(ok) / double(c.size()), 0.97);
+  for (std::size_t i = 0; i < s.size(); ++i) EXPECT_EQ(hard[std::size_t(s[i])], truth[i]);
+  EXPECT_THROW(grape_carry_back(c, s, {1}, f, 6), Error);
+  f.carry_k = 0;
+  EXPECT_THROW(grape_carry_back(c, s, truth, f, 6), Error);
 }
 
 TEST(GrapeModel, FoldsAndBadFiles) {
