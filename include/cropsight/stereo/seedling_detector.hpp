@@ -12,6 +12,8 @@
 // weeds around them, and form one connected plant):
 //   1. Only points higher than `min_height` above the fitted soil plane enter the GMM (the soil
 //      itself would otherwise take most components; this is our change to the paper's order).
+//      With candidate_open > 0 the left-image mask of these candidates is first opened (ellipse
+//      of that radius), which drops soil pixels raised by disparity errors (they are scattered).
 //   2. The seed component is the one whose member points have the largest mean height (among
 //      components with at least `min_component_points` points).
 //   3. Components are added while one of them has a mean height >= `height_ratio` x the seed's
@@ -40,12 +42,12 @@ namespace cropsight::stereo {
 struct SeedlingConfig {
   /// 64 disparities cover depths >= 0.3 m for the simulated rig (f = 320 px, B = 60 mm).
   /// Engine: OpenCV SGBM (3-way, rank features) with the explicit mirrored left-right check, as
-  /// before the census engine existed. The census engine is ~3x faster but its disparities on
-  /// low-contrast soil are off by >= 0.5 px ~5x as often, and at 0.6 m one pixel is ~2 cm of
-  /// height: on the tuning pairs (seed 1000) it recognised 87-93 % with volume ratios 109-152 %
-  /// (this engine: 100 %, 101 %). Dropping the explicit check (lr_check = -1) halves the SGM
-  /// time but gave a 105.9 % volume ratio on held-out seed 8080 (103.9 % with it). See
-  /// docs/pipelines/broccoli-seedlings.md.
+  /// before the census engine existed. The census engine is ~2.4x faster end to end but its
+  /// disparities on low-contrast soil are off by >= 0.5 px ~5x as often (at 0.6 m one pixel is
+  /// ~2 cm of height); with candidate_open = 1 it reaches 100 % / 91.6 % / 105.2 % on held-out
+  /// seed 6161 (this engine 100 % / 92.1 % / 102.1 %): configs/seedling-fast.yaml. Dropping the
+  /// explicit check (lr_check = -1) halves the SGM time but gave a 105.9 % volume ratio on seed
+  /// 8080 (103.9 % with it). See docs/pipelines/broccoli-seedlings.md.
   DisparityConfig disparity = [] {
     DisparityConfig d;
     d.num_disparities = 64;
