@@ -51,6 +51,7 @@ learning::Gbdt train_grape_gbdt(const std::vector<Cloud>& clouds, const GrapeGbd
         const std::vector<float> f = grape_sample_features(c, cfg.features, rows);
         X.insert(X.end(), f.begin(), f.end());
         for (int r : rows) y.push_back(float(c.labels[std::size_t(r)]));
+        if (rows.size() == c.size()) break;  // the whole cloud: further draws would repeat it
       }
     } else {
       const std::vector<int> rows = training_rows(c, cfg, rng);
