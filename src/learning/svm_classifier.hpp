@@ -3,13 +3,14 @@
 // with libsvm's own svm_predict_values).
 //
 // Training and the saved model are libsvm's. For scoring, the support vectors are copied once
-// into a dense Eigen matrix: libsvm's sparse svm_node lists cost a branch per feature and
-// the feature vectors here are dense (VFH: 308 values), so a GEMV over the support vectors
-// gives the same decision value (to float rounding) several times faster. A unit test checks
-// the two agree.
+// into dense rows: libsvm's sparse svm_node lists cost a branch per feature and the feature
+// vectors here are dense (VFH: 308 values), so dense dot products over the support vectors
+// (8-lane vectors, AVX2 clone at run time) give the same decision value (to float rounding)
+// several times faster. A unit test checks the two agree.
 #include <Eigen/Core>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cropsight/learning/classifier.hpp"
 
@@ -49,6 +50,8 @@ class SvmClassifier final : public Classifier {
   Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> sv_;  ///< support vectors × dim
   Eigen::VectorXf coef_;                                                      ///< y_i α_i per support vector
   Eigen::VectorXf sv_norm2_;                                                  ///< |sv_i|² (RBF)
+  std::vector<float> svp_;  ///< support vectors again, rows zero-padded to svp_stride_ floats (RBF scorer)
+  int svp_stride_ = 0;
   Eigen::VectorXf w_;           ///< Σ coef_i sv_i (linear kernel: the decision is w·x − ρ)
   std::string text_;            ///< libsvm model file text
   svm_model* model_ = nullptr;  ///< loaded from text_ (owns its memory); for libsvm_score()

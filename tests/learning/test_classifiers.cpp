@@ -68,6 +68,27 @@ TEST_P(SvmKernels, DenseScoreMatchesLibsvmAndSeparatesClasses) {
   EXPECT_GT(accuracy(*clf, test), 0.95);
 }
 
+// The RBF scorer pads rows to 16 floats and z to the stack (heap above 1024): check VFH's 308
+// and a dimension past the stack buffer against libsvm too.
+TEST(Svm, DenseRbfScoreMatchesLibsvmAtVfhAndLongDimensions) {
+  for (int dim : {308, 1100}) {
+    const Dataset raw = testdata::gaussians(200, dim, 1.0, 11);
+    const Standardizer s = Standardizer::fit(raw);
+    const Dataset train = s.apply(raw);
+    const Dataset test = s.apply(testdata::gaussians(60, dim, 1.0, 12));
+    ClassifierParams p;
+    p.type = "svm-rbf";
+    p.rbf_gamma = 1.0 / dim;
+    const auto clf = train_classifier(train, p);
+    const auto& svm = dynamic_cast<const detail::SvmClassifier&>(*clf);
+    ASSERT_GT(svm.model_size(), 0u) << dim;
+    for (std::size_t i = 0; i < test.size(); ++i) {
+      const double ref = svm.libsvm_score(test.row(i));
+      EXPECT_NEAR(svm.score(test.row(i)), ref, 1e-4 * (1.0 + std::abs(ref))) << "dim " << dim << " sample " << i;
+    }
+  }
+}
+
 // Whichever class libsvm sees first, a positive score must mean the positive class.
 TEST_P(SvmKernels, ScoreSignDoesNotDependOnSampleOrder) {
   Dataset raw = testdata::gaussians(300, 10, 2.0, 3);
