@@ -5,7 +5,7 @@
 // Training and the saved model are libsvm's. For scoring, the support vectors are copied once
 // into dense rows: libsvm's sparse svm_node lists cost a branch per feature and the feature
 // vectors here are dense (VFH: 308 values), so dense dot products over the support vectors
-// (8-lane vectors, AVX2 clone at run time) give the same decision value (to float rounding)
+// (8-lane vectors when the CPU has AVX2, else 4) give the same decision value (to float rounding)
 // several times faster. A unit test checks the two agree.
 #include <Eigen/Core>
 #include <memory>
@@ -52,6 +52,7 @@ class SvmClassifier final : public Classifier {
   Eigen::VectorXf sv_norm2_;                                                  ///< |sv_i|² (RBF)
   std::vector<float> svp_;  ///< support vectors again, rows zero-padded to svp_stride_ floats (RBF scorer)
   int svp_stride_ = 0;
+  bool avx2_ = false;           ///< the CPU has AVX2: score() runs the 8-lane kernel
   Eigen::VectorXf w_;           ///< Σ coef_i sv_i (linear kernel: the decision is w·x − ρ)
   std::string text_;            ///< libsvm model file text
   svm_model* model_ = nullptr;  ///< loaded from text_ (owns its memory); for libsvm_score()
