@@ -4,6 +4,7 @@
 // farthest-point sampling done in C++ (geometry::farthest_point_sample) outside autograd.
 #include "cropsight/nn/point_segmenter.hpp"
 
+#include <dlfcn.h>
 #include <torch/torch.h>
 
 #include <algorithm>
@@ -26,6 +27,16 @@ int feature_channels(const std::string& f) {
 }
 
 namespace {
+
+// Debian's libtorch does its GEMMs in OpenBLAS, whose own pthread pool (one worker per core,
+// spinning while it waits) made a training epoch of the CPU-sized networks 2.2x slower on two
+// cores (3.0-3.5 s vs 1.4 s per epoch with identical losses, --threads 1 or 2): these GEMMs are
+// small, and torch's intra-op threads (--threads) already parallelise the work. So OpenBLAS runs
+// single-threaded; looked up at run time because a libtorch built on another BLAS lacks it.
+void single_threaded_blas() {
+  using SetThreads = void (*)(int);
+  if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set(1);
+}
 
 // Linear over the last dimension followed by BatchNorm over every other dimension.
 struct LinBnImpl : torch::nn::Module {
@@ -228,6 +239,7 @@ struct PointSegmenter::Impl {
     if (cfg.num_points < 8 || cfg.sa1_points < 4 || cfg.sa2_points < 2 || cfg.sa3_points < 1)
       throw Error("point network", "point counts too small");
     at::set_num_threads(std::max(1, cfg.threads));
+    single_threaded_blas();
     torch::manual_seed(cfg.seed);
     net = SegNet(cfg);
     class_weights = torch::ones({cfg.num_classes});

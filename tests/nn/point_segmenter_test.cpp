@@ -1,3 +1,4 @@
+#include <dlfcn.h>
 #include <gtest/gtest.h>
 
 #include <random>
@@ -91,6 +92,16 @@ TEST(PointSegmenter, DeterministicGivenSeedAndRejectsBadInput) {
   EXPECT_THROW(a.segment(no_colour), Error);
   cropsight::testing::TempDir t;
   EXPECT_THROW(PointSegmenter::load(t / "missing.pt"), Error);
+}
+
+// OpenBLAS's spinning thread pool slowed training 2.2x on two cores; a network leaves it at one
+// thread (when libtorch's BLAS is OpenBLAS, as on Debian).
+TEST(PointSegmenter, OpenBlasRunsSingleThreaded) {
+  using GetThreads = int (*)();
+  auto get = reinterpret_cast<GetThreads>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  if (!get) GTEST_SKIP() << "libtorch's BLAS is not OpenBLAS here";
+  PointSegmenter net(tiny_config("pointresnet"));
+  EXPECT_EQ(get(), 1);
 }
 
 TEST(PointSegmenter, TrainLoopResumesFromCheckpoint) {
