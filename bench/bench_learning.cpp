@@ -1,14 +1,16 @@
 // SVM scoring (the broccoli pipelines' "classify" stage): our dense RBF scorer against libsvm's
 // svm_predict_values on the same model and vectors in one process. 308 dimensions (VFH),
-// Gaussian data as in the unit tests; 64 vectors per iteration.
+// the learning tests' Gaussian data (tests/learning/test_learning_common.hpp); 64 vectors per
+// iteration.
 //   build/bin/bench_learning --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
 #include <memory>
-#include <random>
 
+#include "../tests/learning/test_learning_common.hpp"
 #include "cropsight/learning/classifier.hpp"
 #include "cropsight/learning/dataset.hpp"
+#include "cropsight/learning/standardizer.hpp"
 #include "learning/svm_classifier.hpp"
 
 using namespace cropsight;
@@ -16,21 +18,11 @@ using namespace cropsight::learning;
 
 namespace {
 
-Dataset gaussians(std::size_t n, int dim, std::uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<float> g(0.0f, 1.0f);
-  Dataset d(dim);
-  std::vector<float> row(static_cast<std::size_t>(dim));
-  for (std::size_t i = 0; i < n; ++i) {
-    const int label = i % 3 == 0;
-    for (int j = 0; j < dim; ++j) row[std::size_t(j)] = g(rng) + (label && j % 2 == 0 ? 0.5f : 0.0f);
-    d.add(row, label);
-  }
-  return d;
-}
-
 struct Fixture {
-  Dataset train = gaussians(1500, 308, 1), test = gaussians(64, 308, 2);
+  // The learning tests' two overlapping Gaussian classes, standardised as the pipelines do.
+  Dataset raw = testdata::gaussians(1500, 308, 0.5, 1);
+  Standardizer s = Standardizer::fit(raw);
+  Dataset train = s.apply(raw), test = s.apply(testdata::gaussians(64, 308, 0.5, 2));
   std::unique_ptr<Classifier> clf;
   Fixture() {
     ClassifierParams p;

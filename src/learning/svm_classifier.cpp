@@ -150,7 +150,9 @@ void SvmClassifier::load_text(const std::string& text, const std::string& where)
   sign_ = l0 == 1 ? 1.0f : -1.0f;
   rho_ = float(model_->rho[0]);
   const int l = model_->l;
-  sv_.setZero(l, dim_);
+  // Support vectors as dense rows zero-padded to svp_stride_ floats (the RBF kernel's layout).
+  svp_stride_ = (dim_ + 15) / 16 * 16;
+  svp_.assign(std::size_t(l) * std::size_t(svp_stride_), 0.0f);
   coef_.resize(l);
   for (int i = 0; i < l; ++i) {
     coef_[i] = float(model_->sv_coef[0][i]);
@@ -158,18 +160,17 @@ void SvmClassifier::load_text(const std::string& text, const std::string& where)
       if (nd->index < 1 || nd->index > dim_)
         throw Error(where, "SVM support vector has feature index " + std::to_string(nd->index) + " outside 1.." +
                                std::to_string(dim_));
-      sv_(i, nd->index - 1) = float(nd->value);
+      svp_[std::size_t(i) * std::size_t(svp_stride_) + std::size_t(nd->index - 1)] = float(nd->value);
     }
   }
-  if (!sv_.allFinite() || !coef_.allFinite() || !std::isfinite(rho_))
+  using RowMajor = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  const auto sv =
+      Eigen::Map<const RowMajor, 0, Eigen::OuterStride<>>(svp_.data(), l, dim_, Eigen::OuterStride<>(svp_stride_));
+  if (!sv.allFinite() || !coef_.allFinite() || !std::isfinite(rho_))
     throw Error(where, "SVM model has non-finite values");
-  sv_norm2_ = sv_.rowwise().squaredNorm();
-  w_ = sv_.transpose() * coef_;
-  svp_stride_ = (dim_ + 15) / 16 * 16;
+  sv_norm2_ = sv.rowwise().squaredNorm();
+  w_ = sv.transpose() * coef_;
   avx2_ = __builtin_cpu_supports("avx2");
-  svp_.assign(std::size_t(l) * std::size_t(svp_stride_), 0.0f);
-  for (int i = 0; i < l; ++i)
-    for (int j = 0; j < dim_; ++j) svp_[std::size_t(i) * std::size_t(svp_stride_) + std::size_t(j)] = sv_(i, j);
 } catch (...) {
   if (model_) svm_free_and_destroy_model(&model_);
   throw;

@@ -32,7 +32,7 @@ class SvmClassifier final : public Classifier {
   float score(const float* x) const override;
   float threshold() const override { return 0.0f; }
   std::string serialize() const override { return text_; }
-  std::size_t model_size() const override { return std::size_t(sv_.rows()); }
+  std::size_t model_size() const override { return std::size_t(coef_.size()); }
 
   /// libsvm's own decision value for x, sign-corrected like score() (reference for tests).
   double libsvm_score(const float* x) const;
@@ -47,10 +47,9 @@ class SvmClassifier final : public Classifier {
   double gamma_ = 0.0;
   float sign_ = 1.0f;  ///< +1 when libsvm's first label is the positive class
   float rho_ = 0.0f;
-  Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> sv_;  ///< support vectors × dim
-  Eigen::VectorXf coef_;                                                      ///< y_i α_i per support vector
-  Eigen::VectorXf sv_norm2_;                                                  ///< |sv_i|² (RBF)
-  std::vector<float> svp_;  ///< support vectors again, rows zero-padded to svp_stride_ floats (RBF scorer)
+  Eigen::VectorXf coef_;      ///< y_i α_i per support vector
+  Eigen::VectorXf sv_norm2_;  ///< |sv_i|² (RBF)
+  std::vector<float> svp_;    ///< support vectors × dim, rows zero-padded to svp_stride_ floats
   int svp_stride_ = 0;
   bool avx2_ = false;           ///< the CPU has AVX2: score() runs the 8-lane kernel
   Eigen::VectorXf w_;           ///< Σ coef_i sv_i (linear kernel: the decision is w·x − ρ)

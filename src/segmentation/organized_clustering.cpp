@@ -207,6 +207,7 @@ void check_sizes(const char* where, float tolerance, int min_size, int max_size)
 std::vector<Segment> segment_oes(const OrganizedCloud& cloud, const std::vector<std::uint8_t>& edges,
                                  const OesConfig& cfg, FloodFillWorkspace& ws) {
   check_sizes("oes", cfg.distance_tolerance, cfg.min_size, cfg.max_size);
+  if (cfg.min_size_border < 0) throw Error("oes", "min_size_border must be >= 0");
   if (edges.size() != cloud.size()) throw Error("oes", "edge label image size differs from the cloud size");
   if (cfg.barrier_labels < 0 || cfg.barrier_labels > 255)
     throw Error("oes", "barrier_labels must be a bit mask in 0..255");
@@ -217,7 +218,6 @@ std::vector<Segment> segment_oes(const OrganizedCloud& cloud, const std::vector<
   compute_links_impl<false>(cloud.width, cloud.height, cloud.x.data(), cloud.y.data(), z, z, z, z, edges.data(),
                             std::uint8_t(cfg.barrier_labels), cfg.distance_tolerance * cfg.distance_tolerance, 0.0f,
                             buf + n, buf + 2 * n, buf);
-  if (cfg.min_size_border < 0) throw Error("oes", "min_size_border must be >= 0");
   auto segs = oes_components(cloud.width, cloud.height, buf, cfg.min_size, cfg.max_size, cfg.min_size_border, ws);
   for (auto& s : segs) summarize_raster(s, cloud);
   return segs;

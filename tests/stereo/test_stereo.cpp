@@ -207,11 +207,18 @@ TEST(Reconstruct, DepthFromDisparity) {
   EXPECT_EQ(sp.pixels[0], 1 * 4 + 2);
 }
 
+namespace {
+// The simulator renders already-rectified views: its rig's pinhole model is the rectified geometry.
+RectifiedGeometry simulated_rig_geometry(const sim::SeedlingSimConfig& cfg) {
+  const auto rig = cfg.rig();
+  return {rig.width, rig.height, rig.f, rig.cx, rig.cy, rig.cx, rig.baseline()};
+}
+}  // namespace
+
 TEST(SeedlingDetector, RecognisesSimulatedSeedlings) {
   sim::SeedlingSimConfig cfg;
   cfg.supersample = 1;
-  const auto rig = cfg.rig();
-  const RectifiedGeometry g{rig.width, rig.height, rig.f, rig.cx, rig.cy, rig.cx, rig.baseline()};
+  const RectifiedGeometry g = simulated_rig_geometry(cfg);
   SeedlingConfig sc;
   for (int k = 0; k < 2; ++k) {
     const auto p = sim::simulate_seedling_pair(cfg, 4242, k);
@@ -231,8 +238,7 @@ TEST(SeedlingDetector, RecognisesSimulatedSeedlings) {
 TEST(SeedlingDetector, CandidateOpeningDropsCensusSoilSpeckles) {
   sim::SeedlingSimConfig cfg;
   cfg.supersample = 1;
-  const auto rig = cfg.rig();
-  const RectifiedGeometry g{rig.width, rig.height, rig.f, rig.cx, rig.cy, rig.cx, rig.baseline()};
+  const RectifiedGeometry g = simulated_rig_geometry(cfg);
   // The shipped fast preset (census engine, candidate_open 1), opening switched off and on.
   SeedlingConfig sc;
   const auto preset = cropsight::testing::source_dir() / "configs" / "seedling-fast.yaml";
