@@ -30,7 +30,9 @@ namespace fs = std::filesystem;
 struct TrainGrapeOptions {
   CommonOptions common;
   std::string data, model = "gbdt", features = "xyzrgbn", out, val_fold, checkpoint;
-  int epochs = -1, folds = 0, limit = 0, threads = 2;
+  int epochs = -1, folds = 0, limit = 0;
+  int threads = 0;  // 0 = the preset's value (2); an explicit --threads wins over --config/--set
+  int eval_threads() const { return threads > 0 ? threads : 2; }
   std::uint64_t split_seed = 1;
 };
 
@@ -41,9 +43,9 @@ void train_one(const TrainGrapeOptions& o, const ConfigMap& cfg_map, const std::
                const std::vector<Cloud>& val, const fs::path& out, const std::string& tag) {
   if (o.model == "gbdt") {
     pipeline::GrapeGbdtConfig cfg;
-    cfg.gbdt.nthread = o.threads;
-    cfg.features.threads = o.threads;
+    cfg.gbdt.nthread = cfg.features.threads = o.eval_threads();
     apply_config(cfg, cfg_map, "--config/--set");
+    if (o.threads > 0) cfg.gbdt.nthread = cfg.features.threads = o.threads;
     auto model = pipeline::train_grape_gbdt(
         train, cfg, [&](const std::string& line) { std::fprintf(stderr, "%s%s\n", tag.c_str(), line.c_str()); });
     model.save(out);
@@ -51,15 +53,17 @@ void train_one(const TrainGrapeOptions& o, const ConfigMap& cfg_map, const std::
   }
   nn::PointNetConfig cfg;
   cfg.arch = o.model;
-  cfg.threads = o.threads;
+  cfg.threads = o.eval_threads();
   apply_config(cfg, cfg_map, "--config/--set");
+  if (o.threads > 0) cfg.threads = o.threads;  // the presets say threads: 2; --threads must still win
   cfg.arch = o.model;
   cfg.features = o.features;
   if (o.epochs > 0) cfg.epochs = o.epochs;
   cfg.checkpoint = o.checkpoint;
   nn::PointSegmenter net(cfg);
-  std::fprintf(stderr, "%s%s, features %s, %zu parameters, %zu training clouds\n", tag.c_str(), cfg.arch.c_str(),
-               cfg.features.c_str(), net.parameter_count(), train.size());
+  std::fprintf(stderr, "%s%s, features %s, %zu parameters, %zu training clouds, %d thread%s\n", tag.c_str(),
+               cfg.arch.c_str(), cfg.features.c_str(), net.parameter_count(), train.size(), cfg.threads,
+               cfg.threads == 1 ? "" : "s");
   net.train(train, val, [&](const nn::EpochLog& l) {
     if (l.val_miou >= 0)
       std::fprintf(stderr, "%sepoch %d/%d  loss %.4f  train acc %.4f  val mIoU %.4f  lr %.2e  %.1f s\n", tag.c_str(),
@@ -76,6 +80,7 @@ void run(const TrainGrapeOptions& o) {
   if (o.model != "gbdt" && o.model != "pointresnet" && o.model != "pointnet2")
     throw Error("--model", "expected gbdt, pointresnet or pointnet2, got '" + o.model + "'");
   nn::feature_channels(o.features);
+  if (o.threads < 0) throw Error("--threads", "must be at least 1");
   if (o.out.empty() && o.folds == 0) throw Error("--out", "required unless --folds is given");
   if (!o.val_fold.empty() && o.folds) throw Error("--folds", "use either --folds or --val-fold");
   const ConfigMap cfg_map = o.common.config_map(o.common.config.empty() ? "grape-" + o.model : "");
@@ -111,7 +116,7 @@ void run(const TrainGrapeOptions& o) {
       const double t0 = now_s();
       train_one(o, cfg_map, tr, va, model_path, tag);
       train_s += now_s() - t0;
-      const auto model = pipeline::GrapeModel::load(model_path, o.threads);
+      const auto model = pipeline::GrapeModel::load(model_path, o.eval_threads());
       const auto ev = pipeline::evaluate_grape(model, va);
       if (o.val_fold.empty()) fs::remove(model_path);
       std::fprintf(stderr, "%sheld-out: OAcc %.4f  mAcc %.4f  mIoU %.4f  (%zu clouds, %.1f ms/cloud, train %.0f s)\n",
@@ -153,7 +158,8 @@ void add_train_grape(CLI::App& train) {
   cmd->add_option("--val-fold", o->val_fold, "k/K: train without fold k and report its metrics");
   cmd->add_option("--folds", o->folds, "Run K-fold cross-validation by cloud, then train on all (with --out)");
   cmd->add_option("--limit", o->limit, "Use only the first N clouds (quick runs)");
-  cmd->add_option("--threads", o->threads, "Threads for XGBoost / libtorch / FPFH (default 2)");
+  cmd->add_option("--threads", o->threads,
+                  "Threads for XGBoost / libtorch / FPFH (default: the preset's, 2); overrides --config/--set");
   cmd->add_option("--checkpoint", o->checkpoint, "Network checkpoint written every epoch and resumed from");
   cmd->add_option("--split-seed", o->split_seed, "Seed of the fold split");
   add_json_flag(cmd, o->common);

@@ -55,4 +55,29 @@ TEST(GrapeCli, TrainEvalSegmentAndBadInput) {
   EXPECT_NE(r.err.find("bad.txt: line 1"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(t / "never.txt"));
 }
+
+// The network presets say `threads: 2`; an explicit --threads must still win (it once did not:
+// --threads 1 trained on two threads), and --set threads=... applies when --threads is absent.
+TEST(GrapeCli, ExplicitThreadsOverrideThePreset) {
+  if (!std::filesystem::exists(cropsight::testing::cli_path())) GTEST_SKIP() << "CLI not built";
+  cropsight::testing::TempDir t;
+  std::filesystem::create_directories(t / "data" / "points");
+  for (int i = 0; i < 2; ++i)
+    io::write_grape_text(t / "data" / "points" / ("c" + std::to_string(i) + ".txt"), two_blobs(std::uint32_t(i)));
+  const std::string base = "train grape --data '" + (t / "data").string() +
+                           "' --model pointresnet --features xyz --epochs 1 --out '" + (t / "n.pt").string() +
+                           "' --set num_points=64 --set sa1_points=16 --set sa2_points=8 --set sa3_points=4 "
+                           "--set width=4 --set batch_size=2 --set val_every=0";
+  auto r = cropsight::testing::run_cli(base + " --threads 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("training clouds, 1 thread\n"), std::string::npos) << r.err;
+  r = cropsight::testing::run_cli(base);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("training clouds, 2 threads"), std::string::npos) << r.err;
+  r = cropsight::testing::run_cli(base + " --set threads=1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("training clouds, 1 thread\n"), std::string::npos) << r.err;
+  r = cropsight::testing::run_cli(base + " --threads -1");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+}
 }  // namespace
