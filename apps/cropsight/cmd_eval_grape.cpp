@@ -1,7 +1,7 @@
 // cropsight eval grape: OAcc / mAcc / mIoU, per-class accuracy and IoU and time per cloud of a
 // trained grape segmentation model on labelled text clouds.
 //
-//   cropsight eval grape --data DIR --model MODEL [--fold k/K] [--limit N] [--json]
+//   cropsight eval grape --data DIR --model MODEL [--fold k/K] [--limit N] [--sampled [--sampling random|fps]] [--json]
 //
 // --fold k/K evaluates only the clouds of fold k (the split of `train grape --val-fold k/K`),
 // so that a model is only ever scored on clouds it was not trained on.
@@ -21,11 +21,16 @@ struct EvalGrapeOptions {
   CommonOptions common;
   std::string data, model, fold;
   int limit = 0, threads = 2;
+  bool sampled = false;
+  std::string sampling = "random";
   std::uint64_t split_seed = 1;
 };
 
 void run(const EvalGrapeOptions& o) {
-  const auto model = pipeline::GrapeModel::load(o.model, o.threads);
+  auto model = pipeline::GrapeModel::load(o.model, o.threads);
+  if (o.sampling != "random" && o.sampling != "fps")
+    throw Error("--sampling", "expected random or fps, got '" + o.sampling + "'");
+  model.set_sampled(o.sampled, o.sampling == "fps");
   auto files = io::list_grape_clouds(o.data);
   if (o.limit > 0 && std::size_t(o.limit) < files.size()) files.resize(std::size_t(o.limit));
   if (!o.fold.empty()) {
@@ -41,6 +46,7 @@ void run(const EvalGrapeOptions& o) {
   if (o.common.json) {
     auto j = nlohmann::json::parse(ev.json());
     j["model"] = model.kind();
+    if (model.kind() != "gbdt") j["mode"] = o.sampled ? "sampled" : "every-point";
     print_json(j);
   } else {
     std::printf("model %s (%s)\n%s", o.model.c_str(), model.kind().c_str(), ev.text().c_str());
@@ -57,6 +63,10 @@ void add_eval_grape(CLI::App& eval) {
   cmd->add_option("--split-seed", o->split_seed, "Seed of the fold split (as in train grape)");
   cmd->add_option("--limit", o->limit, "Use only the first N clouds");
   cmd->add_option("--threads", o->threads, "Threads (default 2)");
+  cmd->add_flag("--sampled", o->sampled,
+                "Networks: the paper's mode, one pass on num_points samples with nearest-neighbour carry-back "
+                "(default: a prediction for every point)");
+  cmd->add_option("--sampling", o->sampling, "With --sampled: random (as in training, default) or fps");
   add_json_flag(cmd, o->common);
   cmd->callback([o] { run(*o); });
 }

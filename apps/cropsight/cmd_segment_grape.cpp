@@ -1,13 +1,15 @@
 // cropsight segment grape: labels every point of a text cloud with a trained model and writes
 // the cloud back in the dataset's format with the predicted label in the last column.
 //
-//   cropsight segment grape --model MODEL --input CLOUD.txt --out LABELLED.txt [--json]
+//   cropsight segment grape --model MODEL --input CLOUD.txt --out LABELLED.txt
+//                           [--sampled [--sampling random|fps]] [--json]
 #include <chrono>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "cropsight/core/error.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/pipeline/grape_model.hpp"
 
@@ -17,10 +19,15 @@ struct SegmentGrapeOptions {
   CommonOptions common;
   std::string model, input, out;
   int threads = 2;
+  bool sampled = false;
+  std::string sampling = "random";
 };
 
 void run(const SegmentGrapeOptions& o) {
-  const auto model = pipeline::GrapeModel::load(o.model, o.threads);
+  auto model = pipeline::GrapeModel::load(o.model, o.threads);
+  if (o.sampling != "random" && o.sampling != "fps")
+    throw Error("--sampling", "expected random or fps, got '" + o.sampling + "'");
+  model.set_sampled(o.sampled, o.sampling == "fps");
   Cloud cloud = io::read_grape_text(o.input);
   const auto t0 = std::chrono::steady_clock::now();
   cloud.labels = model.segment(cloud);
@@ -30,7 +37,12 @@ void run(const SegmentGrapeOptions& o) {
   for (int l : cloud.labels)
     if (l >= 0 && l < 6) ++counts[std::size_t(l)];
   if (o.common.json) {
-    print_json({{"input", o.input}, {"out", o.out}, {"points", cloud.size()}, {"label_counts", counts}, {"ms", ms}});
+    print_json({{"input", o.input},
+                {"out", o.out},
+                {"points", cloud.size()},
+                {"label_counts", counts},
+                {"ms", ms},
+                {"mode", o.sampled ? "sampled" : "every-point"}});
   } else {
     std::printf("%zu points labelled in %.1f ms -> %s\n", cloud.size(), ms, o.out.c_str());
   }
@@ -44,6 +56,10 @@ void add_segment_grape(CLI::App& segment) {
   cmd->add_option("--input", o->input, "Text cloud (x y z nx ny nz r g b [label])")->required();
   cmd->add_option("--out", o->out, "Labelled text cloud to write")->required();
   cmd->add_option("--threads", o->threads, "Threads (default 2)");
+  cmd->add_flag("--sampled", o->sampled,
+                "Networks: the paper's mode, one pass on num_points samples with nearest-neighbour carry-back "
+                "(default: a prediction for every point)");
+  cmd->add_option("--sampling", o->sampling, "With --sampled: random (as in training, default) or fps");
   add_json_flag(cmd, o->common);
   cmd->callback([o] { run(*o); });
 }

@@ -476,12 +476,15 @@ std::vector<int> PointSegmenter::segment(const Cloud& cloud, int* passes) const 
   return impl_->predict(prepare(cloud, impl_->cfg.features), passes);
 }
 
-std::vector<int> PointSegmenter::segment_sampled(const Cloud& cloud) const {
+std::vector<int> PointSegmenter::segment_sampled(const Cloud& cloud, bool farthest) const {
+  if (cloud.empty()) return {};
   torch::NoGradGuard ng;
   impl_->net->eval();
   const Prepared p = prepare(cloud, impl_->cfg.features);
-  auto idx = geometry::farthest_point_sample(p.xyz, std::size_t(impl_->cfg.num_points), 0);
-  while (idx.size() < std::size_t(impl_->cfg.num_points)) idx.push_back(idx[idx.size() % p.xyz.size()]);
+  const std::size_t n = std::size_t(impl_->cfg.num_points);
+  auto idx = farthest ? geometry::farthest_point_sample(p.xyz, n, 0)
+                      : geometry::random_sample(p.xyz.size(), n, impl_->cfg.seed);
+  while (idx.size() < n) idx.push_back(idx[idx.size() % p.xyz.size()]);
   auto [xyz, feats, labels] = impl_->batch({&p}, {idx}, nullptr);
   auto pred = impl_->net->forward(xyz, feats).argmax(-1).contiguous();
   std::vector<Eigen::Vector3f> samples;

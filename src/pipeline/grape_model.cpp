@@ -17,6 +17,7 @@ struct GrapeModel::Impl {
   std::unique_ptr<learning::Gbdt> gbdt;
   std::unique_ptr<nn::PointSegmenter> net;
   int threads = 2;
+  bool sampled = false, farthest = false;
 };
 
 GrapeModel::~GrapeModel() = default;
@@ -51,8 +52,17 @@ GrapeModel GrapeModel::load(const std::filesystem::path& path, int threads) {
 
 std::vector<int> GrapeModel::segment(const Cloud& cloud) const {
   if (impl_->gbdt) return segment_grape_gbdt(*impl_->gbdt, cloud, impl_->threads);
-  return impl_->net->segment(cloud);
+  return impl_->sampled ? impl_->net->segment_sampled(cloud, impl_->farthest) : impl_->net->segment(cloud);
 }
+
+void GrapeModel::set_sampled(bool sampled, bool farthest) {
+  if (sampled && impl_->gbdt)
+    throw Error("--sampled", "only for network models (a GBDT recipe fixes its own sampling)");
+  impl_->sampled = sampled;
+  impl_->farthest = farthest;
+}
+
+bool GrapeModel::sampled() const { return impl_->sampled; }
 
 std::vector<int> grape_folds(std::size_t n, int k, std::uint64_t seed) {
   if (k < 2) throw Error("folds", "need at least 2 folds");

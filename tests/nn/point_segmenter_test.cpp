@@ -76,6 +76,8 @@ TEST(PointSegmenter, SaveLoadGivesIdenticalPredictions) {
   EXPECT_EQ(back.segment(big, &passes), net.segment(big));
   EXPECT_EQ(passes, 3);
   EXPECT_EQ(back.segment_sampled(big), net.segment_sampled(big));
+  EXPECT_EQ(back.segment_sampled(big, true), net.segment_sampled(big, true));
+  EXPECT_EQ(net.segment_sampled(big).size(), big.size());
   EXPECT_EQ(back.config().arch, "pointresnet");
   EXPECT_EQ(back.parameter_count(), net.parameter_count());
 }

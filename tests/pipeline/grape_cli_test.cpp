@@ -47,6 +47,10 @@ TEST(GrapeCli, TrainEvalSegmentAndBadInput) {
                                   (t / "lab.txt").string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(io::read_grape_text(t / "lab.txt").size(), 400u);
+  // The paper's sampled mode is a network option; a GBDT recipe samples by itself.
+  r = cropsight::testing::run_cli("eval grape --data '" + data + "' --model '" + model + "' --sampled --json");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--sampled"), std::string::npos) << r.err;
 
   std::ofstream(t / "bad.txt") << "1 2 3\n";
   r = cropsight::testing::run_cli("segment grape --model '" + model + "' --input '" + (t / "bad.txt").string() +
@@ -79,5 +83,15 @@ TEST(GrapeCli, ExplicitThreadsOverrideThePreset) {
   EXPECT_NE(r.err.find("training clouds, 1 thread\n"), std::string::npos) << r.err;
   r = cropsight::testing::run_cli(base + " --threads -1");
   EXPECT_EQ(r.exit_code, 2) << r.err;
+
+  // Both network modes through eval: every point, and the paper's sampled mode.
+  for (const std::string mode : {"every-point", "sampled"}) {
+    r = cropsight::testing::run_cli("eval grape --data '" + (t / "data").string() + "' --model '" +
+                                    (t / "n.pt").string() + "'" + (mode == "sampled" ? " --sampled" : "") + " --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["mode"], mode);
+    EXPECT_EQ(j["points"], 800);
+  }
 }
 }  // namespace

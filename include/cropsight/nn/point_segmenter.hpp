@@ -97,9 +97,12 @@ class PointSegmenter {
   /// Deterministic (fixed seed). `passes_out` (optional) receives the number of passes.
   std::vector<int> segment(const Cloud& cloud, int* passes_out = nullptr) const;
 
-  /// Paper variant: `num_points` farthest-point samples, one pass, labels carried back to
-  /// every point by nearest neighbour.
-  std::vector<int> segment_sampled(const Cloud& cloud) const;
+  /// Paper variant: one pass on `num_points` samples, labels carried back to every point by
+  /// nearest neighbour. The sample is drawn at random (seeded, deterministic) like the training
+  /// samples by default; `farthest` = true takes farthest-point samples instead, whose even
+  /// spatial density differs from what the network was trained on (on the shared clouds it lost
+  /// the whole of label 0).
+  std::vector<int> segment_sampled(const Cloud& cloud, bool farthest = false) const;
 
   /// One training step on fixed inputs (no augmentation, no sampling when the cloud already has
   /// num_points points): returns (loss, accuracy). Used by the tests to show learning works.

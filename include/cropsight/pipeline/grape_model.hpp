@@ -27,6 +27,13 @@ class GrapeModel {
   /// Label of every point. The cloud is used as given (the dataset's clouds are already
   /// unit-sphere normalised; ROI clouds are normalised by the caller).
   std::vector<int> segment(const Cloud& cloud) const;
+  /// Networks only: with `sampled` true, segment() runs the paper's mode — one pass on
+  /// num_points samples (random like the training samples, or farthest-point with `farthest`),
+  /// labels carried back to every point by nearest neighbour (nn::PointSegmenter::
+  /// segment_sampled) — instead of one pass per disjoint chunk so that every point gets its own
+  /// prediction (the default). Throws Error for a GBDT model, whose recipe fixes its own sampling.
+  void set_sampled(bool sampled, bool farthest = false);
+  bool sampled() const;
 
  private:
   GrapeModel() = default;
