@@ -1,7 +1,8 @@
 // cropsight eval grape: OAcc / mAcc / mIoU, per-class accuracy and IoU and time per cloud of a
 // trained grape segmentation model on labelled text clouds.
 //
-//   cropsight eval grape --data DIR --model MODEL [--fold k/K] [--limit N] [--sampled [--sampling random|fps]] [--json]
+//   cropsight eval grape --data DIR --model MODEL [--fold k/K] [--limit N] [--sampled [--sampling random|fps]
+//   [--carry-k K]] [--json]
 //
 // --fold k/K evaluates only the clouds of fold k (the split of `train grape --val-fold k/K`),
 // so that a model is only ever scored on clouds it was not trained on.
@@ -23,6 +24,7 @@ struct EvalGrapeOptions {
   int limit = 0, threads = 2;
   bool sampled = false;
   std::string sampling = "random";
+  int carry_k = 4;  // the fast GBDT's colour-guided vote; 1 = the paper's nearest neighbour
   std::uint64_t split_seed = 1;
 };
 
@@ -30,7 +32,7 @@ void run(const EvalGrapeOptions& o) {
   auto model = pipeline::GrapeModel::load(o.model, o.threads);
   if (o.sampling != "random" && o.sampling != "fps")
     throw Error("--sampling", "expected random or fps, got '" + o.sampling + "'");
-  model.set_sampled(o.sampled, o.sampling == "fps");
+  model.set_sampled(o.sampled, o.sampling == "fps", o.carry_k);
   auto files = io::list_grape_clouds(o.data);
   if (o.limit > 0 && std::size_t(o.limit) < files.size()) files.resize(std::size_t(o.limit));
   if (!o.fold.empty()) {
@@ -64,9 +66,12 @@ void add_eval_grape(CLI::App& eval) {
   cmd->add_option("--limit", o->limit, "Use only the first N clouds");
   cmd->add_option("--threads", o->threads, "Threads (default 2)");
   cmd->add_flag("--sampled", o->sampled,
-                "Networks: the paper's mode, one pass on num_points samples with nearest-neighbour carry-back "
-                "(default: a prediction for every point)");
+                "Networks: the paper's mode, one pass on num_points samples, labels carried back to the other points "
+                "(--carry-k; default: a prediction for every point)");
   cmd->add_option("--sampling", o->sampling, "With --sampled: random (as in training, default) or fps");
+  cmd->add_option("--carry-k", o->carry_k,
+                  "With --sampled: samples voting for each other point, weighted by distance and colour (default 4; 1 "
+                  "= nearest, the paper)");
   add_json_flag(cmd, o->common);
   cmd->callback([o] { run(*o); });
 }

@@ -2,7 +2,7 @@
 // the cloud back in the dataset's format with the predicted label in the last column.
 //
 //   cropsight segment grape --model MODEL --input CLOUD.txt --out LABELLED.txt
-//                           [--sampled [--sampling random|fps]] [--json]
+//                           [--sampled [--sampling random|fps] [--carry-k K]] [--json]
 #include <chrono>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -21,13 +21,14 @@ struct SegmentGrapeOptions {
   int threads = 2;
   bool sampled = false;
   std::string sampling = "random";
+  int carry_k = 4;  // the fast GBDT's colour-guided vote; 1 = the paper's nearest neighbour
 };
 
 void run(const SegmentGrapeOptions& o) {
   auto model = pipeline::GrapeModel::load(o.model, o.threads);
   if (o.sampling != "random" && o.sampling != "fps")
     throw Error("--sampling", "expected random or fps, got '" + o.sampling + "'");
-  model.set_sampled(o.sampled, o.sampling == "fps");
+  model.set_sampled(o.sampled, o.sampling == "fps", o.carry_k);
   Cloud cloud = io::read_grape_text(o.input);
   const auto t0 = std::chrono::steady_clock::now();
   cloud.labels = model.segment(cloud);
@@ -57,9 +58,12 @@ void add_segment_grape(CLI::App& segment) {
   cmd->add_option("--out", o->out, "Labelled text cloud to write")->required();
   cmd->add_option("--threads", o->threads, "Threads (default 2)");
   cmd->add_flag("--sampled", o->sampled,
-                "Networks: the paper's mode, one pass on num_points samples with nearest-neighbour carry-back "
-                "(default: a prediction for every point)");
+                "Networks: the paper's mode, one pass on num_points samples, labels carried back to the other points "
+                "(--carry-k; default: a prediction for every point)");
   cmd->add_option("--sampling", o->sampling, "With --sampled: random (as in training, default) or fps");
+  cmd->add_option("--carry-k", o->carry_k,
+                  "With --sampled: samples voting for each other point, weighted by distance and colour (default 4; 1 "
+                  "= nearest, the paper)");
   add_json_flag(cmd, o->common);
   cmd->callback([o] { run(*o); });
 }

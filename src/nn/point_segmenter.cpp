@@ -476,24 +476,37 @@ std::vector<int> PointSegmenter::segment(const Cloud& cloud, int* passes) const 
   return impl_->predict(prepare(cloud, impl_->cfg.features), passes);
 }
 
-std::vector<int> PointSegmenter::segment_sampled(const Cloud& cloud, bool farthest) const {
+std::vector<int> PointSegmenter::sample_for_pass(const Cloud& cloud, bool farthest) const {
   if (cloud.empty()) return {};
+  const std::size_t n = std::size_t(impl_->cfg.num_points);
+  // FPS is invariant to the unit-sphere normalisation, so it runs on the raw positions.
+  auto idx = farthest ? geometry::farthest_point_sample(cloud.points, n, 0)
+                      : geometry::random_sample(cloud.size(), n, impl_->cfg.seed);
+  while (idx.size() < n) idx.push_back(idx[idx.size() % cloud.size()]);
+  return idx;
+}
+
+std::vector<int> PointSegmenter::predict_at(const Cloud& cloud, const std::vector<int>& idx) const {
+  if (idx.size() != std::size_t(impl_->cfg.num_points))
+    throw Error("point network", "a pass needs exactly num_points = " + std::to_string(impl_->cfg.num_points) +
+                                     " indices, got " + std::to_string(idx.size()));
+  for (int i : idx)
+    if (i < 0 || std::size_t(i) >= cloud.size()) throw Error("point network", "sample index out of range");
   torch::NoGradGuard ng;
   impl_->net->eval();
   const Prepared p = prepare(cloud, impl_->cfg.features);
-  const std::size_t n = std::size_t(impl_->cfg.num_points);
-  auto idx = farthest ? geometry::farthest_point_sample(p.xyz, n, 0)
-                      : geometry::random_sample(p.xyz.size(), n, impl_->cfg.seed);
-  while (idx.size() < n) idx.push_back(idx[idx.size() % p.xyz.size()]);
   auto [xyz, feats, labels] = impl_->batch({&p}, {idx}, nullptr);
-  auto pred = impl_->net->forward(xyz, feats).argmax(-1).contiguous();
+  const auto pred = impl_->net->forward(xyz, feats).argmax(-1).contiguous();
+  return std::vector<int>(pred.data_ptr<int64_t>(), pred.data_ptr<int64_t>() + idx.size());
+}
+
+std::vector<int> PointSegmenter::segment_sampled(const Cloud& cloud, bool farthest) const {
+  if (cloud.empty()) return {};
+  const auto idx = sample_for_pass(cloud, farthest);
+  const auto sl = predict_at(cloud, idx);
   std::vector<Eigen::Vector3f> samples;
-  std::vector<int> sl;
-  for (std::size_t i = 0; i < idx.size(); ++i) {
-    samples.push_back(p.xyz[std::size_t(idx[i])]);
-    sl.push_back(int(pred.data_ptr<int64_t>()[i]));
-  }
-  return geometry::carry_labels_back(samples, sl, p.xyz);
+  for (int i : idx) samples.push_back(cloud.points[std::size_t(i)]);
+  return geometry::carry_labels_back(samples, sl, cloud.points);
 }
 
 namespace {

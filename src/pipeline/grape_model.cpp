@@ -18,6 +18,7 @@ struct GrapeModel::Impl {
   std::unique_ptr<nn::PointSegmenter> net;
   int threads = 2;
   bool sampled = false, farthest = false;
+  int carry_k = 1;
 };
 
 GrapeModel::~GrapeModel() = default;
@@ -52,14 +53,22 @@ GrapeModel GrapeModel::load(const std::filesystem::path& path, int threads) {
 
 std::vector<int> GrapeModel::segment(const Cloud& cloud) const {
   if (impl_->gbdt) return segment_grape_gbdt(*impl_->gbdt, cloud, impl_->threads);
-  return impl_->sampled ? impl_->net->segment_sampled(cloud, impl_->farthest) : impl_->net->segment(cloud);
+  if (!impl_->sampled) return impl_->net->segment(cloud);
+  if (cloud.empty()) return {};
+  const auto idx = impl_->net->sample_for_pass(cloud, impl_->farthest);
+  const auto labels = impl_->net->predict_at(cloud, idx);
+  GrapeFeatureConfig fc;
+  fc.carry_k = impl_->carry_k;
+  return grape_carry_back(cloud, idx, labels, fc, impl_->net->config().num_classes, impl_->threads);
 }
 
-void GrapeModel::set_sampled(bool sampled, bool farthest) {
+void GrapeModel::set_sampled(bool sampled, bool farthest, int carry_k) {
+  if (carry_k < 1) throw Error("--carry-k", "must be at least 1");
   if (sampled && impl_->gbdt)
     throw Error("--sampled", "only for network models (a GBDT recipe fixes its own sampling)");
   impl_->sampled = sampled;
   impl_->farthest = farthest;
+  impl_->carry_k = carry_k;
 }
 
 bool GrapeModel::sampled() const { return impl_->sampled; }

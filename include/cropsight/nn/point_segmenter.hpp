@@ -104,6 +104,12 @@ class PointSegmenter {
   /// the whole of label 0).
   std::vector<int> segment_sampled(const Cloud& cloud, bool farthest = false) const;
 
+  /// The paper variant's two halves, for callers with their own carry-back: the num_points
+  /// indices of one pass (random, seeded, or farthest-point; repeated when the cloud is smaller)
+  /// and the network's labels at exactly num_points given indices (throws Error otherwise).
+  std::vector<int> sample_for_pass(const Cloud& cloud, bool farthest = false) const;
+  std::vector<int> predict_at(const Cloud& cloud, const std::vector<int>& idx) const;
+
   /// One training step on fixed inputs (no augmentation, no sampling when the cloud already has
   /// num_points points): returns (loss, accuracy). Used by the tests to show learning works.
   std::pair<double, double> train_step(const std::vector<Cloud>& batch);

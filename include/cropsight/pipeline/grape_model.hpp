@@ -29,10 +29,13 @@ class GrapeModel {
   std::vector<int> segment(const Cloud& cloud) const;
   /// Networks only: with `sampled` true, segment() runs the paper's mode — one pass on
   /// num_points samples (random like the training samples, or farthest-point with `farthest`),
-  /// labels carried back to every point by nearest neighbour (nn::PointSegmenter::
-  /// segment_sampled) — instead of one pass per disjoint chunk so that every point gets its own
-  /// prediction (the default). Throws Error for a GBDT model, whose recipe fixes its own sampling.
-  void set_sampled(bool sampled, bool farthest = false);
+  /// labels carried back to every other point — instead of one pass per disjoint chunk so that
+  /// every point gets its own prediction (the default). The carry-back is the fast GBDT's
+  /// (grape_carry_back): `carry_k` = 1 is the paper's nearest neighbour; larger k votes over the
+  /// k nearest samples weighted by distance and colour likeness (GrapeFeatureConfig's
+  /// carry_colour). Throws Error for a GBDT model, whose recipe fixes its own sampling, and for
+  /// carry_k < 1.
+  void set_sampled(bool sampled, bool farthest = false, int carry_k = 1);
   bool sampled() const;
 
  private:

@@ -1,0 +1,62 @@
+// GrapeModel's sampled (paper) mode for networks: with carry_k = 1 it must give exactly the
+// network's own segment_sampled (nearest-neighbour carry-back), and its options are checked.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/nn/point_segmenter.hpp"
+#include "cropsight/pipeline/grape_model.hpp"
+#include "testing/testing.hpp"
+
+namespace {
+using namespace cropsight;
+
+Cloud sphere_cloud(std::uint32_t seed, int n) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> g;
+  Cloud c;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3f p = Eigen::Vector3f(g(rng), g(rng), g(rng)).normalized();
+    const int l = p.x() < 0 ? 1 : 3;
+    c.points.push_back(p);
+    c.normals.push_back(p);
+    c.colors.emplace_back(l == 1 ? 0.2f : 0.7f, 0.5f, 0.4f);
+    c.labels.push_back(l);
+  }
+  return c;
+}
+
+TEST(GrapeModel, SampledModeMatchesTheNetworksNearestNeighbourCarryBack) {
+  nn::PointNetConfig cfg;
+  cfg.num_points = 64;
+  cfg.sa1_points = 16, cfg.sa2_points = 8, cfg.sa3_points = 4;
+  cfg.k1 = cfg.k2 = 8, cfg.k3 = 4;
+  cfg.width = 4;
+  cfg.threads = 1;
+  nn::PointSegmenter net(cfg);
+  const std::vector<Cloud> batch = {sphere_cloud(1, 64), sphere_cloud(2, 64)};
+  for (int i = 0; i < 5; ++i) net.train_step(batch);
+  cropsight::testing::TempDir t;
+  net.save(t / "n.pt");
+
+  auto model = pipeline::GrapeModel::load(t / "n.pt", 1);
+  const Cloud big = sphere_cloud(3, 500);
+  model.set_sampled(true, false, 1);
+  EXPECT_EQ(model.segment(big), net.segment_sampled(big));
+  model.set_sampled(true, true, 1);
+  EXPECT_EQ(model.segment(big), net.segment_sampled(big, true));
+  model.set_sampled(true, false, 4);  // colour-guided vote: every point labelled, in range
+  const auto voted = model.segment(big);
+  ASSERT_EQ(voted.size(), big.size());
+  for (int l : voted) EXPECT_TRUE(l >= 0 && l < cfg.num_classes);
+  // The sample keeps the network's own labels under any carry-back.
+  const auto idx = net.sample_for_pass(big);
+  const auto at = net.predict_at(big, idx);
+  for (std::size_t s = 0; s < idx.size(); ++s) EXPECT_EQ(voted[std::size_t(idx[s])], at[s]);
+
+  EXPECT_THROW(model.set_sampled(true, false, 0), Error);
+  EXPECT_THROW(net.predict_at(big, {0, 1, 2}), Error);
+  EXPECT_TRUE(model.segment(Cloud{}).empty());
+}
+}  // namespace
