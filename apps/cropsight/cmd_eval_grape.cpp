@@ -15,6 +15,7 @@
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/pipeline/grape_eval.hpp"
 #include "cropsight/pipeline/grape_model.hpp"
+#include "grape_network_mode.hpp"
 
 namespace cropsight::cli {
 namespace {
@@ -22,17 +23,13 @@ struct EvalGrapeOptions {
   CommonOptions common;
   std::string data, model, fold;
   int limit = 0, threads = 2;
-  bool sampled = false;
-  std::string sampling = "random";
-  int carry_k = 4;  // the fast GBDT's colour-guided vote; 1 = the paper's nearest neighbour
+  GrapeNetworkMode mode;
   std::uint64_t split_seed = 1;
 };
 
 void run(const EvalGrapeOptions& o) {
   auto model = pipeline::GrapeModel::load(o.model, o.threads);
-  if (o.sampling != "random" && o.sampling != "fps")
-    throw Error("--sampling", "expected random or fps, got '" + o.sampling + "'");
-  model.set_sampled(o.sampled, o.sampling == "fps", o.carry_k);
+  o.mode.apply(model);
   auto files = io::list_grape_clouds(o.data);
   if (o.limit > 0 && std::size_t(o.limit) < files.size()) files.resize(std::size_t(o.limit));
   if (!o.fold.empty()) {
@@ -48,7 +45,7 @@ void run(const EvalGrapeOptions& o) {
   if (o.common.json) {
     auto j = nlohmann::json::parse(ev.json());
     j["model"] = model.kind();
-    if (model.kind() != "gbdt") j["mode"] = o.sampled ? "sampled" : "every-point";
+    if (model.kind() != "gbdt") j["mode"] = o.mode.name();
     print_json(j);
   } else {
     std::printf("model %s (%s)\n%s", o.model.c_str(), model.kind().c_str(), ev.text().c_str());
@@ -65,13 +62,7 @@ void add_eval_grape(CLI::App& eval) {
   cmd->add_option("--split-seed", o->split_seed, "Seed of the fold split (as in train grape)");
   cmd->add_option("--limit", o->limit, "Use only the first N clouds");
   cmd->add_option("--threads", o->threads, "Threads (default 2)");
-  cmd->add_flag("--sampled", o->sampled,
-                "Networks: the paper's mode, one pass on num_points samples, labels carried back to the other points "
-                "(--carry-k; default: a prediction for every point)");
-  cmd->add_option("--sampling", o->sampling, "With --sampled: random (as in training, default) or fps");
-  cmd->add_option("--carry-k", o->carry_k,
-                  "With --sampled: samples voting for each other point, weighted by distance and colour (default 4; 1 "
-                  "= nearest, the paper)");
+  o->mode.add_options(cmd);
   add_json_flag(cmd, o->common);
   cmd->callback([o] { run(*o); });
 }

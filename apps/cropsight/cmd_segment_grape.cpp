@@ -9,9 +9,9 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "cropsight/core/error.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/pipeline/grape_model.hpp"
+#include "grape_network_mode.hpp"
 
 namespace cropsight::cli {
 namespace {
@@ -19,16 +19,12 @@ struct SegmentGrapeOptions {
   CommonOptions common;
   std::string model, input, out;
   int threads = 2;
-  bool sampled = false;
-  std::string sampling = "random";
-  int carry_k = 4;  // the fast GBDT's colour-guided vote; 1 = the paper's nearest neighbour
+  GrapeNetworkMode mode;
 };
 
 void run(const SegmentGrapeOptions& o) {
   auto model = pipeline::GrapeModel::load(o.model, o.threads);
-  if (o.sampling != "random" && o.sampling != "fps")
-    throw Error("--sampling", "expected random or fps, got '" + o.sampling + "'");
-  model.set_sampled(o.sampled, o.sampling == "fps", o.carry_k);
+  o.mode.apply(model);
   Cloud cloud = io::read_grape_text(o.input);
   const auto t0 = std::chrono::steady_clock::now();
   cloud.labels = model.segment(cloud);
@@ -43,7 +39,7 @@ void run(const SegmentGrapeOptions& o) {
                 {"points", cloud.size()},
                 {"label_counts", counts},
                 {"ms", ms},
-                {"mode", o.sampled ? "sampled" : "every-point"}});
+                {"mode", o.mode.name()}});
   } else {
     std::printf("%zu points labelled in %.1f ms -> %s\n", cloud.size(), ms, o.out.c_str());
   }
@@ -57,13 +53,7 @@ void add_segment_grape(CLI::App& segment) {
   cmd->add_option("--input", o->input, "Text cloud (x y z nx ny nz r g b [label])")->required();
   cmd->add_option("--out", o->out, "Labelled text cloud to write")->required();
   cmd->add_option("--threads", o->threads, "Threads (default 2)");
-  cmd->add_flag("--sampled", o->sampled,
-                "Networks: the paper's mode, one pass on num_points samples, labels carried back to the other points "
-                "(--carry-k; default: a prediction for every point)");
-  cmd->add_option("--sampling", o->sampling, "With --sampled: random (as in training, default) or fps");
-  cmd->add_option("--carry-k", o->carry_k,
-                  "With --sampled: samples voting for each other point, weighted by distance and colour (default 4; 1 "
-                  "= nearest, the paper)");
+  o->mode.add_options(cmd);
   add_json_flag(cmd, o->common);
   cmd->callback([o] { run(*o); });
 }

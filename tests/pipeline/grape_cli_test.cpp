@@ -26,12 +26,17 @@ Cloud two_blobs(std::uint32_t seed) {
   return c;
 }
 
+// `n` two-blob clouds as DIR/points/c<i>.txt, the layout `--data DIR` reads.
+void write_blob_clouds(const std::filesystem::path& dir, int n) {
+  std::filesystem::create_directories(dir / "points");
+  for (int i = 0; i < n; ++i)
+    io::write_grape_text(dir / "points" / ("c" + std::to_string(i) + ".txt"), two_blobs(std::uint32_t(i)));
+}
+
 TEST(GrapeCli, TrainEvalSegmentAndBadInput) {
   if (!std::filesystem::exists(cropsight::testing::cli_path())) GTEST_SKIP() << "CLI not built";
   cropsight::testing::TempDir t;
-  std::filesystem::create_directories(t / "data" / "points");
-  for (int i = 0; i < 4; ++i)
-    io::write_grape_text(t / "data" / "points" / ("c" + std::to_string(i) + ".txt"), two_blobs(std::uint32_t(i)));
+  write_blob_clouds(t / "data", 4);
   const std::string data = (t / "data").string(), model = (t / "m.json").string();
   auto r = cropsight::testing::run_cli("train grape --data '" + data + "' --model gbdt --val-fold 1/2 --out '" + model +
                                        "' --set gbdt.rounds=5 --set points_per_cloud=300 --json");
@@ -65,9 +70,7 @@ TEST(GrapeCli, TrainEvalSegmentAndBadInput) {
 TEST(GrapeCli, ExplicitThreadsOverrideThePreset) {
   if (!std::filesystem::exists(cropsight::testing::cli_path())) GTEST_SKIP() << "CLI not built";
   cropsight::testing::TempDir t;
-  std::filesystem::create_directories(t / "data" / "points");
-  for (int i = 0; i < 2; ++i)
-    io::write_grape_text(t / "data" / "points" / ("c" + std::to_string(i) + ".txt"), two_blobs(std::uint32_t(i)));
+  write_blob_clouds(t / "data", 2);
   const std::string base = "train grape --data '" + (t / "data").string() +
                            "' --model pointresnet --features xyz --epochs 1 --out '" + (t / "n.pt").string() +
                            "' --set num_points=64 --set sa1_points=16 --set sa2_points=8 --set sa3_points=4 "

@@ -207,13 +207,19 @@ TEST(GrapeModel, FoldsAndBadFiles) {
   EXPECT_THROW(GrapeModel::load(t / "junk.pt"), Error);
 }
 
+// The shared clouds unpacked by scripts/unpack-grape.sh: $CROPSIGHT_GRAPE_DIR, else
+// build-grape/data, else the script's default ~/.cache/cropsight/grape.
+std::filesystem::path shared_grape_dir() {
+  if (const char* env = std::getenv("CROPSIGHT_GRAPE_DIR")) return env;
+  const auto dir = cropsight::testing::source_dir() / "build-grape" / "data";
+  if (!std::filesystem::exists(dir / "points") && std::getenv("HOME"))
+    return std::filesystem::path(std::getenv("HOME")) / ".cache" / "cropsight" / "grape";
+  return dir;
+}
+
 TEST(GrapeGbdt, RealCloudsHeldOut) {
-  // Two shared clouds unpacked by scripts/unpack-grape.sh into build-grape/data (or
-  // $CROPSIGHT_GRAPE_DIR): train on one, evaluate on the other.
-  const char* env = std::getenv("CROPSIGHT_GRAPE_DIR");
-  std::filesystem::path dir = env ? env : cropsight::testing::source_dir() / "build-grape" / "data";
-  if (!env && !std::filesystem::exists(dir / "points") && std::getenv("HOME"))  // unpack-grape.sh default
-    dir = std::filesystem::path(std::getenv("HOME")) / ".cache" / "cropsight" / "grape";
+  // Two shared clouds: train on one, evaluate on the other.
+  const auto dir = shared_grape_dir();
   CROPSIGHT_REQUIRE_DATA(dir / "points");
   const auto files = io::list_grape_clouds(dir);
   ASSERT_GE(files.size(), 2u);
@@ -239,10 +245,7 @@ TEST(GrapeModel, ShippedNetworkOnHeldOutClouds) {
   // The shipped PointResNet was trained on folds 2-4 of the 96 shared clouds (models/
   // grape-models.md); three clouds of fold 1, which it never saw, must come out well in both
   // modes (fold-1 means: every point mIoU 0.806, one pass 0.798; docs/pipelines/grape-bunches.md).
-  const char* env = std::getenv("CROPSIGHT_GRAPE_DIR");
-  std::filesystem::path dir = env ? env : cropsight::testing::source_dir() / "build-grape" / "data";
-  if (!env && !std::filesystem::exists(dir / "points") && std::getenv("HOME"))
-    dir = std::filesystem::path(std::getenv("HOME")) / ".cache" / "cropsight" / "grape";
+  const auto dir = shared_grape_dir();
   CROPSIGHT_REQUIRE_DATA(dir / "points");
   const auto model_path = cropsight::testing::source_dir() / "models" / "grape-pointresnet.pt";
   CROPSIGHT_REQUIRE_DATA(model_path);

@@ -1,0 +1,23 @@
+#pragma once
+// The network-mode options that `eval grape` and `segment grape` share: every point (default) or
+// the paper's one sampled pass with --sampling and --carry-k (pipeline::GrapeModel::set_sampled).
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "cropsight/pipeline/grape_model.hpp"
+
+namespace cropsight::cli {
+
+struct GrapeNetworkMode {
+  bool sampled = false;
+  std::string sampling = "random";
+  int carry_k = 4;  // the fast GBDT's colour-guided vote; 1 = the paper's nearest neighbour
+
+  void add_options(CLI::App* cmd);
+  /// Checks --sampling and sets the mode on `model` (throws Error for a bad value, a GBDT model
+  /// with --sampled, or --carry-k < 1).
+  void apply(pipeline::GrapeModel& model) const;
+  const char* name() const { return sampled ? "sampled" : "every-point"; }
+};
+
+}  // namespace cropsight::cli
