@@ -6,7 +6,11 @@
 //   - the previous engine: OpenCV SGBM 3-way on rank features, run twice for the explicit
 //     left-right check, + fill,
 //   - plain OpenCV StereoSGBM (the baseline of eval stereo),
-// and our GMM vs cv::ml::EM on the same 4096 points (K = 10, same tolerance and iteration cap),
+// and our GMM vs cv::ml::EM on the same 4096 points (K = 10, same tolerance and iteration cap):
+// first Arg 0 = eight well-separated synthetic blobs (EM converges in a few iterations), 1 = the
+// 4096 points the fast seedling pipeline hands to its GMM for the simulated pair (~20 EM
+// iterations, what `eval seedling` reports as ms_gmm); our second Arg 0 = the portable SSE2
+// build of the EM, 1 = what fit_gmm() runs (the AVX2 + FMA build where the CPU has it),
 // and the whole seedling pipeline (detect_seedling) with the shipped presets: Arg 0 =
 // configs/seedling.yaml (OpenCV engine), Arg 1 = configs/seedling-fast.yaml (census engine).
 //   build/bin/bench_stereo --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
@@ -20,6 +24,7 @@
 #include "cropsight/sim/seedling.hpp"
 #include "cropsight/stereo/disparity.hpp"
 #include "cropsight/stereo/seedling_detector.hpp"
+#include "segmentation/gmm_kernels.hpp"
 
 using namespace cropsight;
 
@@ -81,23 +86,51 @@ void BM_DisparityOpenCvEngine128(benchmark::State& st) {
 void BM_DisparityOpenCvSgbm128(benchmark::State& st) {
   for (auto _ : st) benchmark::DoNotOptimize(stereo::opencv_sgbm_disparity(pair().left, pair().right, 128));
 }
+stereo::SeedlingConfig preset_config(const std::string& preset) {
+  const auto path = io::find_preset(std::string(CROPSIGHT_SOURCE_DIR) + "/configs/" + preset + ".yaml");
+  stereo::SeedlingConfig cfg;
+  apply_config(cfg, io::load_config_map(path), path.string());
+  return cfg;
+}
+
+stereo::RectifiedGeometry sim_geometry() {
+  sim::SeedlingSimConfig sc;
+  const auto rig = sc.rig();
+  return {rig.width, rig.height, rig.f, rig.cx, rig.cy, rig.cx, rig.baseline()};
+}
+
+// The down-sampled candidates the fast preset's GMM sees for the simulated pair.
+const std::vector<Eigen::Vector3f>& seedling_points() {
+  static const std::vector<Eigen::Vector3f> pts =
+      stereo::detect_seedling(pair().left, pair().right, sim_geometry(), preset_config("seedling-fast")).sampled;
+  return pts;
+}
+
+const std::vector<Eigen::Vector3f>& gmm_input(std::int64_t which) { return which == 0 ? points() : seedling_points(); }
+
 void BM_GmmOurs(benchmark::State& st) {
   segmentation::GmmConfig cfg;
-  for (auto _ : st) benchmark::DoNotOptimize(segmentation::fit_gmm(points(), cfg));
+  const auto& pts = gmm_input(st.range(0));
+  const bool portable = st.range(1) == 0;
+  if (!portable && !segmentation::em_avx2::available()) st.SetLabel("no AVX2 here: dispatch = portable");
+  segmentation::GmmResult r;
+  for (auto _ : st) {
+    r = portable ? segmentation::em_portable::fit(pts, cfg) : segmentation::fit_gmm(pts, cfg);
+    benchmark::DoNotOptimize(r);
+  }
+  st.counters["iterations"] = r.iterations;
+  st.counters["points"] = double(pts.size());
 }
 void BM_GmmOpenCvEm(benchmark::State& st) {
   segmentation::GmmConfig cfg;
-  for (auto _ : st) benchmark::DoNotOptimize(segmentation::fit_gmm_opencv(points(), cfg));
+  const auto& pts = gmm_input(st.range(0));
+  for (auto _ : st) benchmark::DoNotOptimize(segmentation::fit_gmm_opencv(pts, cfg));
 }
 
 void BM_SeedlingPipeline(benchmark::State& st) {
   const std::string preset = st.range(0) == 0 ? "seedling" : "seedling-fast";
-  const auto path = io::find_preset(std::string(CROPSIGHT_SOURCE_DIR) + "/configs/" + preset + ".yaml");
-  stereo::SeedlingConfig cfg;
-  apply_config(cfg, io::load_config_map(path), path.string());
-  sim::SeedlingSimConfig sc;
-  const auto rig = sc.rig();
-  const stereo::RectifiedGeometry g{rig.width, rig.height, rig.f, rig.cx, rig.cy, rig.cx, rig.baseline()};
+  const stereo::SeedlingConfig cfg = preset_config(preset);
+  const stereo::RectifiedGeometry g = sim_geometry();
   st.SetLabel(preset);
   for (auto _ : st) benchmark::DoNotOptimize(stereo::detect_seedling(pair().left, pair().right, g, cfg));
 }
@@ -114,13 +147,13 @@ BENCHMARK(BM_CensusSgmMatcherOnly128)
 BENCHMARK(BM_DisparityOpenCvEngine128)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 BENCHMARK(BM_DisparityOpenCvSgbm128)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 BENCHMARK(BM_SeedlingPipeline)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
-BENCHMARK(BM_GmmOurs)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(BM_GmmOpenCvEm)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BM_GmmOurs)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GmmOpenCvEm)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
 int main(int argc, char** argv) {
   // The targets are for two cores: cap both thread pools at 2.
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 2);
-  pair(), points();  // simulate the inputs before timing anything
+  pair(), points(), seedling_points();  // simulate the inputs before timing anything
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

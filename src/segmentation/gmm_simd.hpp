@@ -2,18 +2,27 @@
 // Internal: float vectors (GCC/Clang vector extensions, lowered to whatever SIMD the
 // target has) with Cephes-style exp and log, for the GMM / k-means hot loops. Accuracy of
 // vexp / vlog: about 2 ulp over the ranges used (exp of values <= 0, log of values >= 1).
-#include <bit>
+// __builtin_bit_cast, not std::bit_cast: the std template is compiled for the baseline, and
+// returning an AVX vector from it changes the ABI inside the AVX2 variant (-Wpsabi).
 #include <cstdint>
 
 namespace cropsight::segmentation::simd {
 
-// 8 lanes where AVX is enabled (-march=native builds), else 4 (SSE2, the x86-64 baseline):
-// wider vectors without AVX would only be split again and change the ABI of these helpers.
+// 8 lanes where AVX is enabled (-march=native builds, or a region under #pragma GCC target
+// ("avx2") that defines CROPSIGHT_SIMD_LANES 8 first), else 4 (SSE2, the x86-64 baseline): wider
+// vectors without AVX would only be split again. Everything here has internal linkage (anonymous
+// namespace), so a translation unit compiled for AVX2 and one for SSE2 can both include this
+// header without the linker merging one's helpers into the other (an AVX2 instruction reached
+// on a CPU without it would be SIGILL).
+#ifndef CROPSIGHT_SIMD_LANES
 #ifdef __AVX__
-constexpr int kLanes = 8;
+#define CROPSIGHT_SIMD_LANES 8
 #else
-constexpr int kLanes = 4;
+#define CROPSIGHT_SIMD_LANES 4
 #endif
+#endif
+namespace {
+constexpr int kLanes = CROPSIGHT_SIMD_LANES;
 using vf = float __attribute__((vector_size(4 * kLanes)));
 using vi = std::int32_t __attribute__((vector_size(4 * kLanes)));
 
@@ -47,15 +56,15 @@ inline vf vexp(vf x) {
          5.0000001201e-1f;
   y = y * z + x + 1.0f;
   vi e = (n + 127) << 23;
-  return y * std::bit_cast<vf>(e);
+  return y * __builtin_bit_cast(vf, e);
 }
 
 /// Natural logarithm of positive normal floats.
 inline vf vlog(vf x) {
-  vi xi = std::bit_cast<vi>(x);
+  vi xi = __builtin_bit_cast(vi, x);
   vi e = ((xi >> 23) & 0xff) - 127;
   vi mi = (xi & 0x007fffff) | 0x3f800000;
-  vf m = std::bit_cast<vf>(mi);  // [1, 2)
+  vf m = __builtin_bit_cast(vf, mi);  // [1, 2)
   vi big = m > 1.41421356f;
   m = big ? m * 0.5f : m;
   e = e - big;  // big is -1 where true
@@ -78,4 +87,5 @@ inline vf vlog(vf x) {
   return t + y + fe * 0.693359375f;
 }
 
+}  // namespace
 }  // namespace cropsight::segmentation::simd

@@ -7,6 +7,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/segmentation/gmm.hpp"
+#include "segmentation/gmm_kernels.hpp"
 
 using namespace cropsight::segmentation;
 
@@ -107,6 +108,27 @@ TEST(Gmm, DeterministicPerSeed) {
   const GmmResult a = fit_gmm(pts, cfg), b = fit_gmm(pts, cfg);
   EXPECT_EQ(a.labels, b.labels);
   EXPECT_DOUBLE_EQ(a.log_likelihood, b.log_likelihood);
+}
+
+TEST(Gmm, Avx2VariantMatchesThePortableOne) {
+  // fit_gmm() runs the AVX2 + FMA build of the EM where the CPU has it; it must give the fit of
+  // the portable SSE2 build (fused multiply-adds round differently, so not bit for bit): K = 10
+  // on a 7-blob mixture, as in the seedling pipeline.
+  if (!em_avx2::available()) GTEST_SKIP() << "this CPU (or build) has no AVX2 + FMA variant";
+  Truth t = three_blobs();
+  for (int j = 0; j < 4; ++j) {
+    t.means.push_back(Eigen::Vector3d(0.1 * j - 0.2, -0.1, 0.62 + 0.02 * j));
+    t.covs.push_back(Eigen::Vector3d(2e-4, 1e-4 * (j + 1), 5e-5).asDiagonal());
+    t.weights.push_back(0.1);
+  }
+  const auto pts = sample(t, 4096, 11);
+  GmmConfig cfg;
+  const GmmResult a = em_portable::fit(pts, cfg), b = em_avx2::fit(pts, cfg);
+  EXPECT_NEAR(a.log_likelihood, b.log_likelihood, 1e-3 * std::fabs(a.log_likelihood));
+  int same = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) same += a.labels[i] == b.labels[i];
+  EXPECT_GE(same, int(0.99 * pts.size())) << "iterations " << a.iterations << " vs " << b.iterations;
+  for (int j = 0; j < cfg.components; ++j) EXPECT_LT((a.model.means[j] - b.model.means[j]).norm(), 1e-3) << j;
 }
 
 TEST(Gmm, RejectsBadInput) {
