@@ -120,6 +120,14 @@ SeedlingDetection detect_seedling(const ColorImage& left, const ColorImage& righ
       height[i] = float(pl.n.dot(sp.points[i].cast<double>()) + pl.d);
       if (height[i] > cfg.min_height && height[i] < cfg.max_height) cand.push_back(int(i));
     }
+    if (cfg.candidate_min_exg > -1.0) {
+      // Normalised excess green; +1 in the denominator keeps black pixels at 0 instead of NaN.
+      std::erase_if(cand, [&](int i) {
+        const Rgb8& c = left.data[std::size_t(sp.pixels[i])];
+        const double exg = (2.0 * c.g - c.r - c.b) / (double(c.r) + c.g + c.b + 1.0);
+        return exg < cfg.candidate_min_exg;
+      });
+    }
     if (cfg.candidate_open > 0 && !cand.empty()) {
       // Disparity errors on low-contrast soil raise single pixels or small clumps above the
       // height threshold; a plant is a solid region in the image. Opening the candidate mask

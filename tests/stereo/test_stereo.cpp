@@ -239,12 +239,12 @@ TEST(SeedlingDetector, CandidateOpeningDropsCensusSoilSpeckles) {
   sim::SeedlingSimConfig cfg;
   cfg.supersample = 1;
   const RectifiedGeometry g = simulated_rig_geometry(cfg);
-  // The shipped fast preset (census engine, candidate_open 1), opening switched off and on.
+  // The shipped fast preset (census engine), colour test off, opening switched off and on.
   SeedlingConfig sc;
   const auto preset = cropsight::testing::source_dir() / "configs" / "seedling-fast.yaml";
   apply_config(sc, io::load_config_map(preset), preset.string());
   ASSERT_EQ(sc.disparity.engine, "census");
-  ASSERT_EQ(sc.candidate_open, 1);
+  sc.candidate_min_exg = -1.0;
   for (int k = 0; k < 2; ++k) {
     const auto p = sim::simulate_seedling_pair(cfg, 4242, k);
     sc.candidate_open = 0;
@@ -254,6 +254,39 @@ TEST(SeedlingDetector, CandidateOpeningDropsCensusSoilSpeckles) {
     EXPECT_LT(opened.points_candidates, raw.points_candidates) << "pair " << k;
     ASSERT_TRUE(opened.found);
     const auto s = score_seedling(opened, p.disparity, p.mask, g, p.plane_normal, p.plane_d, p.envelope);
+    EXPECT_GE(s.iou, 0.5) << "pair " << k;
+    EXPECT_NEAR(s.volume_ratio, 1.0, 0.3) << "pair " << k;
+  }
+}
+
+// Soil pixels next to a leaf edge take the leaf's disparity from the matching window; they are
+// soil-coloured. The preset's excess-green test must take them out of the seedling's dense points
+// (fewer of its pixels outside the true seedling mask) while keeping the seedling itself.
+TEST(SeedlingDetector, ExcessGreenTestDropsFattenedSoilPixels) {
+  sim::SeedlingSimConfig cfg;
+  cfg.supersample = 1;
+  const RectifiedGeometry g = simulated_rig_geometry(cfg);
+  SeedlingConfig sc;
+  const auto preset = cropsight::testing::source_dir() / "configs" / "seedling-fast.yaml";
+  apply_config(sc, io::load_config_map(preset), preset.string());
+  ASSERT_GT(sc.candidate_min_exg, -1.0) << "the fast preset is expected to use the colour test";
+  const double exg = sc.candidate_min_exg;
+  auto outside = [](const SeedlingDetection& d, const GrayImage& truth) {
+    int n = 0;
+    for (int px : d.pixels) n += truth.data[std::size_t(px)] == 0;
+    return d.pixels.empty() ? 1.0 : double(n) / double(d.pixels.size());
+  };
+  for (int k = 0; k < 2; ++k) {
+    const auto p = sim::simulate_seedling_pair(cfg, 4242, k);
+    sc.candidate_min_exg = -1.0;
+    const auto off = detect_seedling(p.left, p.right, g, sc);
+    sc.candidate_min_exg = exg;
+    const auto on = detect_seedling(p.left, p.right, g, sc);
+    ASSERT_TRUE(off.found && on.found) << "pair " << k;
+    EXPECT_LT(on.points_candidates, off.points_candidates) << "pair " << k;
+    EXPECT_LT(outside(on, p.mask), outside(off, p.mask)) << "pair " << k;
+    EXPECT_LT(outside(on, p.mask), 0.05) << "pair " << k;
+    const auto s = score_seedling(on, p.disparity, p.mask, g, p.plane_normal, p.plane_d, p.envelope);
     EXPECT_GE(s.iou, 0.5) << "pair " << k;
     EXPECT_NEAR(s.volume_ratio, 1.0, 0.3) << "pair " << k;
   }

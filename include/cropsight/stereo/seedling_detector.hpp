@@ -14,6 +14,10 @@
 //      itself would otherwise take most components; this is our change to the paper's order).
 //      With candidate_open > 0 the left-image mask of these candidates is first opened (ellipse
 //      of that radius), which drops soil pixels raised by disparity errors (they are scattered).
+//      With candidate_min_exg > -1, candidates whose left-image colour is not green enough
+//      (excess-green index below it) are dropped first: the soil pixels next to a leaf edge that
+//      the matching window gave the leaf's disparity lie outside the leaf in 3D and stretch the
+//      envelope box (foreground fattening).
 //   2. The seed component is the one whose member points have the largest mean height (among
 //      components with at least `min_component_points` points).
 //   3. Components are added while one of them has a mean height >= `height_ratio` x the seed's
@@ -64,6 +68,10 @@ struct SeedlingConfig {
   double min_height = 0.015;       ///< m above the soil for a point to be a plant candidate
   double max_height = 0.5;         ///< m; higher points are not a seedling
   int candidate_open = 0;          ///< px; radius of the image-space opening of the candidate mask (0 = none)
+  /// Smallest excess-green index (2G - R - B) / (R + G + B) of a candidate's left-image pixel;
+  /// -1 keeps every pixel (the index is >= -1). Soil pixels given a leaf's disparity by the
+  /// matching window ("foreground fattening") are soil-coloured; the leaves are green.
+  double candidate_min_exg = -1.0;
   geometry::GridSamplingConfig sampling;
   segmentation::GmmConfig gmm;
   int min_component_points = 15;
@@ -86,6 +94,9 @@ struct SeedlingConfig {
     v("candidate_open", candidate_open,
       "px; morphological opening (ellipse of this radius) of the left-image mask of candidate pixels: isolated "
       "soil pixels raised by disparity errors leave the candidates (0 = none; ours)");
+    v("candidate_min_exg", candidate_min_exg,
+      "smallest excess-green index (2G-R-B)/(R+G+B) of a candidate's left-image pixel: soil pixels that took a "
+      "leaf's disparity (window fattening at leaf borders) leave the candidates (-1 = off; ours)");
     v("sampling", sampling, "non-uniform grid down-sampling (paper: 4096 points)");
     v("gmm", gmm, "Gaussian mixture (paper: K = 10, EM)");
     v("min_component_points", min_component_points, "smallest GMM component that can be the seedling's top");
