@@ -48,8 +48,8 @@ struct SeedlingConfig {
   /// Engine: OpenCV SGBM (3-way, rank features) with the explicit mirrored left-right check, as
   /// before the census engine existed. The census engine is ~2.4x faster end to end but its
   /// disparities on low-contrast soil are off by >= 0.5 px ~5x as often (at 0.6 m one pixel is
-  /// ~2 cm of height); with candidate_open = 1 it reaches 100 % / 91.6 % / 105.2 % on held-out
-  /// seed 6161 (this engine 100 % / 92.1 % / 102.1 %): configs/seedling-fast.yaml. Dropping the
+  /// ~2 cm of height); with candidate_min_exg = 0.1 it reaches 100 % / 90.8 % / 99.9 % on held-out
+  /// seed 4711 (this engine 100 % / 92.7 % / 104.7 %): configs/seedling-fast.yaml. Dropping the
   /// explicit check (lr_check = -1) halves the SGM time but gave a 105.9 % volume ratio on seed
   /// 8080 (103.9 % with it). See docs/pipelines/broccoli-seedlings.md.
   DisparityConfig disparity = [] {
