@@ -233,16 +233,34 @@ TEST(SeedlingDetector, RecognisesSimulatedSeedlings) {
   EXPECT_THROW(detect_seedling(small, small, g, sc), Error);
 }
 
+namespace {
+
+// The shipped fast preset, configs/seedling-fast.yaml (census engine).
+SeedlingConfig fast_preset() {
+  SeedlingConfig sc;
+  const auto preset = cropsight::testing::source_dir() / "configs" / "seedling-fast.yaml";
+  apply_config(sc, io::load_config_map(preset), preset.string());
+  return sc;
+}
+
+// The detection found the simulated seedling: top-view IoU >= 0.5, envelope volume within 30 %.
+void expect_recognised(const SeedlingDetection& d, const sim::SeedlingPair& p, const RectifiedGeometry& g, int k) {
+  ASSERT_TRUE(d.found) << "pair " << k;
+  const auto s = score_seedling(d, p.disparity, p.mask, g, p.plane_normal, p.plane_d, p.envelope);
+  EXPECT_GE(s.iou, 0.5) << "pair " << k;
+  EXPECT_NEAR(s.volume_ratio, 1.0, 0.3) << "pair " << k;
+}
+
+}  // namespace
+
 // The census engine raises scattered soil pixels above the height threshold; the image-space
 // opening of the candidate mask must remove them without losing the plant.
 TEST(SeedlingDetector, CandidateOpeningDropsCensusSoilSpeckles) {
   sim::SeedlingSimConfig cfg;
   cfg.supersample = 1;
   const RectifiedGeometry g = simulated_rig_geometry(cfg);
-  // The shipped fast preset (census engine), colour test off, opening switched off and on.
-  SeedlingConfig sc;
-  const auto preset = cropsight::testing::source_dir() / "configs" / "seedling-fast.yaml";
-  apply_config(sc, io::load_config_map(preset), preset.string());
+  // The fast preset, colour test off, opening switched off and on.
+  SeedlingConfig sc = fast_preset();
   ASSERT_EQ(sc.disparity.engine, "census");
   sc.candidate_min_exg = -1.0;
   for (int k = 0; k < 2; ++k) {
@@ -252,10 +270,7 @@ TEST(SeedlingDetector, CandidateOpeningDropsCensusSoilSpeckles) {
     sc.candidate_open = 1;
     const auto opened = detect_seedling(p.left, p.right, g, sc);
     EXPECT_LT(opened.points_candidates, raw.points_candidates) << "pair " << k;
-    ASSERT_TRUE(opened.found);
-    const auto s = score_seedling(opened, p.disparity, p.mask, g, p.plane_normal, p.plane_d, p.envelope);
-    EXPECT_GE(s.iou, 0.5) << "pair " << k;
-    EXPECT_NEAR(s.volume_ratio, 1.0, 0.3) << "pair " << k;
+    expect_recognised(opened, p, g, k);
   }
 }
 
@@ -266,9 +281,7 @@ TEST(SeedlingDetector, ExcessGreenTestDropsFattenedSoilPixels) {
   sim::SeedlingSimConfig cfg;
   cfg.supersample = 1;
   const RectifiedGeometry g = simulated_rig_geometry(cfg);
-  SeedlingConfig sc;
-  const auto preset = cropsight::testing::source_dir() / "configs" / "seedling-fast.yaml";
-  apply_config(sc, io::load_config_map(preset), preset.string());
+  SeedlingConfig sc = fast_preset();
   ASSERT_GT(sc.candidate_min_exg, -1.0) << "the fast preset is expected to use the colour test";
   const double exg = sc.candidate_min_exg;
   auto outside = [](const SeedlingDetection& d, const GrayImage& truth) {
@@ -286,8 +299,6 @@ TEST(SeedlingDetector, ExcessGreenTestDropsFattenedSoilPixels) {
     EXPECT_LT(on.points_candidates, off.points_candidates) << "pair " << k;
     EXPECT_LT(outside(on, p.mask), outside(off, p.mask)) << "pair " << k;
     EXPECT_LT(outside(on, p.mask), 0.05) << "pair " << k;
-    const auto s = score_seedling(on, p.disparity, p.mask, g, p.plane_normal, p.plane_d, p.envelope);
-    EXPECT_GE(s.iou, 0.5) << "pair " << k;
-    EXPECT_NEAR(s.volume_ratio, 1.0, 0.3) << "pair " << k;
+    expect_recognised(on, p, g, k);
   }
 }
