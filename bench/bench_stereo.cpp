@@ -8,7 +8,7 @@
 //   - plain OpenCV StereoSGBM (the baseline of eval stereo),
 // and our GMM vs cv::ml::EM on the same 4096 points (K = 10, same tolerance and iteration cap):
 // first Arg 0 = eight well-separated synthetic blobs (EM converges in a few iterations), 1 = the
-// 4096 points the fast seedling pipeline hands to its GMM for the simulated pair (~20 EM
+// 4096 points the fast seedling pipeline hands to its GMM for the simulated pair (28 EM
 // iterations, what `eval seedling` reports as ms_gmm); our second Arg 0 = the portable SSE2
 // build of the EM, 1 = what fit_gmm() runs (the AVX2 + FMA build where the CPU has it),
 // and the whole seedling pipeline (detect_seedling) with the shipped presets: Arg 0 =

@@ -7,7 +7,6 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>

@@ -46,7 +46,7 @@ namespace cropsight::stereo {
 struct SeedlingConfig {
   /// 64 disparities cover depths >= 0.3 m for the simulated rig (f = 320 px, B = 60 mm).
   /// Engine: OpenCV SGBM (3-way, rank features) with the explicit mirrored left-right check, as
-  /// before the census engine existed. The census engine is ~2.4x faster end to end but its
+  /// before the census engine existed. The census engine is ~2.6x faster end to end but its
   /// disparities on low-contrast soil are off by >= 0.5 px ~5x as often (at 0.6 m one pixel is
   /// ~2 cm of height); with candidate_min_exg = 0.1 it reaches 100 % / 90.8 % / 99.9 % on held-out
   /// seed 4711 (this engine 100 % / 92.7 % / 104.7 %): configs/seedling-fast.yaml. Dropping the
