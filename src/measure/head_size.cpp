@@ -13,6 +13,8 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/organized_cloud.hpp"
+#include "measure/hull_candidates.hpp"
+#include "measure/quickhull.hpp"
 
 namespace cropsight::measure {
 
@@ -20,6 +22,12 @@ SizeEstimator parse_size_estimator(const std::string& text, const std::string& w
   if (text == "bbox" || text == "bounding_box") return SizeEstimator::bounding_box;
   if (text == "hull" || text == "convex_hull") return SizeEstimator::convex_hull;
   throw Error(where, "unknown size estimator '" + text + "' (expected bbox or hull)");
+}
+
+HullEngine parse_hull_engine(const std::string& text, const std::string& where) {
+  if (text == "quickhull") return HullEngine::quickhull;
+  if (text == "qhull") return HullEngine::qhull;
+  throw Error(where, "unknown hull engine '" + text + "' (expected quickhull or qhull)");
 }
 
 const char* to_string(SizeEstimator e) { return e == SizeEstimator::bounding_box ? "bbox" : "hull"; }
@@ -65,13 +73,26 @@ bool spans_volume(const std::vector<Eigen::Vector3f>& pts) {
 
 }  // namespace
 
-double convex_hull_diameter(const std::vector<Eigen::Vector3f>& points, int* vertices) {
+namespace {
+
+// The hull estimator on `all` (the head's points), with qhull run on `hull_input`, a subset that
+// holds every hull vertex of `all` (all itself, or the row/column filter's candidates).
+double hull_diameter(const std::vector<Eigen::Vector3f>& all, const std::vector<Eigen::Vector3f>& hull_input,
+                     int* vertices, HullEngine engine) {
   if (vertices) *vertices = 0;
-  if (points.empty()) return 0.0;
-  if (points.size() >= 4 && spans_volume(points)) {
+  if (all.empty()) return 0.0;
+  if (all.size() >= 4 && hull_input.size() >= 4 && spans_volume(all)) {
+    if (QuickHull q; engine == HullEngine::quickhull && quickhull(hull_input, q)) {
+      std::vector<Eigen::Vector3f> v;
+      v.reserve(q.vertices.size());
+      for (int i : q.vertices) v.push_back(hull_input[std::size_t(i)]);
+      if (vertices) *vertices = int(v.size());
+      return 2.0 * mean_distance(v, mean_of(v));
+    }
+    // qhull: asked for, or our Quickhull could not build a consistent hull
     pcl::PointCloud<pcl::PointXYZ>::Ptr in(new pcl::PointCloud<pcl::PointXYZ>);
-    in->points.reserve(points.size());
-    for (const auto& p : points) in->points.emplace_back(p.x(), p.y(), p.z());
+    in->points.reserve(hull_input.size());
+    for (const auto& p : hull_input) in->points.emplace_back(p.x(), p.y(), p.z());
     in->width = std::uint32_t(in->points.size());
     in->height = 1;
     in->is_dense = true;
@@ -89,7 +110,13 @@ double convex_hull_diameter(const std::vector<Eigen::Vector3f>& points, int* ver
     }
   }
   // Fallback for degenerate sets: all points stand in for the hull vertices.
-  return 2.0 * mean_distance(points, mean_of(points));
+  return 2.0 * mean_distance(all, mean_of(all));
+}
+
+}  // namespace
+
+double convex_hull_diameter(const std::vector<Eigen::Vector3f>& points, int* vertices, HullEngine engine) {
+  return hull_diameter(points, points, vertices, engine);
 }
 
 std::vector<Eigen::Vector3f> stride_subsample(const std::vector<Eigen::Vector3f>& points, int max_points) {
@@ -101,7 +128,8 @@ std::vector<Eigen::Vector3f> stride_subsample(const std::vector<Eigen::Vector3f>
   return out;
 }
 
-HeadSizer::HeadSizer(const HeadSizeConfig& cfg) : cfg_(cfg), estimator_(parse_size_estimator(cfg.estimator)) {
+HeadSizer::HeadSizer(const HeadSizeConfig& cfg)
+    : cfg_(cfg), estimator_(parse_size_estimator(cfg.estimator)), engine_(parse_hull_engine(cfg.hull_engine)) {
   if (cfg_.min_points < 1) throw Error("sizing.min_points", "must be at least 1");
   if (cfg_.hull_max_points < 0) throw Error("sizing.hull_max_points", "must be >= 0 (0 = all points)");
   if (!(cfg_.market_min_mm <= cfg_.market_max_mm))
@@ -123,7 +151,10 @@ double HeadSizer::corrected(double bbox_mm, double hull_mm) const {
 
 bool HeadSizer::harvestable(double d) const { return d >= cfg_.market_min_mm && d <= cfg_.market_max_mm; }
 
-HeadSize HeadSizer::measure(const std::vector<Eigen::Vector3f>& points) const {
+HeadSize HeadSizer::measure(const std::vector<Eigen::Vector3f>& points) const { return measure_with(points, nullptr); }
+
+HeadSize HeadSizer::measure_with(const std::vector<Eigen::Vector3f>& points,
+                                 const std::vector<Eigen::Vector3f>* hull_candidates) const {
   HeadSize s;
   s.points = int(points.size());
   if (s.points < cfg_.min_points) return s;
@@ -131,9 +162,11 @@ HeadSize HeadSizer::measure(const std::vector<Eigen::Vector3f>& points) const {
   s.bbox_mm = 1000.0 * bounding_box_width(points);
   if (cfg_.compute_hull) {
     if (cfg_.hull_max_points > 0 && points.size() > std::size_t(cfg_.hull_max_points))
-      s.hull_mm = 1000.0 * convex_hull_diameter(stride_subsample(points, cfg_.hull_max_points), &s.hull_vertices);
+      s.hull_mm =
+          1000.0 * convex_hull_diameter(stride_subsample(points, cfg_.hull_max_points), &s.hull_vertices, engine_);
     else
-      s.hull_mm = 1000.0 * convex_hull_diameter(points, &s.hull_vertices);
+      s.hull_mm =
+          1000.0 * hull_diameter(points, hull_candidates ? *hull_candidates : points, &s.hull_vertices, engine_);
   }
   s.diameter_mm = corrected(s.bbox_mm, s.hull_mm);
   s.harvestable = harvestable(s.diameter_mm);
@@ -142,12 +175,26 @@ HeadSize HeadSizer::measure(const std::vector<Eigen::Vector3f>& points) const {
 
 HeadSize HeadSizer::measure(const OrganizedCloud& cloud, const std::vector<int>& indices) const {
   std::vector<Eigen::Vector3f> pts;
+  std::vector<int> valid;
   pts.reserve(indices.size());
+  valid.reserve(indices.size());
   for (int i : indices) {
     if (i < 0 || std::size_t(i) >= cloud.size()) throw Error("head sizing", "point index out of range");
-    if (cloud.valid(std::size_t(i))) pts.push_back(cloud.point(std::size_t(i)));
+    if (cloud.valid(std::size_t(i))) {
+      pts.push_back(cloud.point(std::size_t(i)));
+      valid.push_back(i);
+    }
   }
-  return measure(pts);
+  const bool filter =
+      cfg_.compute_hull && cfg_.hull_prefilter && cfg_.hull_max_points == 0 && int(pts.size()) >= cfg_.min_points;
+  if (filter)
+    if (const auto cand = hull_vertex_candidates(cloud, valid)) {
+      std::vector<Eigen::Vector3f> cpts;
+      cpts.reserve(cand->size());
+      for (int i : *cand) cpts.push_back(cloud.point(std::size_t(i)));
+      return measure_with(pts, &cpts);
+    }
+  return measure_with(pts, nullptr);
 }
 
 BiasFit fit_size_bias(const std::vector<double>& est, const std::vector<double>& truth, const std::string& where) {

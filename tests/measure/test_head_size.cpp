@@ -182,6 +182,14 @@ TEST(HeadSize, BadConfigIsAnError) {
   cfg.estimator = "hull";
   cfg.compute_hull = false;
   EXPECT_THROW(HeadSizer{cfg}, Error);
+  cfg = {};
+  cfg.hull_engine = "cgal";
+  try {
+    HeadSizer{cfg};
+    ADD_FAILURE() << "an unknown hull engine must be an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("sizing.hull_engine"), std::string::npos) << e.what();
+  }
   ConfigMap m{{"sizing.estimator", "hull"}, {"sizing.market_max_mm", "170"}};
   cfg = {};
   apply_config(cfg, m, "test", "sizing.");
