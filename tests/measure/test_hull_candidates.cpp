@@ -3,9 +3,6 @@
 // must give the same hull diameter with and without the filter — on ray-cast noisy domes with
 // leaves cut out, and on heads of simulated broccoli frames. Lens distortion must switch it off.
 #include <gtest/gtest.h>
-#include <pcl/point_cloud.h>
-#include <pcl/point_types.h>
-#include <pcl/surface/convex_hull.h>
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +13,7 @@
 #include "cropsight/measure/head_size.hpp"
 #include "cropsight/sim/broccoli_sim.hpp"
 #include "measure/hull_candidates.hpp"
+#include "measure/qhull_reference.hpp"
 
 using namespace cropsight;
 using namespace cropsight::measure;
@@ -24,19 +22,10 @@ namespace {
 
 // Pixel indices of the vertices qhull finds on the points at `indices`.
 std::vector<int> qhull_vertices(const OrganizedCloud& c, const std::vector<int>& indices) {
-  pcl::PointCloud<pcl::PointXYZ>::Ptr in(new pcl::PointCloud<pcl::PointXYZ>);
-  for (int i : indices) in->points.emplace_back(c.x[std::size_t(i)], c.y[std::size_t(i)], c.z[std::size_t(i)]);
-  in->width = std::uint32_t(in->size());
-  in->height = 1;
-  pcl::ConvexHull<pcl::PointXYZ> hull;
-  hull.setDimension(3);
-  hull.setInputCloud(in);
-  pcl::PointCloud<pcl::PointXYZ> out;
-  hull.reconstruct(out);
-  pcl::PointIndices used;
-  hull.getHullPointIndices(used);
+  std::vector<Eigen::Vector3f> pts;
+  for (int i : indices) pts.push_back(c.point(std::size_t(i)));
   std::vector<int> v;
-  for (int k : used.indices) v.push_back(indices[std::size_t(k)]);
+  for (int k : reference::qhull_of(pts).vertices) v.push_back(indices[std::size_t(k)]);
   std::sort(v.begin(), v.end());
   return v;
 }

@@ -4,9 +4,6 @@
 // for points that lie on the other hull's boundary to within 1e-9 m (coplanar ties, which the two
 // may resolve differently), and the hull diameter of the sizer must agree to 0.01 mm.
 #include <gtest/gtest.h>
-#include <pcl/point_cloud.h>
-#include <pcl/point_types.h>
-#include <pcl/surface/convex_hull.h>
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +13,7 @@
 #include "cropsight/core/organized_cloud.hpp"
 #include "cropsight/measure/head_size.hpp"
 #include "cropsight/sim/broccoli_sim.hpp"
+#include "measure/qhull_reference.hpp"
 #include "measure/quickhull.hpp"
 
 using namespace cropsight;
@@ -23,32 +21,8 @@ using namespace cropsight::measure;
 
 namespace {
 
-struct Reference {
-  std::vector<int> vertices;                  // ascending input indices
-  std::vector<std::array<int, 3>> triangles;  // input indices
-};
-
-Reference qhull_of(const std::vector<Eigen::Vector3f>& pts) {
-  pcl::PointCloud<pcl::PointXYZ>::Ptr in(new pcl::PointCloud<pcl::PointXYZ>);
-  for (const auto& p : pts) in->points.emplace_back(p.x(), p.y(), p.z());
-  in->width = std::uint32_t(in->size());
-  in->height = 1;
-  pcl::ConvexHull<pcl::PointXYZ> hull;
-  hull.setDimension(3);
-  hull.setInputCloud(in);
-  pcl::PointCloud<pcl::PointXYZ> out;
-  std::vector<pcl::Vertices> polys;
-  hull.reconstruct(out, polys);
-  pcl::PointIndices used;
-  hull.getHullPointIndices(used);
-  Reference r;
-  r.vertices = used.indices;
-  for (const auto& p : polys)
-    r.triangles.push_back({used.indices[std::size_t(p.vertices[0])], used.indices[std::size_t(p.vertices[1])],
-                           used.indices[std::size_t(p.vertices[2])]});
-  std::sort(r.vertices.begin(), r.vertices.end());
-  return r;
-}
+using reference::qhull_of;
+using Reference = reference::ReferenceHull;
 
 // Largest signed distance of p to the planes of `tris` (outward normals from the hull's centroid):
 // ~0 on the boundary, negative inside.
