@@ -71,7 +71,7 @@ TemporalFilter::TemporalFilter(const TemporalFilterConfig& cfg, const measure::H
 }
 
 void TemporalFilter::add_sample(TrackedHead& h, const Eigen::Vector3d& p, const HeadObservation& d) const {
-  const double n = double(h.frames_seen);
+  const double n = double(h.whole_frames());  // 0 for a head placed by partial views: they are replaced
   h.position = (h.position * n + p) / (n + 1.0);
   h.mean_detection_score = (h.mean_detection_score * n + double(d.score)) / (n + 1.0);
   h.frames_seen += 1;
@@ -153,11 +153,12 @@ FrameAssociation TemporalFilter::update(int frame, const std::vector<HeadObserva
     }
   }
 
-  // 4. Camera correction by the mean displacement of the associated pairs.
+  // 4. Camera correction by the mean displacement of the associated pairs (heads placed by
+  // partial detections only are off-centre: they do not move the camera).
   Eigen::Vector3d delta = Eigen::Vector3d::Zero();
   int n_assoc = 0;
   for (std::size_t k = 0; k < det.size(); ++k)
-    if (assoc[k] >= 0) {
+    if (assoc[k] >= 0 && tracked_[std::size_t(assoc[k])].whole_frames() > 0) {
       delta += tracked_[std::size_t(assoc[k])].position - det[k];
       ++n_assoc;
     }
@@ -197,16 +198,51 @@ FrameAssociation TemporalFilter::update(int frame, const std::vector<HeadObserva
     }
   }
 
-  // Partial detections: the id of the nearest tracked head, nothing else.
+  // Partial detections (see the header): the nearest head within partial_association_radius_m
+  // that this frame's detections have not claimed; with partial_tracks they keep it alive and
+  // raise its score, or start a head.
   const double pr2 = cfg_.partial_association_radius_m * cfg_.partial_association_radius_m;
   for (std::size_t j = 0; j < detections.size(); ++j) {
     const auto& d = detections[j];
     if (!d.partial || !(double(d.score) >= cfg_.min_detection_score) || !d.centroid.allFinite()) continue;
     const Eigen::Vector3d p = transform_.to_field(x_c_, d.centroid);
     double best = pr2;
-    for (const auto& h : tracked_) {
-      const double d2 = (h.position - p).squaredNorm();
-      if (d2 <= best) best = d2, out.track_ids[j] = h.id;
+    int nearest = -1;
+    for (std::size_t i = 0; i < tracked_.size(); ++i) {
+      if (cfg_.partial_tracks && i < seen.size() && seen[i]) continue;
+      if (cfg_.partial_tracks && i >= old_count) continue;  // started by this frame
+      const double d2 = (tracked_[i].position - p).squaredNorm();
+      if (d2 <= best) best = d2, nearest = int(i);
+    }
+    if (!cfg_.partial_tracks) {
+      if (nearest >= 0) out.track_ids[j] = tracked_[std::size_t(nearest)].id;
+      continue;
+    }
+    if (nearest >= 0) {
+      auto& h = tracked_[std::size_t(nearest)];
+      h.score += cfg_.score_increment;
+      h.last_frame = frame;
+      h.missed = 0;
+      if (h.whole_frames() == 0) {  // placed by partial detections only: average them
+        const double m = double(h.partial_frames);
+        h.position = (h.position * m + p) / (m + 1.0);
+        h.mean_detection_score = (h.mean_detection_score * m + double(d.score)) / (m + 1.0);
+      }
+      h.partial_frames += 1;
+      h.frames_seen += 1;
+      seen[std::size_t(nearest)] = 1;
+      out.track_ids[j] = h.id;
+    } else {
+      TrackedHead h;
+      h.id = next_id_++;
+      h.score = cfg_.initial_score;
+      h.first_frame = h.last_frame = frame;
+      h.position = p;
+      h.mean_detection_score = double(d.score);
+      h.partial_frames = h.frames_seen = 1;
+      tracked_.push_back(h);
+      out.track_ids[j] = h.id;
+      out.new_track[j] = true;
     }
   }
 

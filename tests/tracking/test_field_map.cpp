@@ -130,11 +130,13 @@ TEST(HeadMapper, DetectionsAtTheBorderArePartial) {
   d[0].score = 1.0f;
   mapper.add_frame(0, c, d);
   EXPECT_EQ(d[0].size_m, 0.0f);  // not measured
-  EXPECT_EQ(d[0].track_id, -1);  // and it started no head
+  EXPECT_EQ(d[0].track_id, 1);   // it started a head (partial_tracks)...
   ASSERT_EQ(mapper.detections().size(), 1u);
   EXPECT_TRUE(mapper.detections()[0].partial);
-  EXPECT_TRUE(mapper.finish().empty());
-  EXPECT_TRUE(mapper.filter().all_heads().empty());
+  EXPECT_TRUE(mapper.finish().empty());  // ...seen once: below the map's score threshold
+  ASSERT_EQ(mapper.filter().all_heads().size(), 1u);
+  EXPECT_EQ(mapper.filter().all_heads()[0].partial_frames, 1);
+  EXPECT_EQ(mapper.filter().all_heads()[0].size_samples, 0);
 }
 
 // tracking.position_cap_m: a head's position is the centroid of its top, not of everything

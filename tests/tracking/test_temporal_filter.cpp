@@ -252,8 +252,10 @@ TEST(TemporalFilter, SizesAreRunningAveragesAndCorrected) {
   EXPECT_EQ(harvestable, 2);
 }
 
-TEST(TemporalFilter, PartialDetectionsOnlyTakeAnId) {
-  TemporalFilter tf;
+TEST(TemporalFilter, WithoutPartialTracksPartialDetectionsOnlyTakeAnId) {
+  TemporalFilterConfig cfg;
+  cfg.partial_tracks = false;
+  TemporalFilter tf(cfg);
   HeadObservation whole;
   whole.centroid = {0.0f, 0.0f, 0.7f};
   whole.score = 1.0f;
@@ -273,6 +275,57 @@ TEST(TemporalFilter, PartialDetectionsOnlyTakeAnId) {
   EXPECT_EQ(a.track_ids[0], 1);
   EXPECT_EQ(tf.tracked()[0].missed, 1);
   EXPECT_NEAR(tf.tracked()[0].position.norm(), 0.7, 1e-6);
+}
+
+// tracking.partial_tracks (default): a head seen only cut by the image border reaches the map,
+// placed at the mean of its partial centroids; partial views keep a whole-detected head alive
+// without moving it; the first whole view replaces a partial placement; and heads placed by
+// partial views never correct the camera (no odometry).
+TEST(TemporalFilter, PartialTracksMapHeadsSeenOnlyAtTheBorder) {
+  TemporalFilter tf;
+  auto obs = [](float x, bool partial) {
+    HeadObservation o;
+    o.centroid = {x, 0.0f, 0.7f};
+    o.score = 1.0f;
+    o.partial = partial;
+    return o;
+  };
+  // Head A whole from frame 0; head B (0.3 m away in camera x) only partial, with 1 cm jitter.
+  auto a = tf.update(0, {obs(0.0f, false), obs(0.30f, true)});
+  EXPECT_TRUE(a.new_track[1]);
+  const int b_id = a.track_ids[1];
+  a = tf.update(1, {obs(0.07f, true), obs(0.31f, true)});  // A seen partially, 7 cm off
+  EXPECT_EQ(a.track_ids[0], 1);
+  EXPECT_EQ(a.track_ids[1], b_id);
+  EXPECT_EQ(a.associated, 0);  // nothing corrected the camera
+  a = tf.update(2, {obs(0.07f, true), obs(0.29f, true)});
+  a = tf.update(3, {obs(0.07f, true), obs(0.30f, true)});
+  ASSERT_EQ(tf.tracked().size(), 2u);
+  const TrackedHead& ha = tf.tracked()[0];
+  EXPECT_EQ(ha.missed, 0);  // kept alive by its partial views
+  EXPECT_EQ(ha.frames_seen, 4);
+  EXPECT_EQ(ha.partial_frames, 3);
+  EXPECT_NEAR(ha.position.norm(), 0.7, 1e-6);  // not moved by them
+  const auto map = tf.finish();
+  ASSERT_EQ(map.size(), 2u);
+  const TrackedHead& hb = map[1];
+  EXPECT_EQ(hb.id, b_id);
+  EXPECT_EQ(hb.whole_frames(), 0);
+  EXPECT_EQ(hb.size_samples, 0);  // never measured
+  // camera x = field y ("y,x,-z"): the mean of 0.30, 0.31, 0.29, 0.30
+  EXPECT_NEAR(hb.position.y(), 0.30, 1e-6);
+
+  // A head placed by a partial view takes the first whole view's position, and without odometry
+  // that association does not correct the camera.
+  TemporalFilterConfig cfg;
+  cfg.motion_search = false;
+  TemporalFilter t2(cfg);
+  t2.update(0, {obs(0.04f, true)});
+  a = t2.update(1, {obs(0.0f, false)});
+  EXPECT_EQ(a.track_ids[0], 1);
+  EXPECT_EQ(a.associated, 0);
+  EXPECT_NEAR(t2.tracked()[0].position.y(), 0.0, 1e-6);
+  EXPECT_NEAR(t2.camera_position().norm(), 0.0, 1e-9);
 }
 
 TEST(TemporalFilter, BadInputIsAnError) {

@@ -21,8 +21,15 @@
 //
 // Partial detections (extension): a head cut by the image border has its centroid off the head's
 // centre by up to its radius, which breaks the 5 cm association and drags the camera estimate.
-// Detections flagged `partial` therefore take part in none of the steps above; afterwards each
-// takes the id of the nearest tracked head within partial_association_radius_m (no update).
+// Detections flagged `partial` therefore take part in none of the steps above. Afterwards (with
+// partial_tracks, the default) each one is matched to the nearest head within
+// partial_association_radius_m that no detection of this frame claimed: it raises that head's
+// score and keeps it alive, but moves its position only while the head has no whole detection
+// yet; an unmatched partial detection starts a head. A head seen only cut by the border (at the
+// start or end of a pass, or at the edge of the view) can thus reach the map, placed at the mean
+// of its partial centroids; the first whole detection resets the position to its own, and heads
+// without whole detections never take part in the camera correction. Without partial_tracks a
+// partial detection only takes the id of the nearest tracked head (no update).
 //
 // When the first frame carries a camera position (poses.csv) and anchor_first_pose is set, x_c
 // starts there so that the map is in the same field frame as the ground truth; otherwise the
@@ -54,6 +61,7 @@ struct TemporalFilterConfig {
   std::string camera_to_field = "y,x,-z";
   int border_margin_px = 2;
   double partial_association_radius_m = 0.10;
+  bool partial_tracks = true;
   double position_cap_m = 0.02;
 
   template <class V>
@@ -84,6 +92,9 @@ struct TemporalFilterConfig {
     v("partial_association_radius_m", partial_association_radius_m,
       "m; a partial detection takes the id of the nearest tracked head within this distance (its centroid is "
       "off-centre) so that it is credited to that head");
+    v("partial_tracks", partial_tracks,
+      "bool; partial detections raise the score of (and start) heads, without moving the camera or a head that "
+      "has whole detections (extension; false = they only take the nearest head's id)");
     v("position_cap_m", position_cap_m,
       "m; a head's position is the centroid of its points within this depth of its top (HeadMapper; the 2nd "
       "percentile of depth is the top), which the viewing angle hardly moves, unlike the centroid of the whole "
@@ -105,7 +116,9 @@ struct TrackedHead {
   int id = 0;
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< field frame, metres (running average)
   double score = 0.0;                                  ///< tracking score
-  int frames_seen = 0;                                 ///< associated detections
+  int frames_seen = 0;                                 ///< associated detections (whole and partial)
+  int partial_frames = 0;                              ///< of which partial (cut by the border)
+  int whole_frames() const { return frames_seen - partial_frames; }
   int first_frame = 0, last_frame = 0;
   int missed = 0;                       ///< consecutive frames without a detection (T only)
   double mean_detection_score = 0.0;    ///< running average of the classifier scores
