@@ -12,12 +12,17 @@ void GrapeNetworkMode::add_options(CLI::App* cmd) {
   cmd->add_option("--carry-k", carry_k,
                   "With --sampled: samples voting for each other point, weighted by distance and colour (default 4; 1 "
                   "= nearest, the paper)");
+  cmd->add_option("--votes", votes,
+                  "Networks: N passes rotated about the vertical axis by 360/N degrees each, as test-time "
+                  "augmentation (every-point mode: N covers, class probabilities averaged; --sampled: N samples, "
+                  "probabilities carried back and summed); N times the time (default 1)");
 }
 
 void GrapeNetworkMode::apply(pipeline::GrapeModel& model) const {
   if (sampling != "random" && sampling != "fps")
     throw Error("--sampling", "expected random or fps, got '" + sampling + "'");
   model.set_sampled(sampled, sampling == "fps", carry_k);
+  model.set_votes(votes);
 }
 
 }  // namespace cropsight::cli

@@ -1,6 +1,7 @@
 #pragma once
 // The network-mode options that `eval grape` and `segment grape` share: every point (default) or
-// the paper's one sampled pass with --sampling and --carry-k (pipeline::GrapeModel::set_sampled).
+// the paper's one sampled pass with --sampling and --carry-k (pipeline::GrapeModel::set_sampled),
+// and --votes (test-time augmentation of the every-point mode, GrapeModel::set_votes).
 #include <CLI/CLI.hpp>
 #include <string>
 
@@ -12,6 +13,7 @@ struct GrapeNetworkMode {
   bool sampled = false;
   std::string sampling = "random";
   int carry_k = 4;  // the fast GBDT's colour-guided vote; 1 = the paper's nearest neighbour
+  int votes = 1;    // every-point mode: rotated covers of the cloud, probabilities averaged
 
   void add_options(CLI::App* cmd);
   /// Checks --sampling and sets the mode on `model` (throws Error for a bad value, a GBDT model

@@ -257,13 +257,14 @@ struct PointSegmenter::Impl {
   // Builds a batch from (cloud, point indices) pairs, with optional augmentation.
   std::tuple<torch::Tensor, torch::Tensor, torch::Tensor> batch(const std::vector<const Prepared*>& clouds,
                                                                 const std::vector<std::vector<int>>& idx,
-                                                                std::mt19937_64* aug) const {
+                                                                std::mt19937_64* aug,
+                                                                const Eigen::Matrix3f* rotation = nullptr) const {
     const int64_t B = int64_t(clouds.size()), N = int64_t(idx[0].size()), C = feature_channels(cfg.features);
     auto xyz = torch::empty({B, N, 3});
     auto feats = torch::empty({B, N, C});
     auto labels = torch::zeros({B, N}, torch::kLong);
     for (int64_t b = 0; b < B; ++b) {
-      Eigen::Matrix3f R = Eigen::Matrix3f::Identity();
+      Eigen::Matrix3f R = rotation ? *rotation : Eigen::Matrix3f::Identity();
       float scale = 1.f;
       Eigen::Vector3f dcol = Eigen::Vector3f::Zero();
       std::normal_distribution<float> g(0.f, float(cfg.jitter_sigma));
@@ -306,31 +307,55 @@ struct PointSegmenter::Impl {
     return {loss.item<double>(), acc};
   }
 
-  // Predicted labels for every point of a prepared cloud: random disjoint chunks.
-  std::vector<int> predict(const Prepared& p, int* passes) const {
+  // Predicted labels for every point of a prepared cloud: random disjoint chunks. With votes > 1
+  // the cloud is covered `votes` times, each time with another chunking (seed + v) and rotated
+  // by 2πv/votes about the vertical axis (the rotation training augments with), and the
+  // per-point class probabilities are averaged (test-time augmentation). votes = 1 is one cover
+  // without rotation.
+  std::vector<int> predict(const Prepared& p, int* passes, int votes = 1) const {
     torch::NoGradGuard ng;
     net->eval();
-    const std::size_t n = p.xyz.size(), N = std::size_t(cfg.num_points);
-    std::vector<int> perm = geometry::random_sample(n, n, cfg.seed);
+    const std::size_t n = p.xyz.size(), N = std::size_t(cfg.num_points), C = std::size_t(cfg.num_classes);
     const std::size_t chunks = (n + N - 1) / N;
-    // Pad the last chunk with points drawn from the rest so every pass has N points.
-    std::vector<std::vector<int>> idx(chunks);
-    for (std::size_t c = 0; c < chunks; ++c)
-      for (std::size_t i = 0; i < N; ++i) idx[c].push_back(perm[(c * N + i) % n]);
     std::vector<int> out(n, 0);
+    std::vector<float> prob(votes > 1 ? n * C : 0, 0.f);
     const std::size_t per_batch = std::size_t(std::max(1, cfg.batch_size));
-    for (std::size_t c0 = 0; c0 < chunks; c0 += per_batch) {
-      const std::size_t c1 = std::min(chunks, c0 + per_batch);
-      std::vector<const Prepared*> cl(c1 - c0, &p);
-      std::vector<std::vector<int>> sub(idx.begin() + long(c0), idx.begin() + long(c1));
-      auto [xyz, feats, labels] = batch(cl, sub, nullptr);
-      auto pred = net->forward(xyz, feats).argmax(-1).contiguous();
-      const int64_t* pp = pred.data_ptr<int64_t>();
-      for (std::size_t c = c0; c < c1; ++c)
-        for (std::size_t i = 0; i < N && c * N + i < n; ++i)
-          out[std::size_t(perm[c * N + i])] = int(pp[(c - c0) * N + i]);
+    for (int v = 0; v < votes; ++v) {
+      const std::vector<int> perm = geometry::random_sample(n, n, cfg.seed + std::uint64_t(v));
+      const float a = 2.f * float(M_PI) * float(v) / float(votes);
+      Eigen::Matrix3f R;
+      R << std::cos(a), 0, std::sin(a), 0, 1, 0, -std::sin(a), 0, std::cos(a);  // about y (vertical)
+      // Pad the last chunk with points drawn from the rest so every pass has N points.
+      std::vector<std::vector<int>> idx(chunks);
+      for (std::size_t c = 0; c < chunks; ++c)
+        for (std::size_t i = 0; i < N; ++i) idx[c].push_back(perm[(c * N + i) % n]);
+      for (std::size_t c0 = 0; c0 < chunks; c0 += per_batch) {
+        const std::size_t c1 = std::min(chunks, c0 + per_batch);
+        std::vector<const Prepared*> cl(c1 - c0, &p);
+        std::vector<std::vector<int>> sub(idx.begin() + long(c0), idx.begin() + long(c1));
+        auto [xyz, feats, labels] = batch(cl, sub, nullptr, v > 0 ? &R : nullptr);
+        const auto logits = net->forward(xyz, feats);
+        if (votes == 1) {
+          auto pred = logits.argmax(-1).contiguous();
+          const int64_t* pp = pred.data_ptr<int64_t>();
+          for (std::size_t c = c0; c < c1; ++c)
+            for (std::size_t i = 0; i < N && c * N + i < n; ++i)
+              out[std::size_t(perm[c * N + i])] = int(pp[(c - c0) * N + i]);
+          continue;
+        }
+        const auto sm = torch::softmax(logits, -1).contiguous();
+        const float* ps = sm.data_ptr<float>();
+        for (std::size_t c = c0; c < c1; ++c)
+          for (std::size_t i = 0; i < N && c * N + i < n; ++i) {
+            float* dst = &prob[std::size_t(perm[c * N + i]) * C];
+            const float* src = ps + ((c - c0) * N + i) * C;
+            for (std::size_t k = 0; k < C; ++k) dst[k] += src[k];
+          }
+      }
     }
-    if (passes) *passes = int(chunks);
+    if (votes > 1)
+      for (std::size_t i = 0; i < n; ++i) out[i] = int(std::max_element(&prob[i * C], &prob[i * C] + C) - &prob[i * C]);
+    if (passes) *passes = int(chunks) * votes;
     return out;
   }
 };
@@ -471,22 +496,25 @@ std::vector<EpochLog> PointSegmenter::train(const std::vector<Cloud>& train, con
   return logs;
 }
 
-std::vector<int> PointSegmenter::segment(const Cloud& cloud, int* passes) const {
+std::vector<int> PointSegmenter::segment(const Cloud& cloud, int* passes, int votes) const {
+  if (votes < 1) throw Error("point network", "votes must be at least 1");
   if (cloud.empty()) return {};
-  return impl_->predict(prepare(cloud, impl_->cfg.features), passes);
+  return impl_->predict(prepare(cloud, impl_->cfg.features), passes, votes);
 }
 
-std::vector<int> PointSegmenter::sample_for_pass(const Cloud& cloud, bool farthest) const {
+std::vector<int> PointSegmenter::sample_for_pass(const Cloud& cloud, bool farthest, int pass) const {
   if (cloud.empty()) return {};
+  if (pass < 0) throw Error("point network", "pass must be >= 0");
   const std::size_t n = std::size_t(impl_->cfg.num_points);
   // FPS is invariant to the unit-sphere normalisation, so it runs on the raw positions.
-  auto idx = farthest ? geometry::farthest_point_sample(cloud.points, n, 0)
-                      : geometry::random_sample(cloud.size(), n, impl_->cfg.seed);
+  auto idx = farthest ? geometry::farthest_point_sample(cloud.points, n, std::size_t(pass) * 7919 % cloud.size())
+                      : geometry::random_sample(cloud.size(), n, impl_->cfg.seed + std::uint64_t(pass));
   while (idx.size() < n) idx.push_back(idx[idx.size() % cloud.size()]);
   return idx;
 }
 
-std::vector<int> PointSegmenter::predict_at(const Cloud& cloud, const std::vector<int>& idx) const {
+std::vector<int> PointSegmenter::predict_at(const Cloud& cloud, const std::vector<int>& idx, float angle,
+                                            std::vector<float>* proba) const {
   if (idx.size() != std::size_t(impl_->cfg.num_points))
     throw Error("point network", "a pass needs exactly num_points = " + std::to_string(impl_->cfg.num_points) +
                                      " indices, got " + std::to_string(idx.size()));
@@ -495,8 +523,15 @@ std::vector<int> PointSegmenter::predict_at(const Cloud& cloud, const std::vecto
   torch::NoGradGuard ng;
   impl_->net->eval();
   const Prepared p = prepare(cloud, impl_->cfg.features);
-  auto [xyz, feats, labels] = impl_->batch({&p}, {idx}, nullptr);
-  const auto pred = impl_->net->forward(xyz, feats).argmax(-1).contiguous();
+  Eigen::Matrix3f R;
+  R << std::cos(angle), 0, std::sin(angle), 0, 1, 0, -std::sin(angle), 0, std::cos(angle);  // about y
+  auto [xyz, feats, labels] = impl_->batch({&p}, {idx}, nullptr, angle != 0.f ? &R : nullptr);
+  const auto logits = impl_->net->forward(xyz, feats);
+  if (proba) {
+    const auto sm = torch::softmax(logits, -1).contiguous();
+    proba->assign(sm.data_ptr<float>(), sm.data_ptr<float>() + sm.numel());
+  }
+  const auto pred = logits.argmax(-1).contiguous();
   return std::vector<int>(pred.data_ptr<int64_t>(), pred.data_ptr<int64_t>() + idx.size());
 }
 

@@ -86,7 +86,7 @@ learning::Gbdt train_grape_gbdt(const std::vector<Cloud>& clouds, const GrapeGbd
 
 std::vector<int> grape_carry_back(const Cloud& cloud, const std::vector<int>& sample,
                                   const std::vector<int>& sample_labels, const GrapeFeatureConfig& fc, int num_class,
-                                  int threads, const std::vector<float>* sample_proba) {
+                                  int threads, const std::vector<float>* sample_proba, std::vector<float>* scores_out) {
   if (sample_proba && sample_proba->size() != sample.size() * std::size_t(num_class))
     throw Error("grape carry-back", "probabilities are not sample size x classes");
   if (sample.size() != sample_labels.size()) throw Error("grape carry-back", "sample and labels differ in count");
@@ -106,6 +106,20 @@ std::vector<int> grape_carry_back(const Cloud& cloud, const std::vector<int>& sa
     packed.xyz.insert(packed.xyz.end(), {cloud.points[i].x(), cloud.points[i].y(), cloud.points[i].z()});
     out[i] = l;
   }
+  const std::size_t C = std::size_t(num_class);
+  // One voter's scores: its probabilities, or its label one-hot.
+  auto voter_scores = [&](std::size_t s, float w, float* dst) {
+    if (sample_proba) {
+      const float* pr = sample_proba->data() + s * C;
+      for (std::size_t c = 0; c < C; ++c) dst[c] += w * pr[c];
+    } else {
+      dst[std::size_t(sample_labels[s])] += w;
+    }
+  };
+  if (scores_out) {
+    scores_out->assign(cloud.size() * C, 0.f);
+    for (std::size_t s = 0; s < sample.size(); ++s) voter_scores(s, 1.f, &(*scores_out)[std::size_t(sample[s]) * C]);
+  }
   geometry::detail::PointKdTree tree(3, packed, geometry::detail::kdtree_params());
   tree.buildIndex();
   const std::size_t k = std::min<std::size_t>(std::size_t(fc.carry_k), sample.size());
@@ -119,21 +133,26 @@ std::vector<int> grape_carry_back(const Cloud& cloud, const std::vector<int>& sa
       const std::size_t found = tree.knnSearch(cloud.points[i].data(), k, nb.data(), d2.data());
       if (!colour || found == 1) {
         out[i] = sample_labels[nb[0]];
+        if (scores_out) voter_scores(nb[0], 1.f, &(*scores_out)[i * C]);
         continue;
       }
       std::fill(vote.begin(), vote.end(), 0.f);
       const float inv_r2 = 1.f / (d2[found - 1] + 1e-12f);
       for (std::size_t q = 0; q < found; ++q) {
         const float dc = (cloud.colors[i] - cloud.colors[std::size_t(sample[nb[q]])]).squaredNorm();
-        const float w = std::exp(-d2[q] * inv_r2 - wc * dc);
-        if (sample_proba) {
-          const float* pr = sample_proba->data() + std::size_t(nb[q]) * vote.size();
-          for (std::size_t c = 0; c < vote.size(); ++c) vote[c] += w * pr[c];
-        } else {
-          vote[std::size_t(sample_labels[nb[q]])] += w;
-        }
+        voter_scores(nb[q], std::exp(-d2[q] * inv_r2 - wc * dc), vote.data());
+      }
+      float sum = 0.f;
+      for (float x : vote) sum += x;
+      if (!(sum > 0.f)) {  // every weight underflowed (a colour unlike all k voters): the nearest decides
+        std::fill(vote.begin(), vote.end(), 0.f);
+        voter_scores(nb[0], 1.f, vote.data());
+        sum = 0.f;
+        for (float x : vote) sum += x;
       }
       out[i] = int(std::max_element(vote.begin(), vote.end()) - vote.begin());
+      if (scores_out)
+        for (std::size_t c = 0; c < C; ++c) (*scores_out)[i * C + c] = vote[c] / sum;
     }
   });
   return out;

@@ -1,6 +1,7 @@
 #include "cropsight/pipeline/grape_model.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <numeric>
 #include <random>
@@ -19,6 +20,7 @@ struct GrapeModel::Impl {
   int threads = 2;
   bool sampled = false, farthest = false;
   int carry_k = 1;
+  int votes = 1;
 };
 
 GrapeModel::~GrapeModel() = default;
@@ -53,13 +55,30 @@ GrapeModel GrapeModel::load(const std::filesystem::path& path, int threads) {
 
 std::vector<int> GrapeModel::segment(const Cloud& cloud) const {
   if (impl_->gbdt) return segment_grape_gbdt(*impl_->gbdt, cloud, impl_->threads);
-  if (!impl_->sampled) return impl_->net->segment(cloud);
+  if (!impl_->sampled) return impl_->net->segment(cloud, nullptr, impl_->votes);
   if (cloud.empty()) return {};
-  const auto idx = impl_->net->sample_for_pass(cloud, impl_->farthest);
-  const auto labels = impl_->net->predict_at(cloud, idx);
   GrapeFeatureConfig fc;
   fc.carry_k = impl_->carry_k;
-  return grape_carry_back(cloud, idx, labels, fc, impl_->net->config().num_classes, impl_->threads);
+  const int C = impl_->net->config().num_classes, V = impl_->votes;
+  if (V == 1) {
+    const auto idx = impl_->net->sample_for_pass(cloud, impl_->farthest);
+    return grape_carry_back(cloud, idx, impl_->net->predict_at(cloud, idx), fc, C, impl_->threads);
+  }
+  // Soft vote of the passes: each pass's class probabilities, carried back to every point
+  // (normalised colour-guided votes), summed; the largest sum wins.
+  std::vector<float> sum(cloud.size() * std::size_t(C), 0.f), proba, scores;
+  for (int v = 0; v < V; ++v) {
+    const auto idx = impl_->net->sample_for_pass(cloud, impl_->farthest, v);
+    const auto labels = impl_->net->predict_at(cloud, idx, 2.f * float(M_PI) * float(v) / float(V), &proba);
+    grape_carry_back(cloud, idx, labels, fc, C, impl_->threads, &proba, &scores);
+    for (std::size_t k = 0; k < sum.size(); ++k) sum[k] += scores[k];
+  }
+  std::vector<int> out(cloud.size());
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const float* c = &sum[i * std::size_t(C)];
+    out[i] = int(std::max_element(c, c + C) - c);
+  }
+  return out;
 }
 
 void GrapeModel::set_sampled(bool sampled, bool farthest, int carry_k) {
@@ -70,6 +89,14 @@ void GrapeModel::set_sampled(bool sampled, bool farthest, int carry_k) {
   impl_->farthest = farthest;
   impl_->carry_k = carry_k;
 }
+
+void GrapeModel::set_votes(int votes) {
+  if (votes < 1) throw Error("--votes", "must be at least 1");
+  if (votes > 1 && impl_->gbdt) throw Error("--votes", "only for network models");
+  impl_->votes = votes;
+}
+
+int GrapeModel::votes() const { return impl_->votes; }
 
 bool GrapeModel::sampled() const { return impl_->sampled; }
 

@@ -82,6 +82,46 @@ TEST(PointSegmenter, SaveLoadGivesIdenticalPredictions) {
   EXPECT_EQ(back.parameter_count(), net.parameter_count());
 }
 
+// Test-time augmentation: votes = 1 is the plain cover; votes = N covers the cloud N times
+// (N times the passes), rotated about the vertical axis, and gives a label to every point.
+// A network trained with rotation augmentation keeps its accuracy under the rotated covers.
+TEST(PointSegmenter, VotesCoverTheCloudRotated) {
+  auto cfg = tiny_config("pointresnet");
+  cfg.augment = true;  // rotations about y, as the votes use
+  cfg.scale_min = cfg.scale_max = 1.0;
+  cfg.jitter_sigma = 0.0;
+  cfg.colour_jitter = 0.0;
+  PointSegmenter net(cfg);
+  // Labels by height (y bands), which rotations about y keep.
+  auto by_height = [](std::uint32_t seed, int n) {
+    Cloud c = tiny_cloud(seed, n);
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      const float y = c.points[i].y();
+      c.labels[i] = y < -0.3f ? 0 : (y > 0.3f ? 2 : 1);
+      c.colors[i] = Eigen::Vector3f(0.5f, 0.5f, 0.5f);
+    }
+    return c;
+  };
+  const std::vector<Cloud> batch = {by_height(11, 128), by_height(12, 128)};
+  for (int it = 0; it < 200; ++it) net.train_step(batch);
+  const Cloud big = by_height(13, 300);
+  int passes = 0;
+  EXPECT_EQ(net.segment(big, nullptr, 1), net.segment(big));
+  const auto voted = net.segment(big, &passes, 4);
+  EXPECT_EQ(passes, 12);  // 3 chunks of 128 per cover
+  ASSERT_EQ(voted.size(), big.size());
+  auto accuracy = [&](const std::vector<int>& pred) {
+    int ok = 0;
+    for (std::size_t i = 0; i < pred.size(); ++i) ok += pred[i] == big.labels[i];
+    return double(ok) / double(pred.size());
+  };
+  const double plain = accuracy(net.segment(big)), rotated = accuracy(voted);
+  EXPECT_GE(plain, 0.8);
+  EXPECT_GE(rotated, plain - 0.03) << "rotation-trained net under rotated votes";
+  EXPECT_EQ(net.segment(big, nullptr, 4), voted);  // deterministic
+  EXPECT_THROW(net.segment(big, nullptr, 0), Error);
+}
+
 TEST(PointSegmenter, DeterministicGivenSeedAndRejectsBadInput) {
   const std::vector<Cloud> batch = {tiny_cloud(6), tiny_cloud(7)};
   PointSegmenter a(tiny_config("pointresnet")), b(tiny_config("pointresnet"));

@@ -56,6 +56,12 @@ TEST(GrapeCli, TrainEvalSegmentAndBadInput) {
   r = cropsight::testing::run_cli("eval grape --data '" + data + "' --model '" + model + "' --sampled --json");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--sampled"), std::string::npos) << r.err;
+  // So are --votes (test-time augmentation) and its range.
+  for (const char* votes : {"2", "0"}) {
+    r = cropsight::testing::run_cli("eval grape --data '" + data + "' --model '" + model + "' --votes " + votes);
+    EXPECT_EQ(r.exit_code, 2) << votes;
+    EXPECT_NE(r.err.find("--votes"), std::string::npos) << r.err;
+  }
 
   std::ofstream(t / "bad.txt") << "1 2 3\n";
   r = cropsight::testing::run_cli("segment grape --model '" + model + "' --input '" + (t / "bad.txt").string() +

@@ -187,9 +187,40 @@ TEST(GrapeGbdt, CarryBackLabelsEveryPoint) {
   for (std::size_t i = 0; i < c.size(); ++i) ok += hard[i] == c.labels[i];
   EXPECT_GT(double(ok) / double(c.size()), 0.97);
   for (std::size_t i = 0; i < s.size(); ++i) EXPECT_EQ(hard[std::size_t(s[i])], truth[i]);
+  // Scores: normalised votes per point; the argmax is the label.
+  std::vector<float> scores;
+  EXPECT_EQ(grape_carry_back(c, s, truth, f, 6, 2, nullptr, &scores), hard);
+  ASSERT_EQ(scores.size(), c.size() * 6);
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    const float* r = &scores[i * 6];
+    EXPECT_NEAR(r[0] + r[1] + r[2] + r[3] + r[4] + r[5], 1.0f, 1e-5f);
+    EXPECT_EQ(int(std::max_element(r, r + 6) - r), hard[i]);
+  }
   EXPECT_THROW(grape_carry_back(c, s, {1}, f, 6), Error);
   f.carry_k = 0;
   EXPECT_THROW(grape_carry_back(c, s, truth, f, 6), Error);
+}
+
+// A point whose colour is far from all its voters' makes every exp() weight underflow to zero;
+// it must take the nearest sample's label, not label 0 (the argmax of an all-zero vote).
+TEST(GrapeGbdt, CarryBackOfAnOddColouredPointTakesTheNearestLabel) {
+  Cloud c;
+  for (int i = 0; i < 8; ++i) {
+    c.points.emplace_back(0.01f * float(i), 0.f, 0.f);
+    c.colors.emplace_back(1.f, 1.f, 1.f);  // white samples
+    c.labels.push_back(3);
+  }
+  c.points.emplace_back(0.001f, 0.f, 0.f);
+  c.colors.emplace_back(0.f, 0.f, 0.f);  // a black point next to them: |Δrgb|² = 3
+  c.labels.push_back(3);
+  const std::vector<int> s = {0, 1, 2, 3, 4, 5, 6, 7}, labels(8, 3);
+  GrapeFeatureConfig f = fast_config().features;
+  f.carry_k = 4;
+  f.carry_colour = 200;
+  std::vector<float> scores;
+  const auto out = grape_carry_back(c, s, labels, f, 6, 1, nullptr, &scores);
+  EXPECT_EQ(out[8], 3);
+  EXPECT_FLOAT_EQ(scores[8 * 6 + 3], 1.0f);
 }
 
 TEST(GrapeModel, FoldsAndBadFiles) {

@@ -56,6 +56,21 @@ TEST(GrapeModel, SampledModeMatchesTheNetworksNearestNeighbourCarryBack) {
   for (std::size_t s = 0; s < idx.size(); ++s) EXPECT_EQ(voted[std::size_t(idx[s])], at[s]);
 
   EXPECT_THROW(model.set_sampled(true, false, 0), Error);
+  // --votes in the sampled mode: one vote is the plain pass; three give every point a label in
+  // range, and points the passes agree on keep that label.
+  model.set_sampled(true, false, 1);
+  model.set_votes(1);
+  EXPECT_EQ(model.segment(big), net.segment_sampled(big));
+  model.set_votes(3);
+  const auto v3 = model.segment(big);
+  ASSERT_EQ(v3.size(), big.size());
+  for (int l : v3) EXPECT_TRUE(l >= 0 && l < cfg.num_classes);
+  // --votes in the every-point mode: the network's rotated covers.
+  model.set_sampled(false);
+  model.set_votes(2);
+  EXPECT_EQ(model.segment(big), net.segment(big, nullptr, 2));
+  EXPECT_THROW(model.set_votes(0), Error);
+  model.set_votes(1);
   EXPECT_THROW(net.predict_at(big, {0, 1, 2}), Error);
   EXPECT_TRUE(model.segment(Cloud{}).empty());
 }

@@ -95,7 +95,10 @@ class PointSegmenter {
   /// Labels of every point: the cloud is split into random disjoint chunks of num_points
   /// (padded), each chunk is one network pass, so every point gets its own prediction.
   /// Deterministic (fixed seed). `passes_out` (optional) receives the number of passes.
-  std::vector<int> segment(const Cloud& cloud, int* passes_out = nullptr) const;
+  /// `votes` > 1: test-time augmentation — the cloud is covered `votes` times, each with another
+  /// chunking and rotated by 2πv/votes about the vertical (y) axis, class probabilities averaged
+  /// (`votes` times the passes). Throws Error for votes < 1.
+  std::vector<int> segment(const Cloud& cloud, int* passes_out = nullptr, int votes = 1) const;
 
   /// Paper variant: one pass on `num_points` samples, labels carried back to every point by
   /// nearest neighbour. The sample is drawn at random (seeded, deterministic) like the training
@@ -107,8 +110,12 @@ class PointSegmenter {
   /// The paper variant's two halves, for callers with their own carry-back: the num_points
   /// indices of one pass (random, seeded, or farthest-point; repeated when the cloud is smaller)
   /// and the network's labels at exactly num_points given indices (throws Error otherwise).
-  std::vector<int> sample_for_pass(const Cloud& cloud, bool farthest = false) const;
-  std::vector<int> predict_at(const Cloud& cloud, const std::vector<int>& idx) const;
+  /// `pass` > 0 draws another sample (seed + pass; farthest-point from another start) and
+  /// `angle_rad` rotates the input about the vertical (y) axis, for test-time augmentation.
+  std::vector<int> sample_for_pass(const Cloud& cloud, bool farthest = false, int pass = 0) const;
+  /// `proba` (optional) receives the class probabilities (num_points × num_classes, row-major).
+  std::vector<int> predict_at(const Cloud& cloud, const std::vector<int>& idx, float angle_rad = 0.f,
+                              std::vector<float>* proba = nullptr) const;
 
   /// One training step on fixed inputs (no augmentation, no sampling when the cloud already has
   /// num_points points): returns (loss, accuracy). Used by the tests to show learning works.

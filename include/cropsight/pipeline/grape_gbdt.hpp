@@ -45,9 +45,13 @@ learning::Gbdt train_grape_gbdt(const std::vector<Cloud>& clouds, const GrapeGbd
 /// fc.carry_colour·|rgb - rgb_s|²) (carry_k = 1, or no colours: the nearest sample's label).
 /// Labels in [0, num_class). With `sample_proba` (sample × num_class, row-major) each voter
 /// adds weight × its class probabilities instead of weight to its label. Every point gets a label.
+/// `scores_out` (optional) receives per point (row-major, cloud size × num_class) the vote
+/// normalised to sum 1: a sample point's own probabilities (or one-hot label), another point's
+/// weighted vote (one-hot of the nearest sample when it alone decides); for soft votes over passes.
 std::vector<int> grape_carry_back(const Cloud& cloud, const std::vector<int>& sample,
                                   const std::vector<int>& sample_labels, const GrapeFeatureConfig& fc, int num_class,
-                                  int threads = 2, const std::vector<float>* sample_proba = nullptr);
+                                  int threads = 2, const std::vector<float>* sample_proba = nullptr,
+                                  std::vector<float>* scores_out = nullptr);
 
 /// Labels of every point of `cloud` (needs normals and colours). With a fast-recipe model
 /// (recipe sample = N > 0) the model classifies a fixed-seed sample of N points and every other

@@ -37,6 +37,13 @@ class GrapeModel {
   /// carry_k < 1.
   void set_sampled(bool sampled, bool farthest = false, int carry_k = 1);
   bool sampled() const;
+  /// Networks: test-time augmentation with `votes` passes rotated by 360°/votes about the
+  /// vertical axis. Every-point mode: `votes` covers of the cloud, class probabilities averaged
+  /// (nn::PointSegmenter::segment); sampled mode: `votes` one-pass predictions on different
+  /// samples, their class probabilities carried back to every point and summed.
+  /// Throws Error for votes < 1 and for a GBDT model.
+  void set_votes(int votes);
+  int votes() const;
 
  private:
   GrapeModel() = default;
