@@ -58,6 +58,9 @@ nlohmann::json eval_json(const pipeline::BroccoliEvalResult& r) {
   j["truth_heads_in_view"] = r.truth_heads_in_view;
   j["ap50_in_view"] = num(r.ap50_in_view);
   j["map50_95_in_view"] = num(r.map50_95_in_view);
+  j["truth_heads_visible"] = r.truth_heads_visible;
+  j["ap50_visible"] = num(r.ap50_visible);
+  j["map50_95_visible"] = num(r.map50_95_visible);
   j["fps"] = num(r.fps());
   j["ms_per_frame"] = r.frames ? r.pipeline_ms / double(r.frames) : 0.0;
   j["stages_ms"] = stages_json(r.stages, r.frames);

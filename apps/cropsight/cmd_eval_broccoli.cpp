@@ -72,6 +72,10 @@ void run(const EvalOptions& o) {
               c.precision(), c.recall(), c.specificity(), c.npv(), c.kappa());
   std::printf("  AP50 %.4f  mAP50:95 %.4f  (%lld labelled heads)\n", r.ap50, r.map50_95,
               static_cast<long long>(r.truth_heads));
+  std::printf("  AP50 %.4f  mAP50:95 %.4f  in view (%lld heads not cut by the border)\n", r.ap50_in_view,
+              r.map50_95_in_view, static_cast<long long>(r.truth_heads_in_view));
+  std::printf("  AP50 %.4f  mAP50:95 %.4f  visible (%lld heads with >= detection.visible_truth_points points)\n",
+              r.ap50_visible, r.map50_95_visible, static_cast<long long>(r.truth_heads_visible));
   std::printf("  %.1f fps (%.2f ms/frame, pipeline only)\n", r.fps(), r.frames ? r.pipeline_ms / r.frames : 0.0);
   if (tracker) print_tracking_summary(j);
 }

@@ -72,12 +72,16 @@ void BroccoliEvaluator::add_frame(const RgbdFrame& frame) {
   truth_instances(det_.cloud(), det_.config().detection.min_truth_points, truth_);
   truth_sets_.resize(truth_.size());
   cut_.resize(truth_.size());
+  small_.resize(truth_.size());
+  const std::size_t visible = std::size_t(det_.config().detection.visible_truth_points);
   for (std::size_t i = 0; i < truth_.size(); ++i) {
     truth_sets_[i] = truth_[i].indices;
     cut_[i] = truth_[i].cut_by_border;
+    small_[i] = truth_[i].indices.size() < visible;
   }
   ap_.add_frame(truth_sets_, scored);
   ap_view_.add_frame(truth_sets_, scored, cut_);
+  ap_visible_.add_frame(truth_sets_, scored, small_);
 }
 
 BroccoliEvalResult BroccoliEvaluator::result() const {
@@ -88,6 +92,9 @@ BroccoliEvalResult BroccoliEvaluator::result() const {
   r.truth_heads_in_view = ap_view_.num_truth();
   r.ap50_in_view = ap_view_.ap(0.5);
   r.map50_95_in_view = ap_view_.map50_95();
+  r.truth_heads_visible = ap_visible_.num_truth();
+  r.ap50_visible = ap_visible_.ap(0.5);
+  r.map50_95_visible = ap_visible_.map50_95();
   r.stages = det_.timer().stages();
   return r;
 }

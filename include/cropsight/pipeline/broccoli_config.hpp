@@ -36,6 +36,7 @@ struct BroccoliDetectionConfig {
   float score_margin = 0.0f;       ///< added to the classifier's threshold (0 SVM, 0.5 KNN)
   float min_head_fraction = 0.5f;  ///< cluster-truth rule, see broccoli_truth.hpp
   int min_truth_points = 0;        ///< AP: ground-truth heads with fewer visible points are not counted
+  int visible_truth_points = 300;  ///< ap50_visible: heads with fewer visible points are ignored
 
   template <class V>
   void visit(V& v) {
@@ -48,6 +49,10 @@ struct BroccoliDetectionConfig {
     v("min_truth_points", min_truth_points,
       "points; ground-truth heads with fewer visible (valid, in depth range) points are left out of AP "
       "(0 = every labelled head counts)");
+    v("visible_truth_points", visible_truth_points,
+      "points; for ap50_visible / map50_95_visible, ground-truth heads with fewer visible points are ignored "
+      "(COCO-style: not counted, and a detection of one is not a false positive); 300 = the field map's "
+      "rule for a true head (ours; the paper does not state its rule for partly visible heads)");
   }
 };
 

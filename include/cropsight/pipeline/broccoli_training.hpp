@@ -56,6 +56,9 @@ struct BroccoliEvalResult {
   /// turn a detection of them into a false positive).
   double ap50_in_view = 0.0, map50_95_in_view = 0.0;
   std::int64_t truth_heads_in_view = 0;
+  /// Same with heads of fewer than detection.visible_truth_points visible points ignored.
+  double ap50_visible = 0.0, map50_95_visible = 0.0;
+  std::int64_t truth_heads_visible = 0;
   double pipeline_ms = 0.0;  ///< total wall-clock time in BroccoliDetector::process (I/O excluded)
   double fps() const { return pipeline_ms > 0 ? 1000.0 * double(frames) / pipeline_ms : 0.0; }
   std::vector<StageTimer::Stage> stages;  ///< per-stage totals
@@ -73,8 +76,8 @@ class BroccoliEvaluator {
  private:
   BroccoliDetector& det_;
   BroccoliEvalResult r_;
-  eval::DetectionApAccumulator ap_, ap_view_;
-  std::vector<bool> cut_;
+  eval::DetectionApAccumulator ap_, ap_view_, ap_visible_;
+  std::vector<bool> cut_, small_;
   std::vector<TruthInstance> truth_;
   std::vector<std::vector<int>> truth_sets_;
 };
