@@ -14,7 +14,9 @@ struct Face {
   double n[3];            // unit outward normal
   double d;               // plane offset: distance(p) = n·p − d
   int outside = -1;       // head of this face's outside set (linked through `next_`)
-  int mark = 0;           // == stamp: visible from the current eye; == -stamp: tested, not visible
+  int far_point = -1;     // the outside point farthest above the face (the next eye)
+  double far_dist = 0.0;
+  int mark = 0;  // == stamp: visible from the current eye; == -stamp: tested, not visible
   bool alive = true;
 };
 
@@ -99,7 +101,7 @@ class Builder {
       if (d2 > best) best = d2, c = i;
     }
     if (c < 0 || !(best > eps_ * eps_)) return false;
-    Face base{{a, b, c}, {-1, -1, -1}, {0, 0, 0}, 0, -1, 0, true};
+    Face base{{a, b, c}, {-1, -1, -1}, {0, 0, 0}, 0, -1, -1, 0.0, 0, true};
     if (!set_plane(base)) return false;
     int d = -1;
     best = 0.0;
@@ -110,7 +112,7 @@ class Builder {
     const int A = base.v[0], B = base.v[1], C = base.v[2];
     const std::array<std::array<int, 3>, 4> tri = {{{A, B, C}, {B, A, d}, {C, B, d}, {A, C, d}}};
     for (const auto& t : tri) {
-      Face f{t, {-1, -1, -1}, {0, 0, 0}, 0, -1, 0, true};
+      Face f{t, {-1, -1, -1}, {0, 0, 0}, 0, -1, -1, 0.0, 0, true};
       if (!set_plane(f)) return false;
       faces_.push_back(f);
     }
@@ -130,13 +132,18 @@ class Builder {
     for (int i = 0; i < n_; ++i) {
       if (i == A || i == B || i == C || i == d) continue;
       for (int f = 0; f < 4; ++f)
-        if (distance(faces_[std::size_t(f)], i) > eps_) {
-          next_[std::size_t(i)] = faces_[std::size_t(f)].outside;
-          faces_[std::size_t(f)].outside = i;
+        if (const double s = distance(faces_[std::size_t(f)], i); s > eps_) {
+          push_outside(faces_[std::size_t(f)], i, s);
           break;
         }
     }
     return true;
+  }
+
+  void push_outside(Face& f, int i, double dist) {
+    next_[std::size_t(i)] = f.outside;
+    f.outside = i;
+    if (dist > f.far_dist) f.far_dist = dist, f.far_point = i;
   }
 
   int edge_to(const Face& f, int g) const {
@@ -168,11 +175,7 @@ class Builder {
   }
 
   bool add_point(int f0) {
-    // the eye: the farthest point of f0's outside set
-    int eye = -1;
-    double far = -1.0;
-    for (int i = faces_[std::size_t(f0)].outside; i >= 0; i = next_[std::size_t(i)])
-      if (const double s = distance(faces_[std::size_t(f0)], i); s > far) far = s, eye = i;
+    const int eye = faces_[std::size_t(f0)].far_point;  // the farthest point of f0's outside set
     ++stamp_;
     visible_.clear();
     horizon_.clear();
@@ -191,7 +194,7 @@ class Builder {
     for (std::size_t j = 0; j < h; ++j) {
       const int f = horizon_[j][0], e = horizon_[j][1];
       const int g = faces_[std::size_t(f)].nb[std::size_t(e)];
-      Face nf{{from(j), to(j), eye}, {g, -1, -1}, {0, 0, 0}, 0, -1, 0, true};
+      Face nf{{from(j), to(j), eye}, {g, -1, -1}, {0, 0, 0}, 0, -1, -1, 0.0, 0, true};
       if (!set_plane(nf)) return false;
       const int eg = edge_to(faces_[std::size_t(g)], f);
       if (eg < 0) return false;
@@ -220,9 +223,8 @@ class Builder {
         const int nxt = next_[std::size_t(i)];
         if (i != eye)
           for (int g : created_)
-            if (distance(faces_[std::size_t(g)], i) > eps_) {
-              next_[std::size_t(i)] = faces_[std::size_t(g)].outside;
-              faces_[std::size_t(g)].outside = i;
+            if (const double s = distance(faces_[std::size_t(g)], i); s > eps_) {
+              push_outside(faces_[std::size_t(g)], i, s);
               break;
             }
         i = nxt;
