@@ -29,7 +29,7 @@ struct EvalGrapeOptions {
 
 void run(const EvalGrapeOptions& o) {
   auto model = pipeline::GrapeModel::load(o.model, o.threads);
-  o.mode.apply(model);
+  o.mode.apply(model, o.threads);
   auto files = io::list_grape_clouds(o.data);
   if (o.limit > 0 && std::size_t(o.limit) < files.size()) files.resize(std::size_t(o.limit));
   if (!o.fold.empty()) {

@@ -24,7 +24,7 @@ struct SegmentGrapeOptions {
 
 void run(const SegmentGrapeOptions& o) {
   auto model = pipeline::GrapeModel::load(o.model, o.threads);
-  o.mode.apply(model);
+  o.mode.apply(model, o.threads);
   Cloud cloud = io::read_grape_text(o.input);
   const auto t0 = std::chrono::steady_clock::now();
   cloud.labels = model.segment(cloud);

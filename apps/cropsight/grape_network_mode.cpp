@@ -16,13 +16,22 @@ void GrapeNetworkMode::add_options(CLI::App* cmd) {
                   "Networks: N passes rotated about the vertical axis by 360/N degrees each, as test-time "
                   "augmentation (every-point mode: N covers, class probabilities averaged; --sampled: N samples, "
                   "probabilities carried back and summed); N times the time (default 1)");
+  cmd->add_option("--ensemble", ensemble,
+                  "A second model (network or GBDT, default settings) whose per-point class probabilities are mixed "
+                  "with this model's; the label is the argmax of the mix");
+  cmd->add_option("--ensemble-weight", ensemble_weight, "With --ensemble: the second model's share (default 0.5)");
 }
 
-void GrapeNetworkMode::apply(pipeline::GrapeModel& model) const {
+void GrapeNetworkMode::apply(pipeline::GrapeModel& model, int threads) const {
   if (sampling != "random" && sampling != "fps")
     throw Error("--sampling", "expected random or fps, got '" + sampling + "'");
   model.set_sampled(sampled, sampling == "fps", carry_k);
   model.set_votes(votes);
+  if (!ensemble.empty())
+    model.set_ensemble(std::make_shared<const pipeline::GrapeModel>(pipeline::GrapeModel::load(ensemble, threads)),
+                       ensemble_weight);
+  else if (ensemble_weight != 0.5)
+    throw Error("--ensemble-weight", "needs --ensemble");
 }
 
 }  // namespace cropsight::cli

@@ -12,13 +12,15 @@ namespace cropsight::cli {
 struct GrapeNetworkMode {
   bool sampled = false;
   std::string sampling = "random";
-  int carry_k = 4;  // the fast GBDT's colour-guided vote; 1 = the paper's nearest neighbour
-  int votes = 1;    // every-point mode: rotated covers of the cloud, probabilities averaged
+  int carry_k = 4;               // the fast GBDT's colour-guided vote; 1 = the paper's nearest neighbour
+  int votes = 1;                 // every-point mode: rotated covers of the cloud, probabilities averaged
+  std::string ensemble;          // a second model whose probabilities are mixed in
+  double ensemble_weight = 0.5;  // its share
 
   void add_options(CLI::App* cmd);
   /// Checks --sampling and sets the mode on `model` (throws Error for a bad value, a GBDT model
   /// with --sampled, or --carry-k < 1).
-  void apply(pipeline::GrapeModel& model) const;
+  void apply(pipeline::GrapeModel& model, int threads = 2) const;
   const char* name() const { return sampled ? "sampled" : "every-point"; }
 };
 

@@ -312,13 +312,15 @@ struct PointSegmenter::Impl {
   // by 2πv/votes about the vertical axis (the rotation training augments with), and the
   // per-point class probabilities are averaged (test-time augmentation). votes = 1 is one cover
   // without rotation.
-  std::vector<int> predict(const Prepared& p, int* passes, int votes = 1) const {
+  std::vector<int> predict(const Prepared& p, int* passes, int votes = 1,
+                           std::vector<float>* proba_out = nullptr) const {
     torch::NoGradGuard ng;
     net->eval();
     const std::size_t n = p.xyz.size(), N = std::size_t(cfg.num_points), C = std::size_t(cfg.num_classes);
     const std::size_t chunks = (n + N - 1) / N;
     std::vector<int> out(n, 0);
-    std::vector<float> prob(votes > 1 ? n * C : 0, 0.f);
+    const bool soft = votes > 1 || proba_out;
+    std::vector<float> prob(soft ? n * C : 0, 0.f);
     const std::size_t per_batch = std::size_t(std::max(1, cfg.batch_size));
     for (int v = 0; v < votes; ++v) {
       const std::vector<int> perm = geometry::random_sample(n, n, cfg.seed + std::uint64_t(v));
@@ -335,7 +337,7 @@ struct PointSegmenter::Impl {
         std::vector<std::vector<int>> sub(idx.begin() + long(c0), idx.begin() + long(c1));
         auto [xyz, feats, labels] = batch(cl, sub, nullptr, v > 0 ? &R : nullptr);
         const auto logits = net->forward(xyz, feats);
-        if (votes == 1) {
+        if (!soft) {
           auto pred = logits.argmax(-1).contiguous();
           const int64_t* pp = pred.data_ptr<int64_t>();
           for (std::size_t c = c0; c < c1; ++c)
@@ -353,8 +355,12 @@ struct PointSegmenter::Impl {
           }
       }
     }
-    if (votes > 1)
+    if (soft)
       for (std::size_t i = 0; i < n; ++i) out[i] = int(std::max_element(&prob[i * C], &prob[i * C] + C) - &prob[i * C]);
+    if (proba_out) {
+      for (float& x : prob) x /= float(votes);
+      *proba_out = std::move(prob);
+    }
     if (passes) *passes = int(chunks) * votes;
     return out;
   }
@@ -496,10 +502,10 @@ std::vector<EpochLog> PointSegmenter::train(const std::vector<Cloud>& train, con
   return logs;
 }
 
-std::vector<int> PointSegmenter::segment(const Cloud& cloud, int* passes, int votes) const {
+std::vector<int> PointSegmenter::segment(const Cloud& cloud, int* passes, int votes, std::vector<float>* proba) const {
   if (votes < 1) throw Error("point network", "votes must be at least 1");
   if (cloud.empty()) return {};
-  return impl_->predict(prepare(cloud, impl_->cfg.features), passes, votes);
+  return impl_->predict(prepare(cloud, impl_->cfg.features), passes, votes, proba);
 }
 
 std::vector<int> PointSegmenter::sample_for_pass(const Cloud& cloud, bool farthest, int pass) const {

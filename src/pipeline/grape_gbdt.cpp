@@ -158,7 +158,8 @@ std::vector<int> grape_carry_back(const Cloud& cloud, const std::vector<int>& sa
   return out;
 }
 
-std::vector<int> segment_grape_gbdt(const learning::Gbdt& model, const Cloud& cloud, int threads) {
+std::vector<int> segment_grape_gbdt(const learning::Gbdt& model, const Cloud& cloud, int threads,
+                                    std::vector<float>* scores) {
   if (model.attribute("cropsight.kind") != "grape-gbdt")
     throw Error("grape model", "not a grape GBDT model (cropsight.kind attribute missing)");
   GrapeFeatureConfig fc = GrapeFeatureConfig::from_recipe(model.attribute("cropsight.features"), "grape model");
@@ -173,13 +174,20 @@ std::vector<int> segment_grape_gbdt(const learning::Gbdt& model, const Cloud& cl
       sample_labels[s] = int(std::max_element(proba.begin() + long(s * C), proba.begin() + long((s + 1) * C)) -
                              (proba.begin() + long(s * C)));
     return grape_carry_back(cloud, sample, sample_labels, fc, model.num_class(), threads,
-                            fc.carry_soft ? &proba : nullptr);
+                            fc.carry_soft ? &proba : nullptr, scores);
   }
   // Every point (also the fast recipe on a cloud no larger than its sample: the same features).
   const std::vector<float> X = fc.sample > 0
                                    ? grape_sample_features(cloud, fc, grape_sample(cloud.size(), fc, fc.sample_seed))
                                    : grape_point_features(cloud, fc);
-  return model.predict(X, cloud.size(), grape_feature_count(fc));
+  if (!scores) return model.predict(X, cloud.size(), grape_feature_count(fc));
+  *scores = model.predict_proba(X, cloud.size(), grape_feature_count(fc));
+  const std::size_t C = std::size_t(model.num_class());
+  std::vector<int> out(cloud.size());
+  for (std::size_t i = 0; i < out.size(); ++i)
+    out[i] = int(std::max_element(scores->begin() + long(i * C), scores->begin() + long((i + 1) * C)) -
+                 (scores->begin() + long(i * C)));
+  return out;
 }
 
 }  // namespace cropsight::pipeline

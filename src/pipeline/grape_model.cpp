@@ -21,6 +21,8 @@ struct GrapeModel::Impl {
   bool sampled = false, farthest = false;
   int carry_k = 1;
   int votes = 1;
+  std::shared_ptr<const GrapeModel> partner;
+  double partner_weight = 0.5;
 };
 
 GrapeModel::~GrapeModel() = default;
@@ -53,32 +55,68 @@ GrapeModel GrapeModel::load(const std::filesystem::path& path, int threads) {
   return m;
 }
 
-std::vector<int> GrapeModel::segment(const Cloud& cloud) const {
-  if (impl_->gbdt) return segment_grape_gbdt(*impl_->gbdt, cloud, impl_->threads);
-  if (!impl_->sampled) return impl_->net->segment(cloud, nullptr, impl_->votes);
-  if (cloud.empty()) return {};
+namespace {
+std::vector<int> argmax_rows(const std::vector<float>& s, std::size_t rows) {
+  const std::size_t C = rows ? s.size() / rows : 0;
+  std::vector<int> out(rows);
+  for (std::size_t i = 0; i < rows; ++i) out[i] = int(std::max_element(&s[i * C], &s[i * C] + C) - &s[i * C]);
+  return out;
+}
+}  // namespace
+
+std::vector<float> GrapeModel::scores(const Cloud& cloud) const {
+  std::vector<float> s;
+  if (cloud.empty()) return s;
+  if (impl_->gbdt) {
+    segment_grape_gbdt(*impl_->gbdt, cloud, impl_->threads, &s);
+    return s;
+  }
+  if (!impl_->sampled) {
+    impl_->net->segment(cloud, nullptr, impl_->votes, &s);
+    return s;
+  }
   GrapeFeatureConfig fc;
   fc.carry_k = impl_->carry_k;
   const int C = impl_->net->config().num_classes, V = impl_->votes;
-  if (V == 1) {
-    const auto idx = impl_->net->sample_for_pass(cloud, impl_->farthest);
-    return grape_carry_back(cloud, idx, impl_->net->predict_at(cloud, idx), fc, C, impl_->threads);
-  }
-  // Soft vote of the passes: each pass's class probabilities, carried back to every point
-  // (normalised colour-guided votes), summed; the largest sum wins.
-  std::vector<float> sum(cloud.size() * std::size_t(C), 0.f), proba, scores;
+  std::vector<float> proba, one;
   for (int v = 0; v < V; ++v) {
     const auto idx = impl_->net->sample_for_pass(cloud, impl_->farthest, v);
     const auto labels = impl_->net->predict_at(cloud, idx, 2.f * float(M_PI) * float(v) / float(V), &proba);
-    grape_carry_back(cloud, idx, labels, fc, C, impl_->threads, &proba, &scores);
-    for (std::size_t k = 0; k < sum.size(); ++k) sum[k] += scores[k];
+    grape_carry_back(cloud, idx, labels, fc, C, impl_->threads, &proba, &one);
+    if (s.empty()) s.assign(one.size(), 0.f);
+    for (std::size_t k = 0; k < s.size(); ++k) s[k] += one[k] / float(V);
   }
-  std::vector<int> out(cloud.size());
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    const float* c = &sum[i * std::size_t(C)];
-    out[i] = int(std::max_element(c, c + C) - c);
+  return s;
+}
+
+void GrapeModel::set_ensemble(std::shared_ptr<const GrapeModel> partner, double weight) {
+  if (!(weight >= 0.0 && weight <= 1.0)) throw Error("--ensemble-weight", "must be within [0, 1]");
+  impl_->partner = std::move(partner);
+  impl_->partner_weight = weight;
+}
+
+std::vector<int> GrapeModel::segment(const Cloud& cloud) const {
+  if (impl_->partner) {
+    std::vector<float> a = scores(cloud);
+    const std::vector<float> b = impl_->partner->scores(cloud);
+    if (a.size() != b.size()) throw Error("grape ensemble", "the two models differ in their number of classes");
+    const float w = float(impl_->partner_weight);
+    for (std::size_t k = 0; k < a.size(); ++k) a[k] = (1.f - w) * a[k] + w * b[k];
+    return argmax_rows(a, cloud.size());
   }
-  return out;
+  if (impl_->gbdt) return segment_grape_gbdt(*impl_->gbdt, cloud, impl_->threads);
+  if (!impl_->sampled) return impl_->net->segment(cloud, nullptr, impl_->votes);
+  if (cloud.empty()) return {};
+  if (impl_->votes == 1) {
+    GrapeFeatureConfig fc;
+    fc.carry_k = impl_->carry_k;
+    const auto idx = impl_->net->sample_for_pass(cloud, impl_->farthest);
+    return grape_carry_back(cloud, idx, impl_->net->predict_at(cloud, idx), fc, impl_->net->config().num_classes,
+                            impl_->threads);
+  }
+  // Soft vote of the passes (scores(): each pass's class probabilities carried back to every
+  // point, averaged); the largest wins.
+  return argmax_rows(scores(cloud), cloud.size());
 }
 
 void GrapeModel::set_sampled(bool sampled, bool farthest, int carry_k) {

@@ -62,6 +62,18 @@ TEST(GrapeCli, TrainEvalSegmentAndBadInput) {
     EXPECT_EQ(r.exit_code, 2) << votes;
     EXPECT_NE(r.err.find("--votes"), std::string::npos) << r.err;
   }
+  // An ensemble with itself runs; a weight without a partner, or out of range, is an error.
+  r = cropsight::testing::run_cli("eval grape --data '" + data + "' --model '" + model + "' --ensemble '" + model +
+                                  "' --ensemble-weight 0.3 --fold 1/2 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["clouds"], j["clouds"]);
+  for (const char* bad : {" --ensemble-weight 0.3", " --ensemble-weight 2 --ensemble '__M__'"}) {
+    std::string args = std::string("eval grape --data '") + data + "' --model '" + model + "'" + bad;
+    if (const auto at = args.find("__M__"); at != std::string::npos) args.replace(at, 5, model);
+    r = cropsight::testing::run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_NE(r.err.find("--ensemble-weight"), std::string::npos) << r.err;
+  }
 
   std::ofstream(t / "bad.txt") << "1 2 3\n";
   r = cropsight::testing::run_cli("segment grape --model '" + model + "' --input '" + (t / "bad.txt").string() +

@@ -74,4 +74,49 @@ TEST(GrapeModel, SampledModeMatchesTheNetworksNearestNeighbourCarryBack) {
   EXPECT_THROW(net.predict_at(big, {0, 1, 2}), Error);
   EXPECT_TRUE(model.segment(Cloud{}).empty());
 }
+// Ensemble: the argmax of (1 - w) · own scores + w · partner's. w = 0 is the model alone, w = 1
+// the partner alone; scores() rows are probabilities.
+TEST(GrapeModel, EnsembleMixesTheTwoModelsScores) {
+  nn::PointNetConfig cfg;
+  cfg.num_points = 64;
+  cfg.sa1_points = 16, cfg.sa2_points = 8, cfg.sa3_points = 4;
+  cfg.k1 = cfg.k2 = 8, cfg.k3 = 4;
+  cfg.width = 4;
+  cfg.threads = 1;
+  nn::PointSegmenter a(cfg), b(cfg);
+  const std::vector<Cloud> batch = {sphere_cloud(1, 64), sphere_cloud(2, 64)};
+  for (int i = 0; i < 5; ++i) a.train_step(batch);
+  for (int i = 0; i < 2; ++i) b.train_step(batch);
+  cropsight::testing::TempDir t;
+  a.save(t / "a.pt");
+  b.save(t / "b.pt");
+  auto ma = pipeline::GrapeModel::load(t / "a.pt", 1);
+  const auto mb = std::make_shared<const pipeline::GrapeModel>(pipeline::GrapeModel::load(t / "b.pt", 1));
+  const Cloud big = sphere_cloud(3, 300);
+  const auto alone = ma.segment(big), partner = mb->segment(big);
+  const auto sa = ma.scores(big), sb = mb->scores(big);
+  ASSERT_EQ(sa.size(), big.size() * 6);
+  for (std::size_t i = 0; i < big.size(); ++i) {
+    float sum = 0.f;
+    for (int c = 0; c < 6; ++c) sum += sa[i * 6 + std::size_t(c)];
+    EXPECT_NEAR(sum, 1.f, 1e-4f);
+  }
+  ma.set_ensemble(mb, 0.0);
+  EXPECT_EQ(ma.segment(big), alone);
+  ma.set_ensemble(mb, 1.0);
+  EXPECT_EQ(ma.segment(big), partner);
+  ma.set_ensemble(mb, 0.5);
+  const auto mixed = ma.segment(big);
+  for (std::size_t i = 0; i < big.size(); ++i) {
+    int best = 0;
+    for (int c = 1; c < 6; ++c)
+      if (sa[i * 6 + std::size_t(c)] + sb[i * 6 + std::size_t(c)] >
+          sa[i * 6 + std::size_t(best)] + sb[i * 6 + std::size_t(best)])
+        best = c;
+    EXPECT_EQ(mixed[i], best) << i;
+  }
+  EXPECT_THROW(ma.set_ensemble(mb, 1.5), Error);
+  ma.set_ensemble(nullptr);
+  EXPECT_EQ(ma.segment(big), alone);
+}
 }  // namespace

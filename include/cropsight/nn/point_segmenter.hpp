@@ -98,7 +98,10 @@ class PointSegmenter {
   /// `votes` > 1: test-time augmentation — the cloud is covered `votes` times, each with another
   /// chunking and rotated by 2πv/votes about the vertical (y) axis, class probabilities averaged
   /// (`votes` times the passes). Throws Error for votes < 1.
-  std::vector<int> segment(const Cloud& cloud, int* passes_out = nullptr, int votes = 1) const;
+  /// `proba` (optional) receives the per-point class probabilities (cloud size × num_classes,
+  /// row-major; averaged over the votes).
+  std::vector<int> segment(const Cloud& cloud, int* passes_out = nullptr, int votes = 1,
+                           std::vector<float>* proba = nullptr) const;
 
   /// Paper variant: one pass on `num_points` samples, labels carried back to every point by
   /// nearest neighbour. The sample is drawn at random (seeded, deterministic) like the training

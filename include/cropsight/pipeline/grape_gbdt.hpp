@@ -55,7 +55,9 @@ std::vector<int> grape_carry_back(const Cloud& cloud, const std::vector<int>& sa
 
 /// Labels of every point of `cloud` (needs normals and colours). With a fast-recipe model
 /// (recipe sample = N > 0) the model classifies a fixed-seed sample of N points and every other
-/// point takes the label of its nearest sample point.
-std::vector<int> segment_grape_gbdt(const learning::Gbdt& model, const Cloud& cloud, int threads = 2);
+/// point takes the label of its nearest sample point. `scores` (optional) receives per point the
+/// class probabilities (cloud size × classes, row-major; carried-back votes for a fast recipe).
+std::vector<int> segment_grape_gbdt(const learning::Gbdt& model, const Cloud& cloud, int threads = 2,
+                                    std::vector<float>* scores = nullptr);
 
 }  // namespace cropsight::pipeline

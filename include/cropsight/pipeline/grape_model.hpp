@@ -45,6 +45,16 @@ class GrapeModel {
   void set_votes(int votes);
   int votes() const;
 
+  /// Per-point class probabilities of segment() (cloud size × 6 classes, row-major, rows sum
+  /// to 1): the network's averaged softmax (every point), its carried-back votes (sampled), or
+  /// the GBDT's probabilities; segment() is their argmax, except for the paper's single sampled
+  /// pass, which carries back the samples' hard labels.
+  std::vector<float> scores(const Cloud& cloud) const;
+  /// Ensemble: segment() takes the argmax of (1 − weight) · this model's scores + weight ·
+  /// `partner`'s (e.g. a network and a GBDT, whose errors differ). Throws Error for a weight
+  /// outside [0, 1] or a partner with another number of classes; nullptr removes the partner.
+  void set_ensemble(std::shared_ptr<const GrapeModel> partner, double weight = 0.5);
+
  private:
   GrapeModel() = default;
   struct Impl;
