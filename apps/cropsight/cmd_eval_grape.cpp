@@ -2,7 +2,7 @@
 // trained grape segmentation model on labelled text clouds.
 //
 //   cropsight eval grape --data DIR --model MODEL [--fold k/K] [--limit N] [--sampled [--sampling random|fps]
-//   [--carry-k K]] [--json]
+//   [--carry-k K]] [--votes N] [--ensemble MODEL2 [--ensemble-weight W]] [--json]
 //
 // --fold k/K evaluates only the clouds of fold k (the split of `train grape --val-fold k/K`),
 // so that a model is only ever scored on clouds it was not trained on.
@@ -46,6 +46,7 @@ void run(const EvalGrapeOptions& o) {
     auto j = nlohmann::json::parse(ev.json());
     j["model"] = model.kind();
     if (model.kind() != "gbdt") j["mode"] = o.mode.name();
+    o.mode.describe(j);
     print_json(j);
   } else {
     std::printf("model %s (%s)\n%s", o.model.c_str(), model.kind().c_str(), ev.text().c_str());

@@ -2,7 +2,8 @@
 // the cloud back in the dataset's format with the predicted label in the last column.
 //
 //   cropsight segment grape --model MODEL --input CLOUD.txt --out LABELLED.txt
-//                           [--sampled [--sampling random|fps] [--carry-k K]] [--json]
+//                           [--sampled [--sampling random|fps] [--carry-k K]] [--votes N]
+//                           [--ensemble MODEL2 [--ensemble-weight W]] [--json]
 #include <chrono>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -34,12 +35,10 @@ void run(const SegmentGrapeOptions& o) {
   for (int l : cloud.labels)
     if (l >= 0 && l < 6) ++counts[std::size_t(l)];
   if (o.common.json) {
-    print_json({{"input", o.input},
-                {"out", o.out},
-                {"points", cloud.size()},
-                {"label_counts", counts},
-                {"ms", ms},
-                {"mode", o.mode.name()}});
+    nlohmann::json j = {{"input", o.input},       {"out", o.out}, {"points", cloud.size()},
+                        {"label_counts", counts}, {"ms", ms},     {"mode", o.mode.name()}};
+    o.mode.describe(j);
+    print_json(j);
   } else {
     std::printf("%zu points labelled in %.1f ms -> %s\n", cloud.size(), ms, o.out.c_str());
   }

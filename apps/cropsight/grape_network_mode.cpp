@@ -34,4 +34,12 @@ void GrapeNetworkMode::apply(pipeline::GrapeModel& model, int threads) const {
     throw Error("--ensemble-weight", "needs --ensemble");
 }
 
+void GrapeNetworkMode::describe(nlohmann::json& j) const {
+  j["votes"] = votes;
+  if (!ensemble.empty()) {
+    j["ensemble"] = ensemble;
+    j["ensemble_weight"] = ensemble_weight;
+  }
+}
+
 }  // namespace cropsight::cli

@@ -3,6 +3,7 @@
 // the paper's one sampled pass with --sampling and --carry-k (pipeline::GrapeModel::set_sampled),
 // and --votes (test-time augmentation of the every-point mode, GrapeModel::set_votes).
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "cropsight/pipeline/grape_model.hpp"
@@ -22,6 +23,8 @@ struct GrapeNetworkMode {
   /// with --sampled, or --carry-k < 1).
   void apply(pipeline::GrapeModel& model, int threads = 2) const;
   const char* name() const { return sampled ? "sampled" : "every-point"; }
+  /// Adds "votes" and, with an ensemble, "ensemble" and "ensemble_weight" to a JSON report.
+  void describe(nlohmann::json& j) const;
 };
 
 }  // namespace cropsight::cli

@@ -66,7 +66,10 @@ TEST(GrapeCli, TrainEvalSegmentAndBadInput) {
   r = cropsight::testing::run_cli("eval grape --data '" + data + "' --model '" + model + "' --ensemble '" + model +
                                   "' --ensemble-weight 0.3 --fold 1/2 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(nlohmann::json::parse(r.out)["clouds"], j["clouds"]);
+  const auto je = nlohmann::json::parse(r.out);
+  EXPECT_EQ(je["clouds"], j["clouds"]);
+  EXPECT_EQ(je["ensemble_weight"], 0.3);
+  EXPECT_EQ(je["votes"], 1);
   for (const char* bad : {" --ensemble-weight 0.3", " --ensemble-weight 2 --ensemble '__M__'"}) {
     std::string args = std::string("eval grape --data '") + data + "' --model '" + model + "'" + bad;
     if (const auto at = args.find("__M__"); at != std::string::npos) args.replace(at, 5, model);
