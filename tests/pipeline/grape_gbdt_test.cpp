@@ -283,6 +283,15 @@ TEST(GrapeModel, ShippedNetworksLoad) {
     EXPECT_EQ(model.features(), "xyzrgbn") << name;
     EXPECT_LT(std::filesystem::file_size(path), 20u << 20) << name;
   }
+  // The GBDTs: the fast recipes record their sample size (1024, and 2048 for the ensemble
+  // partner); the full recipe labels every point.
+  for (const auto& [name, sample] : std::vector<std::pair<std::string, int>>{
+           {"grape-gbdt-fast.json", 1024}, {"grape-gbdt-fast2048.json", 2048}, {"grape-gbdt.json", 0}}) {
+    const auto path = cropsight::testing::source_dir() / "models" / name;
+    const auto gbdt = learning::Gbdt::load(path, 1);
+    EXPECT_EQ(GrapeFeatureConfig::from_recipe(gbdt.attribute("cropsight.features"), name).sample, sample) << name;
+    EXPECT_EQ(GrapeModel::load(path, 1).kind(), "gbdt") << name;
+  }
 }
 
 TEST(GrapeModel, ShippedNetworkOnHeldOutClouds) {
