@@ -70,6 +70,21 @@ TemporalFilter::TemporalFilter(const TemporalFilterConfig& cfg, const measure::H
   v_c_ = Eigen::Vector3d(cfg_.initial_velocity[0], cfg_.initial_velocity[1], cfg_.initial_velocity[2]);
 }
 
+TrackedHead TemporalFilter::new_head(int frame, const Eigen::Vector3d& p) {
+  TrackedHead h;
+  h.id = next_id_++;
+  h.score = cfg_.initial_score;
+  h.first_frame = h.last_frame = frame;
+  h.position = p;
+  return h;
+}
+
+void TemporalFilter::touch(TrackedHead& h, int frame) const {
+  h.score += cfg_.score_increment;
+  h.last_frame = frame;
+  h.missed = 0;
+}
+
 void TemporalFilter::add_sample(TrackedHead& h, const Eigen::Vector3d& p, const HeadObservation& d) const {
   const double n = double(h.whole_frames());  // 0 for a head placed by partial views: they are replaced
   h.position = (h.position * n + p) / (n + 1.0);
@@ -178,18 +193,12 @@ FrameAssociation TemporalFilter::update(int frame, const std::vector<HeadObserva
     const Eigen::Vector3d p = x_c_ + rel[k];
     if (assoc[k] >= 0) {
       auto& h = tracked_[std::size_t(assoc[k])];
-      h.score += cfg_.score_increment;
-      h.last_frame = frame;
-      h.missed = 0;
+      touch(h, frame);
       add_sample(h, p, d);
       seen[std::size_t(assoc[k])] = 1;
       out.track_ids[std::size_t(used[k])] = h.id;
     } else {
-      TrackedHead h;
-      h.id = next_id_++;
-      h.score = cfg_.initial_score;
-      h.first_frame = h.last_frame = frame;
-      h.position = p;
+      TrackedHead h = new_head(frame, p);
       add_sample(h, p, d);
       h.position = p;
       tracked_.push_back(h);
@@ -220,9 +229,7 @@ FrameAssociation TemporalFilter::update(int frame, const std::vector<HeadObserva
     }
     if (nearest >= 0) {
       auto& h = tracked_[std::size_t(nearest)];
-      h.score += cfg_.score_increment;
-      h.last_frame = frame;
-      h.missed = 0;
+      touch(h, frame);
       if (h.whole_frames() == 0) {  // placed by partial detections only: average them
         const double m = double(h.partial_frames);
         h.position = (h.position * m + p) / (m + 1.0);
@@ -233,11 +240,7 @@ FrameAssociation TemporalFilter::update(int frame, const std::vector<HeadObserva
       seen[std::size_t(nearest)] = 1;
       out.track_ids[j] = h.id;
     } else {
-      TrackedHead h;
-      h.id = next_id_++;
-      h.score = cfg_.initial_score;
-      h.first_frame = h.last_frame = frame;
-      h.position = p;
+      TrackedHead h = new_head(frame, p);
       h.mean_detection_score = double(d.score);
       h.partial_frames = h.frames_seen = 1;
       tracked_.push_back(h);

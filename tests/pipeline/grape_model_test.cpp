@@ -27,13 +27,18 @@ Cloud sphere_cloud(std::uint32_t seed, int n) {
   return c;
 }
 
-TEST(GrapeModel, SampledModeMatchesTheNetworksNearestNeighbourCarryBack) {
+nn::PointNetConfig tiny_net_config() {
   nn::PointNetConfig cfg;
   cfg.num_points = 64;
   cfg.sa1_points = 16, cfg.sa2_points = 8, cfg.sa3_points = 4;
   cfg.k1 = cfg.k2 = 8, cfg.k3 = 4;
   cfg.width = 4;
   cfg.threads = 1;
+  return cfg;
+}
+
+TEST(GrapeModel, SampledModeMatchesTheNetworksNearestNeighbourCarryBack) {
+  const nn::PointNetConfig cfg = tiny_net_config();
   nn::PointSegmenter net(cfg);
   const std::vector<Cloud> batch = {sphere_cloud(1, 64), sphere_cloud(2, 64)};
   for (int i = 0; i < 5; ++i) net.train_step(batch);
@@ -77,12 +82,7 @@ TEST(GrapeModel, SampledModeMatchesTheNetworksNearestNeighbourCarryBack) {
 // Ensemble: the argmax of (1 - w) · own scores + w · partner's. w = 0 is the model alone, w = 1
 // the partner alone; scores() rows are probabilities.
 TEST(GrapeModel, EnsembleMixesTheTwoModelsScores) {
-  nn::PointNetConfig cfg;
-  cfg.num_points = 64;
-  cfg.sa1_points = 16, cfg.sa2_points = 8, cfg.sa3_points = 4;
-  cfg.k1 = cfg.k2 = 8, cfg.k3 = 4;
-  cfg.width = 4;
-  cfg.threads = 1;
+  const nn::PointNetConfig cfg = tiny_net_config();
   nn::PointSegmenter a(cfg), b(cfg);
   const std::vector<Cloud> batch = {sphere_cloud(1, 64), sphere_cloud(2, 64)};
   for (int i = 0; i < 5; ++i) a.train_step(batch);

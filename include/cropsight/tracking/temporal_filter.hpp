@@ -162,6 +162,8 @@ class TemporalFilter {
 
  private:
   void add_sample(TrackedHead& h, const Eigen::Vector3d& p, const HeadObservation& d) const;
+  TrackedHead new_head(int frame, const Eigen::Vector3d& p);  ///< next id, initial score, at p
+  void touch(TrackedHead& h, int frame) const;                ///< seen this frame: score, last frame
 
   TemporalFilterConfig cfg_;
   measure::HeadSizer sizer_;
