@@ -13,6 +13,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <optional>
 
 #include "cropsight/geometry/farthest_point.hpp"
@@ -111,6 +112,24 @@ void BM_GrapeNetworkSegment(benchmark::State& state) {
 // 0: every point gets its own pass (eval grape's default); k > 0: the paper's mode, one pass on
 // a random sample, carried back by the k-nearest colour-guided vote (1 = nearest neighbour).
 BENCHMARK(BM_GrapeNetworkSegment)->Arg(0)->Arg(1)->Arg(4)->Unit(benchmark::kMillisecond);
+
+// Test-time votes and the ensemble (docs/pipelines/grape-bunches.md): the one-pass mode with
+// `votes` rotated samples (colour-guided 4-NN carry-back), alone (second argument 0) or mixed
+// with models/grape-gbdt-fast2048.json at weight 0.3 (1), the best model within 0.3 s.
+void BM_GrapeNetworkVotes(benchmark::State& state) {
+  const fs::path root = fs::path(CROPSIGHT_SOURCE_DIR) / "models";
+  const fs::path net = root / "grape-pointresnet.pt", gbdt = root / "grape-gbdt-fast2048.json";
+  if (!grape_cloud() || !fs::exists(net) || !fs::exists(gbdt))
+    return state.SkipWithError("needs grape data, models/grape-pointresnet.pt and grape-gbdt-fast2048.json");
+  auto model = pipeline::GrapeModel::load(net, 2);
+  model.set_sampled(true, false, 4);
+  model.set_votes(int(state.range(0)));
+  if (state.range(1))
+    model.set_ensemble(std::make_shared<const pipeline::GrapeModel>(pipeline::GrapeModel::load(gbdt, 2)), 0.3);
+  for (auto _ : state) benchmark::DoNotOptimize(model.segment(*grape_cloud()));
+  state.SetLabel(state.range(1) ? "network votes + fast2048 GBDT" : "network votes");
+}
+BENCHMARK(BM_GrapeNetworkVotes)->Args({1, 0})->Args({6, 0})->Args({6, 1})->Unit(benchmark::kMillisecond);
 
 void BM_KnnNormalsOurs(benchmark::State& state) {
   if (!grape_cloud()) return state.SkipWithError("grape data not unpacked");
