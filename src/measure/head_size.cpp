@@ -1,6 +1,6 @@
 // Head sizing: bounding-box and convex-hull estimators (Kusumam et al. §4.4), bias correction and
-// market window. qhull is reached through pcl::ConvexHull, the library implementation the paper
-// used; PCL stays inside this file.
+// market window. The hull is our Quickhull (quickhull.hpp) or qhull through pcl::ConvexHull, the
+// library implementation the paper used; PCL stays inside this file.
 #include "cropsight/measure/head_size.hpp"
 
 #include <pcl/point_cloud.h>
@@ -75,8 +75,9 @@ bool spans_volume(const std::vector<Eigen::Vector3f>& pts) {
 
 namespace {
 
-// The hull estimator on `all` (the head's points), with qhull run on `hull_input`, a subset that
-// holds every hull vertex of `all` (all itself, or the row/column filter's candidates).
+// The hull estimator on `all` (the head's points), the hull built (Quickhull, or qhull when asked
+// for or when Quickhull declines) from `hull_input`, a subset that holds every hull vertex of
+// `all` (all itself, or the row/column filter's candidates).
 double hull_diameter(const std::vector<Eigen::Vector3f>& all, const std::vector<Eigen::Vector3f>& hull_input,
                      int* vertices, HullEngine engine) {
   if (vertices) *vertices = 0;

@@ -13,6 +13,7 @@
 #include <numeric>
 #include <random>
 
+#include "cropsight/core/class_scores.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/geometry/farthest_point.hpp"
 #include "cropsight/geometry/knn_normals.hpp"
@@ -207,6 +208,14 @@ Prepared prepare(const Cloud& c, const std::string& features) {
 
 // Fills row i of xyz (N,3) and feats (N,C) from point `src` with the channel order x y z
 // [r g b] [nx ny nz].
+// Rotation by `a` radians about the vertical axis, y in the camera frame (y down): the training
+// augmentation and the test-time votes.
+Eigen::Matrix3f rotation_about_vertical(float a) {
+  Eigen::Matrix3f R;
+  R << std::cos(a), 0, std::sin(a), 0, 1, 0, -std::sin(a), 0, std::cos(a);
+  return R;
+}
+
 void fill_point(const Prepared& p, int src, float* xyz, float* f, const Eigen::Matrix3f& R, float scale,
                 const Eigen::Vector3f& jitter, const Eigen::Vector3f& dcol) {
   const Eigen::Vector3f x = scale * (R * p.xyz[std::size_t(src)]) + jitter;
@@ -271,8 +280,7 @@ struct PointSegmenter::Impl {
       if (aug) {
         std::uniform_real_distribution<float> u(0.f, 1.f);
         const float a = u(*aug) * 2.f * float(M_PI);
-        // Rotation about the vertical axis: y (camera frame: y down).
-        R << std::cos(a), 0, std::sin(a), 0, 1, 0, -std::sin(a), 0, std::cos(a);
+        R = rotation_about_vertical(a);
         scale = float(cfg.scale_min + (cfg.scale_max - cfg.scale_min) * u(*aug));
         const float cj = float(cfg.colour_jitter);
         dcol = Eigen::Vector3f::Constant((u(*aug) * 2 - 1) * cj) +
@@ -324,9 +332,7 @@ struct PointSegmenter::Impl {
     const std::size_t per_batch = std::size_t(std::max(1, cfg.batch_size));
     for (int v = 0; v < votes; ++v) {
       const std::vector<int> perm = geometry::random_sample(n, n, cfg.seed + std::uint64_t(v));
-      const float a = 2.f * float(M_PI) * float(v) / float(votes);
-      Eigen::Matrix3f R;
-      R << std::cos(a), 0, std::sin(a), 0, 1, 0, -std::sin(a), 0, std::cos(a);  // about y (vertical)
+      const Eigen::Matrix3f R = rotation_about_vertical(2.f * float(M_PI) * float(v) / float(votes));
       // Pad the last chunk with points drawn from the rest so every pass has N points.
       std::vector<std::vector<int>> idx(chunks);
       for (std::size_t c = 0; c < chunks; ++c)
@@ -355,8 +361,7 @@ struct PointSegmenter::Impl {
           }
       }
     }
-    if (soft)
-      for (std::size_t i = 0; i < n; ++i) out[i] = int(std::max_element(&prob[i * C], &prob[i * C] + C) - &prob[i * C]);
+    if (soft) out = argmax_rows(prob.data(), n, C);
     if (proba_out) {
       for (float& x : prob) x /= float(votes);
       *proba_out = std::move(prob);
@@ -529,8 +534,7 @@ std::vector<int> PointSegmenter::predict_at(const Cloud& cloud, const std::vecto
   torch::NoGradGuard ng;
   impl_->net->eval();
   const Prepared p = prepare(cloud, impl_->cfg.features);
-  Eigen::Matrix3f R;
-  R << std::cos(angle), 0, std::sin(angle), 0, 1, 0, -std::sin(angle), 0, std::cos(angle);  // about y
+  const Eigen::Matrix3f R = rotation_about_vertical(angle);
   auto [xyz, feats, labels] = impl_->batch({&p}, {idx}, nullptr, angle != 0.f ? &R : nullptr);
   const auto logits = impl_->net->forward(xyz, feats);
   if (proba) {

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <random>
 
+#include "cropsight/core/class_scores.hpp"
 #include "cropsight/core/error.hpp"
 #include "geometry/point_kdtree.hpp"
 #include "parallel_rows.hpp"
@@ -167,12 +168,8 @@ std::vector<int> segment_grape_gbdt(const learning::Gbdt& model, const Cloud& cl
   if (fc.sample > 0 && std::size_t(fc.sample) < cloud.size()) {
     const std::vector<int> sample = grape_sample(cloud.size(), fc, fc.sample_seed);
     const std::vector<float> X = grape_sample_features(cloud, fc, sample);
-    const std::size_t C = std::size_t(model.num_class());
     const std::vector<float> proba = model.predict_proba(X, sample.size(), grape_feature_count(fc));
-    std::vector<int> sample_labels(sample.size());
-    for (std::size_t s = 0; s < sample.size(); ++s)
-      sample_labels[s] = int(std::max_element(proba.begin() + long(s * C), proba.begin() + long((s + 1) * C)) -
-                             (proba.begin() + long(s * C)));
+    const std::vector<int> sample_labels = argmax_rows(proba.data(), sample.size(), std::size_t(model.num_class()));
     return grape_carry_back(cloud, sample, sample_labels, fc, model.num_class(), threads,
                             fc.carry_soft ? &proba : nullptr, scores);
   }
@@ -182,12 +179,7 @@ std::vector<int> segment_grape_gbdt(const learning::Gbdt& model, const Cloud& cl
                                    : grape_point_features(cloud, fc);
   if (!scores) return model.predict(X, cloud.size(), grape_feature_count(fc));
   *scores = model.predict_proba(X, cloud.size(), grape_feature_count(fc));
-  const std::size_t C = std::size_t(model.num_class());
-  std::vector<int> out(cloud.size());
-  for (std::size_t i = 0; i < out.size(); ++i)
-    out[i] = int(std::max_element(scores->begin() + long(i * C), scores->begin() + long((i + 1) * C)) -
-                 (scores->begin() + long(i * C)));
-  return out;
+  return argmax_rows(scores->data(), cloud.size(), std::size_t(model.num_class()));
 }
 
 }  // namespace cropsight::pipeline

@@ -6,6 +6,7 @@
 #include <numeric>
 #include <random>
 
+#include "cropsight/core/class_scores.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/learning/gbdt.hpp"
@@ -55,15 +56,6 @@ GrapeModel GrapeModel::load(const std::filesystem::path& path, int threads) {
   return m;
 }
 
-namespace {
-std::vector<int> argmax_rows(const std::vector<float>& s, std::size_t rows) {
-  const std::size_t C = rows ? s.size() / rows : 0;
-  std::vector<int> out(rows);
-  for (std::size_t i = 0; i < rows; ++i) out[i] = int(std::max_element(&s[i * C], &s[i * C] + C) - &s[i * C]);
-  return out;
-}
-}  // namespace
-
 std::vector<float> GrapeModel::scores(const Cloud& cloud) const {
   std::vector<float> s;
   if (cloud.empty()) return s;
@@ -97,12 +89,13 @@ void GrapeModel::set_ensemble(std::shared_ptr<const GrapeModel> partner, double 
 
 std::vector<int> GrapeModel::segment(const Cloud& cloud) const {
   if (impl_->partner) {
+    if (cloud.empty()) return {};
     std::vector<float> a = scores(cloud);
     const std::vector<float> b = impl_->partner->scores(cloud);
     if (a.size() != b.size()) throw Error("grape ensemble", "the two models differ in their number of classes");
     const float w = float(impl_->partner_weight);
     for (std::size_t k = 0; k < a.size(); ++k) a[k] = (1.f - w) * a[k] + w * b[k];
-    return argmax_rows(a, cloud.size());
+    return argmax_rows(a.data(), cloud.size(), a.size() / cloud.size());
   }
   if (impl_->gbdt) return segment_grape_gbdt(*impl_->gbdt, cloud, impl_->threads);
   if (!impl_->sampled) return impl_->net->segment(cloud, nullptr, impl_->votes);
@@ -116,7 +109,8 @@ std::vector<int> GrapeModel::segment(const Cloud& cloud) const {
   }
   // Soft vote of the passes (scores(): each pass's class probabilities carried back to every
   // point, averaged); the largest wins.
-  return argmax_rows(scores(cloud), cloud.size());
+  const std::vector<float> s = scores(cloud);
+  return argmax_rows(s.data(), cloud.size(), s.size() / cloud.size());
 }
 
 void GrapeModel::set_sampled(bool sampled, bool farthest, int carry_k) {
