@@ -115,21 +115,21 @@ BENCHMARK(BM_GrapeNetworkSegment)->Arg(0)->Arg(1)->Arg(4)->Unit(benchmark::kMill
 
 // Test-time votes and the ensemble (docs/pipelines/grape-bunches.md): the one-pass mode with
 // `votes` rotated samples (colour-guided 4-NN carry-back), alone (second argument 0) or mixed
-// with models/grape-gbdt-fast2048.json at weight 0.3 (1), the best model within 0.3 s.
+// with models/grape-gbdt-fast4096.json at weight 0.5 (1), the best model within 0.3 s.
 void BM_GrapeNetworkVotes(benchmark::State& state) {
   const fs::path root = fs::path(CROPSIGHT_SOURCE_DIR) / "models";
-  const fs::path net = root / "grape-pointresnet.pt", gbdt = root / "grape-gbdt-fast2048.json";
+  const fs::path net = root / "grape-pointresnet.pt", gbdt = root / "grape-gbdt-fast4096.json";
   if (!grape_cloud() || !fs::exists(net) || !fs::exists(gbdt))
-    return state.SkipWithError("needs grape data, models/grape-pointresnet.pt and grape-gbdt-fast2048.json");
+    return state.SkipWithError("needs grape data, models/grape-pointresnet.pt and grape-gbdt-fast4096.json");
   auto model = pipeline::GrapeModel::load(net, 2);
   model.set_sampled(true, false, 4);
   model.set_votes(int(state.range(0)));
   if (state.range(1))
-    model.set_ensemble(std::make_shared<const pipeline::GrapeModel>(pipeline::GrapeModel::load(gbdt, 2)), 0.3);
+    model.set_ensemble(std::make_shared<const pipeline::GrapeModel>(pipeline::GrapeModel::load(gbdt, 2)), 0.5);
   for (auto _ : state) benchmark::DoNotOptimize(model.segment(*grape_cloud()));
-  state.SetLabel(state.range(1) ? "network votes + fast2048 GBDT" : "network votes");
+  state.SetLabel(state.range(1) ? "network votes + fast4096 GBDT" : "network votes");
 }
-BENCHMARK(BM_GrapeNetworkVotes)->Args({1, 0})->Args({6, 0})->Args({6, 1})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GrapeNetworkVotes)->Args({1, 0})->Args({4, 1})->Args({6, 0})->Args({6, 1})->Unit(benchmark::kMillisecond);
 
 void BM_KnnNormalsOurs(benchmark::State& state) {
   if (!grape_cloud()) return state.SkipWithError("grape data not unpacked");
