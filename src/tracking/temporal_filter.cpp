@@ -119,6 +119,7 @@ FrameAssociation TemporalFilter::update(int frame, const std::vector<HeadObserva
   } else {
     x_pred = x_c_ + double(steps) * v_c_;
   }
+  if (!started_) first_frame_ = frame;
   started_ = true;
   last_frame_ = frame;
 
@@ -273,8 +274,11 @@ std::vector<TrackedHead> TemporalFilter::finish() {
   for (auto& h : tracked_) mapped_.push_back(h);
   tracked_.clear();
   std::vector<TrackedHead> map;
-  for (const auto& h : mapped_)
-    if (h.score >= cfg_.min_track_score) map.push_back(h);
+  const double edge = cfg_.edge_track_score < 0.0 ? cfg_.min_track_score : cfg_.edge_track_score;
+  for (const auto& h : mapped_) {
+    const bool cut = h.first_frame == first_frame_ || h.last_frame == last_frame_;
+    if (h.score >= (cut ? std::min(edge, cfg_.min_track_score) : cfg_.min_track_score)) map.push_back(h);
+  }
   std::sort(map.begin(), map.end(), [](const TrackedHead& a, const TrackedHead& b) { return a.id < b.id; });
   return map;
 }

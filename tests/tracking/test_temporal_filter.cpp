@@ -177,6 +177,38 @@ TEST(TemporalFilter, FalsePositivesAreDroppedByScore) {
   for (const auto& h : map) EXPECT_GE(h.score, 3.0);
 }
 
+TEST(TemporalFilter, TracksCutByTheRecordingNeedFewerFrames) {
+  // Three heads each detected in exactly two frames: A in the first two frames of the recording
+  // (it was leaving the view), B in two frames mid-sequence, C in the last two (entering). A and
+  // C had frames the recording never showed; B had every chance to be seen more often.
+  Scene s;
+  s.heads = {{{0.20, 0.0, 0.1}, 100}, {{0.60, 0.05, 0.1}, 110}, {{1.30, -0.05, 0.1}, 120}};
+  auto hide = [](int f) {
+    std::vector<int> h;
+    if (f >= 2) h.push_back(0);
+    if (f != 12 && f != 13) h.push_back(1);
+    if (f < 28) h.push_back(2);
+    return h;
+  };
+  TemporalFilterConfig cfg;  // min_track_score 3, edge_track_score 2
+  TemporalFilter tf(cfg);
+  const auto map = run(tf, s, 30, hide);
+  const auto m = match(s, map);
+  EXPECT_GE(m[0], 0);  // cut at the start: 2 frames suffice
+  EXPECT_LT(m[1], 0);  // mid-sequence: still needs 3
+  EXPECT_GE(m[2], 0);  // cut at the end
+  EXPECT_EQ(map.size(), 2u);
+
+  cfg.edge_track_score = -1.0;  // the paper's single threshold
+  TemporalFilter paper(cfg);
+  EXPECT_TRUE(run(paper, s, 30, hide).empty());
+
+  cfg.edge_track_score = 3.0;
+  cfg.min_track_score = 2.0;  // never stricter at the edges than elsewhere
+  TemporalFilter loose(cfg);
+  EXPECT_EQ(run(loose, s, 30, hide).size(), 3u);
+}
+
 TEST(TemporalFilter, HeadsCloserThanTheRadiusStayTwo) {
   Scene s;
   // 3 cm apart < 5 cm, both in view from the first frame. (Had one entered the view on the second

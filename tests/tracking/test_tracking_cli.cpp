@@ -59,11 +59,19 @@ TEST_F(TrackingCli, DetectWritesTheMap) {
   const auto summary = nlohmann::json::parse(r.out);
   const auto heads = tracking::read_field_map(map);
   EXPECT_EQ(summary["map_heads"].get<std::size_t>(), heads.size());
+  const int last = 14 - 1;  // the simulated sequence's last frame
+  int unsized = 0;
   for (const auto& h : heads) {
-    EXPECT_GE(h.frames_seen, 3);  // min_track_score = 3
-    EXPECT_GT(h.bbox_mm, 30.0);
-    EXPECT_LT(h.bbox_mm, 300.0);
+    // min_track_score = 3; edge_track_score = 2 for heads seen in the first or last frame
+    EXPECT_GE(h.frames_seen, h.first_frame == 0 || h.last_frame == last ? 2 : 3) << h.id;
+    if (h.bbox_mm == 0.0) {  // placed by views cut by the image border only: not sized
+      ++unsized;
+      continue;
+    }
+    EXPECT_GT(h.bbox_mm, 30.0) << h.id;
+    EXPECT_LT(h.bbox_mm, 300.0) << h.id;
   }
+  EXPECT_LE(unsized, 1);
   const std::string lines = io::read_file(out);
   const auto first = nlohmann::json::parse(lines.substr(0, lines.find('\n')));
   ASSERT_TRUE(first.contains("heads"));

@@ -17,7 +17,9 @@
 //   5. raise the tracking score of associated heads and update their position and size by running
 //      average; unassociated detections become new heads in T;
 //   6. heads undetected for max_missed_frames frames move from T to M.
-// At the end T moves to M and heads whose score is below min_track_score are dropped.
+// At the end T moves to M and heads whose score is below min_track_score are dropped. Extension: a
+// head seen in the recording's first or last frame had frames the recording never showed (it was
+// leaving or entering the view), so it needs only edge_track_score (default 2) instead.
 //
 // Partial detections (extension): a head cut by the image border has its centroid off the head's
 // centre by up to its radius, which breaks the 5 cm association and drags the camera estimate.
@@ -52,6 +54,7 @@ struct TemporalFilterConfig {
   double initial_score = 1.0;
   double score_increment = 1.0;
   double min_track_score = 3.0;
+  double edge_track_score = 2.0;
   double min_detection_score = -1e30;
   bool use_poses = false;
   bool anchor_first_pose = true;
@@ -75,6 +78,9 @@ struct TemporalFilterConfig {
     v("min_track_score", min_track_score,
       "1; heads whose final score is below this are dropped from the map (paper: threshold, value not given; 3 "
       "= seen in 3 frames)");
+    v("edge_track_score", edge_track_score,
+      "1; the threshold for heads seen in the sequence's first or last frame, whose track the recording cut "
+      "(extension, never above min_track_score; < 0: min_track_score, the paper's single threshold)");
     v("min_detection_score", min_detection_score,
       "classifier score; detections below it are ignored by the tracker (default: keep all)");
     v("use_poses", use_poses, "bool; take x_c from poses.csv instead of estimating it (paper: no odometry, false)");
@@ -170,7 +176,7 @@ class TemporalFilter {
   FieldTransform transform_;
   Eigen::Vector3d x_c_ = Eigen::Vector3d::Zero(), v_c_ = Eigen::Vector3d::Zero();
   std::vector<TrackedHead> tracked_, mapped_;
-  int last_frame_ = -1;
+  int first_frame_ = -1, last_frame_ = -1;
   int next_id_ = 1;
   bool started_ = false, finished_ = false;
 };
