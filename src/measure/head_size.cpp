@@ -82,7 +82,9 @@ double hull_diameter(const std::vector<Eigen::Vector3f>& all, const std::vector<
                      int* vertices, HullEngine engine) {
   if (vertices) *vertices = 0;
   if (all.empty()) return 0.0;
-  if (all.size() >= 4 && hull_input.size() >= 4 && spans_volume(all)) {
+  // The flatness check runs on hull_input: it holds every hull vertex of `all`, so it is flat exactly
+  // when `all` is, and it is the smaller set (a fifth of a head's points after the filter).
+  if (all.size() >= 4 && hull_input.size() >= 4 && spans_volume(hull_input)) {
     if (QuickHull q; engine == HullEngine::quickhull && quickhull(hull_input, q)) {
       std::vector<Eigen::Vector3f> v;
       v.reserve(q.vertices.size());
