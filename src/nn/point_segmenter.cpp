@@ -206,8 +206,6 @@ Prepared prepare(const Cloud& c, const std::string& features) {
   return p;
 }
 
-// Fills row i of xyz (N,3) and feats (N,C) from point `src` with the channel order x y z
-// [r g b] [nx ny nz].
 // Rotation by `a` radians about the vertical axis, y in the camera frame (y down): the training
 // augmentation and the test-time votes.
 Eigen::Matrix3f rotation_about_vertical(float a) {
@@ -215,6 +213,9 @@ Eigen::Matrix3f rotation_about_vertical(float a) {
   R << std::cos(a), 0, std::sin(a), 0, 1, 0, -std::sin(a), 0, std::cos(a);
   return R;
 }
+
+// Fills row i of xyz (N,3) and feats (N,C) from point `src` with the channel order x y z
+// [r g b] [nx ny nz].
 
 void fill_point(const Prepared& p, int src, float* xyz, float* f, const Eigen::Matrix3f& R, float scale,
                 const Eigen::Vector3f& jitter, const Eigen::Vector3f& dcol) {

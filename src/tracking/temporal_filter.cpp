@@ -274,10 +274,13 @@ std::vector<TrackedHead> TemporalFilter::finish() {
   for (auto& h : tracked_) mapped_.push_back(h);
   tracked_.clear();
   std::vector<TrackedHead> map;
-  const double edge = cfg_.edge_track_score < 0.0 ? cfg_.min_track_score : cfg_.edge_track_score;
+  // Heads whose track the recording cut (seen in its first or last frame) need edge_track_score,
+  // never more than min_track_score; < 0 keeps the paper's single threshold.
+  const double edge =
+      cfg_.edge_track_score < 0.0 ? cfg_.min_track_score : std::min(cfg_.edge_track_score, cfg_.min_track_score);
   for (const auto& h : mapped_) {
     const bool cut = h.first_frame == first_frame_ || h.last_frame == last_frame_;
-    if (h.score >= (cut ? std::min(edge, cfg_.min_track_score) : cfg_.min_track_score)) map.push_back(h);
+    if (h.score >= (cut ? edge : cfg_.min_track_score)) map.push_back(h);
   }
   std::sort(map.begin(), map.end(), [](const TrackedHead& a, const TrackedHead& b) { return a.id < b.id; });
   return map;

@@ -153,7 +153,8 @@ class TemporalFilter {
   FrameAssociation update(int frame, const std::vector<HeadObservation>& detections,
                           const std::optional<Eigen::Vector3d>& camera_position = std::nullopt);
 
-  /// Moves T to M and returns the map: heads with score ≥ min_track_score, sorted by id.
+  /// Moves T to M and returns the map: heads with score ≥ min_track_score (≥ edge_track_score for
+  /// heads seen in the first or last frame), sorted by id.
   /// The filter can be finished once; update() afterwards throws.
   std::vector<TrackedHead> finish();
 
