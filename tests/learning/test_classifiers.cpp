@@ -89,6 +89,27 @@ TEST(Svm, DenseRbfScoreMatchesLibsvmAtVfhAndLongDimensions) {
   }
 }
 
+// The RBF scorer drops the columns that are 0 in every support vector from its dot products
+// (VFH bins no training cluster fills): a test vector that is non-zero there must still get
+// libsvm's value (those columns count in |sv − z|² through |z|²).
+TEST(Svm, DenseRbfScoreMatchesLibsvmWhenTrainingLeavesColumnsEmpty) {
+  const int dim = 308;
+  Dataset train = testdata::gaussians(200, dim, 1.0, 21);
+  for (std::size_t i = 0; i < train.size(); ++i)
+    for (int j = 100; j < 250; ++j) train.values[i * dim + std::size_t(j)] = 0.0f;
+  const Dataset test = testdata::gaussians(60, dim, 1.0, 22);  // non-zero in 100..249
+  ClassifierParams p;
+  p.type = "svm-rbf";
+  p.rbf_gamma = 1.0 / dim;
+  const auto clf = train_classifier(train, p);
+  const auto& svm = dynamic_cast<const detail::SvmClassifier&>(*clf);
+  ASSERT_GT(svm.model_size(), 0u);
+  for (std::size_t i = 0; i < test.size(); ++i) {
+    const double ref = svm.libsvm_score(test.row(i));
+    EXPECT_NEAR(svm.score(test.row(i)), ref, 1e-4 * (1.0 + std::abs(ref))) << "sample " << i;
+  }
+}
+
 // Whichever class libsvm sees first, a positive score must mean the positive class.
 TEST_P(SvmKernels, ScoreSignDoesNotDependOnSampleOrder) {
   Dataset raw = testdata::gaussians(300, 10, 2.0, 3);
