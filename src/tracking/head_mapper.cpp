@@ -81,6 +81,10 @@ const std::vector<TrackedHead>& HeadMapper::finish() {
   finished_ = true;
   map_ = filter_.finish();
   for (const auto& h : map_) confirmed_.insert(h.id);
+  // Detections of a track merged into a mapped head belong to it (kept ids are always the id of
+  // the group's first track, so there are no chains).
+  for (const auto& [absorbed, kept] : filter_.merged_ids())
+    if (confirmed_.count(kept)) confirmed_.insert(absorbed);
   return map_;
 }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "cropsight/core/error.hpp"
 
@@ -65,6 +66,7 @@ TemporalFilter::TemporalFilter(const TemporalFilterConfig& cfg, const measure::H
   if (!(cfg_.association_radius_m > 0.0)) throw Error("tracking.association_radius_m", "must be positive");
   if (cfg_.max_missed_frames < 1) throw Error("tracking.max_missed_frames", "must be at least 1");
   if (!(cfg_.motion_search_radius_m >= 0.0)) throw Error("tracking.motion_search_radius_m", "must be >= 0");
+  if (!(cfg_.merge_radius_m >= 0.0)) throw Error("tracking.merge_radius_m", "must be >= 0");
   if (cfg_.initial_velocity.size() != 3)
     throw Error("tracking.initial_velocity", "expects three numbers [x, y, z] (m/frame)");
   v_c_ = Eigen::Vector3d(cfg_.initial_velocity[0], cfg_.initial_velocity[1], cfg_.initial_velocity[2]);
@@ -268,11 +270,75 @@ FrameAssociation TemporalFilter::update(int frame, const std::vector<HeadObserva
   return out;
 }
 
+void TemporalFilter::absorb(TrackedHead& into, const TrackedHead& later) const {
+  // Positions average over whole frames (partial-only heads carry the mean of their partial
+  // centroids: they count with their partial frames when neither side has a whole frame).
+  const double wa = into.whole_frames() > 0 || later.whole_frames() > 0 ? into.whole_frames() : into.partial_frames;
+  const double wb = into.whole_frames() > 0 || later.whole_frames() > 0 ? later.whole_frames() : later.partial_frames;
+  if (wa + wb > 0) into.position = (into.position * wa + later.position * wb) / (wa + wb);
+  const double sa = into.frames_seen, sb = later.frames_seen;
+  if (sa + sb > 0)
+    into.mean_detection_score = (into.mean_detection_score * sa + later.mean_detection_score * sb) / (sa + sb);
+  into.score += later.score;
+  into.frames_seen += later.frames_seen;
+  into.partial_frames += later.partial_frames;
+  into.first_frame = std::min(into.first_frame, later.first_frame);
+  into.last_frame = std::max(into.last_frame, later.last_frame);
+  const int m = into.size_samples + later.size_samples;
+  if (m > 0) {
+    into.bbox_mm = (into.bbox_mm * into.size_samples + later.bbox_mm * later.size_samples) / m;
+    into.hull_mm = (into.hull_mm * into.size_samples + later.hull_mm * later.size_samples) / m;
+    into.size_samples = m;
+    into.diameter_mm = sizer_.corrected(into.bbox_mm, into.hull_mm);
+    into.harvestable = sizer_.harvestable(into.diameter_mm);
+  }
+}
+
+void TemporalFilter::merge_lost_and_found() {
+  if (!(cfg_.merge_radius_m > 0.0) || mapped_.size() < 2) return;
+  // Heads in order of their first frame; each one joins the nearest earlier group (within the
+  // radius) whose track ended before it began and whose score already reaches min_track_score.
+  // Groups are indexed by field x in a multimap so that a long recording's thousands of heads cost
+  // O(n log n), not all pairs.
+  std::vector<TrackedHead> heads = std::move(mapped_);
+  std::stable_sort(heads.begin(), heads.end(), [](const TrackedHead& a, const TrackedHead& b) {
+    return a.first_frame < b.first_frame || (a.first_frame == b.first_frame && a.id < b.id);
+  });
+  const double r = cfg_.merge_radius_m;
+  std::vector<TrackedHead> groups;
+  std::multimap<double, std::size_t> by_x;
+  for (const auto& h : heads) {
+    std::size_t best = groups.size();
+    double best_d = r;
+    auto best_it = by_x.end();
+    for (auto it = by_x.lower_bound(h.position.x() - r); it != by_x.end() && it->first <= h.position.x() + r; ++it) {
+      const TrackedHead& g = groups[it->second];
+      if (g.last_frame >= h.first_frame) continue;  // overlapping in time: two heads
+      // Only a head confirmed on its own is found again: fragments that each fall short of the
+      // threshold (a leaf misclassified now and then at one place) must not add up to a head.
+      if (g.score < cfg_.min_track_score) continue;
+      const double d = (g.position - h.position).norm();
+      if (d <= best_d) best_d = d, best = it->second, best_it = it;
+    }
+    if (best == groups.size()) {
+      by_x.emplace(h.position.x(), groups.size());
+      groups.push_back(h);
+      continue;
+    }
+    absorb(groups[best], h);
+    merged_ids_.push_back({h.id, groups[best].id});
+    by_x.erase(best_it);
+    by_x.emplace(groups[best].position.x(), best);
+  }
+  mapped_ = std::move(groups);
+}
+
 std::vector<TrackedHead> TemporalFilter::finish() {
   if (finished_) throw Error("temporal filter", "finish() called twice");
   finished_ = true;
   for (auto& h : tracked_) mapped_.push_back(h);
   tracked_.clear();
+  merge_lost_and_found();
   std::vector<TrackedHead> map;
   // Heads whose track the recording cut (seen in its first or last frame) need edge_track_score,
   // never more than min_track_score; < 0 keeps the paper's single threshold.

@@ -1,6 +1,7 @@
 // Temporal filter on scripted detections: a camera 0.7 m above a row of heads moving along field X.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 #include "cropsight/core/error.hpp"
@@ -116,6 +117,7 @@ TEST(TemporalFilter, FastCameraNeedsTheMotionSearch) {
 
   TemporalFilterConfig cfg;
   cfg.motion_search = false;  // the paper's filter starts with v_c = 0 and never associates
+  cfg.merge_radius_m = 0.0;   // (nor merges lost-and-found tracks: its map stays fragments)
   TemporalFilter without(cfg);
   EXPECT_LT(run(without, s, 16).size(), s.heads.size());
 
@@ -134,8 +136,8 @@ TEST(TemporalFilter, ShortDropoutsKeepOneHeadLongOnesSplitIt) {
   }
   {
     // Missing for 3 frames while in view: the head leaves T for M and comes back as a second
-    // head (the paper's rule; the map then holds a duplicate).
-    TemporalFilter tf;
+    // head. The paper's map then holds a duplicate; by default (merge_radius_m) the second track,
+    // which began after the first ended at the same place, is merged back into it.
     int visible_from = -1, visible_to = -1;
     std::mt19937 rng(1);
     for (int f = 0; f < 30; ++f)
@@ -146,9 +148,26 @@ TEST(TemporalFilter, ShortDropoutsKeepOneHeadLongOnesSplitIt) {
         }
     ASSERT_GT(visible_to - visible_from, 12);
     const int gap = visible_from + 5;
-    const auto map =
-        run(tf, s, 30, [&](int f) { return (f >= gap && f < gap + 3) ? std::vector<int>{1} : std::vector<int>{}; });
-    EXPECT_EQ(map.size(), 4u);
+    auto hide = [&](int f) { return (f >= gap && f < gap + 3) ? std::vector<int>{1} : std::vector<int>{}; };
+    TemporalFilterConfig paper_cfg;
+    paper_cfg.merge_radius_m = 0.0;
+    TemporalFilter paper(paper_cfg);
+    EXPECT_EQ(run(paper, s, 30, hide).size(), 4u);
+    EXPECT_TRUE(paper.merged_ids().empty());
+
+    TemporalFilter tf;
+    const auto map = run(tf, s, 30, hide);
+    ASSERT_EQ(map.size(), 3u);
+    const auto m = match(s, map, 1e-4);
+    ASSERT_GE(m[1], 0);
+    const TrackedHead& h = map[std::size_t(m[1])];
+    EXPECT_EQ(h.first_frame, visible_from);
+    EXPECT_EQ(h.last_frame, visible_to);
+    EXPECT_EQ(h.frames_seen, visible_to - visible_from + 1 - 3);
+    EXPECT_DOUBLE_EQ(h.score, double(h.frames_seen));  // initial 1 + 1 per further frame, both tracks
+    EXPECT_NEAR(h.bbox_mm, s.heads[1].d_mm, 1e-9);
+    ASSERT_EQ(tf.merged_ids().size(), 1u);
+    EXPECT_EQ(tf.merged_ids()[0].second, h.id);
   }
 }
 
@@ -371,6 +390,11 @@ TEST(TemporalFilter, BadInputIsAnError) {
   EXPECT_THROW(TemporalFilter{cfg}, Error);
   cfg = {};
   cfg.initial_velocity = {1.0};
+  EXPECT_THROW(TemporalFilter{cfg}, Error);
+  cfg = {};
+  cfg.merge_radius_m = -0.01;
+  EXPECT_THROW(TemporalFilter{cfg}, Error);
+  cfg.merge_radius_m = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(TemporalFilter{cfg}, Error);
   TemporalFilter tf;
   tf.update(3, {});

@@ -20,6 +20,13 @@
 // At the end T moves to M and heads whose score is below min_track_score are dropped. Extension: a
 // head seen in the recording's first or last frame had frames the recording never showed (it was
 // leaving or entering the view), so it needs only edge_track_score (default 2) instead.
+// Extension (merge_radius_m, default 0.05 m): before the threshold, a head whose track began after
+// another one's ended, within merge_radius_m of it, when that one reached min_track_score on its
+// own, is the same head lost for max_missed_frames frames and found again (a leaf hid it, the
+// classifier missed it): the two merge into one entry (scores add up, positions and sizes average
+// over their frames), so the map holds no duplicate. Fragments that are each below the threshold
+// are not merged (they would add up recurring false positives), and tracks that overlap in time
+// never are: two heads closer than the radius stay two heads.
 //
 // Partial detections (extension): a head cut by the image border has its centroid off the head's
 // centre by up to its radius, which breaks the 5 cm association and drags the camera estimate.
@@ -40,6 +47,7 @@
 #include <Eigen/Core>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cropsight/core/config.hpp"
@@ -66,6 +74,7 @@ struct TemporalFilterConfig {
   double partial_association_radius_m = 0.10;
   bool partial_tracks = true;
   double position_cap_m = 0.02;
+  double merge_radius_m = 0.05;
 
   template <class V>
   void visit(V& v) {
@@ -106,6 +115,10 @@ struct TemporalFilterConfig {
       "percentile of depth is the top), which the viewing angle hardly moves, unlike the centroid of the whole "
       "visible cap that drifted the estimated camera by ~2.5 % of the travel (extension; 0 = centroid of all "
       "points as in the paper)");
+    v("merge_radius_m", merge_radius_m,
+      "m; at the end, a head whose track started after another's ended within this distance of it is merged into "
+      "it when that one reached min_track_score (the same head lost and found again; extension, default the "
+      "association radius 0.05 m; 0 = off, the paper's map keeps both)");
   }
 };
 
@@ -158,6 +171,10 @@ class TemporalFilter {
   /// The filter can be finished once; update() afterwards throws.
   std::vector<TrackedHead> finish();
 
+  /// After finish(): (absorbed id, kept id) for each track merged into an earlier one
+  /// (merge_radius_m); detections labelled with an absorbed id belong to the kept head.
+  const std::vector<std::pair<int, int>>& merged_ids() const { return merged_ids_; }
+
   /// Every head ever created (T ∪ M, before the score threshold), by id.
   std::vector<TrackedHead> all_heads() const;
   const std::vector<TrackedHead>& tracked() const { return tracked_; }
@@ -171,12 +188,15 @@ class TemporalFilter {
   void add_sample(TrackedHead& h, const Eigen::Vector3d& p, const HeadObservation& d) const;
   TrackedHead new_head(int frame, const Eigen::Vector3d& p);  ///< next id, initial score, at p
   void touch(TrackedHead& h, int frame) const;                ///< seen this frame: score, last frame
+  void merge_lost_and_found();                                ///< mapped_: merge_radius_m (see above)
+  void absorb(TrackedHead& into, const TrackedHead& later) const;
 
   TemporalFilterConfig cfg_;
   measure::HeadSizer sizer_;
   FieldTransform transform_;
   Eigen::Vector3d x_c_ = Eigen::Vector3d::Zero(), v_c_ = Eigen::Vector3d::Zero();
   std::vector<TrackedHead> tracked_, mapped_;
+  std::vector<std::pair<int, int>> merged_ids_;
   int first_frame_ = -1, last_frame_ = -1;
   int next_id_ = 1;
   bool started_ = false, finished_ = false;
