@@ -11,9 +11,12 @@
 // finds the cluster overlapping it most and prints how many reach IoU >= 0.5 ("found"), how many
 // lie mostly inside a larger cluster ("merged": under half of that cluster is this head) and how
 // many are broken or too small ("split / small"); the same for heads not cut by the image border
-// with at least `min_size` visible points ("clear"). CROPSIGHT_SEG_DUMP=DIR also writes the first
-// frames as PNG: depth (turbo), cluster borders black, head outlines white, merged heads' clusters
-// magenta.
+// with at least `min_size` visible points ("clear"), and for the heads with >= 300 visible points
+// (the `ap50_visible` rule): found, merged, in pieces whose union would reach IoU 0.5, or neither
+// (CROPSIGHT_SEG_VERBOSE=1 lists those with their edge-labelled pixels). CROPSIGHT_SEG_MODEL=FILE
+// also classifies the clusters and lists the misclassified ones. CROPSIGHT_SEG_DUMP=DIR writes three
+// frames (from CROPSIGHT_SEG_DUMP_FROM, default 1) as PNG: depth (turbo), cluster borders black,
+// head outlines white, merged heads' and false positives' clusters magenta, with enlarged crops.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -23,8 +26,10 @@
 #include <sstream>
 #include <string>
 
+#include "cropsight/geometry/organized_edges.hpp"
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/sequence.hpp"
+#include "cropsight/learning/model.hpp"
 #include "cropsight/pipeline/broccoli_detector.hpp"
 #include "cropsight/pipeline/broccoli_truth.hpp"
 #include "testing/testing.hpp"
@@ -66,6 +71,15 @@ void dump(const std::string& dir, int frame, const OrganizedCloud& cloud, std::s
         out.at<cv::Vec3b>(v, u) = {255, 255, 255};
     }
   cv::imwrite(dir + "/probe-" + std::to_string(frame) + ".png", out);
+  // Enlarged crops around the merged (or misclassified) clusters, and the colour image there.
+  for (int c : merged_clusters) {
+    const auto& b = cands[std::size_t(c)].segment.box;
+    const int cu = b.x + b.width / 2, cv_ = b.y + b.height / 2, r = 45;
+    const cv::Rect box = cv::Rect(cu - r, cv_ - r, 2 * r, 2 * r) & cv::Rect(0, 0, w, h);
+    cv::Mat crop;
+    cv::resize(out(box), crop, {}, 4, 4, cv::INTER_NEAREST);
+    cv::imwrite(dir + "/probe-" + std::to_string(frame) + "-cluster" + std::to_string(c) + ".png", crop);
+  }
   // Enlarged crops around the merged clusters' heads.
   for (std::size_t k = 0; k < merged_heads.size(); ++k) {
     long su = 0, sv = 0, n = 0;
@@ -101,8 +115,14 @@ TEST(BroccoliSegmentationProbe, DISABLED_HeadsFoundPerPreset) {
                        : cfg.pipeline == "org" ? cfg.org.min_size
                                                : cfg.fec.min_size;
   BroccoliDetector det(cfg);
+  // With CROPSIGHT_SEG_MODEL, also lists the misclassified clusters (size, share of their majority head).
+  if (const char* m = std::getenv("CROPSIGHT_SEG_MODEL"))
+    det.set_model(std::make_shared<learning::Model>(learning::load_model(m)), m);
   long all = 0, found = 0, merged = 0, clear = 0, clear_found = 0, clear_merged = 0, clear_split = 0, clusters = 0,
        frames = 0;
+  // Heads with >= 300 visible points (the `ap50_visible` rule) that are not found: merged, in
+  // pieces whose union would reach IoU 0.5 (each piece mostly this head), or neither.
+  long vis = 0, vis_found = 0, vis_merged = 0, vis_union = 0, vis_other = 0;
   std::vector<TruthInstance> truth;
   for (const auto& dir : split(seqs, ',')) {
     io::SequenceReader reader(dir);
@@ -110,12 +130,24 @@ TEST(BroccoliSegmentationProbe, DISABLED_HeadsFoundPerPreset) {
       const auto cands = det.process(reader.read(i));
       ++frames;
       clusters += long(cands.size());
+      std::vector<int> fp_clusters;
+      if (det.has_model())
+        for (const auto& c : cands) {
+          // Majority head of the cluster, whatever its share (truth.head_id is 0 below one half).
+          const auto any = cluster_truth(c.segment.indices, det.cloud().labels, 0.0f);
+          const bool is_head = c.truth.head_id != 0;
+          if (c.head && !is_head) fp_clusters.push_back(int(&c - cands.data()));
+          if (c.head != is_head)
+            std::printf("%s frame %ld cluster %zu points, majority head %d holds %.2f of it, score %.3f\n",
+                        c.head ? "FP" : "FN", frames, c.segment.indices.size(), any.head_id, any.fraction, c.score);
+        }
       truth_instances(det.cloud(), 1, truth);
       const auto& labels = det.cloud().labels;
-      std::vector<int> merged_clusters, merged_heads;
+      std::vector<int> merged_clusters = fp_clusters, merged_heads;  // false positives drawn as merged
       for (const auto& t : truth) {
         // The cluster holding most of this head's points, and the IoU of the best cluster.
         double best_iou = 0.0, best_overlap = 0.0, share_of_cluster = 0.0;
+        long union_inter = 0, union_size = 0;
         int best_cluster = -1;
         for (std::size_t ci = 0; ci < cands.size(); ++ci) {
           const auto& c = cands[ci];
@@ -123,6 +155,8 @@ TEST(BroccoliSegmentationProbe, DISABLED_HeadsFoundPerPreset) {
           for (int idx : c.segment.indices) inter += labels[std::size_t(idx)] == t.id;
           if (inter == 0) continue;
           const double iou = double(inter) / double(c.segment.indices.size() + t.indices.size() - inter);
+          if (2 * inter > long(c.segment.indices.size()))
+            union_inter += inter, union_size += long(c.segment.indices.size());
           best_iou = std::max(best_iou, iou);
           if (inter > best_overlap) {
             best_overlap = double(inter);
@@ -134,6 +168,33 @@ TEST(BroccoliSegmentationProbe, DISABLED_HeadsFoundPerPreset) {
         const bool merge = !ok && best_overlap >= 0.5 * double(t.indices.size()) && share_of_cluster < 0.5;
         // Neither: the head is in pieces, or its best cluster is below min_size (or it has none).
         if (!t.cut_by_border && int(t.indices.size()) >= min_size && !ok && !merge) ++clear_split;
+        if (t.indices.size() >= 300) {
+          ++vis;
+          const double union_iou =
+              union_size ? double(union_inter) / double(union_size + long(t.indices.size()) - union_inter) : 0.0;
+          if (ok)
+            ++vis_found;
+          else if (merge)
+            ++vis_merged;
+          else if (union_iou >= 0.5)
+            ++vis_union;
+          else {
+            ++vis_other;
+            merged_heads.push_back(t.id);  // cropped in the dump too
+            if (std::getenv("CROPSIGHT_SEG_VERBOSE")) {
+              const auto edges = geometry::detect_organized_edges(det.cloud(), cfg.edges);
+              int e[4] = {0, 0, 0, 0};
+              for (int idx : t.indices)
+                for (int b = 0; b < 4; ++b) e[b] += (edges[std::size_t(idx)] >> b) & 1;
+              std::printf(
+                  "MISS frame %ld head %d pts %zu border %d best_iou %.2f union_iou %.2f best_cluster %d "
+                  "overlap %.0f | edge px nan %d occluding %d occluded %d\n",
+                  frames, t.id, t.indices.size(), int(t.cut_by_border), best_iou, union_iou,
+                  best_cluster >= 0 ? int(cands[std::size_t(best_cluster)].segment.indices.size()) : 0, best_overlap,
+                  e[0], e[1], e[2]);
+            }
+          }
+        }
         ++all;
         found += ok;
         merged += merge;
@@ -144,7 +205,9 @@ TEST(BroccoliSegmentationProbe, DISABLED_HeadsFoundPerPreset) {
           clear_merged += merge;
         }
       }
-      if (const char* d = std::getenv("CROPSIGHT_SEG_DUMP"); d && frames <= 3)
+      const long dump_from =
+          std::getenv("CROPSIGHT_SEG_DUMP_FROM") ? std::atol(std::getenv("CROPSIGHT_SEG_DUMP_FROM")) : 1;
+      if (const char* d = std::getenv("CROPSIGHT_SEG_DUMP"); d && frames >= dump_from && frames < dump_from + 3)
         dump(d, int(frames), det.cloud(), cands, merged_clusters, merged_heads);
     }
   }
@@ -154,4 +217,7 @@ TEST(BroccoliSegmentationProbe, DISABLED_HeadsFoundPerPreset) {
       preset.c_str(), frames, frames ? double(clusters) / double(frames) : 0.0, found, all,
       all ? double(found) / double(all) : 0.0, merged, min_size, clear_found, clear,
       clear ? double(clear_found) / double(clear) : 0.0, clear_merged, clear_split);
+  std::printf(
+      "SEGPROBE visible (>= 300 points): %ld, found %ld, merged %ld, pieces whose union reaches 0.5 %ld, other %ld\n",
+      vis, vis_found, vis_merged, vis_union, vis_other);
 }
