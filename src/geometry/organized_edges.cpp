@@ -52,6 +52,21 @@ __attribute__((target_clones("avx2", "default"))) void row_fast_path(int w, cons
   }
 }
 
+// The same row when neither depth label is wanted (only NaN boundaries): marks the pixels with a
+// NaN neighbour for the walk, leaves the others unlabelled, without the eight depth differences.
+__attribute__((target_clones("avx2", "default"))) void row_nan_only(int w, const float* __restrict z, int stride,
+                                                                    std::uint8_t* __restrict out) {
+  const float* up = z - stride;
+  const float* dn = z + stride;
+  out[0] = out[w - 1] = kEdgeNone;
+  for (int c = 1; c < w - 1; ++c) {
+    const float q[8] = {z[c - 1], up[c - 1], up[c], up[c + 1], z[c + 1], dn[c + 1], dn[c], dn[c - 1]};
+    bool invalid = false;
+    for (int k = 0; k < 8; ++k) invalid |= !std::isfinite(q[k]);
+    out[c] = std::isfinite(z[c]) && invalid ? kSearch : std::uint8_t(kEdgeNone);
+  }
+}
+
 }  // namespace
 
 void detect_organized_edges(const OrganizedCloud& cloud, const OrganizedEdgeConfig& cfg,
@@ -85,7 +100,10 @@ void detect_organized_edges(const OrganizedCloud& cloud, const OrganizedEdgeConf
     std::uint8_t* lrow = labels.data() + std::size_t(row) * w;
     // Fast path for the whole row (branch-free, vectorised): pixels whose 8 neighbours are all
     // valid get their label; pixels with a NaN neighbour are marked kSearch for the walk below.
-    row_fast_path(w, Z + std::size_t(row) * w, w, th, occluded, occluding, lrow);
+    if (occluded | occluding)
+      row_fast_path(w, Z + std::size_t(row) * w, w, th, occluded, occluding, lrow);
+    else
+      row_nan_only(w, Z + std::size_t(row) * w, w, lrow);
     // The marked pixels are few: memchr finds them (the walk below writes only lrow[col]).
     for (std::uint8_t* p = lrow + 1; p < lrow + w - 1; ++p) {
       p = static_cast<std::uint8_t*>(std::memchr(p, kSearch, std::size_t(lrow + w - 1 - p)));

@@ -67,6 +67,30 @@ TEST(OrganizedEdges, MatchesPclOnSyntheticScene) {
   EXPECT_GT(a.count[geometry::kEdgeNanBoundary], 10u);
 }
 
+// Without the depth labels (the OES presets use only NaN boundaries as barriers) a cheaper row
+// pass skips the depth differences: the NaN-boundary pixels must be exactly those of the full run.
+TEST(OrganizedEdges, NanBoundaryAloneEqualsItsBitInTheFullRun) {
+  auto scene = cropsight::testing::make_synthetic_scene();
+  for (int v = 0; v < 60; ++v)
+    for (int u = 0; u < 40; ++u) scene.cloud.z[scene.cloud.index(u, v)] = NAN;
+  for (int v = 150; v < 170; ++v)  // an inner hole, crossed by the walk
+    for (int u = 200; u < 230; ++u) scene.cloud.z[scene.cloud.index(u, v)] = NAN;
+  for (std::size_t i = 0; i < scene.cloud.size(); ++i)
+    if (std::isnan(scene.cloud.z[i])) scene.cloud.x[i] = scene.cloud.y[i] = NAN;
+  const auto full = geometry::detect_organized_edges(scene.cloud, {});
+  geometry::OrganizedEdgeConfig nan_only;
+  nan_only.detect_occluding = nan_only.detect_occluded = false;
+  const auto only = geometry::detect_organized_edges(scene.cloud, nan_only);
+  ASSERT_EQ(only.size(), full.size());
+  std::size_t nan_pixels = 0, mismatches = 0;
+  for (std::size_t i = 0; i < full.size(); ++i) {
+    nan_pixels += only[i] == geometry::kEdgeNanBoundary;
+    mismatches += only[i] != (full[i] & geometry::kEdgeNanBoundary);
+  }
+  EXPECT_EQ(mismatches, 0u);
+  EXPECT_GT(nan_pixels, 10u);
+}
+
 TEST(OrganizedEdges, MatchesPclWithOtherThreshold) {
   const auto scene = cropsight::testing::make_synthetic_scene({.width = 256, .height = 212});
   const auto a = compare(scene.cloud, {.depth_discontinuity = 0.01f, .max_search_neighbors = 20});
