@@ -203,36 +203,44 @@ HeadSize HeadSizer::measure(const OrganizedCloud& cloud, const std::vector<int>&
 BiasFit fit_size_bias(const std::vector<double>& est, const std::vector<double>& truth, const std::string& where) {
   if (est.size() != truth.size()) throw Error(where, "estimates and truths differ in count");
   if (est.size() < 2) throw Error(where, "need at least 2 heads with measured diameters to fit a bias");
-  // Theil–Sen: the median of the pairwise slopes, then the median intercept. Robust to the few
-  // gross errors real detections carry (a head merged with a leaf reads 100 mm too wide), which
-  // pull a least-squares line far off (measured on simulated uk data: slope 0.49 by least
-  // squares). Above 2000 pairs' worth of points an even subsample keeps it O(2000²).
+  // The noise is in the estimate (view to view), not in the measured diameter, so the robust line
+  // is fitted in the direction estimate = a · truth + b and then inverted: truth = (estimate − b) / a.
+  // Regressing truth on the noisy estimate instead attenuates the slope (errors in the regressor),
+  // and the pairs of one head seen in several frames (same truth, different estimates) give
+  // slope 0 there and pull the median further down; here they have no slope and are skipped.
+  // Theil–Sen (median of the pairwise slopes, then the median intercept) is robust to the few
+  // gross errors real detections carry (a head merged with a leaf reads 100 mm too wide), which pull
+  // a least-squares line far off. Above 2000 pairs' worth of points an even subsample keeps it
+  // O(2000²).
   const std::size_t n = est.size(), step = n > 2000 ? (n + 1999) / 2000 : 1;
   std::vector<double> slopes;
   for (std::size_t i = 0; i < n; i += step)
     for (std::size_t j = i + step; j < n; j += step)
-      if (std::abs(est[j] - est[i]) > 1e-9) slopes.push_back((truth[j] - truth[i]) / (est[j] - est[i]));
-  if (slopes.empty()) throw Error(where, "estimated diameters have no spread; cannot fit a scale");
+      if (std::abs(truth[j] - truth[i]) > 1e-9) slopes.push_back((est[j] - est[i]) / (truth[j] - truth[i]));
+  if (slopes.empty()) throw Error(where, "measured diameters have no spread (one head?); cannot fit a scale");
   auto median = [](std::vector<double> v) {
     const std::size_t m = v.size() / 2;
     std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(m), v.end());
     if (v.size() % 2) return v[m];
     return 0.5 * (v[m] + *std::max_element(v.begin(), v.begin() + std::ptrdiff_t(m)));
   };
+  const double a = median(slopes);
+  if (!(a > 1e-6)) throw Error(where, "estimated diameters do not grow with the measured ones; cannot fit a scale");
+  std::vector<double> icpt(n);
+  for (std::size_t i = 0; i < n; ++i) icpt[i] = est[i] - a * truth[i];
+  const double b = median(icpt);
   BiasFit f;
   f.n = int(n);
-  f.scale = median(slopes);
-  std::vector<double> icpt(n);
-  for (std::size_t i = 0; i < n; ++i) icpt[i] = truth[i] - f.scale * est[i];
-  f.offset_mm = median(icpt);
-  double b = 0, a = 0;
+  f.scale = 1.0 / a;
+  f.offset_mm = -b / a;
+  double sb = 0, sa = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    b += (est[i] - truth[i]) * (est[i] - truth[i]);
+    sb += (est[i] - truth[i]) * (est[i] - truth[i]);
     const double c = f.scale * est[i] + f.offset_mm;
-    a += (c - truth[i]) * (c - truth[i]);
+    sa += (c - truth[i]) * (c - truth[i]);
   }
-  f.rms_before_mm = std::sqrt(b / double(n));
-  f.rms_after_mm = std::sqrt(a / double(n));
+  f.rms_before_mm = std::sqrt(sb / double(n));
+  f.rms_after_mm = std::sqrt(sa / double(n));
   return f;
 }
 

@@ -216,8 +216,34 @@ TEST(HeadSize, BiasFitRecoversALine) {
   EXPECT_NEAR(r.scale, 1.25, 0.02);
   EXPECT_NEAR(r.offset_mm, 6.25, 2.5);
   EXPECT_THROW(fit_size_bias({1.0}, {2.0}), Error);
-  EXPECT_THROW(fit_size_bias({1.0, 1.0}, {2.0, 3.0}), Error);
+  EXPECT_THROW(fit_size_bias({1.0, 1.0}, {2.0, 3.0}), Error);  // estimates do not grow
   EXPECT_THROW(fit_size_bias({1.0, 2.0}, {2.0}), Error);
+}
+
+// The fit gets one pair per head and frame: the estimate carries view-to-view noise, the measured
+// diameter none, and many pairs share a head. Regressing truth on the noisy estimate flattened the
+// slope (and one head's pairs gave slope 0); the offset then made up for it at the heads' mean size,
+// so small heads came out far too large (the spain fit: ×1.06 + 27 mm where the raw hull reads
+// ~0.77 of every head).
+TEST(HeadSize, BiasFitIgnoresPairsOfOneHead) {
+  std::vector<double> truth, est;
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 12.0);
+  const double heads[] = {120, 130, 135, 150, 160, 175};  // a narrow range, as in a short pass
+  for (double t : heads)
+    for (int frame = 0; frame < 25; ++frame) {
+      truth.push_back(t);
+      est.push_back(0.77 * t + noise(rng));  // proportional bias, as the raw hull measures
+    }
+  const auto f = fit_size_bias(est, truth);
+  EXPECT_NEAR(f.scale, 1.0 / 0.77, 0.12);
+  EXPECT_NEAR(f.scale * 0.77 * 70.0 + f.offset_mm, 70.0, 8.0);  // a small head, outside the range
+  // Every head in one frame only: no pair shares a head, nothing to drop.
+  std::vector<double> t1, e1;
+  for (double t : heads) t1.push_back(t), e1.push_back(0.77 * t);
+  EXPECT_NEAR(fit_size_bias(e1, t1).scale, 1.0 / 0.77, 1e-9);
+  // One head seen many times cannot give a scale.
+  EXPECT_THROW(fit_size_bias({100.0, 104.0, 98.0}, {130.0, 130.0, 130.0}), Error);
 }
 
 TEST(HeadSize, HullSubsampleForSpeed) {

@@ -136,9 +136,12 @@ class HeadSizer {
   HullEngine engine_;
 };
 
-/// Robust line truth = scale · estimate + offset (both mm): Theil–Sen (median pairwise slope,
-/// median intercept), so that a few gross errors (merged clusters) do not tilt it. Throws
-/// Error(where, ...) for fewer than 2 pairs, unequal lengths, or estimates without spread.
+/// Correction truth = scale · estimate + offset (both mm), from the robust line estimate = a · truth
+/// + b (Theil–Sen: median pairwise slope over pairs of different true diameters, median intercept;
+/// the estimate carries the noise, so it is the dependent variable) inverted: scale = 1/a,
+/// offset = −b/a. A few gross errors (merged clusters) do not tilt it, and the many pairs of one
+/// head seen in several frames do not flatten it. Throws Error(where, ...) for fewer than 2 pairs,
+/// unequal lengths, true diameters without spread, or estimates that do not grow with them.
 struct BiasFit {
   double scale = 1.0, offset_mm = 0.0;
   int n = 0;
