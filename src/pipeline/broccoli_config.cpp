@@ -15,6 +15,7 @@ void BroccoliDetectorConfig::validate(const std::string& where) const {
     throw Error(where, "detection.min_head_fraction must be in (0, 1]");
   if (detection.min_truth_points < 0) throw Error(where, "detection.min_truth_points must be >= 0");
   if (detection.visible_truth_points < 0) throw Error(where, "detection.visible_truth_points must be >= 0");
+  if (detection.min_normal_points < 0) throw Error(where, "detection.min_normal_points must be >= 0");
 }
 
 std::vector<std::string> BroccoliDetectorConfig::feature_names() const {

@@ -146,6 +146,14 @@ std::span<const BroccoliCandidate> BroccoliDetector::process(const RgbdFrame& fr
       if (!std::is_sorted(c.segment.indices.begin(), c.segment.indices.end()))
         std::sort(c.segment.indices.begin(), c.segment.indices.end());
       feature_set_.compute(cloud_, c.segment.indices, cfg_.feature_options, c.features);
+      c.normal_points = -1;  // not counted unless detection.min_normal_points asks for it
+      c.described = true;
+      if (cfg_.detection.min_normal_points > 0) {
+        int with_normal = 0;
+        for (int i : c.segment.indices) with_normal += std::isfinite(cloud_.nx[std::size_t(i)]) ? 1 : 0;
+        c.normal_points = with_normal;
+        c.described = with_normal >= cfg_.detection.min_normal_points;
+      }
       c.truth = cloud_.has_labels() ? cluster_truth(c.segment.indices, cloud_.labels, cfg_.detection.min_head_fraction)
                                     : ClusterTruth{};
     }
@@ -155,6 +163,13 @@ std::span<const BroccoliCandidate> BroccoliDetector::process(const RgbdFrame& fr
     const float threshold = model_ ? model_->threshold() + cfg_.detection.score_margin : 0.0f;
     for (std::size_t k = 0; k < count_; ++k) {
       BroccoliCandidate& c = candidates_[k];
+      // A cluster without normals has an all-zero VFH, the same vector for every such sliver: an
+      // RBF SVM answers it with whatever its nearest support vector says (measured: 1.0, a head).
+      if (!c.described) {
+        c.score = -std::numeric_limits<float>::max();
+        c.head = false;
+        continue;
+      }
       c.score = model_ ? model_->score(c.features, scratch_) : 0.0f;
       c.head = model_ && c.score > threshold;
     }

@@ -20,7 +20,8 @@ BroccoliDatasetBuilder::BroccoliDatasetBuilder(const BroccoliDetectorConfig& cfg
 void BroccoliDatasetBuilder::add_frame(const RgbdFrame& frame) {
   require_labels(frame);
   for (const BroccoliCandidate& c : detector_.process(frame))
-    data_.add(c.features, c.truth.head_id != 0 ? 1 : 0, "frame " + std::to_string(frame.index));
+    if (c.described)  // clusters without a shape descriptor are never heads (detection.min_normal_points)
+      data_.add(c.features, c.truth.head_id != 0 ? 1 : 0, "frame " + std::to_string(frame.index));
   ++frames_;
 }
 

@@ -184,6 +184,53 @@ TEST(BroccoliDetector, TrainedOnOneSeedDetectsHeadsOnAnother) {
   }
 }
 
+// Clusters inside the integral normals' border band have no normal and an all-zero VFH: with
+// detection.min_normal_points they are never heads and stay out of training; every other cluster
+// keeps its score.
+TEST(BroccoliDetector, ClustersWithoutNormalsAreNeverHeads) {
+  BroccoliDetectorConfig cfg = preset("broccoli-oes-uk");
+  cfg.detection.min_normal_points = 0;
+  BroccoliDatasetBuilder all(cfg);
+  for (const auto& f : train_frames()) all.add_frame(f);
+  auto model = std::make_shared<learning::Model>(train_broccoli_model(all.dataset(), cfg, {}));
+  BroccoliDetector plain(cfg);
+  plain.set_model(model);
+  cfg.detection.min_normal_points = 3;
+  BroccoliDetector strict(cfg);
+  strict.set_model(model);
+  int undescribed = 0, compared = 0;
+  for (const auto& f : test_frames()) {
+    const auto a = plain.process(f);
+    const auto b = strict.process(f);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      EXPECT_EQ(a[k].normal_points, -1);  // not counted when the rule is off
+      int with_normal = 0;
+      for (int i : b[k].segment.indices) with_normal += std::isfinite(strict.cloud().nx[std::size_t(i)]) ? 1 : 0;
+      EXPECT_EQ(b[k].normal_points, with_normal);
+      if (with_normal < 3) {
+        ++undescribed;
+        EXPECT_FALSE(b[k].described);
+        EXPECT_FALSE(b[k].head);
+        EXPECT_EQ(b[k].score, -std::numeric_limits<float>::max());
+      } else {
+        ++compared;
+        EXPECT_TRUE(b[k].described);
+        EXPECT_EQ(b[k].score, a[k].score);
+        EXPECT_EQ(b[k].head, a[k].head);
+      }
+    }
+  }
+  EXPECT_GT(undescribed, 0) << "the simulated frames have border slivers without normals";
+  EXPECT_GT(compared, 0);
+  // Training leaves them out.
+  BroccoliDatasetBuilder some(cfg);
+  for (const auto& f : train_frames()) some.add_frame(f);
+  EXPECT_LT(some.dataset().size(), all.dataset().size());
+  cfg.detection.min_normal_points = -1;
+  EXPECT_THROW(cfg.validate("test"), Error);
+}
+
 // The PCL reference pipeline (bench baseline) and our FEC find the same clusters and, with the
 // same model, nearly the same scores (our VFH is bin-exact with PCL's given the same normals).
 TEST(PclReference, MatchesOurFecPipeline) {

@@ -137,9 +137,15 @@ TEST(BroccoliSegmentationProbe, DISABLED_HeadsFoundPerPreset) {
           const auto any = cluster_truth(c.segment.indices, det.cloud().labels, 0.0f);
           const bool is_head = c.truth.head_id != 0;
           if (c.head && !is_head) fp_clusters.push_back(int(&c - cands.data()));
-          if (c.head != is_head)
-            std::printf("%s frame %ld cluster %zu points, majority head %d holds %.2f of it, score %.3f\n",
-                        c.head ? "FP" : "FN", frames, c.segment.indices.size(), any.head_id, any.fraction, c.score);
+          if (c.head != is_head) {
+            std::size_t with_normal = 0;
+            for (int idx : c.segment.indices) with_normal += std::isfinite(det.cloud().nx[std::size_t(idx)]);
+            std::printf(
+                "%s frame %ld cluster %zu points (%zu with a normal), majority head %d holds %.2f of it, "
+                "score %.3f\n",
+                c.head ? "FP" : "FN", frames, c.segment.indices.size(), with_normal, any.head_id, any.fraction,
+                c.score);
+          }
         }
       truth_instances(det.cloud(), 1, truth);
       const auto& labels = det.cloud().labels;

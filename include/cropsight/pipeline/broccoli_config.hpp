@@ -37,6 +37,7 @@ struct BroccoliDetectionConfig {
   float min_head_fraction = 0.5f;  ///< cluster-truth rule, see broccoli_truth.hpp
   int min_truth_points = 0;        ///< AP: ground-truth heads with fewer visible points are not counted
   int visible_truth_points = 300;  ///< ap50_visible: heads with fewer visible points are ignored
+  int min_normal_points = 0;       ///< clusters with fewer points with a normal are not classified
 
   template <class V>
   void visit(V& v) {
@@ -53,6 +54,10 @@ struct BroccoliDetectionConfig {
       "points; for ap50_visible / map50_95_visible, ground-truth heads with fewer visible points are ignored "
       "(COCO-style: not counted, and a detection of one is not a false positive); 300 = the field map's "
       "rule for a true head (ours; the paper does not state its rule for partly visible heads)");
+    v("min_normal_points", min_normal_points,
+      "points; a cluster with fewer points that have a normal has no shape descriptor (VFH reads normals; "
+      "integral-image normals are undefined within normal_smoothing_size of the image border and next to depth "
+      "changes): it is never a head (lowest score) and is left out of training (ours; 0 = classify every cluster)");
   }
 };
 

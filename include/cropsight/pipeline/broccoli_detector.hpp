@@ -44,6 +44,8 @@ struct BroccoliCandidate {
   std::vector<float> features;  ///< concatenated features (FeatureSet order)
   float score = 0.0f;           ///< classifier score (0 when no model)
   bool head = false;            ///< score > threshold + margin
+  int normal_points = -1;       ///< points of the segment with a normal (-1: not counted, min_normal_points 0)
+  bool described = true;        ///< normal_points >= detection.min_normal_points (else never a head)
   ClusterTruth truth;           ///< filled when the frame has labels
 };
 
