@@ -99,7 +99,8 @@ void detect_organized_edges(const OrganizedCloud& cloud, const OrganizedEdgeConf
   for (int row = 1; row < h - 1; ++row) {
     std::uint8_t* lrow = labels.data() + std::size_t(row) * w;
     // Fast path for the whole row (branch-free, vectorised): pixels whose 8 neighbours are all
-    // valid get their label; pixels with a NaN neighbour are marked kSearch for the walk below.
+    // valid get their label (none when no depth label is wanted); pixels with a NaN neighbour are
+    // marked kSearch for the walk below.
     if (occluded | occluding)
       row_fast_path(w, Z + std::size_t(row) * w, w, th, occluded, occluding, lrow);
     else

@@ -216,7 +216,6 @@ Eigen::Matrix3f rotation_about_vertical(float a) {
 
 // Fills row i of xyz (N,3) and feats (N,C) from point `src` with the channel order x y z
 // [r g b] [nx ny nz].
-
 void fill_point(const Prepared& p, int src, float* xyz, float* f, const Eigen::Matrix3f& R, float scale,
                 const Eigen::Vector3f& jitter, const Eigen::Vector3f& dcol) {
   const Eigen::Vector3f x = scale * (R * p.xyz[std::size_t(src)]) + jitter;

@@ -273,8 +273,9 @@ FrameAssociation TemporalFilter::update(int frame, const std::vector<HeadObserva
 void TemporalFilter::absorb(TrackedHead& into, const TrackedHead& later) const {
   // Positions average over whole frames (partial-only heads carry the mean of their partial
   // centroids: they count with their partial frames when neither side has a whole frame).
-  const double wa = into.whole_frames() > 0 || later.whole_frames() > 0 ? into.whole_frames() : into.partial_frames;
-  const double wb = into.whole_frames() > 0 || later.whole_frames() > 0 ? later.whole_frames() : later.partial_frames;
+  const bool whole = into.whole_frames() > 0 || later.whole_frames() > 0;
+  const double wa = whole ? into.whole_frames() : into.partial_frames;
+  const double wb = whole ? later.whole_frames() : later.partial_frames;
   if (wa + wb > 0) into.position = (into.position * wa + later.position * wb) / (wa + wb);
   const double sa = into.frames_seen, sb = later.frames_seen;
   if (sa + sb > 0)
