@@ -157,3 +157,20 @@ TEST(HullCandidates, LensDistortionOrTinySetsSwitchItOff) {
   EXPECT_FALSE(hull_vertex_candidates(c, row).has_value());
   EXPECT_FALSE(hull_vertex_candidates(c, few).has_value());
 }
+
+TEST(HullCandidates, InputOrderAndRepeatsDoNotMatter) {
+  // The filter reads rows incrementally when the indices come in raster order (as segments list
+  // them) and by division otherwise; a repeated index is one point. Same candidates either way.
+  auto corner_leaf = +[](int u, int v) { return u > 165 && v > 125; };
+  auto [c, idx] = pinhole_dome(0.06, 0.002, 21, corner_leaf);
+  const auto sorted = hull_vertex_candidates(c, idx);
+  ASSERT_TRUE(sorted.has_value());
+  std::vector<int> shuffled = idx, repeated = idx, reversed(idx.rbegin(), idx.rend());
+  std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(4));
+  repeated.insert(repeated.end(), idx.begin(), idx.begin() + std::ptrdiff_t(idx.size() / 3));
+  for (const auto* in : {&shuffled, &repeated, &reversed}) {
+    const auto cand = hull_vertex_candidates(c, *in);
+    ASSERT_TRUE(cand.has_value());
+    EXPECT_EQ(*cand, *sorted);
+  }
+}
