@@ -18,30 +18,51 @@ namespace {
 constexpr double kPinholeTolerance = 1e-6;
 
 // Marks the vertices of the 2D hull of the m points (t[i], w[i]) (t strictly increasing): mark[t[i]]
-// = 1 for each. Andrew's monotone chain, lower and upper halves in one pass. A middle point is
-// dropped only when it lies inside by more than the rounding tolerance `slack_t` (how far a pixel
-// coordinate may stand from the exact projective abscissa), so borderline points stay candidates.
-// `lo`, `up`: scratch stacks of m ints. mark is indexed by t·mark_step.
+// = 1 for each. Andrew's monotone chain, lower and upper halves. A middle point is dropped only
+// when it lies inside by more than the rounding tolerance `slack_t` (how far a pixel coordinate
+// may stand from the exact projective abscissa), so borderline points stay candidates.
+// First a branch-free pass over each point and its two list neighbours: a point clearly above the
+// chord of its neighbours cannot be a vertex of the lower chain, one clearly below it not of the
+// upper chain, so each chain starts from a shorter list (on a head's convex profile the lower
+// chain keeps a few points; the monotone chain's data-dependent pops were most of the filter's
+// time). `lo`, `up`: scratch of 2m ints each. mark is indexed by t·mark_step.
 void mark_chain_vertices(int m, const int* t, const double* w, double slack_t, std::uint8_t* mark,
                          std::ptrdiff_t mark_step, int* lo, int* up) {
   if (m <= 2) {
     for (int i = 0; i < m; ++i) mark[t[i] * mark_step] = 1;
     return;
   }
-  // cross(o, a, b) > 0: o -> a -> b turns left (counter-clockwise in (t, w)). Returns cross and
-  // the slack below which |cross| is rounding.
+  // cross(o, a, b) > 0: o -> a -> b turns left (counter-clockwise in (t, w)): a lies below the
+  // line o -> b. Also returns the slack below which |cross| is rounding.
   auto turn = [&](int o, int a, int b, double& slack) {
     const double ta = double(t[a] - t[o]), tb = double(t[b] - t[o]);
     const double wa = w[a] - w[o], wb = w[b] - w[o];
     slack = 2.0 * slack_t * (std::abs(wb) + std::abs(wa)) + 1e-300;
     return ta * wb - wa * tb;
   };
+  int* lo_in = lo + m;
+  int* up_in = up + m;
+  int ml = 0, mu = 0;
+  lo_in[ml++] = 0, up_in[mu++] = 0;
+  for (int i = 1; i < m - 1; ++i) {
+    double slack;
+    const double c = turn(i - 1, i, i + 1, slack);
+    lo_in[ml] = i, up_in[mu] = i;
+    ml += c <= -slack ? 0 : 1;
+    mu += c >= slack ? 0 : 1;
+  }
+  lo_in[ml++] = m - 1, up_in[mu++] = m - 1;
   int nl = 0, nu = 0;
-  for (int i = 0; i < m; ++i) {
+  for (int k = 0; k < ml; ++k) {
+    const int i = lo_in[k];
     double slack;
     // lower chain: pop a middle point that lies clearly above o -> i (a clear right turn)
     while (nl >= 2 && turn(lo[nl - 2], lo[nl - 1], i, slack) <= -slack) --nl;
     lo[nl++] = i;
+  }
+  for (int k = 0; k < mu; ++k) {
+    const int i = up_in[k];
+    double slack;
     // upper chain: pop a clear left turn
     while (nu >= 2 && turn(up[nu - 2], up[nu - 1], i, slack) >= slack) --nu;
     up[nu++] = i;
@@ -118,8 +139,8 @@ std::optional<std::vector<int>> hull_vertex_candidates(const OrganizedCloud& clo
 
   // Each row's chain in (u, 1/z), gathered without branches.
   const int longest = std::max(gw, gh);
-  std::vector<int> t(std::size_t(longest) + 1), lo(static_cast<std::size_t>(longest)),
-      up(static_cast<std::size_t>(longest));
+  std::vector<int> t(std::size_t(longest) + 1), lo(2 * static_cast<std::size_t>(longest)),
+      up(2 * static_cast<std::size_t>(longest));
   std::vector<double> w(std::size_t(longest) + 1);
   for (int r = 0; r < gh; ++r) {
     const std::size_t o = std::size_t(r) * std::size_t(gw);
