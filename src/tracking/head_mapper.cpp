@@ -5,6 +5,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/organized_cloud.hpp"
+#include "tracking/order_statistic.hpp"
 
 namespace cropsight::tracking {
 
@@ -13,15 +14,14 @@ namespace {
 /// is the 2nd percentile of depth, so that a few flying pixels in front of the head do not set it.
 /// Falls back to the centroid of all valid points when fewer than 3 are in the cap.
 Eigen::Vector3f top_centroid(const OrganizedCloud& cloud, const std::vector<int>& indices, double cap,
-                             std::vector<float>& depth) {
+                             std::vector<float>& depth, std::vector<float>& scratch) {
   depth.clear();
   for (int i : indices)
     if (cloud.valid(std::size_t(i))) depth.push_back(cloud.z[std::size_t(i)]);
   Eigen::Vector3d sum_all = Eigen::Vector3d::Zero(), sum_cap = Eigen::Vector3d::Zero();
   if (depth.empty()) return Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN());
-  const auto nth = depth.begin() + std::ptrdiff_t(0.02 * double(depth.size() - 1));
-  std::nth_element(depth.begin(), nth, depth.end());
-  const double limit = double(*nth) + cap;
+  const std::size_t k = std::size_t(0.02 * double(depth.size() - 1));
+  const double limit = double(kth_smallest(depth, k, scratch)) + cap;
   int n_all = 0, n_cap = 0;
   for (int i : indices) {
     const auto u = std::size_t(i);
@@ -50,7 +50,7 @@ FrameAssociation HeadMapper::add_frame(int frame, const OrganizedCloud& cloud, s
   const double position_cap_m = filter_.config().position_cap_m;
   for (std::size_t k = 0; k < detections.size(); ++k) {
     const Box2D& b = detections[k].box;
-    obs[k].centroid = position_cap_m > 0 ? top_centroid(cloud, detections[k].indices, position_cap_m, depth_scratch_)
+    obs[k].centroid = position_cap_m > 0 ? top_centroid(cloud, detections[k].indices, position_cap_m, depth_scratch_, select_scratch_)
                                          : detections[k].centroid;
     obs[k].score = detections[k].score;
     obs[k].partial = margin >= 0 && (b.x <= margin || b.y <= margin || b.x + b.width >= cloud.width - margin ||

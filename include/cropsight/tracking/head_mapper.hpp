@@ -81,6 +81,7 @@ class HeadMapper {
   std::vector<TrackedHead> map_;
   std::set<int> confirmed_;
   std::vector<float> depth_scratch_;  // top_centroid's depths, reused across detections
+  std::vector<float> select_scratch_;  // top_centroid's order-statistic bucket, reused
   bool finished_ = false;
 };
 
