@@ -113,6 +113,14 @@ void DetectTracking::frame(const RgbdFrame& frame, const pipeline::BroccoliDetec
                      {"field", {m.field_position.x(), m.field_position.y(), m.field_position.z()}}});
   }
   line["heads"] = std::move(heads);
+  // Heads of T this frame missed (tracking.predict_missed): where the filter expects them. Their
+  // tracks may still fail to reach the map; compare track_id with --map.
+  nlohmann::json predicted = nlohmann::json::array();
+  for (const auto& p : mapper_.predict_missed(detector.cloud(), frame.camera))
+    predicted.push_back({{"track_id", p.track_id},
+                         {"points", p.indices.size()},
+                         {"centroid", {p.centroid.x(), p.centroid.y(), p.centroid.z()}}});
+  line["predicted"] = std::move(predicted);
   line["camera_estimate"] = {a.camera_position.x(), a.camera_position.y(), a.camera_position.z()};
 }
 
@@ -155,11 +163,13 @@ void EvalTracking::frame(const RgbdFrame& frame, const pipeline::BroccoliDetecto
   std::vector<Detection> dets = detector.detections();
   const std::size_t first = mapper_->detections().size();
   mapper_->add_frame(frame.index, detector.cloud(), dets, frame.camera_position);
+  std::vector<tracking::PredictedHead> predicted = mapper_->predict_missed(detector.cloud(), frame.camera);
   tracking_ms_ += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   data_.camera_path.emplace_back(mapper_->filter().camera_position().x(), mapper_->filter().camera_position().y());
 
   Frame f;
   f.index = frame.index;
+  for (auto& p : predicted) f.predicted.emplace_back(p.track_id, std::move(p.indices));
   // Truth point sets (as the evaluator's AP uses them) and the visible heads for the map.
   std::vector<pipeline::TruthInstance> truth;
   pipeline::truth_instances(detector.cloud(), det_cfg_.detection.min_truth_points, truth);
@@ -215,6 +225,12 @@ void EvalTracking::end_sequence() {
       tracked.push_back({s, std::span<const int>(d.indices)});
       filtered.detections[c].score = s;
     }
+    // Predicted sets of heads that reached the map rank after the confirmed detections.
+    for (const auto& [track, indices] : f.predicted)
+      if (const auto s = mapper_->predicted_score(track)) {
+        tracked.push_back({*s, std::span<const int>(indices)});
+        filtered.detections.push_back({*s, indices});
+      }
     ap_single_.add_frame(f.pr.truth, single);
     ap_tracked_.add_frame(f.pr.truth, tracked);
     pr_single_.push_back(f.pr);

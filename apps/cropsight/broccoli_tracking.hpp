@@ -53,7 +53,8 @@ class DetectTracking {
  public:
   DetectTracking(const TrackOptions& o, const ConfigMap& keys, const std::string& where);
   /// Sizes and tracks the frame's detections; adds "heads": [{id, track_id, diameter_mm, bbox_mm,
-  /// hull_mm, harvestable}] (id = 1-based detection number) and the camera estimate to `line`.
+  /// hull_mm, harvestable}] (id = 1-based detection number), "predicted": [{track_id, points,
+  /// centroid}] (heads the frame missed, tracking.predict_missed) and the camera estimate to `line`.
   void frame(const RgbdFrame& frame, const pipeline::BroccoliDetector& detector, std::vector<Detection>& dets,
              nlohmann::json& line);
   /// Ends the pass, writes --map (atomically) and adds map figures to `summary`.
@@ -90,6 +91,7 @@ class EvalTracking {
     ColorImage image;
     LabelImage labels;
     std::vector<std::pair<std::vector<int>, int>> det_pixels;  // detection pixels, track id
+    std::vector<std::pair<int, std::vector<int>>> predicted;   // track id, pixels (predict_missed)
   };
   ConfigMap keys_;
   std::string where_;

@@ -67,6 +67,8 @@ TemporalFilter::TemporalFilter(const TemporalFilterConfig& cfg, const measure::H
   if (cfg_.max_missed_frames < 1) throw Error("tracking.max_missed_frames", "must be at least 1");
   if (!(cfg_.motion_search_radius_m >= 0.0)) throw Error("tracking.motion_search_radius_m", "must be >= 0");
   if (!(cfg_.merge_radius_m >= 0.0)) throw Error("tracking.merge_radius_m", "must be >= 0");
+  if (!(cfg_.predict_radius_scale > 0.0)) throw Error("tracking.predict_radius_scale", "must be positive");
+  if (cfg_.predict_min_points < 1) throw Error("tracking.predict_min_points", "must be at least 1");
   if (cfg_.initial_velocity.size() != 3)
     throw Error("tracking.initial_velocity", "expects three numbers [x, y, z] (m/frame)");
   v_c_ = Eigen::Vector3d(cfg_.initial_velocity[0], cfg_.initial_velocity[1], cfg_.initial_velocity[2]);

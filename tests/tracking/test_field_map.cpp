@@ -1,8 +1,11 @@
 // Field-map CSV round trip, bad files, and the HeadMapper glue on an organised cloud.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 
+#include "cropsight/core/camera.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/organized_cloud.hpp"
 #include "cropsight/tracking/field_map_io.hpp"
@@ -177,4 +180,90 @@ TEST(HeadMapper, PositionIsTheTopOfTheHead) {
   EXPECT_NEAR(top.x(), 0.0f, 0.002f);
   EXPECT_NEAR(top.y(), 0.0f, 0.002f);
   EXPECT_LT(top.z(), 0.7f + 0.01f);
+}
+
+namespace {
+// A 120×100 pinhole view from `camera` (field frame, poses) of a 6 cm sphere whose field centre is
+// (0.02, 0, -0.76) (apex 0.70 m below the camera) over ground 0.85 m below; `head` gets the
+// sphere's pixels.
+OrganizedCloud render_head(const CameraIntrinsics& cam, const Eigen::Vector3d& camera, std::vector<int>& head) {
+  const FieldTransform t = FieldTransform::parse("y,x,-z");
+  const Eigen::Vector3d centre = t.to_camera(camera, Eigen::Vector3d(0.02, 0.0, -0.76));
+  const double radius = 0.06;
+  OrganizedCloud c(cam.width, cam.height);
+  head.clear();
+  for (int v = 0; v < cam.height; ++v)
+    for (int u = 0; u < cam.width; ++u) {
+      const Eigen::Vector3d d((u - cam.cx) / cam.fx, (v - cam.cy) / cam.fy, 1.0);
+      const double b = d.dot(centre), disc = b * b - d.squaredNorm() * (centre.squaredNorm() - radius * radius);
+      double s = 0.85;  // depth of the ground
+      const bool on_head = disc >= 0.0;
+      if (on_head) s = (b - std::sqrt(disc)) / d.squaredNorm();
+      const Eigen::Vector3d p = s * d;
+      const int i = c.index(u, v);
+      c.x[std::size_t(i)] = float(p.x()), c.y[std::size_t(i)] = float(p.y()), c.z[std::size_t(i)] = float(p.z());
+      if (on_head) head.push_back(i);
+    }
+  return c;
+}
+}  // namespace
+
+// tracking.predict_missed: a tracked head that a frame does not detect gets the frame's points in
+// a ball where the filter expects it — here all of the head and none of the ground.
+TEST(HeadMapper, PredictsTheHeadsAFrameMissed) {
+  const CameraIntrinsics cam = CameraIntrinsics::from_fov(120, 100, 70.0 * M_PI / 180, 60.0 * M_PI / 180);
+  auto run = [&](const ConfigMap& keys, std::vector<PredictedHead>& missed, std::vector<int>& truth) {
+    HeadMapperConfig cfg;
+    cfg.apply(keys, "test");
+    HeadMapper mapper(cfg);
+    for (int f = 0; f < 5; ++f) {
+      const Eigen::Vector3d camera(0.01 * f, 0.0, 0.0);  // 1 cm per frame along the row
+      OrganizedCloud c = render_head(cam, camera, truth);
+      std::vector<Detection> d;
+      if (f < 4) {  // detected in frames 0-3, missed in frame 4
+        Detection x;
+        x.indices = truth;
+        x.score = 1.0f;
+        int u0 = 1000, v0 = 1000, u1 = -1, v1 = -1;
+        for (int i : truth) {
+          u0 = std::min(u0, i % c.width), u1 = std::max(u1, i % c.width);
+          v0 = std::min(v0, i / c.width), v1 = std::max(v1, i / c.width);
+          x.centroid += c.point(std::size_t(i)) / float(truth.size());
+        }
+        x.box = {u0, v0, u1 - u0 + 1, v1 - v0 + 1};
+        d.push_back(x);
+      }
+      mapper.add_frame(f, c, d, camera);
+      missed = mapper.predict_missed(c, cam);
+      if (f < 4) {
+        EXPECT_TRUE(missed.empty()) << "frame " << f << ": the head was detected";
+      }
+    }
+    mapper.finish();
+    if (!missed.empty()) {
+      EXPECT_EQ(mapper.predicted_score(missed[0].track_id), HeadMapper::kConfirmedBonus - 1.0f);
+    }
+  };
+  std::vector<PredictedHead> missed;
+  std::vector<int> truth;
+  run({{"sizing.compute_hull", "false"}, {"tracking.use_poses", "true"}}, missed, truth);
+  ASSERT_EQ(missed.size(), 1u);
+  EXPECT_EQ(missed[0].track_id, 1);
+  std::vector<int> common;
+  std::set_intersection(missed[0].indices.begin(), missed[0].indices.end(), truth.begin(), truth.end(),
+                        std::back_inserter(common));
+  EXPECT_EQ(common.size(), truth.size()) << "every head point is predicted";
+  EXPECT_EQ(missed[0].indices.size(), truth.size()) << "no ground point is";
+  EXPECT_GT(truth.size(), 100u);
+
+  run({{"sizing.compute_hull", "false"}, {"tracking.use_poses", "true"}, {"tracking.predict_missed", "false"}}, missed,
+      truth);
+  EXPECT_TRUE(missed.empty());
+
+  HeadMapper mapper;
+  OrganizedCloud small(10, 10);
+  EXPECT_THROW(mapper.predict_missed(small, cam), Error);  // intrinsics of another image size
+  HeadMapperConfig bad;
+  bad.apply({{"tracking.predict_radius_scale", "0"}}, "test");
+  EXPECT_THROW(HeadMapper{bad}, Error);
 }

@@ -24,11 +24,21 @@ TEST(OrderStatistic, MatchesNthElement) {
       std::vector<float> v(n);
       for (std::size_t i = 0; i < n; ++i) {
         switch (kind) {
-          case 0: v[i] = std::uniform_real_distribution<float>(0.5f, 1.0f)(rng); break;  // depths
-          case 1: v[i] = 0.001f * float(std::uniform_int_distribution<int>(700, 760)(rng)); break;  // mm steps, ties
-          case 2: v[i] = 0.75f; break;  // all equal
-          case 3: v[i] = i == 0 ? -1e30f : std::uniform_real_distribution<float>(0.7f, 0.71f)(rng); break;  // one outlier
-          default: v[i] = 0.9f - 0.0001f * float(i); break;  // sorted descending (raster order over a dome)
+          case 0:
+            v[i] = std::uniform_real_distribution<float>(0.5f, 1.0f)(rng);
+            break;  // depths
+          case 1:
+            v[i] = 0.001f * float(std::uniform_int_distribution<int>(700, 760)(rng));
+            break;  // mm steps, ties
+          case 2:
+            v[i] = 0.75f;
+            break;  // all equal
+          case 3:
+            v[i] = i == 0 ? -1e30f : std::uniform_real_distribution<float>(0.7f, 0.71f)(rng);
+            break;  // one outlier
+          default:
+            v[i] = 0.9f - 0.0001f * float(i);
+            break;  // sorted descending (raster order over a dome)
         }
       }
       for (std::size_t k : {std::size_t(0), std::size_t(0.02 * double(n - 1)), n / 2, n - 1}) {

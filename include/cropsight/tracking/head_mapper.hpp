@@ -11,6 +11,14 @@
 // with confirmed_bonus larger than any score spread, so detections of confirmed heads rank before
 // every unconfirmed one (a detection is never removed: ranking it last is never worse for AP than
 // dropping it).
+//
+// It can also predict the heads a frame missed (tracking.predict_missed, an extension): for each
+// head in T that the frame did not detect, the frame's points within predict_radius_scale × the
+// head's radius of where the filter expects the head's centre. The filter keeps a head in T for
+// max_missed_frames frames, and a head it has tracked is most often missed when it leaves the view
+// (a sliver at the border, below the segmentation's minimum size) or hides under a leaf; the ball
+// finds its remaining points. Predicted sets rank after the confirmed detections in ap50_temporal
+// (predicted_score) and are written by `detect broccoli --track`; they never update the filter.
 #include <optional>
 #include <set>
 #include <string>
@@ -23,7 +31,8 @@
 
 namespace cropsight {
 struct OrganizedCloud;
-}
+struct CameraIntrinsics;
+}  // namespace cropsight
 
 namespace cropsight::tracking {
 
@@ -53,6 +62,15 @@ struct MeasuredDetection {
   bool partial = false;    ///< box within tracking.border_margin_px of the image border
 };
 
+/// A head of T that the last frame did not detect, and its points in that frame (see above).
+struct PredictedHead {
+  int track_id = -1;
+  std::vector<int> indices;                            ///< pixel indices, ascending
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();  ///< of those points, camera frame (m)
+  Eigen::Vector3f centre = Eigen::Vector3f::Zero();    ///< the ball's centre, camera frame (m)
+  float radius_m = 0.0f;                               ///< the ball's radius (m)
+};
+
 class HeadMapper {
  public:
   explicit HeadMapper(const HeadMapperConfig& cfg = {});
@@ -61,6 +79,10 @@ class HeadMapper {
   /// frame's organised cloud the detection indices refer to.
   FrameAssociation add_frame(int frame, const OrganizedCloud& cloud, std::vector<Detection>& detections,
                              const std::optional<Eigen::Vector3d>& camera_position = std::nullopt);
+  /// After add_frame(frame, cloud, ...): the heads of T that this frame did not detect, with their
+  /// points in `cloud` (empty when tracking.predict_missed is false). `camera`: the intrinsics
+  /// `cloud` was deprojected with (to bound the pixels searched). Does not change the filter.
+  std::vector<PredictedHead> predict_missed(const OrganizedCloud& cloud, const CameraIntrinsics& camera) const;
   /// Ends the pass; returns the map (see TemporalFilter::finish).
   const std::vector<TrackedHead>& finish();
 
@@ -69,6 +91,9 @@ class HeadMapper {
   bool confirmed(int track_id) const { return confirmed_.count(track_id) > 0; }
   /// Score of a recorded detection after the temporal filter (valid after finish()).
   float filtered_score(const MeasuredDetection& d) const;
+  /// Rank score of a predicted set of head `track_id` (after finish()): after every confirmed
+  /// detection (kConfirmedBonus − 1) when the head is in the map; otherwise nullopt (not a detection).
+  std::optional<float> predicted_score(int track_id) const;
   const measure::HeadSizer& sizer() const { return sizer_; }
   const TemporalFilter& filter() const { return filter_; }
 
@@ -80,9 +105,10 @@ class HeadMapper {
   std::vector<MeasuredDetection> measured_;
   std::vector<TrackedHead> map_;
   std::set<int> confirmed_;
-  std::vector<float> depth_scratch_;  // top_centroid's depths, reused across detections
+  std::vector<float> depth_scratch_;   // top_centroid's depths, reused across detections
   std::vector<float> select_scratch_;  // top_centroid's order-statistic bucket, reused
   bool finished_ = false;
+  int last_frame_ = -1;
 };
 
 }  // namespace cropsight::tracking

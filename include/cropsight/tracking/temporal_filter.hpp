@@ -75,6 +75,9 @@ struct TemporalFilterConfig {
   bool partial_tracks = true;
   double position_cap_m = 0.02;
   double merge_radius_m = 0.05;
+  bool predict_missed = true;
+  double predict_radius_scale = 1.3;
+  int predict_min_points = 10;
 
   template <class V>
   void visit(V& v) {
@@ -119,6 +122,14 @@ struct TemporalFilterConfig {
       "m; at the end, a head whose track started after another's ended within this distance of it is merged into "
       "it when that one reached min_track_score (the same head lost and found again; extension, default the "
       "association radius 0.05 m; 0 = off, the paper's map keeps both)");
+    v("predict_missed", predict_missed,
+      "bool; a head in T that a frame did not detect gets a predicted point set in that frame: the frame's points "
+      "in a ball around where the filter expects it (HeadMapper::predict_missed; used by ap50_temporal and written "
+      "by detect --track; extension, the paper's filter only re-ranks detections; false = off)");
+    v("predict_radius_scale", predict_radius_scale,
+      "1; the ball's radius as a multiple of the head's radius (half its running bounding-box width; chosen on "
+      "tuning seeds 101/103 uk, 102/104 spain: 1.3)");
+    v("predict_min_points", predict_min_points, "points; fewer points in the ball give no predicted set");
   }
 };
 
