@@ -303,6 +303,14 @@ void EvalTracking::end_sequence() {
                  : Rgb8{uint8_t(120 + p.r / 2), uint8_t(p.g / 3), uint8_t(p.b / 3)};
         }
       }
+      for (const auto& [track, pixels] : f.predicted) {
+        if (!mapper_->confirmed(track)) continue;
+        for (int i : pixels) {
+          auto& p = img.data[std::size_t(i)];
+          p = Rgb8{uint8_t(200 + p.r / 5), uint8_t(p.g / 4),
+                   uint8_t(200 + p.b / 5)};  // magenta: not in the depth colours
+        }
+      }
       if (!f.labels.data.empty()) report::draw_label_outlines(img, f.labels);
       data_.overlays.push_back(report::make_figure(report::upscale(img, 1), "frame " + std::to_string(f.index)));
     }

@@ -235,8 +235,9 @@ void add_broccoli_sections(HtmlPage& page, const BroccoliReportData& d) {
   if (!d.overlays.empty()) {
     page.section("Frames");
     page.paragraph(
-        "Depth with detections: green = head confirmed by the temporal filter, red = not confirmed; white "
-        "outlines = ground-truth heads.");
+        "Depth with detections: green = head confirmed by the temporal filter, red = not confirmed, magenta = "
+        "a confirmed head this frame missed, predicted by the filter (tracking.predict_missed); white outlines = "
+        "ground-truth heads.");
     page.figures(d.overlays);
   }
 }
