@@ -143,6 +143,8 @@ BENCHMARK(BM_Size)
     ->Args({1, 0, 1, 1})
     ->Args({1, 0, 0, 0})
     ->Args({1, 0, 1, 0})
+    ->Args({1, 500, 0, 0})  // our Quickhull of a 500-point stride subsample (the fast setting; needs its own fit)
+    ->Args({1, 250, 0, 0})
     ->Unit(benchmark::kMicrosecond);
 
 // The hull stages alone, per frame: the row/column filter, then Quickhull on its candidates.
@@ -210,6 +212,7 @@ void BM_TrackAndSize(benchmark::State& state) {
   cfg.compute_hull = state.range(0) != 0;
   cfg.hull_prefilter = state.range(1) != 0;
   cfg.hull_engine = state.range(2) ? "qhull" : "quickhull";
+  cfg.hull_max_points = int(state.range(3));
   const measure::HeadSizer sizer(cfg);
   const auto& f = frames();
   auto filter = std::make_unique<tracking::TemporalFilter>(tracking::TemporalFilterConfig{}, sizer);
@@ -232,15 +235,19 @@ void BM_TrackAndSize(benchmark::State& state) {
     benchmark::DoNotOptimize(filter->update(int(i), obs));
     ++i;
   }
-  state.SetLabel(!cfg.compute_hull ? "bbox+track"
-                                   : "bbox+" + cfg.hull_engine + (cfg.hull_prefilter ? "(prefilter)" : "") + "+track");
+  state.SetLabel(!cfg.compute_hull
+                     ? "bbox+track"
+                     : "bbox+" + cfg.hull_engine + (cfg.hull_prefilter ? "(prefilter)" : "") +
+                           (cfg.hull_max_points ? "(<=" + std::to_string(cfg.hull_max_points) + ")" : "") + "+track");
 }
+// Args: compute_hull, hull_prefilter, qhull engine, hull_max_points.
 BENCHMARK(BM_TrackAndSize)
-    ->Args({0, 0, 0})
-    ->Args({1, 0, 1})
-    ->Args({1, 1, 1})
-    ->Args({1, 0, 0})
-    ->Args({1, 1, 0})
+    ->Args({0, 0, 0, 0})
+    ->Args({1, 0, 1, 0})
+    ->Args({1, 1, 1, 0})
+    ->Args({1, 0, 0, 0})
+    ->Args({1, 1, 0, 0})
+    ->Args({1, 0, 0, 500})
     ->Unit(benchmark::kMicrosecond);
 
 }  // namespace
