@@ -77,6 +77,22 @@ TEST_F(TrackingCli, DetectWritesTheMap) {
   ASSERT_TRUE(first.contains("heads"));
   ASSERT_TRUE(first.contains("camera_estimate"));
   EXPECT_EQ(first["heads"].size(), first["detections"].size());
+  // tracking.predict_missed: every line lists the heads of T it missed (maybe none), each with the
+  // id of a head the pass tracked and at least predict_min_points (10) points.
+  std::size_t pos = 0, lines_seen = 0;
+  while (pos < lines.size()) {
+    const std::size_t end = lines.find('\n', pos);
+    const auto line = nlohmann::json::parse(lines.substr(pos, end - pos));
+    ASSERT_TRUE(line.contains("predicted")) << line.dump();
+    for (const auto& p : line["predicted"]) {
+      EXPECT_GT(p["track_id"].get<int>(), 0);
+      EXPECT_GE(p["points"].get<int>(), 10);
+      EXPECT_EQ(p["centroid"].size(), 3u);
+    }
+    ++lines_seen;
+    pos = end == std::string::npos ? lines.size() : end + 1;
+  }
+  EXPECT_EQ(lines_seen, 14u);
 }
 
 TEST_F(TrackingCli, EvalReportsMapSizeAndTemporalAp) {
