@@ -45,10 +45,11 @@ Progress::Progress(std::string what, long total, bool quiet, double min_interval
       start_(now_s()) {}
 
 void Progress::update(long done) {
-  if (quiet_) return;
+  if (quiet_ || done == shown_) return;  // finish() after the last update() prints nothing twice
   const double t = now_s();
   if (t - last_ < min_interval_s_ && done < total_) return;
   last_ = t;
+  shown_ = done;
   const double elapsed = t - start_;
   const double eta = done > 0 ? elapsed * double(total_ - done) / double(done) : 0.0;
   std::fprintf(stderr, "%s%s %ld/%ld (%.0f%%, %.1f s, eta %.1f s)%s", tty_ ? "\r" : "", what_.c_str(), done, total_,

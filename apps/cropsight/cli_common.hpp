@@ -40,6 +40,7 @@ class Progress {
   bool quiet_, tty_;
   double min_interval_s_;
   double last_ = -1e9;
+  long shown_ = -1;  // the last count printed
   double start_;
 };
 

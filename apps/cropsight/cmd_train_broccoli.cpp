@@ -3,6 +3,7 @@
 // (optionally after a cross-validated grid search) and writes one model file.
 #include <chrono>
 #include <cstdio>
+#include <optional>
 
 #include "broccoli_cli.hpp"
 #include "broccoli_tracking.hpp"
@@ -66,7 +67,16 @@ void run(const TrainOptions& o) {
       {"data", o.data}, {"seeds", seeds}, {"varieties", varieties}, {"frames", std::to_string(builder.frames())}};
   nlohmann::json grid_json;
   if (o.grid_search) {
-    const auto r = learning::grid_search(data, cfg.classifier, grid, "grid search");
+    // One line per grid point at most once a second: a full grid is ~100 × folds SVM trainings.
+    std::optional<Progress> progress;
+    const auto r =
+        learning::grid_search(data, cfg.classifier, grid, "grid search", [&](std::size_t done, std::size_t total) {
+          if (!progress)
+            progress.emplace("grid search (" + std::to_string(grid.folds) + "-fold CV per point)", long(total),
+                             o.quiet || o.common.json);
+          progress->update(long(done));
+          if (done == total) progress->finish();
+        });
     cfg.classifier = r.params;
     grid_json = {{"best_c", r.best.c},       {"best_gamma", r.best.gamma}, {"cv_accuracy", r.best.accuracy},
                  {"cv_kappa", r.best.kappa}, {"points", r.points.size()},  {"folds", grid.folds},

@@ -94,7 +94,7 @@ std::vector<int> cross_validate(const Dataset& data, const ClassifierParams& par
 }
 
 GridSearchResult grid_search(const Dataset& data, const ClassifierParams& params, const GridSearchConfig& cfg,
-                             const std::string& where) {
+                             const std::string& where, const GridProgress& progress) {
   cfg.validate(where);
   params.validate(where);
   if (params.type == "knn") throw Error(where, "grid search tunes SVM C and gamma; it does not apply to knn");
@@ -131,6 +131,7 @@ GridSearchResult grid_search(const Dataset& data, const ClassifierParams& params
         result.best = g;
         result.params = p;
       }
+      if (progress) progress(result.points.size(), cs.size() * gs.size());
     }
   }
   return result;

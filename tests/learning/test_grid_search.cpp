@@ -50,8 +50,11 @@ TEST(GridSearch, LinearSearchesCOnly) {
   GridSearchConfig cfg;
   cfg.log2_c = {-9, -1, 4};
   cfg.metric = "kappa";
-  const GridSearchResult r = grid_search(d, p, cfg);
+  std::vector<std::pair<std::size_t, std::size_t>> calls;  // the progress callback: once per grid point
+  const GridSearchResult r = grid_search(d, p, cfg, "grid search",
+                                         [&](std::size_t done, std::size_t total) { calls.emplace_back(done, total); });
   EXPECT_EQ(r.points.size(), 3u);
+  EXPECT_EQ(calls, (std::vector<std::pair<std::size_t, std::size_t>>{{1, 3}, {2, 3}, {3, 3}}));
   EXPECT_DOUBLE_EQ(r.params.linear_c, r.best.c);
   EXPECT_GT(r.best.kappa, 0.7);
 }

@@ -3,6 +3,8 @@
 // like libsvm's tools/grid.py (default grids log2 C = -5:2:15, log2 γ = 3:-2:-15). The
 // standardiser is refitted on each training fold so that no statistic of the held-out fold
 // leaks into its model.
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -47,9 +49,12 @@ std::vector<int> stratified_folds(const std::vector<int>& labels, int folds, int
 std::vector<int> cross_validate(const Dataset& data, const ClassifierParams& params, const std::vector<int>& fold_of,
                                 int folds);
 
+/// Called after each grid point with (points done, points in the grid), e.g. for a progress line.
+using GridProgress = std::function<void(std::size_t, std::size_t)>;
+
 /// Runs the grid search for params.type svm-rbf (C × γ) or svm-linear (C only); throws
 /// Error(where, ...) for knn, an empty grid or a class with fewer samples than folds.
 GridSearchResult grid_search(const Dataset& data, const ClassifierParams& params, const GridSearchConfig& cfg,
-                             const std::string& where = "grid search");
+                             const std::string& where = "grid search", const GridProgress& progress = {});
 
 }  // namespace cropsight::learning
