@@ -169,7 +169,7 @@ void EvalTracking::frame(const RgbdFrame& frame, const pipeline::BroccoliDetecto
 
   Frame f;
   f.index = frame.index;
-  for (auto& p : predicted) f.predicted.emplace_back(p.track_id, std::move(p.indices));
+  f.predicted = std::move(predicted);
   // Truth point sets (as the evaluator's AP uses them) and the visible heads for the map.
   std::vector<pipeline::TruthInstance> truth;
   pipeline::truth_instances(detector.cloud(), det_cfg_.detection.min_truth_points, truth);
@@ -226,10 +226,10 @@ void EvalTracking::end_sequence() {
       filtered.detections[c].score = s;
     }
     // Predicted sets of heads that reached the map rank after the confirmed detections.
-    for (const auto& [track, indices] : f.predicted)
-      if (const auto s = mapper_->predicted_score(track)) {
-        tracked.push_back({*s, std::span<const int>(indices)});
-        filtered.detections.push_back({*s, indices});
+    for (const auto& p : f.predicted)
+      if (const auto s = mapper_->predicted_score(p.track_id)) {
+        tracked.push_back({*s, std::span<const int>(p.indices)});
+        filtered.detections.push_back({*s, p.indices});
       }
     ap_single_.add_frame(f.pr.truth, single);
     ap_tracked_.add_frame(f.pr.truth, tracked);
@@ -303,9 +303,9 @@ void EvalTracking::end_sequence() {
                  : Rgb8{uint8_t(120 + p.r / 2), uint8_t(p.g / 3), uint8_t(p.b / 3)};
         }
       }
-      for (const auto& [track, pixels] : f.predicted) {
-        if (!mapper_->confirmed(track)) continue;
-        for (int i : pixels) {
+      for (const auto& head : f.predicted) {
+        if (!mapper_->confirmed(head.track_id)) continue;
+        for (int i : head.indices) {
           auto& p = img.data[std::size_t(i)];
           p = Rgb8{uint8_t(200 + p.r / 5), uint8_t(p.g / 4),
                    uint8_t(200 + p.b / 5)};  // magenta: not in the depth colours

@@ -91,7 +91,7 @@ class EvalTracking {
     ColorImage image;
     LabelImage labels;
     std::vector<std::pair<std::vector<int>, int>> det_pixels;  // detection pixels, track id
-    std::vector<std::pair<int, std::vector<int>>> predicted;   // track id, pixels (predict_missed)
+    std::vector<tracking::PredictedHead> predicted;            // heads the frame missed (predict_missed)
   };
   ConfigMap keys_;
   std::string where_;

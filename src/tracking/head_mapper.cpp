@@ -63,7 +63,6 @@ FrameAssociation HeadMapper::add_frame(int frame, const OrganizedCloud& cloud, s
     detections[k].size_m = obs[k].size.valid ? float(obs[k].size.diameter_mm / 1000.0) : 0.0f;
   }
   FrameAssociation a = filter_.update(frame, obs, camera_position);
-  last_frame_ = frame;
   for (std::size_t k = 0; k < detections.size(); ++k) {
     detections[k].track_id = a.track_ids[k];
     MeasuredDetection m;
@@ -112,7 +111,7 @@ std::vector<PredictedHead> HeadMapper::predict_missed(const OrganizedCloud& clou
   // the cap below the apex; the centre of a head of radius ρ lies ρ below the apex along the view.
   const double half_cap = 0.5 * cfg.position_cap_m;
   for (const TrackedHead& h : filter_.tracked()) {
-    if (h.last_frame == last_frame_ || h.missed < 1) continue;  // detected in this frame
+    if (h.missed < 1) continue;  // detected (or started) in this frame
     // ρ: half the running bounding-box width; 5 cm before any whole detection was measured.
     const double rho = h.size_samples > 0 && h.bbox_mm > 0.0 ? 0.0005 * h.bbox_mm : 0.05;
     const Eigen::Vector3d top = filter_.transform().to_camera(filter_.camera_position(), h.position);

@@ -108,7 +108,6 @@ class HeadMapper {
   std::vector<float> depth_scratch_;   // top_centroid's depths, reused across detections
   std::vector<float> select_scratch_;  // top_centroid's order-statistic bucket, reused
   bool finished_ = false;
-  int last_frame_ = -1;
 };
 
 }  // namespace cropsight::tracking
