@@ -86,7 +86,11 @@ void run(const BenchOptions& o) {
   tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
   const auto model = load_broccoli_model(o.model);
   io::SequenceReader reader(o.data);
-  const int n = o.frames > 0 ? std::min(o.frames, reader.size()) : reader.size();
+  if (o.frames < 0) throw Error("--frames", "must be >= 0 (0: every frame)");
+  if (o.frames > reader.size())
+    throw Error("--frames", std::to_string(o.frames) + " asked, but " + o.data + " has " +
+                                std::to_string(reader.size()) + " frames");
+  const int n = o.frames > 0 ? o.frames : reader.size();
   std::vector<RgbdFrame> frames;
   for (int i = 0; i < n; ++i) {
     frames.push_back(reader.read(i));
@@ -179,7 +183,7 @@ void add_bench_broccoli(CLI::App& bench) {
   auto* cmd = bench.add_subcommand("broccoli", "Time OES, ORG, FEC and the PCL reference pipeline");
   cmd->add_option("--data", o->data, "Sequence directory")->required();
   cmd->add_option("--model", o->model, "Model file with VFH features (cropsight train broccoli)")->required();
-  cmd->add_option("--frames", o->frames, "Frames to time (default: all)");
+  cmd->add_option("--frames", o->frames, "Frames to time, the first N (default 0: all)");
   cmd->add_option("--repeat", o->repeat, "Passes over the frames (default 1)");
   cmd->add_option("--variety", o->variety, "Presets to use: uk | spain (default uk)");
   cmd->add_flag("--sor", o->sor, "Run statistical outlier removal in FEC and the PCL reference");

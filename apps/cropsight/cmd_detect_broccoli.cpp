@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <system_error>
@@ -53,6 +54,49 @@ nlohmann::json detection_json(const Detection& d, int id) {
           {"points", d.indices.size()}};
 }
 
+// The --masks directory, checked before any work: it is replaced as a whole at the end, so it must
+// be new, empty, or a previous run's masks (NNNNNN.png files only) — never a folder that holds
+// anything else, which the replacement would delete.
+fs::path mask_directory(const std::string& masks) {
+  if (masks.empty()) return {};
+  fs::path dir(masks);
+  if (!dir.has_filename()) dir = dir.parent_path();  // "out/masks/"
+  std::error_code ec;
+  const auto st = fs::status(dir, ec);
+  if (!fs::exists(st)) return dir;
+  if (!fs::is_directory(st)) throw Error(masks, "exists and is not a directory");
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    const bool mask_file = e.is_regular_file() && name.size() == 10 && name.ends_with(".png") &&
+                           std::all_of(name.begin(), name.begin() + 6, [](char c) { return c >= '0' && c <= '9'; });
+    if (!mask_file)
+      throw Error(masks, "holds '" + name +
+                             "', which is not a mask of an earlier run; --masks replaces the whole directory, so "
+                             "give a new or empty one");
+  }
+  if (ec) throw Error(masks, "cannot list the directory: " + ec.message());
+  return dir;
+}
+
+// Puts the finished directory `tmp` in place of `dir`; the previous `dir` is moved aside first and
+// removed only once the new one is in place, so a failure leaves the old masks.
+void replace_directory(const fs::path& tmp, const fs::path& dir) {
+  std::error_code ec;
+  const fs::path old = dir.parent_path() / ("." + dir.filename().string() + ".old-" + std::to_string(::getpid()));
+  const bool had_old = fs::exists(dir, ec);
+  if (had_old) {
+    fs::rename(dir, old, ec);
+    if (ec) throw Error(dir.string(), "cannot replace the previous masks: " + ec.message());
+  }
+  fs::rename(tmp, dir, ec);
+  if (ec) {
+    std::error_code ec2;
+    if (had_old) fs::rename(old, dir, ec2);
+    throw Error(dir.string(), "cannot write the masks: " + ec.message());
+  }
+  if (had_old) fs::remove_all(old, ec);
+}
+
 void run(const DetectOptions& o) {
   const auto model = load_broccoli_model(o.model);
   ConfigMap config = o.common.config_map();
@@ -71,12 +115,14 @@ void run(const DetectOptions& o) {
   }
 
   // Masks: a temporary sibling directory, renamed over --masks at the end.
+  const fs::path masks_dir = mask_directory(o.masks);
   fs::path mask_tmp;
   if (!o.masks.empty()) {
-    if (fs::exists(o.masks) && !fs::is_directory(o.masks)) throw Error(o.masks, "exists and is not a directory");
-    mask_tmp = fs::path(o.masks).string() + ".tmp-" + std::to_string(::getpid());
-    fs::remove_all(mask_tmp);
-    fs::create_directories(mask_tmp);
+    mask_tmp = masks_dir.parent_path() / ("." + masks_dir.filename().string() + ".tmp-" + std::to_string(::getpid()));
+    std::error_code ec;
+    fs::remove_all(mask_tmp, ec);
+    fs::create_directories(mask_tmp, ec);
+    if (ec) throw Error(o.masks, "cannot create the mask directory: " + ec.message());
   }
   struct Cleanup {
     fs::path p;
@@ -124,8 +170,7 @@ void run(const DetectOptions& o) {
     if (h.finish) h.finish(summary);
   io::write_file_atomic(o.out, lines);
   if (!mask_tmp.empty()) {
-    fs::remove_all(o.masks);
-    fs::rename(mask_tmp, o.masks);
+    replace_directory(mask_tmp, masks_dir);
     cleanup.p.clear();
     summary["masks"] = o.masks;
   }

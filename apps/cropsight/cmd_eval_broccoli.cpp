@@ -32,6 +32,7 @@ void run(const EvalOptions& o) {
   detector.set_model(model, o.model);
   pipeline::BroccoliEvaluator evaluator(detector);
   if (o.track.fit_size_bias && !o.track.track) throw Error("--fit-size-bias", "needs --track");
+  if (o.track.map_min_points < 0) throw Error("--map-min-points", "must be >= 0 (0: every true head counts)");
   std::optional<EvalTracking> tracker;
   if (o.track.track) {
     tracker.emplace(track_keys, cfg, o.common.config.empty() ? "--set" : o.common.config);
@@ -40,6 +41,9 @@ void run(const EvalOptions& o) {
   for (const auto& dir : split_list(o.data, "--data")) {
     io::SequenceReader reader(dir);
     if (!reader.info().has_labels) throw Error(dir, "sequence has no labels/ (evaluation needs ground truth)");
+    // The map and size figures compare with groundtruth.json; without it they would read 0.
+    if (tracker && !reader.info().has_groundtruth)
+      throw Error(dir, "sequence has no groundtruth.json (--track evaluates the map and sizes against it)");
     Progress progress("eval broccoli: " + dir, reader.size(), o.quiet || o.common.json);
     if (tracker) tracker->begin_sequence(reader);
     for (int i = 0; i < reader.size(); ++i) {

@@ -25,6 +25,11 @@ struct ReportOptions {
 
 void run(const ReportOptions& o) {
   if (o.frames < 1) throw Error("--frames", "must be at least 1");
+  // The configuration only drives the detection sections; without a model it would be silently
+  // ignored, which hides typos and wrong files.
+  if (o.model.empty() && (!o.common.config.empty() || !o.common.sets.empty()))
+    throw Error(o.common.config.empty() ? "--set" : "--config",
+                "only used with --model (the sequence-only report has no settings)");
   const io::SequenceReader reader(o.data);
   const report::SequenceSummary summary = report::summarize_sequence(reader);
   const std::string name = std::filesystem::path(o.data).lexically_normal().filename().string();

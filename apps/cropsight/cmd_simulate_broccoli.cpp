@@ -1,7 +1,9 @@
 // cropsight simulate broccoli: a simulated Kinect v2 sequence over a broccoli field, with exact
 // ground truth (docs/simulator.md).
+#include <cmath>
 #include <cstdint>
 #include <iostream>
+#include <optional>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -15,7 +17,7 @@ struct SimulateBroccoliOptions {
   std::string variety = "uk";
   int frames = 60;
   std::uint64_t seed = 1;
-  double fps = 0;  // 0 = preset value
+  std::optional<double> fps;  // unset = the preset's value
   std::string out;
   bool force = false;
   CommonOptions common;
@@ -23,12 +25,14 @@ struct SimulateBroccoliOptions {
 
 void run_simulate_broccoli(const SimulateBroccoliOptions& o) {
   if (o.frames < 1) throw Error("--frames", "must be at least 1");
-  if (o.fps < 0) throw Error("--fps", "must be positive");
+  if (o.fps && !(std::isfinite(*o.fps) && *o.fps > 0.0)) throw Error("--fps", "must be a positive number");
   sim::BroccoliSimConfig cfg;
   // The variety picks the preset; --config replaces it with another file; --set overrides keys.
-  apply_config(cfg, o.common.config_map("sim-broccoli-" + o.variety), "simulator config");
-  if (o.fps > 0) cfg.motion.fps = o.fps;
-  cfg.validate("simulator config");
+  const std::string where =
+      o.common.config.empty() ? "configs/sim-broccoli-" + o.variety + ".yaml (with --set)" : o.common.config;
+  apply_config(cfg, o.common.config_map("sim-broccoli-" + o.variety), where);
+  if (o.fps) cfg.motion.fps = *o.fps;
+  cfg.validate(where);
 
   Progress progress("simulate broccoli", o.frames, o.common.json);
   const auto summary = sim::simulate_broccoli_sequence(cfg, o.seed, o.frames, o.out, o.force,

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 
 #include "commands.hpp"
@@ -68,6 +69,12 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const cropsight::Error& e) {
     std::fprintf(stderr, "cropsight: %s\n", e.what());
+    return 2;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // A file system refusal (permissions, a file where a folder is expected, a symlink loop) is the
+    // user's environment, not a bug: name the path and the reason on one line.
+    const std::string where = e.path1().empty() ? std::string("file system") : e.path1().string();
+    std::fprintf(stderr, "cropsight: %s: %s\n", where.c_str(), e.code().message().c_str());
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "cropsight: internal error: %s\n", e.what());

@@ -23,6 +23,12 @@ void CameraIntrinsics::validate(const std::string& where) const {
   if (!(std::isfinite(fx) && std::isfinite(fy) && fx > 0 && fy > 0))
     throw Error(where, "focal lengths fx, fy must be finite and positive");
   if (!(std::isfinite(cx) && std::isfinite(cy))) throw Error(where, "principal point cx, cy must be finite");
+  // Generous bounds (a cropped sensor may put it off-centre, not a width away): catches unit and
+  // typing errors such as 1e308.
+  if (!(cx >= -double(width) && cx <= 2.0 * double(width) && cy >= -double(height) && cy <= 2.0 * double(height)))
+    throw Error(where, "principal point (" + std::to_string(cx) + ", " + std::to_string(cy) +
+                           ") lies more than an image size outside the " + std::to_string(width) + "x" +
+                           std::to_string(height) + " image");
   if (!(std::isfinite(depth_scale) && depth_scale > 0))
     throw Error(where, "depth_scale must be finite and positive (metres per depth unit)");
   for (double d : distortion)

@@ -7,8 +7,16 @@
 
 namespace cropsight::geometry {
 
+void DepthRangeConfig::validate() const {
+  if (!(min_depth >= 0.0f) || !std::isfinite(min_depth))
+    throw Error("depth.min_depth", "must be a finite number >= 0 (metres)");
+  if (!(max_depth > 0.0f) || !std::isfinite(max_depth))
+    throw Error("depth.max_depth", "must be a finite positive number (metres)");
+  if (!(min_depth <= max_depth)) throw Error("depth range", "min_depth must not exceed max_depth");
+}
+
 std::size_t filter_depth_range(OrganizedCloud& cloud, const DepthRangeConfig& cfg) {
-  if (!(cfg.min_depth <= cfg.max_depth)) throw Error("depth range", "min_depth must not exceed max_depth");
+  cfg.validate();
   constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
   const bool normals = cloud.has_normals();
   std::size_t kept = 0;

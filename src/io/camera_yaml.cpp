@@ -64,9 +64,12 @@ CameraIntrinsics read_camera_yaml(const fs::path& path) {
   if (!root.IsMap()) throw Error(where, "expected a YAML mapping with width, height, fx, fy, cx, cy, depth_scale");
   static const std::set<std::string> known = {"width", "height",      "fx",         "fy",    "cx",
                                               "cy",    "depth_scale", "distortion", "sensor"};
+  std::set<std::string> seen;
   for (const auto& kv : root) {
     const std::string key = kv.first.as<std::string>();
     if (!known.count(key)) throw Error(where, "unknown key '" + key + "'");
+    // yaml-cpp keeps both entries and a lookup takes the first: a second fx would be ignored
+    if (!seen.insert(key).second) throw Error(where, "duplicate key '" + key + "'");
   }
   CameraIntrinsics c;
   c.width = get_int(root, "width", where);

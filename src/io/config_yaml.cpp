@@ -1,6 +1,7 @@
 #include "cropsight/io/config_yaml.hpp"
 
 #include <yaml-cpp/yaml.h>
+#include <set>
 
 #include <cstdlib>
 
@@ -14,12 +15,16 @@ namespace fs = std::filesystem;
 namespace {
 void flatten(const YAML::Node& node, const std::string& prefix, ConfigMap& out, const fs::path& path) {
   switch (node.Type()) {
-    case YAML::NodeType::Map:
+    case YAML::NodeType::Map: {
+      std::set<std::string> seen;  // yaml-cpp keeps duplicate keys and lookups take the first: refuse them
       for (const auto& kv : node) {
         const std::string key = kv.first.as<std::string>();
-        flatten(kv.second, prefix.empty() ? key : prefix + "." + key, out, path);
+        const std::string full = prefix.empty() ? key : prefix + "." + key;
+        if (!seen.insert(key).second) throw Error(path.string(), "duplicate key '" + full + "'");
+        flatten(kv.second, full, out, path);
       }
       break;
+    }
     case YAML::NodeType::Sequence: {
       std::string text = "[";
       for (std::size_t i = 0; i < node.size(); ++i) {

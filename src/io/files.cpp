@@ -24,6 +24,7 @@ fs::path temp_sibling(const fs::path& path) {
 
 void write_atomic_with(const fs::path& path, const std::function<void(const fs::path& tmp)>& write) {
   std::error_code ec;
+  if (fs::is_directory(path, ec)) throw Error(path.string(), "is a directory (expected a file name to write)");
   if (!path.parent_path().empty()) {
     fs::create_directories(path.parent_path(), ec);
     if (ec) throw Error(path.string(), "cannot create directory: " + ec.message());
@@ -39,8 +40,9 @@ void write_atomic_with(const fs::path& path, const std::function<void(const fs::
   }
   fs::rename(tmp, path, ec);
   if (ec) {
+    const std::string why = ec.message();  // before remove() reuses ec
     fs::remove(tmp, ec);
-    throw Error(path.string(), "cannot write: " + ec.message());
+    throw Error(path.string(), "cannot write: " + why);
   }
 }
 
@@ -55,6 +57,8 @@ void write_file_atomic(const fs::path& path, const std::string& content) {
 }
 
 std::string read_file(const fs::path& path) {
+  // A directory opens as a stream on Linux and reads as empty: say what it is instead.
+  if (std::error_code ec; fs::is_directory(path, ec)) throw Error(path.string(), "is a directory, not a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     if (!fs::exists(path)) throw Error(path.string(), "file not found");

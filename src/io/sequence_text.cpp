@@ -70,6 +70,12 @@ std::vector<CameraPose> read_poses_csv(const fs::path& path, int frames) {
     }
     p.timestamp = v[0];
     p.position = {v[1], v[2], v[3]};
+    // Timestamps are seconds since the recording started; the temporal filter and the map assume
+    // frames in time order.
+    if (p.timestamp < 0.0) throw Error(where, at + "timestamp must be >= 0 (seconds), got " + std::string(fields[1]));
+    if (!poses.empty() && p.timestamp < poses.back().timestamp)
+      throw Error(where, at + "timestamp " + std::string(fields[1]) + " goes back in time (previous row " +
+                             format_double(poses.back().timestamp) + ")");
     poses.push_back(p);
   }
   if (!header) throw Error(where, "empty file (expected the header '" + std::string(kPosesHeader) + "')");
@@ -94,7 +100,7 @@ GroundTruth read_groundtruth_json(const fs::path& path) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse errors, and numbers out of range (1e999)
     throw Error(where, std::string("malformed JSON: ") + e.what());
   }
   if (!j.is_object()) throw Error(where, "expected a JSON object with \"instances\"");

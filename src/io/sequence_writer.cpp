@@ -1,9 +1,14 @@
 // SequenceWriter: everything is written into a hidden temporary sibling directory, which
 // finish() renames onto the final name, so a sequence directory either is complete or does
 // not exist (a crashed or abandoned writer leaves no half sequence behind).
+#include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
+#include <cstdlib>
 #include <random>
+#include <vector>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
@@ -31,6 +36,37 @@ bool replaceable(const fs::path& dir) {
   return fs::is_empty(dir) || fs::exists(dir / "camera.yaml") || fs::exists(dir / "depth");
 }
 
+// A run killed by a signal cannot unwind, so its temporary directory stays behind. The next
+// writer of the same sequence removes such leftovers: `.NAME.tmp-PID-RANDOM` (or `.old-`) whose
+// process no longer exists. A live writer's directory is left alone.
+void remove_stale_siblings(const fs::path& dir) {
+  const fs::path parent = dir.parent_path().empty() ? fs::path(".") : dir.parent_path();
+  const std::string prefix = "." + dir.filename().string() + ".";
+  std::error_code ec;
+  std::vector<fs::path> stale;
+  for (const auto& e : fs::directory_iterator(parent, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind(prefix, 0) != 0) continue;
+    const std::string rest = name.substr(prefix.size());
+    std::size_t at = 0;
+    if (rest.rfind("tmp-", 0) == 0)
+      at = 4;
+    else if (rest.rfind("old-", 0) == 0)
+      at = 4;
+    else
+      continue;
+    const std::size_t dash = rest.find('-', at);
+    if (dash == std::string::npos || dash == at) continue;
+    const std::string pid_text = rest.substr(at, dash - at);
+    if (!std::all_of(pid_text.begin(), pid_text.end(), [](char c) { return c >= '0' && c <= '9'; })) continue;
+    const long pid = std::strtol(pid_text.c_str(), nullptr, 10);
+    if (pid <= 0 || pid == long(::getpid())) continue;
+    if (::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to judge
+    stale.push_back(e.path());
+  }
+  for (const auto& p : stale) fs::remove_all(p, ec);
+}
+
 }  // namespace
 
 SequenceWriter::SequenceWriter(fs::path dir, CameraIntrinsics camera, bool overwrite)
@@ -48,6 +84,7 @@ SequenceWriter::SequenceWriter(fs::path dir, CameraIntrinsics camera, bool overw
     fs::create_directories(dir_.parent_path(), ec);
     if (ec) throw Error(dir_.string(), "cannot create parent directory: " + ec.message());
   }
+  remove_stale_siblings(dir_);
   tmp_ = hidden_sibling(dir_, "tmp");
   fs::create_directory(tmp_, ec);
   if (ec) throw Error(dir_.string(), "cannot create temporary directory: " + ec.message());

@@ -60,7 +60,7 @@ Model load_model(const std::filesystem::path& path) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(io::read_file(path));
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse errors, and numbers out of range (1e999)
     throw Error(where, std::string("not a JSON model file (") + e.what() + ")");
   }
   try {
@@ -86,6 +86,13 @@ Model load_model(const std::filesystem::path& path) {
       if (!std::isfinite(m.standardizer.mean[i]) || !(m.standardizer.std[i] > 0.0f))
         throw Error(where, "standardizer has a non-finite mean or non-positive std");
     m.classifier = deserialize_classifier(m.params, m.info.feature_dim, j.at("payload").get<std::string>(), where);
+    // The size recorded at save time: a payload edited or cut short is caught here if its own
+    // parser let it through.
+    if (j.contains("classifier_model_size") &&
+        j.at("classifier_model_size").get<std::size_t>() != m.classifier->model_size())
+      throw Error(where, "classifier payload holds " + std::to_string(m.classifier->model_size()) +
+                             " entries but the file records classifier_model_size " +
+                             j.at("classifier_model_size").dump() + " (damaged model file)");
     return m;
   } catch (const nlohmann::json::exception& e) {
     throw Error(where, std::string("malformed model file (") + e.what() + ")");

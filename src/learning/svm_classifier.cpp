@@ -5,6 +5,9 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "cropsight/core/error.hpp"
@@ -122,7 +125,40 @@ SvmClassifier::~SvmClassifier() {
 
 // A function-try-block: when a check below rejects the model, libsvm's model is freed before the
 // error leaves (the constructors call this, and a constructor that throws runs no destructor).
+// libsvm's svm_load_model reads `total_sv` lines after "SV" without checking that they are there: a
+// model text cut short loads with the missing support vectors made of stale buffer contents (seen:
+// a model cut in half turned 25 detections into 116), and a malformed header makes libsvm print to
+// stderr before it fails. So the text's shape is checked here first: a header with total_sv, the
+// "SV" line, then exactly total_sv non-empty lines.
+namespace {
+void check_libsvm_text(const std::string& text, const std::string& where) {
+  std::istringstream in(text);
+  std::string line;
+  long total = -1;
+  bool sv = false;
+  while (std::getline(in, line)) {
+    if (line.rfind("total_sv ", 0) == 0) {
+      char* end = nullptr;
+      total = std::strtol(line.c_str() + 9, &end, 10);
+      if (end == line.c_str() + 9 || total < 1) throw Error(where, "embedded SVM model: bad total_sv line");
+    } else if (line == "SV") {
+      sv = true;
+      break;
+    }
+  }
+  if (total < 1 || !sv) throw Error(where, "embedded SVM model is malformed (no total_sv or no SV section)");
+  long lines = 0;
+  while (std::getline(in, line))
+    if (!line.empty()) ++lines;
+  if (lines != total)
+    throw Error(where, "embedded SVM model is truncated or padded: its header says " + std::to_string(total) +
+                           " support vectors, " + std::to_string(lines) + " are present");
+  if (text.back() != '\n') throw Error(where, "embedded SVM model is truncated (last line incomplete)");
+}
+}  // namespace
+
 void SvmClassifier::load_text(const std::string& text, const std::string& where) try {
+  check_libsvm_text(text, where);
   {
     TempFile tmp;
     io::write_file_atomic(tmp.path(), text);

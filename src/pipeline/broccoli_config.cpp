@@ -11,6 +11,7 @@ void BroccoliDetectorConfig::validate(const std::string& where) const {
     throw Error(where, "pipeline must be oes, org or fec, got '" + pipeline + "'");
   features::FeatureSet::parse(features, where);
   classifier.validate(where);
+  depth.validate();
   if (!(detection.min_head_fraction > 0.0f && detection.min_head_fraction <= 1.0f))
     throw Error(where, "detection.min_head_fraction must be in (0, 1]");
   if (detection.min_truth_points < 0) throw Error(where, "detection.min_truth_points must be >= 0");

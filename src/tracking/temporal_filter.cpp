@@ -69,6 +69,12 @@ TemporalFilter::TemporalFilter(const TemporalFilterConfig& cfg, const measure::H
   if (!(cfg_.merge_radius_m >= 0.0)) throw Error("tracking.merge_radius_m", "must be >= 0");
   if (!(cfg_.predict_radius_scale > 0.0)) throw Error("tracking.predict_radius_scale", "must be positive");
   if (cfg_.predict_min_points < 1) throw Error("tracking.predict_min_points", "must be at least 1");
+  if (!(cfg_.position_cap_m >= 0.0)) throw Error("tracking.position_cap_m", "must be >= 0 (0: no cap)");
+  if (!(cfg_.partial_association_radius_m >= 0.0)) throw Error("tracking.partial_association_radius_m", "must be >= 0");
+  if (!std::isfinite(cfg_.initial_score) || !std::isfinite(cfg_.score_increment) ||
+      !std::isfinite(cfg_.min_track_score) || !std::isfinite(cfg_.edge_track_score))
+    throw Error("tracking",
+                "scores (initial_score, score_increment, min_track_score, edge_track_score) must be finite");
   if (cfg_.initial_velocity.size() != 3)
     throw Error("tracking.initial_velocity", "expects three numbers [x, y, z] (m/frame)");
   v_c_ = Eigen::Vector3d(cfg_.initial_velocity[0], cfg_.initial_velocity[1], cfg_.initial_velocity[2]);

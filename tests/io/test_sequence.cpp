@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "io/sequence_fixture.hpp"
@@ -137,6 +138,54 @@ TEST(Sequence, AbandonedWriterLeavesNothing) {
     w.write(fixture_frame(1, cam));
   }
   EXPECT_TRUE(entries(tmp.path()).empty());
+}
+
+// A run killed by a signal cannot unwind and leaves its hidden temporary; the next writer of the
+// same sequence removes it when its process is gone, and leaves a live writer's alone.
+TEST(Sequence, LeftoversOfAKilledWriterAreRemovedByTheNext) {
+  TempDir tmp;
+  const CameraIntrinsics cam = fixture_camera();
+  // pid 999999999 is above Linux's pid_max (4194304), so no such process exists
+  const fs::path dead = tmp / ".seq.tmp-999999999-42", live = tmp / (".seq.tmp-1-7"),
+                 other = tmp / ".other.tmp-999999999-1";
+  for (const auto& d : {dead, live, other}) fs::create_directories(d / "depth");
+  SequenceWriter w(tmp / "seq", cam);
+  w.write(fixture_frame(0, cam));
+  w.finish();
+  EXPECT_FALSE(fs::exists(dead));
+  EXPECT_TRUE(fs::exists(live));   // pid 1 is alive (or not ours to judge)
+  EXPECT_TRUE(fs::exists(other));  // another sequence's temporary
+  EXPECT_TRUE(fs::exists(tmp / "seq" / "depth" / "000000.png"));
+}
+
+TEST(Files, DirectoriesAreNamedAsSuch) {
+  TempDir tmp;
+  fs::create_directories(tmp / "d");
+  try {
+    write_file_atomic(tmp / "d", "x");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("is a directory"), std::string::npos) << e.what();
+  }
+  try {
+    read_file(tmp / "d");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("is a directory"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(entries(tmp.path()).size(), 1u);  // no temporary left
+}
+
+TEST(Files, DuplicateConfigKeysAreAnError) {
+  TempDir tmp;
+  write_file_atomic(tmp / "c.yaml", "oes:\n  min_size: 300\n  max_size: 9000\n  min_size: 500\n");
+  try {
+    load_config_map(tmp / "c.yaml");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.where(), (tmp / "c.yaml").string());
+    EXPECT_NE(std::string(e.what()).find("duplicate key 'oes.min_size'"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Sequence, FailedWriteLeavesNothing) {

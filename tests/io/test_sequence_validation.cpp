@@ -187,6 +187,24 @@ TEST_F(SequenceValidation, PosesMalformed) {
   expect_error(p, "has 2 rows but the sequence has 3");
   put("poses.csv", "");
   expect_error(p, "empty");
+  put("poses.csv", "frame,timestamp,x,y,z\n0,-1,0,0,0\n1,0,0,0,0\n2,0,0,0,0\n");
+  expect_error(p, "line 2: timestamp must be >= 0");
+  put("poses.csv", "frame,timestamp,x,y,z\n0,0,0,0,0\n1,0.2,0,0,0\n2,0.1,0,0,0\n");
+  expect_error(p, "line 4: timestamp 0.1 goes back in time");
+}
+
+TEST_F(SequenceValidation, CameraYamlDuplicateKeyAndAbsurdPrincipalPoint) {
+  // yaml-cpp keeps both entries and a lookup takes the first, so a second fx was silently ignored.
+  put("camera.yaml", "width: 16\nheight: 12\nfx: 10\nfy: 10\ncx: 7.5\ncy: 5.5\ndepth_scale: 0.001\nfx: 300\n");
+  expect_error(seq / "camera.yaml", "duplicate key 'fx'");
+  put("camera.yaml", "width: 16\nheight: 12\nfx: 10\nfy: 10\ncx: 1e308\ncy: 5.5\ndepth_scale: 0.001\n");
+  expect_error(seq / "camera.yaml", "principal point");
+}
+
+TEST_F(SequenceValidation, GroundTruthNumberOutOfRange) {
+  // nlohmann reports 1e999 as out_of_range, not parse_error: still one line naming the file.
+  put("groundtruth.json", R"({"instances": [{"id": 1, "position": [0,0,0], "diameter_mm": 1e999}]})");
+  expect_error(seq / "groundtruth.json", "number overflow");
 }
 
 TEST_F(SequenceValidation, GroundTruthMalformed) {

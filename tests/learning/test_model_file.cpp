@@ -103,4 +103,13 @@ TEST(ModelFile, BadFilesNameTheFileAndTheProblem) {
   corrupt("\"feature_dim\": 6", "\"feature_dim\": 7");
   corrupt("\"type\": \"svm-rbf\"", "\"type\": \"tree\"");
   corrupt("\"version\": 1", "\"version\": 9");
+  // libsvm would load these: a support vector line dropped (the rest read stale memory), the
+  // header's count raised, a number no double holds.
+  const auto sv = text.find("\\nSV\\n");
+  ASSERT_NE(sv, std::string::npos);
+  const auto line_end = text.find("\\n", sv + 6);
+  corrupt(text.substr(sv, line_end - sv), "\\nSV");
+  corrupt("total_sv ", "total_sv 1");
+  corrupt("\"mean\": [", "\"mean\": [1e999, ");
+  corrupt("\"classifier_model_size\": ", "\"classifier_model_size\": 1");
 }

@@ -151,3 +151,79 @@ TEST_F(BroccoliCli, TrainAndBenchIgnoreTrackingKeysOfAPreset) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("estimmator"), std::string::npos) << r.err;
 }
+
+// Outputs that would destroy or hide data are refused before any work, with one line naming them.
+TEST_F(BroccoliCli, OutputsNeverDestroyUnrelatedFilesAndBadOptionsAreRefused) {
+  const fs::path model = dir() / "outputs.json";
+  auto r = run_cli("train broccoli --data " + q(seq()) + " --config broccoli-oes-uk --out " + q(model) + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string base = "detect broccoli --data " + q(seq()) + " --model " + q(model) + " --quiet --out ";
+
+  // --masks replaces its directory as a whole: a folder with other files in it is refused, untouched.
+  const fs::path docs = dir() / "docs";
+  fs::create_directories(docs / "sub");
+  std::ofstream(docs / "notes.txt") << "keep me\n";
+  r = run_cli(base + q(dir() / "d1.jsonl") + " --masks " + q(docs));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("not a mask of an earlier run"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(docs / "notes.txt"));
+  EXPECT_TRUE(fs::exists(docs / "sub"));
+  EXPECT_FALSE(fs::exists(dir() / "d1.jsonl"));
+  // A previous run's masks (and a trailing slash) are replaced, and no temporary is left.
+  const fs::path masks = dir() / "masks2";
+  r = run_cli(base + q(dir() / "d2.jsonl") + " --masks " + q(masks));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_cli(base + q(dir() / "d2.jsonl") + " --masks " + q(masks.string() + "/"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(masks / "000005.png"));
+  for (const auto& e : fs::directory_iterator(dir()))
+    EXPECT_EQ(e.path().filename().string().find(".masks2."), std::string::npos) << e.path();
+
+  // --out naming a directory: said so (it used to read "cannot write: Success").
+  r = run_cli(base + q(docs));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
+
+  // Counts and ranges: errors, not silent defaults.
+  r = run_cli("bench broccoli --data " + q(seq()) + " --model " + q(model) + " --frames 100 --json");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--frames"), std::string::npos) << r.err;
+  r = run_cli("bench broccoli --data " + q(seq()) + " --model " + q(model) + " --frames -1 --json");
+  EXPECT_EQ(r.exit_code, 2);
+  r = run_cli("eval broccoli --data " + q(seq()) + " --model " + q(model) + " --track --map-min-points -1 --quiet");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--map-min-points"), std::string::npos) << r.err;
+  r = run_cli(base + q(dir() / "d3.jsonl") + " --set depth.min_depth=-5");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("depth.min_depth"), std::string::npos) << r.err;
+  r = run_cli(base + q(dir() / "d3.jsonl") + " --track --set tracking.position_cap_m=-1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("tracking.position_cap_m"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir() / "d3.jsonl"));
+
+  // --track compares with groundtruth.json: without it the map figures would silently read 0.
+  const fs::path no_truth = dir() / "seq-no-truth";
+  fs::copy(seq(), no_truth, fs::copy_options::recursive);
+  fs::remove(no_truth / "groundtruth.json");
+  r = run_cli("eval broccoli --data " + q(no_truth) + " --model " + q(model) + " --track --quiet");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("groundtruth.json"), std::string::npos) << r.err;
+
+  // report: settings only drive the detection sections, so without --model they are an error.
+  r = run_cli("report --data " + q(seq()) + " --out " + q(dir() / "r.html") + " --set oes.min_size=nan");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--model"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir() / "r.html"));
+
+  // A damaged model: half of the SVM cut away loads no more (it used to give 4x the detections).
+  auto j = nlohmann::json::parse(std::ifstream(model));
+  const std::string payload = j["payload"];
+  j["payload"] = payload.substr(0, payload.size() / 2);
+  std::ofstream(dir() / "half.json") << j.dump();
+  r = run_cli("detect broccoli --data " + q(seq()) + " --model " + q(dir() / "half.json") + " --quiet --out " +
+              q(dir() / "d4.jsonl"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("half.json"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("truncated"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;  // libsvm printed nothing
+}

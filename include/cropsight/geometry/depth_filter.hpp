@@ -16,6 +16,9 @@ struct DepthRangeConfig {
     v("min_depth", min_depth, "m; points nearer than this become NaN (paper: 0.5 m, Kusumam et al. 2017 §4.1)");
     v("max_depth", max_depth, "m; points farther than this become NaN (paper: 1.0 m, Kusumam et al. 2017 §4.1)");
   }
+  /// Throws Error("depth.min_depth" / "depth.max_depth" / "depth range", ...) unless
+  /// 0 <= min_depth <= max_depth, both finite.
+  void validate() const;
 };
 
 /// Sets x, y, z (and normals/curvature when present) to NaN where z is outside
