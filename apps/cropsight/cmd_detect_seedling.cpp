@@ -1,10 +1,15 @@
 // cropsight detect seedling (issue 5): one stereo pair + calibration -> seedling envelope box,
 // image mask, top-view mask and per-stage timings.
+#include <unistd.h>
+
 #include <cstdio>
+#include <filesystem>
+#include <system_error>
+#include <utility>
+#include <vector>
 
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
-#include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/stereo/calibration.hpp"
 #include "cropsight/stereo/rectification.hpp"
@@ -15,7 +20,7 @@ namespace cropsight::cli {
 
 stereo::SeedlingConfig seedling_config(const CommonOptions& o) {
   stereo::SeedlingConfig cfg;
-  apply_config(cfg, o.config_map("seedling"), o.config.empty() ? "configs/seedling.yaml" : o.config);
+  apply_checked_config(cfg, o, "seedling", stereo::validate_seedling_config);
   return cfg;
 }
 
@@ -44,17 +49,63 @@ nlohmann::json seedling_json(const stereo::SeedlingDetection& d) {
 
 namespace {
 
+namespace fs = std::filesystem;
+
 struct Options {
   CommonOptions common;
   std::string left, right, calib, out, mask, top_view;
 };
 
+// The outputs of one run: each is written to a hidden temporary next to its final name, and all
+// are renamed into place only after every one was written, so a failing output (an unwritable
+// folder, a full disk) leaves none of them behind. Temporaries left over are removed.
+class StagedOutputs {
+ public:
+  StagedOutputs() = default;
+  StagedOutputs(const StagedOutputs&) = delete;
+  StagedOutputs& operator=(const StagedOutputs&) = delete;
+  ~StagedOutputs() {
+    std::error_code ec;
+    for (const auto& [tmp, final_path] : files_) fs::remove(tmp, ec);
+  }
+  // `write(tmp)` writes the file; the temporary keeps the extension so OpenCV picks the format.
+  template <class F>
+  void stage(const fs::path& path, F&& write) {
+    fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()));
+    tmp += path.extension();
+    files_.emplace_back(tmp, path);
+    try {
+      write(tmp);
+    } catch (const Error& e) {
+      throw Error(path.string(), e.problem());  // name the user's file, not the temporary
+    }
+  }
+  void commit() {
+    for (auto& [tmp, final_path] : files_) {
+      std::error_code ec;
+      fs::rename(tmp, final_path, ec);
+      if (ec) throw Error(final_path.string(), "cannot write: " + ec.message());
+      tmp.clear();
+    }
+  }
+
+ private:
+  std::vector<std::pair<fs::path, fs::path>> files_;  // temporary, final
+};
+
+void check_json_output(const std::string& path) {
+  if (fs::is_directory(path) || !fs::path(path).has_filename())
+    throw Error(path, "is a folder; --out needs a file name such as result.json");
+}
+
 void run(const Options& o) {
+  // Options and outputs first: a bad one must fail before the (slow) detection, not after it.
+  if (!o.out.empty()) check_json_output(o.out);
+  if (!o.mask.empty()) stereo::check_image_output(o.mask, "--mask", false);
+  if (!o.top_view.empty()) stereo::check_image_output(o.top_view, "--top-view", false);
   const auto cfg = seedling_config(o.common);
   const auto calib = stereo::load_calibration(o.calib);
-  auto l = stereo::read_color(o.left);
-  auto r = stereo::read_color(o.right);
-  if (l.width != r.width || l.height != r.height) throw Error(o.right, "size differs from the left image");
+  auto [l, r] = stereo::read_color_pair(o.left, o.right);
   if (l.width != calib.width || l.height != calib.height)
     throw Error(o.left, "image size differs from the calibration " + o.calib);
   stereo::RectifiedGeometry geo;
@@ -69,9 +120,14 @@ void run(const Options& o) {
   nlohmann::json j = seedling_json(det);
   j["left"] = o.left;
   j["right"] = o.right;
-  if (!o.mask.empty()) stereo::write_gray_png(o.mask, det.image_mask);
-  if (!o.top_view.empty() && !det.top_view.mask.empty()) stereo::write_gray_png(o.top_view, det.top_view.mask);
-  if (!o.out.empty()) io::write_file_atomic(o.out, j.dump(2) + "\n");
+  {
+    StagedOutputs staged;
+    if (!o.mask.empty()) staged.stage(o.mask, [&](const fs::path& t) { stereo::write_gray_png(t, det.image_mask); });
+    if (!o.top_view.empty() && !det.top_view.mask.empty())
+      staged.stage(o.top_view, [&](const fs::path& t) { stereo::write_gray_png(t, det.top_view.mask); });
+    if (!o.out.empty()) staged.stage(o.out, [&](const fs::path& t) { io::write_file_atomic(t, j.dump(2) + "\n"); });
+    staged.commit();
+  }
   if (o.common.json) {
     print_json(j);
   } else if (det.found) {

@@ -4,9 +4,12 @@
 // GMM (same K, tolerance and iteration cap). Images are read before timing; I/O is excluded.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "commands.hpp"
+#include "cropsight/core/config.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/segmentation/gmm.hpp"
@@ -48,8 +51,9 @@ void run(const Options& o) {
   nlohmann::json per = nlohmann::json::array();
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     const fs::path& p = pairs[k];
-    const auto left = stereo::read_color(p / "left.png"), right = stereo::read_color(p / "right.png");
-    const auto truth_disp = stereo::read_disparity(p / "disparity.png", 256.0);
+    const auto [left, right] = stereo::read_color_pair(p / "left.png", p / "right.png");
+    // The simulator writes 16-bit disparity x 256 and an 8-bit mask; read_gray rejects a 16-bit mask.
+    const auto truth_disp = stereo::read_disparity(p / "disparity.png", 256.0, 16);
     const GrayImage mask = stereo::read_gray(p / "mask.png");
     nlohmann::json t;
     try {
@@ -70,6 +74,14 @@ void run(const Options& o) {
     } catch (const nlohmann::json::exception& e) {
       throw Error((p / "truth.json").string(), std::string("missing or malformed key: ") + e.what());
     }
+    // A zero or non-finite box or plane would make the volume ratio and the top-view IoU meaningless.
+    for (const auto& [key, v] : {std::pair{"envelope.length_m", env.length}, std::pair{"envelope.width_m", env.width},
+                                 std::pair{"envelope.height_m", env.height}})
+      if (!(std::isfinite(v) && v > 0))
+        throw Error((p / "truth.json").string(), std::string("'") + key + "' must be a finite number > 0, got " +
+                                                     cropsight::detail::format_value(v));
+    if (!(n.allFinite() && std::fabs(n.norm() - 1) < 1e-3 && std::isfinite(d)))
+      throw Error((p / "truth.json").string(), "'plane' needs a unit normal and a finite d");
 
     const auto det = stereo::detect_seedling(left, right, geo, cfg, p.string());
     const auto s = stereo::score_seedling(det, truth_disp, mask, geo, n, d, env);

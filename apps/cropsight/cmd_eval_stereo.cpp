@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/stereo/middlebury.hpp"
+#include "seedling_cli.hpp"
 
 namespace cropsight::cli {
 
@@ -49,7 +50,10 @@ GrayImage gray(const ColorImage& c) {
 
 void run(const Options& o) {
   stereo::DisparityConfig cfg;
-  apply_config(cfg, o.common.config_map(), o.common.config.empty() ? "--set" : o.common.config);
+  // num_disparities is set per pair below (from the pair's true range), so any valid value will do.
+  apply_checked_config(cfg, o.common, "", [](const stereo::DisparityConfig& c, const std::string& where) {
+    stereo::validate_disparity_config(c, where);
+  });
   const auto pairs = stereo::load_middlebury(o.middlebury);
   nlohmann::json j = evaluate(pairs, [&](const stereo::MiddleburyPair& p, int nd) {
     stereo::DisparityConfig c = cfg;

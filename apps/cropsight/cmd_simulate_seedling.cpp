@@ -1,6 +1,16 @@
 // cropsight simulate seedling (issue 5): stereo pairs of broccoli seedlings among weeds with
 // ground truth, checkerboard pairs, and the rig's calibration (rig.yaml).
+//
+// The data set is written into a hidden temporary sibling of --out and renamed into place at the
+// end (like simulate broccoli's sequence writer), so --out is either a complete data set or
+// untouched: an interrupted run leaves no half data set that looks real, and a rerun with fewer
+// pairs cannot leave the old run's pair_* folders next to the new rig.yaml.
+#include <unistd.h>
+
 #include <cstdio>
+#include <filesystem>
+#include <random>
+#include <system_error>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -12,23 +22,47 @@ namespace cropsight::cli {
 
 namespace {
 
+namespace fs = std::filesystem;
+
 struct Options {
   CommonOptions common;
   std::string out;
   int pairs = 20, calib_pairs = 12;
   std::uint64_t seed = 1;
-  bool quiet = false;
+  bool quiet = false, force = false;
 };
 
-void run(const Options& o) {
-  sim::SeedlingSimConfig cfg;
-  apply_config(cfg, o.common.config_map(), o.common.config.empty() ? "--set" : o.common.config);
-  if (o.pairs < 0) throw Error("--pairs", "must be >= 0");
-  Progress progress("simulate seedling", o.pairs, o.quiet || o.common.json);
-  sim::write_seedling_dataset(
-      o.out, cfg, o.pairs, o.seed, o.calib_pairs, [](int done, void* p) { static_cast<Progress*>(p)->update(done); },
-      &progress);
-  progress.finish();
+fs::path hidden_sibling(const fs::path& dir, const std::string& tag) {
+  std::random_device rd;
+  const fs::path parent = dir.parent_path().empty() ? fs::path(".") : dir.parent_path();
+  return parent / ("." + dir.filename().string() + "." + tag + "-" + std::to_string(::getpid()) + "-" +
+                   std::to_string(rd() % 1000000000u));
+}
+
+// An existing, non-empty --out is replaced only with --force, and only when it looks like a
+// seedling data set, so that a mistyped --out never deletes unrelated data.
+void check_replaceable(const fs::path& out, bool force) {
+  std::error_code ec;
+  if (!fs::exists(out, ec)) return;
+  if (!fs::is_directory(out)) throw Error(out.string(), "exists and is not a folder");
+  if (fs::is_empty(out, ec)) return;
+  if (!force) throw Error(out.string(), "already exists (use --force to overwrite)");
+  if (!fs::exists(out / "rig.yaml") && !fs::exists(out / "pair_000") && !fs::exists(out / "calib"))
+    throw Error(out.string(),
+                "exists and is not a seedling data set (no rig.yaml, pair_000 or calib); refusing to "
+                "replace it");
+}
+
+// Removes the temporary folder unless the finished data set was moved into place.
+struct TempDirGuard {
+  fs::path path;
+  ~TempDirGuard() {
+    std::error_code ec;
+    if (!path.empty()) fs::remove_all(path, ec);
+  }
+};
+
+stereo::StereoCalibration ideal_calibration(const sim::SeedlingSimConfig& cfg) {
   // The simulated views are already rectified: the rig's calibration is ideal.
   const sim::StereoRigModel rig = cfg.rig();
   stereo::StereoCalibration c;
@@ -43,7 +77,63 @@ void run(const Options& o) {
   tx << 0, -c.T.z(), c.T.y(), c.T.z(), 0, -c.T.x(), -c.T.y(), c.T.x(), 0;
   c.E = tx * c.R;
   c.F = c.K2.inverse().transpose() * c.E * c.K1.inverse();
-  stereo::save_calibration(std::filesystem::path(o.out) / "rig.yaml", c);
+  return c;
+}
+
+void run(const Options& o) {
+  if (o.pairs < 1 || o.pairs > sim::kMaxSeedlingPairs)
+    throw Error("--pairs",
+                "must be in 1.." + std::to_string(sim::kMaxSeedlingPairs) + ", got " + std::to_string(o.pairs));
+  if (o.calib_pairs < 0 || o.calib_pairs > sim::kMaxCalibrationPairs)
+    throw Error("--calib-pairs", "must be in 0.." + std::to_string(sim::kMaxCalibrationPairs) + " (0 = none), got " +
+                                     std::to_string(o.calib_pairs));
+  fs::path out(o.out);
+  if (!out.has_filename()) out = out.parent_path();  // "data/" -> "data"
+  if (out.empty() || out == "." || out == "..") throw Error("--out", "needs a folder name, got '" + o.out + "'");
+  sim::SeedlingSimConfig cfg;
+  apply_config(cfg, o.common.config_map(), o.common.config.empty() ? "--set" : o.common.config);
+  check_replaceable(out, o.force);  // before minutes of rendering, not after
+
+  std::error_code ec;
+  if (!out.parent_path().empty()) {
+    fs::create_directories(out.parent_path(), ec);
+    if (ec) throw Error(out.string(), "cannot create parent folder: " + ec.message());
+  }
+  TempDirGuard tmp{hidden_sibling(out, "tmp")};
+  fs::create_directory(tmp.path, ec);
+  if (ec) {
+    tmp.path.clear();
+    throw Error(out.string(), "cannot create temporary folder: " + ec.message());
+  }
+  Progress progress("simulate seedling", o.pairs, o.quiet || o.common.json);
+  try {
+    sim::write_seedling_dataset(
+        tmp.path, cfg, o.pairs, o.seed, o.calib_pairs,
+        [](int done, void* p) { static_cast<Progress*>(p)->update(done); }, &progress);
+    stereo::save_calibration(tmp.path / "rig.yaml", ideal_calibration(cfg));
+  } catch (const Error& e) {
+    throw Error(out.string(), e.problem());  // name --out, not the hidden temporary
+  }
+  progress.finish();
+
+  // Move into place; an old data set is moved aside first (rename cannot replace a non-empty
+  // folder) and put back if the final rename fails.
+  check_replaceable(out, o.force);
+  fs::path old;
+  if (fs::exists(out) && !fs::is_empty(out)) {
+    old = hidden_sibling(out, "old");
+    fs::rename(out, old, ec);
+    if (ec) throw Error(out.string(), "cannot replace the existing data set: " + ec.message());
+  }
+  fs::rename(tmp.path, out, ec);
+  if (ec) {
+    std::error_code ec2;
+    if (!old.empty()) fs::rename(old, out, ec2);
+    throw Error(out.string(), "cannot move the finished data set into place: " + ec.message());
+  }
+  tmp.path.clear();
+  if (!old.empty()) fs::remove_all(old, ec);
+
   if (o.common.json)
     print_json({{"out", o.out}, {"pairs", o.pairs}, {"calib_pairs", o.calib_pairs}, {"seed", o.seed}});
   else
@@ -56,10 +146,12 @@ void run(const Options& o) {
 void add_simulate_seedling(CLI::App& simulate) {
   auto o = std::make_shared<Options>();
   auto* cmd = simulate.add_subcommand("seedling", "Stereo pairs of broccoli seedlings with ground truth (issue 5)");
-  cmd->add_option("--out", o->out, "Output folder")->required();
-  cmd->add_option("--pairs", o->pairs, "Seedling stereo pairs")->capture_default_str();
+  cmd->add_option("--out", o->out, "Output folder (written whole at the end; must not exist or be empty)")->required();
+  cmd->add_option("--pairs", o->pairs, "Seedling stereo pairs, 1..10000")->capture_default_str();
   cmd->add_option("--seed", o->seed, "Random seed (same seed, same data)")->capture_default_str();
-  cmd->add_option("--calib-pairs", o->calib_pairs, "Checkerboard pairs under calib/")->capture_default_str();
+  cmd->add_option("--calib-pairs", o->calib_pairs, "Checkerboard pairs under calib/, 0..1000 (0 = none)")
+      ->capture_default_str();
+  cmd->add_flag("--force", o->force, "Replace an existing seedling data set in --out");
   cmd->add_flag("--quiet", o->quiet, "No progress line");
   add_json_flag(cmd, o->common);
   add_config_options(cmd, o->common);

@@ -1,15 +1,40 @@
 #pragma once
-// Shared by the seedling sub-commands (detect / eval / simulate seedling): configuration loading
-// and the JSON form of a detection.
+// Shared by the seedling and stereo sub-commands (detect / eval / simulate seedling, stereo,
+// eval stereo): configuration loading and the JSON form of a detection.
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "cli_common.hpp"
+#include "cropsight/core/config.hpp"
+#include "cropsight/io/config_yaml.hpp"
 #include "cropsight/stereo/seedling_detector.hpp"
 
 namespace cropsight::cli {
 
-/// SeedlingConfig from the preset (default configs/seedling.yaml) and --set overrides.
+/// Applies the preset (--config, else `default_preset` when non-empty) and then the --set values
+/// to `cfg`, calling `validate(cfg, where)` after each step. Keeping the two sources apart means
+/// an error names where the bad value came from (the preset file or "--set") and, through
+/// `validate`, the key, instead of blaming whichever input image the library reads first.
+template <class Config, class Validate>
+void apply_checked_config(Config& cfg, const CommonOptions& o, const std::string& default_preset, Validate&& validate) {
+  const std::string preset = o.config.empty() ? default_preset : o.config;
+  if (!preset.empty()) {
+    const std::string where = o.config.empty() ? "configs/" + default_preset + ".yaml" : o.config;
+    apply_config(cfg, io::load_config_map(io::find_preset(preset)), where);
+    validate(cfg, where);
+  }
+  ConfigMap sets;
+  for (const auto& s : o.sets) {
+    auto [k, v] = parse_assignment(s);
+    sets[k] = v;
+  }
+  if (sets.empty()) return;
+  apply_config(cfg, sets, "--set");
+  validate(cfg, "--set");
+}
+
+/// SeedlingConfig from the preset (default configs/seedling.yaml) and --set overrides, validated
+/// (stereo::validate_seedling_config); errors name the preset file or "--set" and the key.
 stereo::SeedlingConfig seedling_config(const CommonOptions& o);
 /// found, envelope, plane, point counts, timings in ms per stage.
 nlohmann::json seedling_json(const stereo::SeedlingDetection& d);

@@ -113,7 +113,12 @@ std::vector<std::pair<Eigen::Matrix3d, Eigen::Vector3d>> random_board_poses(cons
 
 void write_seedling_dataset(const fs::path& dir, const SeedlingSimConfig& cfg, int pairs, std::uint64_t seed,
                             int calib_pairs, void (*progress)(int, void*), void* ctx) {
-  if (pairs < 0 || calib_pairs < 0) throw Error(dir.string(), "pair counts must be >= 0");
+  if (pairs < 0 || pairs > kMaxSeedlingPairs)
+    throw Error(dir.string(),
+                "pair count must be in 0.." + std::to_string(kMaxSeedlingPairs) + ", got " + std::to_string(pairs));
+  if (calib_pairs < 0 || calib_pairs > kMaxCalibrationPairs)
+    throw Error(dir.string(), "checkerboard pair count must be in 0.." + std::to_string(kMaxCalibrationPairs) +
+                                  ", got " + std::to_string(calib_pairs));
   for (int k = 0; k < pairs; ++k) {
     const SeedlingPair p = simulate_seedling_pair(cfg, seed, k);
     char name[32];

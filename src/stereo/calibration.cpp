@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <iterator>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -21,6 +22,16 @@ std::vector<Eigen::Vector3f> Checkerboard::object_points() const {
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c) p.emplace_back(float(c * square_size), float(r * square_size), 0.0f);
   return p;
+}
+
+void Checkerboard::validate(const std::string& where) const {
+  if (cols < kMinBoardCorners || rows < kMinBoardCorners || cols > kMaxBoardCorners || rows > kMaxBoardCorners)
+    throw Error(where, "checkerboard needs " + std::to_string(kMinBoardCorners) + ".." +
+                           std::to_string(kMaxBoardCorners) + " inner corners each way, got " + std::to_string(cols) +
+                           "x" + std::to_string(rows));
+  if (!(square_size > 0 && square_size <= kMaxSquareSize))
+    throw Error(where, "checkerboard square size must be finite, > 0 and at most " +
+                           std::to_string(int(kMaxSquareSize * 1000)) + " mm");
 }
 
 namespace {
@@ -50,8 +61,8 @@ StereoCalibration calibrate_stereo(const std::vector<std::vector<Eigen::Vector2f
   if (int(left_corners.size()) < cfg.min_views)
     throw Error(where, "too few checkerboard views: " + std::to_string(left_corners.size()) + " (need at least " +
                            std::to_string(cfg.min_views) + ")");
-  if (board.cols < 2 || board.rows < 2 || !(board.square_size > 0))
-    throw Error(where, "invalid checkerboard (need >= 2x2 inner corners and a positive square size)");
+  board.validate(where);
+  if (cfg.min_views < 1) throw Error(where, "'min_views' must be >= 1");
   if (width <= 0 || height <= 0) throw Error(where, "invalid image size");
   const std::size_t nc = std::size_t(board.cols) * board.rows;
   std::vector<cv::Point3f> obj;
@@ -95,6 +106,7 @@ StereoCalibration calibrate_stereo(const std::vector<std::vector<Eigen::Vector2f
 }
 
 bool find_corners(const GrayImage& image, const Checkerboard& board, std::vector<Eigen::Vector2f>& corners) {
+  board.validate("checkerboard");
   std::vector<cv::Point2f> pts;
   cv::Mat m = detail::view(image);
   const bool ok = cv::findChessboardCorners(m, cv::Size(board.cols, board.rows), pts,
@@ -110,6 +122,7 @@ bool find_corners(const GrayImage& image, const Checkerboard& board, std::vector
 StereoCalibration calibrate_stereo_folder(const fs::path& dir, const Checkerboard& board,
                                           const CalibrationConfig& cfg) {
   if (!fs::is_directory(dir)) throw Error(dir.string(), "calibration image folder not found");
+  board.validate(dir.string());  // before OpenCV's corner finder asserts on it
   std::vector<fs::path> lefts;
   for (const auto& e : fs::directory_iterator(dir)) {
     const std::string n = e.path().filename().string();
@@ -208,6 +221,13 @@ StereoCalibration load_calibration(const fs::path& path) {
     throw Error(where, "malformed YAML at line " + std::to_string(e.mark.line + 1));
   }
   if (!root.IsMap()) throw Error(where, "expected a YAML map of calibration keys");
+  static const char* const kKeys[] = {"image_width", "image_height", "K1",   "D1", "K2", "D2", "R", "T", "E",
+                                      "F",           "rms",          "views"};
+  for (const auto& kv : root) {
+    const std::string key = kv.first.Scalar();
+    if (std::find_if(std::begin(kKeys), std::end(kKeys), [&](const char* k) { return key == k; }) == std::end(kKeys))
+      throw Error(where, "unknown key '" + key + "'");
+  }
   StereoCalibration c;
   for (const char* key : {"image_width", "image_height"}) {
     if (!root[key]) throw Error(where, std::string("missing key '") + key + "'");
@@ -227,8 +247,12 @@ StereoCalibration load_calibration(const fs::path& path) {
   c.T = Eigen::Vector3d(t[0], t[1], t[2]);
   c.E = read_matrix(root, "E", where);
   c.F = read_matrix(root, "F", where);
-  if (root["rms"]) c.rms = root["rms"].as<double>();
-  if (root["views"]) c.views = root["views"].as<int>();
+  try {
+    if (root["rms"]) c.rms = root["rms"].as<double>();
+    if (root["views"]) c.views = root["views"].as<int>();
+  } catch (const YAML::Exception&) {
+    throw Error(where, "keys 'rms' and 'views' must be numbers");
+  }
   if (!(c.K1(0, 0) > 0) || !(c.K2(0, 0) > 0)) throw Error(where, "focal lengths in K1/K2 must be positive");
   if (!(c.baseline() > 0)) throw Error(where, "T is zero: no baseline");
   return c;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "census_sgm.hpp"
+#include "cropsight/core/config.hpp"
 #include "cropsight/core/error.hpp"
 #include "cv_convert.hpp"
 
@@ -31,11 +32,15 @@ void check_pair(int lw, int lh, int rw, int rh, const std::string& where) {
                            " vs " + std::to_string(rw) + "x" + std::to_string(rh) + ")");
 }
 
-void check_config(const DisparityConfig& c, const std::string& where) {
-  if (c.num_disparities <= 0 || c.num_disparities % 16 != 0)
-    throw Error(where, "num_disparities must be a positive multiple of 16, got " + std::to_string(c.num_disparities));
-  if (c.block_size < 1 || c.block_size % 2 == 0)
-    throw Error(where, "block_size must be odd and positive, got " + std::to_string(c.block_size));
+// The search range must fit the image: wider ranges only add columns that can never match, and
+// an unbounded one makes the cost buffers huge (see kMaxDisparities).
+void check_range(int num_disparities, int width, const std::string& where, const std::string& key) {
+  if (num_disparities <= 0 || num_disparities % 16 != 0 || num_disparities > kMaxDisparities)
+    throw Error(where, "'" + key + "' must be a multiple of 16 in 16.." + std::to_string(kMaxDisparities) + ", got " +
+                           std::to_string(num_disparities));
+  if (num_disparities > std::max(16, width))
+    throw Error(where, "'" + key + "' (" + std::to_string(num_disparities) + ") exceeds the image width (" +
+                           std::to_string(width) + " px)");
 }
 
 // CV_16S fixed-point (x16) disparity → float pixels, NaN where OpenCV marks invalid.
@@ -52,7 +57,6 @@ DisparityImage from_fixed(const cv::Mat& d16, int min_disparity, int x0) {
 }
 
 DisparityImage run_sgbm(const cv::Mat& left, const cv::Mat& right, const DisparityConfig& c, const std::string& where) {
-  check_config(c, where);
   const int cn = left.channels();
   const int bs2 = c.block_size * c.block_size;
   auto sgbm = cv::StereoSGBM::create(c.min_disparity, c.num_disparities, c.block_size, int(c.p1 * cn * bs2),
@@ -164,10 +168,6 @@ void remove_speckles(DisparityImage& disp, int window, int range) {
 
 DisparityImage run_census(const cv::Mat& left, const cv::Mat& right, const DisparityConfig& c,
                           const std::string& where) {
-  check_config(c, where);
-  if (c.min_disparity != 0) throw Error(where, "the census engine searches from disparity 0 (min_disparity must be 0)");
-  if (c.census_blur != 0 && (c.census_blur < 3 || c.census_blur % 2 == 0))
-    throw Error(where, "census_blur must be 0 or an odd kernel size >= 3");
   // Grey levels, optionally Gaussian-smoothed: sensor noise flips census bits wherever the
   // texture has little contrast (soil, leaves), which shows as off-by-one matches.
   auto gray = [&c](const cv::Mat& m) {
@@ -204,6 +204,8 @@ DisparityImage run_census(const cv::Mat& left, const cv::Mat& right, const Dispa
 }
 
 DisparityImage match(const cv::Mat& left, const cv::Mat& right, const DisparityConfig& c, const std::string& where) {
+  validate_disparity_config(c, where);
+  check_range(c.num_disparities, left.cols, where, "num_disparities");
   if (c.engine == "census") return run_census(left, right, c, where);
   if (c.engine != "opencv")
     throw Error(where, "unknown disparity engine '" + c.engine + "' (expected census or opencv)");
@@ -213,6 +215,53 @@ DisparityImage match(const cv::Mat& left, const cv::Mat& right, const DisparityC
 }
 
 }  // namespace
+
+void validate_disparity_config(const DisparityConfig& c, const std::string& where, const std::string& prefix) {
+  auto fail = [&](const char* key, const std::string& problem) {
+    throw Error(where, "'" + prefix + key + "' " + problem);
+  };
+  auto in_range = [&](const char* key, int v, int lo, int hi) {
+    if (v < lo || v > hi)
+      fail(key, "must be in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " + std::to_string(v));
+  };
+  auto odd_in_range = [&](const char* key, int v, int lo, int hi) {
+    if (v < lo || v > hi || v % 2 == 0)
+      fail(key, "must be odd, " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " + std::to_string(v));
+  };
+  if (c.engine != "census" && c.engine != "opencv") fail("engine", "must be census or opencv, got '" + c.engine + "'");
+  if (c.mode != "sgbm" && c.mode != "hh" && c.mode != "hh4" && c.mode != "3way")
+    fail("mode", "must be sgbm, hh, hh4 or 3way, got '" + c.mode + "'");
+  if (c.num_disparities <= 0 || c.num_disparities % 16 != 0 || c.num_disparities > kMaxDisparities)
+    fail("num_disparities", "must be a multiple of 16 in 16.." + std::to_string(kMaxDisparities) + ", got " +
+                                std::to_string(c.num_disparities));
+  in_range("min_disparity", c.min_disparity, -kMaxDisparities, kMaxDisparities);
+  if (c.engine == "census" && c.min_disparity != 0)
+    fail("min_disparity", "must be 0 with the census engine (it searches from disparity 0)");
+  odd_in_range("census_width", c.census_width, 1, 65);
+  odd_in_range("census_height", c.census_height, 1, 65);
+  if (c.census_width * c.census_height > 65)
+    fail("census_width", "x census_height must be at most 65 pixels (one 64-bit census word)");
+  // The census engine's penalties are 16-bit Hamming sums (census_sgm: 0 <= p1 <= p2 <= 1000).
+  in_range("census_p1", c.census_p1, 0, 1000);
+  in_range("census_p2", c.census_p2, c.census_p1, 1000);
+  in_range("census_p2_step", c.census_p2_step, 0, 255);
+  if (c.census_blur != 0) odd_in_range("census_blur", c.census_blur, 3, 31);
+  odd_in_range("census_box", c.census_box, 1, 9);
+  odd_in_range("block_size", c.block_size, 1, 31);
+  // OpenCV silently replaces P1 <= 0 and P2 <= P1 by its own defaults; say so instead. The cap
+  // keeps p * channels * block_size^2 within int.
+  if (!(c.p1 > 0 && c.p1 <= 1e4)) fail("p1", "must be in (0, 10000], got " + cropsight::detail::format_value(c.p1));
+  if (!(c.p2 > c.p1 && c.p2 <= 1e4))
+    fail("p2", "must be greater than p1 and at most 10000, got " + cropsight::detail::format_value(c.p2));
+  in_range("uniqueness_ratio", c.uniqueness_ratio, 0, 100);
+  in_range("speckle_window", c.speckle_window, 0, 1 << 20);
+  in_range("speckle_range", c.speckle_range, 0, kMaxDisparities);
+  in_range("disp12_max_diff", c.disp12_max_diff, -1, kMaxDisparities);
+  in_range("pre_filter_cap", c.pre_filter_cap, 1, 63);
+  in_range("lr_check", c.lr_check, -1, kMaxDisparities);
+  in_range("median", c.median, 0, 5);
+  in_range("rank_radius", c.rank_radius, 0, kMaxRankRadius);
+}
 
 void fill_disparity_holes(DisparityImage& disp, int median) {
   const int w = disp.width, h = disp.height;
@@ -290,6 +339,9 @@ DisparityImage compute_disparity(const GrayImage& left, const GrayImage& right, 
 DisparityImage opencv_sgbm_disparity(const ColorImage& left, const ColorImage& right, int num_disparities,
                                      int block_size, const std::string& where) {
   check_pair(left.width, left.height, right.width, right.height, where);
+  check_range(num_disparities, left.width, where, "num_disparities");
+  if (block_size < 1 || block_size > 31 || block_size % 2 == 0)
+    throw Error(where, "block size must be odd, 1..31, got " + std::to_string(block_size));
   const int cn = 3;
   auto sgbm = cv::StereoSGBM::create(0, num_disparities, block_size, 8 * cn * block_size * block_size,
                                      32 * cn * block_size * block_size, 1, 63, 10, 100, 32, cv::StereoSGBM::MODE_SGBM);
@@ -301,8 +353,13 @@ DisparityImage opencv_sgbm_disparity(const ColorImage& left, const ColorImage& r
 DisparityImage block_matching(const GrayImage& left, const GrayImage& right, int num_disparities, int window,
                               BlockCost cost, const std::string& where) {
   check_pair(left.width, left.height, right.width, right.height, where);
-  if (window < 1 || window % 2 == 0) throw Error(where, "block-matching window must be odd and positive");
-  if (num_disparities < 1) throw Error(where, "num_disparities must be positive");
+  if (window < 1 || window % 2 == 0 || window > kMaxBlockWindow)
+    throw Error(where, "block-matching window must be odd, 1.." + std::to_string(kMaxBlockWindow) + ", got " +
+                           std::to_string(window));
+  // Each disparity d compares columns d..w-1: a range wider than the image has no columns left.
+  if (num_disparities < 1 || num_disparities > left.width)
+    throw Error(where, "num_disparities must be in 1.." + std::to_string(left.width) + " (the image width), got " +
+                           std::to_string(num_disparities));
   const int w = left.width, h = left.height, r = window / 2;
   cv::Mat l, rr;
   detail::view(left).convertTo(l, CV_32F);

@@ -1,6 +1,8 @@
 #include "cropsight/stereo/middlebury.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/stereo/stereo_io.hpp"
@@ -26,12 +28,17 @@ std::vector<MiddleburyPair> load_middlebury(const fs::path& dir) {
   for (const Spec& s : specs) {
     MiddleburyPair p;
     p.name = s.name;
-    p.left = read_color(dir / s.name / "left.png");
-    p.right = read_color(dir / s.name / "right.png");
-    p.truth = read_disparity(dir / s.name / s.gt, s.scale);
+    std::tie(p.left, p.right) = read_color_pair(dir / s.name / "left.png", dir / s.name / "right.png");
+    const fs::path gt = dir / s.name / s.gt;
+    // The published ground truths are 8-bit (disparity x scale); a 16-bit file read with these
+    // scales would be off by 256x and score every pixel bad.
+    p.truth = read_disparity(gt, s.scale, 8);
     p.max_disparity = s.max_disp;
     if (p.left.width != p.truth.width || p.left.height != p.truth.height)
-      throw Error((dir / s.name / s.gt).string(), "ground truth size differs from the images");
+      throw Error(gt.string(), "ground truth size differs from the images");
+    // All zero (= unknown) leaves nothing to score: bad_pixels() would report 0 % bad.
+    if (std::none_of(p.truth.data.begin(), p.truth.data.end(), [](float v) { return std::isfinite(v); }))
+      throw Error(gt.string(), "ground truth has no valid pixel (all zero); nothing to score");
     out.push_back(std::move(p));
   }
   return out;
@@ -54,6 +61,7 @@ BadPixelStats bad_pixels(const DisparityImage& est, const DisparityImage& truth,
     b1 += err > 1.0f;
     b2 += err > 2.0f;
   }
+  if (n == 0) throw Error(where, "ground truth has no valid pixel; nothing to score");
   BadPixelStats s;
   s.pixels = n;
   if (n > 0) {

@@ -1,8 +1,10 @@
 #include "cropsight/stereo/stereo_io.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <string>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
@@ -12,27 +14,87 @@ namespace cropsight::stereo {
 
 namespace fs = std::filesystem;
 
-ColorImage read_color(const fs::path& path) {
+namespace {
+
+// The file as stored (depth and channels untouched), or Error(path, ...).
+cv::Mat read_unchanged(const fs::path& path, const char* what) {
   if (!fs::exists(path)) throw Error(path.string(), "file not found");
-  cv::Mat m = cv::imread(path.string(), cv::IMREAD_COLOR);
-  if (m.empty()) throw Error(path.string(), "cannot decode image");
+  if (fs::is_directory(path)) throw Error(path.string(), "is a folder, expected an image file");
+  cv::Mat m = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+  if (m.empty()) throw Error(path.string(), std::string("cannot decode ") + what);
+  return m;
+}
+
+int bits_of(const cv::Mat& m) {
+  switch (m.depth()) {
+    case CV_8U:
+    case CV_8S:
+      return 8;
+    case CV_16U:
+    case CV_16S:
+      return 16;
+    default:
+      return 32;
+  }
+}
+
+cv::Mat read_8bit(const fs::path& path) {
+  cv::Mat m = read_unchanged(path, "image");
+  if (m.depth() != CV_8U)
+    throw Error(path.string(), "is a " + std::to_string(bits_of(m)) + "-bit image; expected 8 bits per channel");
+  if (m.channels() != 1 && m.channels() != 3 && m.channels() != 4)
+    throw Error(path.string(), "has " + std::to_string(m.channels()) + " channels; expected 1, 3 or 4");
+  return m;
+}
+
+ColorImage to_rgb(const cv::Mat& m) {
   cv::Mat rgb;
-  cv::cvtColor(m, rgb, cv::COLOR_BGR2RGB);
+  cv::cvtColor(m, rgb,
+               m.channels() == 1   ? cv::COLOR_GRAY2RGB
+               : m.channels() == 4 ? cv::COLOR_BGRA2RGB
+                                   : cv::COLOR_BGR2RGB);
   return detail::to_color(rgb);
 }
 
-GrayImage read_gray(const fs::path& path) {
-  if (!fs::exists(path)) throw Error(path.string(), "file not found");
-  cv::Mat m = cv::imread(path.string(), cv::IMREAD_GRAYSCALE);
-  if (m.empty()) throw Error(path.string(), "cannot decode image");
-  return detail::to_gray(m);
+std::string lower_extension(const fs::path& p) {
+  std::string e = p.extension().string();
+  for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return e;
 }
 
-DisparityImage read_disparity(const fs::path& path, double scale) {
-  if (!fs::exists(path)) throw Error(path.string(), "file not found");
-  cv::Mat m = cv::imread(path.string(), cv::IMREAD_ANYDEPTH | cv::IMREAD_GRAYSCALE);
-  if (m.empty()) throw Error(path.string(), "cannot decode disparity image");
-  if (m.channels() != 1) throw Error(path.string(), "disparity image must have one channel");
+}  // namespace
+
+ColorImage read_color(const fs::path& path) { return to_rgb(read_8bit(path)); }
+
+GrayImage read_gray(const fs::path& path) {
+  const cv::Mat m = read_8bit(path);
+  if (m.channels() == 1) return detail::to_gray(m);
+  cv::Mat g;
+  cv::cvtColor(m, g, m.channels() == 4 ? cv::COLOR_BGRA2GRAY : cv::COLOR_BGR2GRAY);
+  return detail::to_gray(g);
+}
+
+std::pair<ColorImage, ColorImage> read_color_pair(const fs::path& left, const fs::path& right) {
+  const cv::Mat l = read_8bit(left), r = read_8bit(right);
+  auto kind = [](const cv::Mat& m) { return m.channels() == 1 ? std::string("grey") : std::string("colour"); };
+  if (kind(l) != kind(r))
+    throw Error(right.string(), "is a " + kind(r) + " image but " + left.string() + " is " + kind(l) +
+                                    "; both views must be grey or both colour");
+  if (l.size() != r.size())
+    throw Error(right.string(), "size " + std::to_string(r.cols) + "x" + std::to_string(r.rows) + " differs from " +
+                                    left.string() + " (" + std::to_string(l.cols) + "x" + std::to_string(l.rows) + ")");
+  return {to_rgb(l), to_rgb(r)};
+}
+
+DisparityImage read_disparity(const fs::path& path, double scale, int bits) {
+  const cv::Mat m = read_unchanged(path, "disparity image");
+  if (m.channels() != 1)
+    throw Error(path.string(), "disparity image must have one channel, has " + std::to_string(m.channels()));
+  if (m.depth() != CV_8U && m.depth() != CV_16U)
+    throw Error(path.string(), "disparity image must be 8- or 16-bit unsigned");
+  if (bits != 0 && bits_of(m) != bits)
+    throw Error(path.string(), "is a " + std::to_string(bits_of(m)) + "-bit disparity image; expected " +
+                                   std::to_string(bits) + "-bit");
   cv::Mat f;
   m.convertTo(f, CV_32F);
   DisparityImage out(f.cols, f.rows);
@@ -42,6 +104,22 @@ DisparityImage read_disparity(const fs::path& path, double scale) {
       out.at(x, y) = v > 0 ? float(v / scale) : std::nanf("");
     }
   return out;
+}
+
+void check_image_output(const fs::path& path, const std::string& option, bool sixteen_bit) {
+  const std::string where = path.string();
+  if (path.empty()) throw Error(option, "empty file name");
+  if (fs::is_directory(path) || !path.has_filename())
+    throw Error(where, "is a folder; " + option + " needs an image file name such as out.png");
+  const std::string ext = lower_extension(path);
+  // Lossless formats only: a mask or disparity stored as JPEG changes its values. Of these only
+  // PNG, TIFF and PGM hold 16-bit samples.
+  const bool ok = ext == ".png" || ext == ".tif" || ext == ".tiff" || ext == ".pgm" || (!sixteen_bit && ext == ".bmp");
+  const std::string allowed = sixteen_bit ? ".png, .tif, .tiff or .pgm (16-bit)" : ".png, .tif, .tiff, .pgm or .bmp";
+  if (!ok)
+    throw Error(where, option + " must end in " + allowed + ", got " +
+                           (ext.empty() ? std::string("no extension") : "'" + ext + "'"));
+  if (!cv::haveImageWriter(where)) throw Error(where, "this OpenCV build cannot write " + ext + " files");
 }
 
 void write_disparity_png(const fs::path& path, const DisparityImage& d, double scale) {

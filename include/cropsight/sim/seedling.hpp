@@ -96,10 +96,17 @@ std::vector<std::pair<Eigen::Matrix3d, Eigen::Vector3d>> random_board_poses(cons
                                                                             int rows, double square, int n,
                                                                             std::uint64_t seed);
 
+/// Upper bounds of write_seedling_dataset()'s counts (a pair is ~1.5 MB on disk and ~0.1 s to
+/// render; 10000 pairs is 15 GB already): a mistyped count must fail, not fill the disk.
+inline constexpr int kMaxSeedlingPairs = 10000;
+inline constexpr int kMaxCalibrationPairs = 1000;
+
 /// Writes DIR/pair_NNN/{left,right,disparity,mask}.png + truth.json for `pairs` scenes and
 /// DIR/calib/{left,right}_NNN.png for `calib_pairs` checkerboard pairs (9x6 inner corners,
 /// 30 mm squares). disparity.png: 16-bit, value = disparity * 256, 0 = none. Files are written
-/// atomically; `progress(done)` is called after each pair when given.
+/// atomically; `progress(done)` is called after each pair when given. Throws Error(dir, ...) for
+/// pairs outside 0..kMaxSeedlingPairs or calib_pairs outside 0..kMaxCalibrationPairs. It writes
+/// into `dir` directly: callers wanting all-or-nothing write into a temporary folder and rename it.
 void write_seedling_dataset(const std::filesystem::path& dir, const SeedlingSimConfig& cfg, int pairs,
                             std::uint64_t seed, int calib_pairs, void (*progress)(int, void*) = nullptr,
                             void* progress_ctx = nullptr);

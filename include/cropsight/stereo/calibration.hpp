@@ -24,12 +24,20 @@ struct StereoCalibration {
   double baseline() const { return T.norm(); }
 };
 
+/// OpenCV's corner finder needs at least 3 inner corners each way; 100 is far beyond any printed board.
+inline constexpr int kMinBoardCorners = 3, kMaxBoardCorners = 100;
+/// Largest checkerboard square accepted, metres (a 1 m square is already an unusual board).
+inline constexpr double kMaxSquareSize = 1.0;
+
 struct Checkerboard {
   int cols = 9;               ///< inner corners per row
   int rows = 6;               ///< inner corners per column
   double square_size = 0.03;  ///< m
   /// Corner positions on the board plane (z = 0), row-major, metres.
   std::vector<Eigen::Vector3f> object_points() const;
+  /// Throws Error(where, ...) unless kMinBoardCorners <= cols, rows <= kMaxBoardCorners and
+  /// 0 < square_size <= kMaxSquareSize (finite).
+  void validate(const std::string& where) const;
 };
 
 struct CalibrationConfig {
@@ -63,7 +71,8 @@ StereoCalibration calibrate_stereo_folder(const std::filesystem::path& dir, cons
 /// YAML with keys image_width, image_height, K1, D1, K2, D2, R, T, E, F (row-major lists), rms,
 /// views. Written atomically.
 void save_calibration(const std::filesystem::path& path, const StereoCalibration& calib);
-/// Throws Error(path, "missing key 'K1'") and the like for absent or malformed keys.
+/// Throws Error(path, "missing key 'K1'") and the like for absent, malformed or unknown keys (a
+/// misspelt key must not pass silently, as in camera.yaml).
 StereoCalibration load_calibration(const std::filesystem::path& path);
 
 }  // namespace cropsight::stereo

@@ -94,8 +94,22 @@ struct DisparityConfig {
   }
 };
 
+/// Largest disparity search range accepted (num_disparities, --max-disp): the census engine keeps
+/// width x num_disparities 16-bit costs per row buffer, so an unbounded range (say 2^20) tries to
+/// allocate gigabytes and appears to hang. 1024 covers full-size Middlebury pairs.
+inline constexpr int kMaxDisparities = 1024;
+/// Largest rank_radius: the rank count of a (2r+1)^2 window is kept in 8 bits (r = 7: 224 < 256).
+inline constexpr int kMaxRankRadius = 7;
+
+/// Throws Error(where, "'<prefix><key>' ...") when a field of `cfg` is out of range (unknown
+/// engine or mode, num_disparities not a multiple of 16 in 16..kMaxDisparities, non-positive or
+/// non-finite penalties, uniqueness_ratio outside 0..100, ...). `prefix` is prepended to the key
+/// names ("disparity." inside SeedlingConfig). compute_disparity() runs it too (where = the image).
+void validate_disparity_config(const DisparityConfig& cfg, const std::string& where, const std::string& prefix = "");
+
 /// Left-reference disparity of a rectified pair. Images must have equal, non-zero size, else
-/// Error(where, ...). Colour images are matched in colour when cfg.use_color.
+/// Error(where, ...), as is an invalid configuration (validate_disparity_config) or a search
+/// range wider than the image. Colour images are matched in colour when cfg.use_color.
 DisparityImage compute_disparity(const ColorImage& left, const ColorImage& right, const DisparityConfig& cfg,
                                  const std::string& where = "stereo pair");
 DisparityImage compute_disparity(const GrayImage& left, const GrayImage& right, const DisparityConfig& cfg,
@@ -109,7 +123,10 @@ DisparityImage opencv_sgbm_disparity(const ColorImage& left, const ColorImage& r
 
 /// Winner-take-all block matching with a square window (the paper's SAD / SSD baselines, 55×55),
 /// integer disparities, computed with box filters. Pixels whose window leaves the image get NaN.
+/// Throws Error(where, ...) for a window that is even or outside 1..kMaxBlockWindow, or a
+/// num_disparities outside 1..image width.
 enum class BlockCost { kSad, kSsd };
+inline constexpr int kMaxBlockWindow = 255;
 DisparityImage block_matching(const GrayImage& left, const GrayImage& right, int num_disparities, int window,
                               BlockCost cost, const std::string& where = "stereo pair");
 

@@ -17,7 +17,9 @@ struct MiddleburyPair {
 };
 
 /// Loads tsukuba, venus, teddy and cones from `dir` (each a folder with left.png, right.png and
-/// disp_left.pgm / disp_left.png). Throws Error(file, ...) for a missing or unreadable file.
+/// disp_left.pgm / disp_left.png). Throws Error(file, ...) for a missing or unreadable file, images
+/// that are not 8-bit or differ in size or kind (grey / colour), a ground truth that is not 8-bit
+/// or has no valid (non-zero) pixel.
 std::vector<MiddleburyPair> load_middlebury(const std::filesystem::path& dir);
 
 struct BadPixelStats {
@@ -28,7 +30,7 @@ struct BadPixelStats {
 };
 
 /// Bad-pixel rates over every pixel with ground truth; NaN estimates count as errors.
-/// Sizes must agree, else Error(where, ...).
+/// Sizes must agree and the truth must have a valid pixel, else Error(where, ...).
 BadPixelStats bad_pixels(const DisparityImage& estimate, const DisparityImage& truth,
                          const std::string& where = "disparity");
 

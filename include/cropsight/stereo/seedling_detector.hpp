@@ -108,6 +108,19 @@ struct SeedlingConfig {
   }
 };
 
+/// Largest GMM K accepted: EM costs K x points per iteration and the recognition rule needs
+/// components of at least min_component_points points, so K beyond a few hundred means nothing.
+inline constexpr int kMaxGmmComponents = 256;
+/// Largest sampling.target_points accepted (the paper uses 4096).
+inline constexpr int kMaxSampledPoints = 1 << 20;
+
+/// Throws Error(where, "'<key>' ...") naming the key of the first out-of-range field: depths
+/// (0 < min_depth < max_depth, finite), heights, RANSAC settings, the disparity block
+/// (validate_disparity_config with prefix "disparity."), sampling, gmm (1 <= components <=
+/// min(kMaxGmmComponents, sampling.target_points), tolerance >= 0), outlier filter and top-view
+/// raster. detect_seedling() runs it too (where = the image).
+void validate_seedling_config(const SeedlingConfig& cfg, const std::string& where);
+
 /// A raster of the soil plane: cell (i, j) covers plane coordinates origin + (i, j) * cell along
 /// the axes e1 = n.unitOrthogonal(), e2 = n x e1.
 struct TopViewMask {

@@ -2,16 +2,33 @@
 // Image files for the stereo tools (PNG/PGM/JPEG through OpenCV). Throw Error(path, ...) when a
 // file is missing or unreadable.
 #include <filesystem>
+#include <string>
+#include <utility>
 
 #include "cropsight/core/image.hpp"
 #include "cropsight/stereo/disparity.hpp"
 
 namespace cropsight::stereo {
 
-ColorImage read_color(const std::filesystem::path& path);  ///< any 8-bit image, converted to RGB
-GrayImage read_gray(const std::filesystem::path& path);    ///< any 8-bit image, converted to grey
-/// 8- or 16-bit single-channel ground-truth disparity divided by `scale`; stored 0 → NaN.
-DisparityImage read_disparity(const std::filesystem::path& path, double scale);
+/// Any 8-bit image (grey, colour, with alpha), converted to RGB. Error(path, ...) for a 16-bit or
+/// float file: OpenCV would silently scale it to 8 bits and the matcher would see another image.
+ColorImage read_color(const std::filesystem::path& path);
+/// Any 8-bit image, converted to grey; Error(path, ...) for another depth (see read_color).
+GrayImage read_gray(const std::filesystem::path& path);
+/// Left and right images of a stereo pair as RGB: both 8-bit (read_color), both grey or both
+/// colour (a grey and a colour view of one scene match on different intensities), and of the same
+/// size, else Error naming the offending file (the right one for a mismatch).
+std::pair<ColorImage, ColorImage> read_color_pair(const std::filesystem::path& left,
+                                                  const std::filesystem::path& right);
+/// Single-channel ground-truth disparity divided by `scale`; stored 0 → NaN. `bits` = 8 or 16
+/// requires that depth (Error(path, ...) otherwise: a 16-bit file read with an 8-bit scale is off
+/// by 256x); 0 accepts either.
+DisparityImage read_disparity(const std::filesystem::path& path, double scale, int bits = 0);
+/// Checks, before any work is done, that `path` can take an image written by the functions below:
+/// a file name (not a folder) whose extension names a lossless format OpenCV can write (.png,
+/// .tif, .tiff, .pgm, plus .bmp when !sixteen_bit); `option` (e.g. "--out") goes into the message.
+/// Throws Error(path, ...).
+void check_image_output(const std::filesystem::path& path, const std::string& option, bool sixteen_bit);
 /// 16-bit PNG with value = round(disparity * scale), 0 = no estimate (atomic write).
 void write_disparity_png(const std::filesystem::path& path, const DisparityImage& disparity, double scale = 256.0);
 /// 8-bit RGB PNG (atomic write).
