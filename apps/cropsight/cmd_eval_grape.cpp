@@ -23,17 +23,24 @@ struct EvalGrapeOptions {
   CommonOptions common;
   std::string data, model, fold;
   int limit = 0, threads = 2;
+  bool limit_set = false;  // --limit given (0 or less is an error, not "all")
   GrapeNetworkMode mode;
   std::uint64_t split_seed = 1;
 };
 
 void run(const EvalGrapeOptions& o) {
+  check_threads(o.threads);
   auto model = pipeline::GrapeModel::load(o.model, o.threads);
   o.mode.apply(model, o.threads);
+  if (o.limit_set && o.limit < 1) throw Error("--limit", "must be at least 1, got " + std::to_string(o.limit));
   auto files = io::list_grape_clouds(o.data);
-  if (o.limit > 0 && std::size_t(o.limit) < files.size()) files.resize(std::size_t(o.limit));
+  if (o.limit_set && std::size_t(o.limit) < files.size()) files.resize(std::size_t(o.limit));
   if (!o.fold.empty()) {
     const auto [k, K] = pipeline::parse_fold(o.fold, "--fold");
+    // Folds are dealt round-robin: K <= clouds leaves none empty (an empty fold scored "nan").
+    if (std::size_t(K) > files.size())
+      throw Error("--fold", std::to_string(K) + " folds need at least " + std::to_string(K) + " clouds, " + o.data +
+                                " has " + std::to_string(files.size()) + (o.limit_set ? " (after --limit)" : ""));
     const auto fold = pipeline::grape_folds(files.size(), K, o.split_seed);
     std::vector<std::filesystem::path> keep;
     for (std::size_t i = 0; i < files.size(); ++i)
@@ -61,11 +68,14 @@ void add_eval_grape(CLI::App& eval) {
   cmd->add_option("--model", o->model, "Model file (gbdt .json or network .pt)")->required();
   cmd->add_option("--fold", o->fold, "k/K: evaluate only fold k of the by-cloud split");
   cmd->add_option("--split-seed", o->split_seed, "Seed of the fold split (as in train grape)");
-  cmd->add_option("--limit", o->limit, "Use only the first N clouds");
-  cmd->add_option("--threads", o->threads, "Threads (default 2)");
+  auto* limit = cmd->add_option("--limit", o->limit, "Use only the first N clouds, N >= 1");
+  cmd->add_option("--threads", o->threads, "Threads, 1.." + std::to_string(kMaxGrapeThreads) + " (default 2)");
   o->mode.add_options(cmd);
   add_json_flag(cmd, o->common);
-  cmd->callback([o] { run(*o); });
+  cmd->callback([o, limit] {
+    o->limit_set = limit->count() > 0;
+    run(*o);
+  });
 }
 
 }  // namespace cropsight::cli

@@ -7,9 +7,18 @@
 //
 //   cropsight roi-cloud --color C.png --depth D.png --camera camera.yaml --detections det.json
 //       --out DIR [--image-id N] [--config PRESET] [--set key=value] [--json]
+//
+// DIR is replaced as a whole: the new set is written into a temporary sibling folder and swapped
+// in, so a second run never leaves the first run's roi_NNN.txt next to a rois.json that does not
+// list them. To protect other files, an existing DIR must be empty or a previous run's output.
+// Detections whose box lies wholly outside the image are skipped with a warning line.
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
+#include <regex>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -31,9 +40,67 @@ struct RoiCloudOptions {
   long image_id = -1;
 };
 
+// True when `dir` holds only what a run writes (rois.json, roi_NNN.txt): safe to replace.
+bool is_previous_output(const fs::path& dir) {
+  static const std::regex roi_file(R"(roi_\d{3,}\.txt)");
+  for (const auto& e : fs::directory_iterator(dir)) {
+    const std::string name = e.path().filename().string();
+    if (!e.is_regular_file() || (name != "rois.json" && !std::regex_match(name, roi_file))) return false;
+  }
+  return true;
+}
+
+// The output folder as an absolute path without a trailing separator (its name is needed for the
+// temporary sibling); throws Error when it exists and is not a folder we may replace.
+fs::path output_folder(const std::string& out) {
+  fs::path dir = fs::absolute(out).lexically_normal();
+  if (dir.filename().empty()) dir = dir.parent_path();
+  std::error_code ec;
+  if (fs::exists(dir, ec)) {
+    if (!fs::is_directory(dir)) throw Error(out, "exists and is not a folder");
+    if (!is_previous_output(dir))
+      throw Error(out,
+                  "holds files other than a previous roi-cloud run's (rois.json, roi_NNN.txt); give an "
+                  "empty or new folder");
+  }
+  return dir;
+}
+
+// Writes the set into a temporary sibling of `dir`, then swaps it in: `dir` holds either the
+// previous run's files or all of this run's, never a mix; the temporary goes on any failure.
+void write_folder_atomic(const fs::path& dir, const std::string& out,
+                         const std::function<void(const fs::path&)>& write) {
+  const std::string stamp = std::to_string(::getpid());
+  const fs::path tmp = dir.parent_path() / ("." + dir.filename().string() + ".tmp-" + stamp);
+  const fs::path old = dir.parent_path() / ("." + dir.filename().string() + ".old-" + stamp);
+  std::error_code ec;
+  fs::remove_all(tmp, ec);
+  fs::create_directories(tmp, ec);
+  if (ec) throw Error(out, "cannot create folder: " + ec.message());
+  try {
+    write(tmp);
+    if (fs::exists(dir)) {
+      fs::rename(dir, old, ec);
+      if (ec) throw Error(out, "cannot replace the previous output: " + ec.message());
+    }
+    fs::rename(tmp, dir, ec);
+    if (ec) {
+      std::error_code back;
+      if (fs::exists(old)) fs::rename(old, dir, back);  // put the previous run back
+      throw Error(out, "cannot write: " + ec.message());
+    }
+  } catch (...) {
+    fs::remove_all(tmp, ec);
+    throw;
+  }
+  fs::remove_all(old, ec);
+}
+
 void run(const RoiCloudOptions& o) {
   pipeline::GrapeRoiConfig cfg;
   apply_config(cfg, o.common.config_map(o.common.config.empty() ? "grape-roi" : ""), "--config/--set");
+  cfg.validate("--config/--set");
+  const fs::path out_dir = output_folder(o.out);
   const CameraIntrinsics cam = io::read_camera_yaml(o.camera);
   const DepthImage depth = io::read_u16(o.depth);
   const ColorImage color = io::read_color(o.color);
@@ -42,6 +109,19 @@ void run(const RoiCloudOptions& o) {
   if (cam.width != depth.width || cam.height != depth.height)
     throw Error(o.camera, "camera size differs from the depth image");
   const auto dets = pipeline::read_coco_detections(o.detections, o.image_id);
+  // A box wholly outside the image (detections of another image, or of another size) would
+  // otherwise vanish without a word.
+  std::size_t outside = 0;
+  for (const auto& d : dets) {
+    if (d.category != cfg.bunch_category && d.category != cfg.peduncle_category) continue;
+    const Box2D& b = d.box;
+    if (b.x < depth.width && b.y < depth.height && b.x + b.width > 0 && b.y + b.height > 0) continue;
+    ++outside;
+    std::fprintf(stderr,
+                 "cropsight: warning: %s: annotation %ld: bbox [%d, %d, %d, %d] lies outside the %dx%d image; "
+                 "skipped\n",
+                 o.detections.c_str(), d.annotation, b.x, b.y, b.width, b.height, depth.width, depth.height);
+  }
   const auto rois = pipeline::grape_rois(dets, depth.width, depth.height, cfg);
 
   // Compute everything first, then write: no partial output on a failure half-way.
@@ -58,19 +138,17 @@ void run(const RoiCloudOptions& o) {
     out.cloud = pipeline::roi_cloud(depth, color, cam, r, cfg);
     if (out.cloud.size() < 3) continue;  // nothing measurable in this ROI
     geometry::KnnNormalsConfig ncfg;
-    ncfg.k = cfg.normal_k;
-    ncfg.viewpoint = Eigen::Vector3f::Zero();  // the camera centre, in the camera frame
+    ncfg.k = std::min(cfg.normal_k, int(out.cloud.size()));  // no more neighbours than points
+    ncfg.viewpoint = Eigen::Vector3f::Zero();                // the camera centre, in the camera frame
     out.cloud.normals = geometry::knn_normals(out.cloud.points, ncfg);
     std::tie(out.centroid, out.scale) = geometry::normalize_unit_sphere(out.cloud.points);
     out.cloud.labels.assign(out.cloud.size(), 0);
     outs.push_back(std::move(out));
   }
-  fs::create_directories(o.out);
   nlohmann::json list = nlohmann::json::array();
   for (std::size_t i = 0; i < outs.size(); ++i) {
     char name[32];
     std::snprintf(name, sizeof name, "roi_%03zu.txt", i);
-    io::write_grape_text(fs::path(o.out) / name, outs[i].cloud);
     const auto& b = outs[i].box;
     list.push_back({{"file", name},
                     {"box", {b.x, b.y, b.width, b.height}},
@@ -78,8 +156,12 @@ void run(const RoiCloudOptions& o) {
                     {"centroid_m", {outs[i].centroid.x(), outs[i].centroid.y(), outs[i].centroid.z()}},
                     {"scale_m", outs[i].scale}});
   }
-  nlohmann::json j = {{"detections", dets.size()}, {"rois", list}};
-  io::write_file_atomic(fs::path(o.out) / "rois.json", j.dump(2) + "\n");
+  nlohmann::json j = {{"detections", dets.size()}, {"outside_image", outside}, {"rois", list}};
+  write_folder_atomic(out_dir, o.out, [&](const fs::path& dir) {
+    for (std::size_t i = 0; i < outs.size(); ++i)
+      io::write_grape_text(dir / list[i]["file"].get<std::string>(), outs[i].cloud);
+    io::write_file_atomic(dir / "rois.json", j.dump(2) + "\n");
+  });
   if (o.common.json)
     print_json(j);
   else

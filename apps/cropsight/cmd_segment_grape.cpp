@@ -6,10 +6,12 @@
 //                           [--ensemble MODEL2 [--ensemble-weight W]] [--json]
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "cropsight/core/error.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/pipeline/grape_model.hpp"
 #include "grape_network_mode.hpp"
@@ -24,6 +26,8 @@ struct SegmentGrapeOptions {
 };
 
 void run(const SegmentGrapeOptions& o) {
+  check_threads(o.threads);
+  if (std::filesystem::is_directory(o.out)) throw Error(o.out, "is a directory, expected a file name");
   auto model = pipeline::GrapeModel::load(o.model, o.threads);
   o.mode.apply(model, o.threads);
   Cloud cloud = io::read_grape_text(o.input);
@@ -49,9 +53,13 @@ void add_segment_grape(CLI::App& segment) {
   auto o = std::make_shared<SegmentGrapeOptions>();
   auto* cmd = segment.add_subcommand("grape", "Label every point of a grape text cloud");
   cmd->add_option("--model", o->model, "Model file (gbdt .json or network .pt)")->required();
-  cmd->add_option("--input", o->input, "Text cloud (x y z nx ny nz r g b [label])")->required();
+  cmd->add_option(
+         "--input", o->input,
+         "Text cloud in the dataset's format: x y z nx ny nz r g b label (10 numbers a line; the label is read but "
+         "not used)")
+      ->required();
   cmd->add_option("--out", o->out, "Labelled text cloud to write")->required();
-  cmd->add_option("--threads", o->threads, "Threads (default 2)");
+  cmd->add_option("--threads", o->threads, "Threads, 1.." + std::to_string(kMaxGrapeThreads) + " (default 2)");
   o->mode.add_options(cmd);
   add_json_flag(cmd, o->common);
   cmd->callback([o] { run(*o); });

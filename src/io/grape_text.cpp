@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -16,10 +17,19 @@ namespace fs = std::filesystem;
 
 namespace {
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == ','; }
+constexpr int kMaxLabel = 5;  // the dataset's classes are 0-5
+// "9", "300", "1.5": a value as the user wrote it, not std::to_string's "300.000000".
+std::string shortest(float v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", double(v));
+  return buf;
+}
 }  // namespace
 
 Cloud read_grape_text(const fs::path& path) {
   const std::string where = path.string();
+  // An ifstream opens a directory without complaint and reads nothing ("no points").
+  if (fs::is_directory(path)) throw Error(where, "is a directory, expected a text cloud file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(where, "cannot open file");
   std::ostringstream buf;
@@ -62,9 +72,20 @@ Cloud read_grape_text(const fs::path& path) {
       throw Error(where, "line " + std::to_string(line_no) +
                              ": expected 10 numbers (x y z nx ny nz r g b label), got " + std::to_string(n));
     const float label = v[9];
-    if (label < 0 || label != std::floor(label) || label > 255)
+    if (label < 0 || label != std::floor(label))
       throw Error(where, "line " + std::to_string(line_no) + ": label " + std::to_string(label) +
                              " is not a non-negative integer");
+    // The dataset has six classes; a larger label would otherwise surface far from this file,
+    // as "label out of range" in training or evaluation.
+    if (label > float(kMaxLabel))
+      throw Error(where, "line " + std::to_string(line_no) + ": label " + shortest(label) +
+                             " is not a class of the dataset (0-" + std::to_string(kMaxLabel) + ")");
+    // Colours are stored in [0, 1] (the dataset's, and roi-cloud's, r/255); 0-255 colours would
+    // silently dominate the colour features.
+    for (int k = 6; k < 9; ++k)
+      if (v[k] < 0.f || v[k] > 1.f)
+        throw Error(where,
+                    "line " + std::to_string(line_no) + ": colour value " + shortest(v[k]) + " is outside [0, 1]");
     cloud.points.emplace_back(v[0], v[1], v[2]);
     cloud.normals.emplace_back(v[3], v[4], v[5]);
     cloud.colors.emplace_back(v[6], v[7], v[8]);

@@ -15,12 +15,32 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/files.hpp"
 
 namespace cropsight::learning {
 namespace {
+// XGBoost's messages start "[time] path/to/source.cc:123: reason" and go on with a multi-line
+// stack trace: keep the reason.
+std::string xgb_reason() {
+  std::string s = XGBGetLastError();
+  s = s.substr(0, s.find('\n'));
+  if (s.rfind('[', 0) == 0)
+    if (const auto at = s.find(": "); at != std::string::npos) s = s.substr(at + 2);
+  // Some messages quote the whole offending JSON document.
+  constexpr std::size_t kMax = 200;
+  if (s.size() > kMax) s = s.substr(0, kMax) + "...";
+  return s;
+}
 void check(int rc, const std::string& where) {
-  if (rc != 0) throw Error(where, std::string("XGBoost: ") + XGBGetLastError());
+  if (rc != 0) throw Error(where, "XGBoost: " + xgb_reason());
+}
+std::string shortest(double v) {
+  std::ostringstream o;
+  o.imbue(std::locale::classic());
+  o << v;
+  return o.str();
 }
 struct DMatrix {
   DMatrixHandle h = nullptr;
@@ -80,11 +100,37 @@ Gbdt& Gbdt::operator=(Gbdt&& o) noexcept {
 
 bool Gbdt::trained() const { return booster_ != nullptr; }
 
+void GbdtParams::validate(const std::string& where, const std::string& prefix) const {
+  auto fail = [&](const char* key, const std::string& rule, const std::string& got) {
+    throw Error(where, "'" + prefix + key + "' " + rule + ", got " + got);
+  };
+  auto at_least = [&](const char* key, int value, int min) {
+    if (value < min) fail(key, "must be at least " + std::to_string(min), std::to_string(value));
+  };
+  auto fraction = [&](const char* key, double value) {
+    if (!(value > 0 && value <= 1)) fail(key, "must be in (0, 1]", shortest(value));
+  };
+  auto non_negative = [&](const char* key, double value) {
+    if (!(value >= 0 && std::isfinite(value))) fail(key, "must be >= 0", shortest(value));
+  };
+  at_least("num_class", num_class, 2);
+  at_least("rounds", rounds, 1);
+  at_least("max_depth", max_depth, 1);
+  if (!(eta > 0 && std::isfinite(eta))) fail("eta", "must be > 0", shortest(eta));
+  fraction("subsample", subsample);
+  fraction("colsample", colsample);
+  non_negative("min_child_weight", min_child_weight);
+  non_negative("lambda", lambda);
+  at_least("max_bin", max_bin, 2);
+  at_least("nthread", nthread, 1);
+  if (nthread > kMaxThreads) fail("nthread", "must be at most " + std::to_string(kMaxThreads), std::to_string(nthread));
+}
+
 void Gbdt::train(const std::vector<float>& x, std::size_t rows, std::size_t cols, const std::vector<float>& labels,
                  const std::vector<float>& weights, const GbdtParams& p) {
   if (labels.size() != rows) throw Error("gbdt", "label count differs from row count");
   if (!weights.empty() && weights.size() != rows) throw Error("gbdt", "weight count differs from row count");
-  if (p.num_class < 2) throw Error("gbdt", "need at least two classes");
+  p.validate("gbdt");
   for (float l : labels)
     if (l < 0 || l >= float(p.num_class)) throw Error("gbdt", "label " + std::to_string(l) + " out of range");
   DMatrix d(x, rows, cols);
@@ -302,27 +348,29 @@ void Gbdt::save(const std::filesystem::path& path) const {
   bst_ulong len = 0;
   const char* buf = nullptr;
   check(XGBoosterSaveModelToBuffer(booster_, R"({"format": "json"})", &len, &buf), path.string());
-  // Atomic: write a temporary sibling, then rename (learning does not depend on io).
-  const std::filesystem::path tmp = path.string() + ".tmp";
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    out.write(buf, std::streamsize(len));
-    if (!out) throw Error(path.string(), "cannot write model file");
-  }
-  std::filesystem::rename(tmp, path);
+  if (std::filesystem::is_directory(path)) throw Error(path.string(), "is a directory, expected a file name");
+  // Atomic, and no temporary left behind on a failure.
+  io::write_file_atomic(path, std::string(buf, len));
 }
 
 Gbdt Gbdt::load(const std::filesystem::path& path, int nthread) {
   const std::string where = path.string();
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(where, "cannot open model file");
+  if (std::filesystem::is_directory(path)) throw Error(where, "not a model file (a directory?)");
+  if (nthread < 1 || nthread > kMaxThreads)
+    throw Error("threads", "must be in 1.." + std::to_string(kMaxThreads) + ", got " + std::to_string(nthread));
   std::ostringstream ss;
   ss << in.rdbuf();
   const std::string text = ss.str();
+  // XGBoost's JSON models hold a "learner" object; another JSON file (a broccoli model, say)
+  // would only get XGBoost's complaint about its version field.
+  if (text.rfind('{', 0) == 0 && text.find("\"learner\"") == std::string::npos)
+    throw Error(where, "not an XGBoost model (a JSON file without a \"learner\" object)");
   Gbdt g;
   check(XGBoosterCreate(nullptr, 0, &g.booster_), where);
   if (XGBoosterLoadModelFromBuffer(g.booster_, text.data(), bst_ulong(text.size())) != 0)
-    throw Error(where, std::string("not an XGBoost model: ") + XGBGetLastError());
+    throw Error(where, "not an XGBoost model: " + xgb_reason());
   check(XGBoosterSetParam(g.booster_, "nthread", std::to_string(nthread).c_str()), where);
   g.nthread_ = std::max(1, nthread);
   try {

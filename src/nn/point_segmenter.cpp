@@ -6,12 +6,15 @@
 
 #include <dlfcn.h>
 #include <torch/torch.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <random>
+#include <sstream>
 
 #include "cropsight/core/class_scores.hpp"
 #include "cropsight/core/error.hpp"
@@ -25,6 +28,100 @@ int feature_channels(const std::string& f) {
   if (f == "xyzn" || f == "xyzrgb") return 6;
   if (f == "xyzrgbn") return 9;
   throw Error("features", "unknown feature set '" + f + "' (expected xyz, xyzn, xyzrgb or xyzrgbn)");
+}
+
+namespace {
+std::string shortest(double v) {
+  std::ostringstream o;
+  o.imbue(std::locale::classic());
+  o << v;
+  return o.str();
+}
+
+// libtorch's messages carry a multi-line C++ stack trace: the first line is the reason.
+std::string torch_reason(const std::exception& e) {
+  const auto* c = dynamic_cast<const c10::Error*>(&e);
+  const std::string s = c ? c->what_without_backtrace() : e.what();
+  return s.substr(0, s.find('\n'));
+}
+
+// Writes `a` to `path` through a temporary sibling, then renames it, removing the temporary on
+// any failure (nn does not link cropsight_io, whose io::write_atomic_with does the same).
+void save_archive_atomic(torch::serialize::OutputArchive& a, const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  const std::string where = path.string();
+  if (fs::is_directory(path)) throw Error(where, "is a directory, expected a file name");
+  std::error_code ec;
+  if (!path.parent_path().empty()) {
+    fs::create_directories(path.parent_path(), ec);
+    if (ec) throw Error(where, "cannot create directory: " + ec.message());
+  }
+  const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()));
+  try {
+    a.save_to(tmp.string());
+  } catch (const std::exception& e) {
+    fs::remove(tmp, ec);
+    throw Error(where, "cannot write: " + torch_reason(e));
+  }
+  fs::rename(tmp, path, ec);
+  if (ec) {
+    const std::string why = ec.message();  // before remove() reuses ec
+    fs::remove(tmp, ec);
+    throw Error(where, "cannot write: " + why);
+  }
+}
+}  // namespace
+
+void PointNetConfig::validate(const std::string& where) const {
+  auto fail = [&](const char* key, const std::string& rule, const std::string& got) {
+    throw Error(where, std::string("'") + key + "' " + rule + ", got " + got);
+  };
+  auto at_least = [&](const char* key, int value, int min, const std::string& why = "") {
+    if (value < min) fail(key, "must be at least " + std::to_string(min) + why, std::to_string(value));
+  };
+  // Finite and within [lo, hi] (open at an end when the flag says so).
+  auto within = [&](const char* key, double value, double lo, bool lo_open, double hi, bool hi_open) {
+    const bool ok =
+        std::isfinite(value) && (lo_open ? value > lo : value >= lo) && (hi_open ? value < hi : value <= hi);
+    if (ok) return;
+    std::string rule = std::isinf(hi) ? std::string(lo_open ? "must be > " : "must be >= ") + shortest(lo)
+                                      : std::string("must be in ") + (lo_open ? "(" : "[") + shortest(lo) + ", " +
+                                            shortest(hi) + (hi_open ? ")" : "]");
+    fail(key, rule, shortest(value));
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  if (arch != "pointresnet" && arch != "pointnet2") fail("arch", "must be pointresnet or pointnet2", "'" + arch + "'");
+  try {
+    feature_channels(features);
+  } catch (const Error&) {
+    fail("features", "must be xyz, xyzn, xyzrgb or xyzrgbn", "'" + features + "'");
+  }
+  at_least("num_classes", num_classes, 2);
+  // The set abstractions need a few points to group (the smallest network that still trains).
+  at_least("num_points", num_points, 8);
+  at_least("sa1_points", sa1_points, 4);
+  at_least("sa2_points", sa2_points, 2);
+  at_least("sa3_points", sa3_points, 1);
+  at_least("k1", k1, 1);
+  at_least("k2", k2, 1);
+  at_least("k3", k3, 1);
+  at_least("width", width, 1);
+  within("dropout", dropout, 0, false, 1, true);
+  at_least("epochs", epochs, 1);
+  // Steps of a single cloud are skipped (BatchNorm), so batch_size 1 would train nothing.
+  at_least("batch_size", batch_size, 2, " (BatchNorm needs two clouds per step)");
+  within("lr", lr, 0, true, inf, false);
+  within("lr_decay", lr_decay, 0, true, 1, false);
+  at_least("lr_step", lr_step, 1);
+  within("weight_decay", weight_decay, 0, false, inf, false);
+  within("class_weight_power", class_weight_power, 0, false, inf, false);
+  within("scale_min", scale_min, 0, true, inf, false);
+  within("scale_max", scale_max, scale_min, false, inf, false);
+  within("jitter_sigma", jitter_sigma, 0, false, inf, false);
+  within("colour_jitter", colour_jitter, 0, false, inf, false);
+  at_least("val_every", val_every, 0);
+  at_least("threads", threads, 1);
+  if (threads > kMaxThreads) fail("threads", "must be at most " + std::to_string(kMaxThreads), std::to_string(threads));
 }
 
 namespace {
@@ -234,6 +331,31 @@ void fill_point(const Prepared& p, int src, float* xyz, float* f, const Eigen::M
 
 }  // namespace
 
+namespace {
+// Loads `net`'s weights from `a`, checking that every tensor keeps its shape: libtorch's
+// Module::load swaps in tensors of any shape (a checkpoint of another width or feature set would
+// load, then crash in the first forward pass). Throws Error(where, ...).
+void load_weights(torch::nn::Module& net, torch::serialize::InputArchive& a, const std::string& where) {
+  std::vector<std::pair<std::string, std::vector<int64_t>>> shapes;
+  for (const auto& p : net.named_parameters()) shapes.emplace_back(p.key(), p.value().sizes().vec());
+  for (const auto& b : net.named_buffers()) shapes.emplace_back(b.key(), b.value().sizes().vec());
+  try {
+    net.load(a);
+  } catch (const std::exception& e) {
+    throw Error(where, "weights do not fit this network: " + torch_reason(e));
+  }
+  auto params = net.named_parameters();
+  auto buffers = net.named_buffers();
+  for (const auto& [key, shape] : shapes) {
+    const torch::Tensor* t = params.find(key);
+    if (!t) t = buffers.find(key);
+    if (!t || t->sizes().vec() != shape)
+      throw Error(where, "weights do not fit this network: '" + key +
+                             "' has another shape (written with another arch, width or feature set?)");
+  }
+}
+}  // namespace
+
 struct PointSegmenter::Impl {
   PointNetConfig cfg;
   mutable SegNet net{nullptr};  // eval-mode forward passes from const methods
@@ -242,12 +364,8 @@ struct PointSegmenter::Impl {
   int epochs_done = 0;
 
   explicit Impl(const PointNetConfig& c) : cfg(c) {
-    if (cfg.arch != "pointresnet" && cfg.arch != "pointnet2")
-      throw Error("point network", "unknown arch '" + cfg.arch + "' (expected pointresnet or pointnet2)");
-    feature_channels(cfg.features);
-    if (cfg.num_points < 8 || cfg.sa1_points < 4 || cfg.sa2_points < 2 || cfg.sa3_points < 1)
-      throw Error("point network", "point counts too small");
-    at::set_num_threads(std::max(1, cfg.threads));
+    cfg.validate("point network");
+    at::set_num_threads(cfg.threads);
     single_threaded_blas();
     torch::manual_seed(cfg.seed);
     net = SegNet(cfg);
@@ -426,18 +544,27 @@ std::vector<EpochLog> PointSegmenter::train(const std::vector<Cloud>& train, con
         count[std::size_t(c)] > 0 ? float(std::pow(median / count[std::size_t(c)], cfg.class_weight_power)) : 1.f;
 
   if (!I.opt) I.make_optimizer();
-  // Resume.
+  // Resume. A bad checkpoint is the user's file: name it, with libtorch's one-line reason.
   if (!cfg.checkpoint.empty() && std::filesystem::exists(cfg.checkpoint)) {
-    torch::serialize::InputArchive a;
-    a.load_from(cfg.checkpoint);
-    torch::serialize::InputArchive m, o;
-    a.read("model", m);
-    a.read("optim", o);
-    I.net->load(m);
-    I.opt->load(o);
+    const std::string& where = cfg.checkpoint;
+    if (!std::filesystem::is_regular_file(where)) throw Error(where, "not a checkpoint file (a directory?)");
+    torch::serialize::InputArchive a, m, o;
     torch::Tensor e;
-    a.read("epoch", e);
-    I.epochs_done = int(e.item<int64_t>());
+    try {
+      a.load_from(where);
+      a.read("model", m);
+      a.read("optim", o);
+      a.read("epoch", e);
+    } catch (const std::exception& ex) {
+      throw Error(where, "not a network checkpoint: " + torch_reason(ex));
+    }
+    load_weights(*I.net, m, where);
+    try {
+      I.opt->load(o);
+      I.epochs_done = int(e.item<int64_t>());
+    } catch (const std::exception& ex) {
+      throw Error(where, "optimizer state does not fit this network: " + torch_reason(ex));
+    }
   }
 
   std::vector<EpochLog> logs;
@@ -497,9 +624,7 @@ std::vector<EpochLog> PointSegmenter::train(const std::vector<Cloud>& train, con
       a.write("model", m);
       a.write("optim", o);
       a.write("epoch", torch::tensor(int64_t(I.epochs_done)));
-      const std::string tmp = cfg.checkpoint + ".tmp";
-      a.save_to(tmp);
-      std::filesystem::rename(tmp, cfg.checkpoint);
+      save_archive_atomic(a, cfg.checkpoint);
     }
     logs.push_back(log);
     if (on_epoch) on_epoch(log);
@@ -588,19 +713,20 @@ void PointSegmenter::save(const std::filesystem::path& path) const {
   put(a, "meta.width", double(c.width));
   put(a, "meta.seed", double(c.seed));
   put(a, "meta.batch_size", double(c.batch_size));
-  const std::string tmp = path.string() + ".tmp";
-  a.save_to(tmp);
-  std::filesystem::rename(tmp, path);
+  save_archive_atomic(a, path);
 }
 
 PointSegmenter PointSegmenter::load(const std::filesystem::path& path, int threads) {
   const std::string where = path.string();
+  if (threads < 1 || threads > kMaxThreads)
+    throw Error("threads", "must be in 1.." + std::to_string(kMaxThreads) + ", got " + std::to_string(threads));
   if (!std::filesystem::exists(path)) throw Error(where, "no such model file");
+  if (!std::filesystem::is_regular_file(path)) throw Error(where, "not a model file (a directory?)");
   torch::serialize::InputArchive a;
   try {
     a.load_from(where);
   } catch (const std::exception& e) {
-    throw Error(where, "not a cropsight network model");
+    throw Error(where, "not a cropsight network model: " + torch_reason(e));
   }
   PointNetConfig c;
   try {
@@ -624,10 +750,15 @@ PointSegmenter PointSegmenter::load(const std::filesystem::path& path, int threa
     throw Error(where, "model file lacks its metadata");
   }
   c.threads = threads;
+  c.validate(where + ": metadata");
   PointSegmenter s(c);
   torch::serialize::InputArchive m;
-  a.read("model", m);
-  s.impl_->net->load(m);
+  try {
+    a.read("model", m);
+  } catch (const std::exception& e) {
+    throw Error(where, "model file lacks its weights: " + torch_reason(e));
+  }
+  load_weights(*s.impl_->net, m, where);
   return s;
 }
 

@@ -16,6 +16,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/geometry/knn_normals.hpp"
+#include "cropsight/learning/gbdt.hpp"
 #include "geometry/point_kdtree.hpp"
 #include "parallel_rows.hpp"
 
@@ -41,6 +42,27 @@ void hsv(const Eigen::Vector3f& c, float& h, float& s, float& v) {
   }
 }
 }  // namespace
+
+void GrapeFeatureConfig::validate(const std::string& where, const std::string& prefix) const {
+  auto fail = [&](const char* key, const std::string& rule, const std::string& got) {
+    throw Error(where, "'" + prefix + key + "' " + rule + ", got " + got);
+  };
+  auto at_least = [&](const char* key, int value, int min, const char* why) {
+    if (value < min) fail(key, "must be at least " + std::to_string(min) + why, std::to_string(value));
+  };
+  at_least("k_small", k_small, 3, " (a neighbourhood's covariance needs three points)");
+  at_least("k_large", k_large, 3, " (a neighbourhood's covariance needs three points)");
+  at_least("threads", threads, 1, "");
+  if (threads > learning::kMaxThreads)
+    fail("threads", "must be at most " + std::to_string(learning::kMaxThreads), std::to_string(threads));
+  at_least("sample", sample, 0, " (0 = every point)");
+  at_least("carry_k", carry_k, 1, "");
+  if (!(carry_colour >= 0 && std::isfinite(carry_colour))) {
+    std::ostringstream o;
+    o << carry_colour;
+    fail("carry_colour", "must be >= 0", o.str());
+  }
+}
 
 std::string GrapeFeatureConfig::recipe() const {
   std::ostringstream o;
@@ -218,9 +240,7 @@ std::vector<float> compute_features(const Cloud& cloud, const GrapeFeatureConfig
 
 void check_input(const Cloud& cloud, const GrapeFeatureConfig& cfg) {
   if (!cloud.has_normals() || !cloud.has_colors()) throw Error("grape features", "cloud needs normals and colours");
-  if (cfg.k_small < 3 || cfg.k_large < 3) throw Error("grape features", "neighbourhoods need at least 3 points");
-  if (cfg.sample < 0) throw Error("grape features", "sample must be 0 (every point) or a point count");
-  if (cfg.carry_k < 1) throw Error("grape features", "carry_k must be at least 1");
+  cfg.validate("grape features");
 }
 
 void add_fpfh(const Cloud& cloud, const GrapeFeatureConfig& cfg, const std::vector<int>& subset, std::vector<float>& X);

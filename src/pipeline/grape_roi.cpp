@@ -5,10 +5,35 @@
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "cropsight/core/error.hpp"
 
 namespace cropsight::pipeline {
+
+void GrapeRoiConfig::validate(const std::string& where) const {
+  auto num = [](double v) {
+    std::ostringstream o;
+    o.imbue(std::locale::classic());
+    o << v;
+    return o.str();
+  };
+  auto fail = [&](const char* key, const std::string& rule, const std::string& got) {
+    throw Error(where, std::string("'") + key + "' " + rule + ", got " + got);
+  };
+  // COCO category ids are non-negative; one id for both kinds would pair every box with itself.
+  if (bunch_category < 0) fail("bunch_category", "must be a COCO category id >= 0", std::to_string(bunch_category));
+  if (peduncle_category < 0)
+    fail("peduncle_category", "must be a COCO category id >= 0", std::to_string(peduncle_category));
+  if (peduncle_category == bunch_category)
+    fail("peduncle_category", "must differ from bunch_category", std::to_string(peduncle_category));
+  if (!(min_score >= 0.f && min_score <= 1.f)) fail("min_score", "must be in [0, 1]", num(min_score));
+  if (!(z_min >= 0 && std::isfinite(z_min))) fail("z_min", "must be >= 0 m", num(z_min));
+  if (!(z_max > z_min && std::isfinite(z_max))) fail("z_max", "must be > z_min = " + num(z_min) + " m", num(z_max));
+  if (normal_k < 3 || normal_k > kMaxNormalK)
+    fail("normal_k", "must be in 3.." + std::to_string(kMaxNormalK) + " (a normal needs three points)",
+         std::to_string(normal_k));
+}
 
 Box2D roi_from_boxes(const Box2D& g, const Box2D& p) {
   Box2D r;
@@ -54,6 +79,7 @@ std::vector<Box2D> merge_overlapping(std::vector<Box2D> boxes) {
 
 std::vector<Box2D> grape_rois(const std::vector<GrapeDetection>& dets, int width, int height,
                               const GrapeRoiConfig& cfg) {
+  cfg.validate("grape roi config");
   std::vector<Box2D> rois;
   for (const auto& g : dets) {
     if (g.category != cfg.bunch_category || g.score < cfg.min_score || g.box.empty()) continue;
@@ -131,6 +157,7 @@ std::vector<GrapeDetection> read_coco_detections(const std::filesystem::path& pa
     }
     if (b[2] < 0 || b[3] < 0) throw Error(where, item + ": negative bbox size");
     GrapeDetection d;
+    d.annotation = long(k - 1);
     d.box = {int(std::floor(b[0])), int(std::floor(b[1])), int(std::ceil(b[2])), int(std::ceil(b[3]))};
     d.category = a["category_id"].get<int>();
     d.score = a.contains("score") && a["score"].is_number() ? a["score"].get<float>() : 1.f;

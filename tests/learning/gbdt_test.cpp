@@ -88,4 +88,46 @@ TEST(Gbdt, BadInputsThrow) {
   std::ofstream(t / "junk.json") << "not a model";
   EXPECT_THROW(Gbdt::load(t / "junk.json"), cropsight::Error);
 }
+// Parameters out of range are named before XGBoost runs (rounds 0 used to blame the output file);
+// XGBoost's own errors come back as one line; a save into a folder leaves no temporary.
+TEST(Gbdt, ParamsValidatedAndErrorsOneLine) {
+  auto named = [](void (*set)(GbdtParams&), const std::string& key) {
+    GbdtParams p;
+    set(p);
+    try {
+      p.validate("cfg", "gbdt.");
+      ADD_FAILURE() << key << " accepted";
+    } catch (const cropsight::Error& e) {
+      EXPECT_EQ(e.problem().rfind("'gbdt." + key + "'", 0), 0u) << e.what();
+    }
+  };
+  named([](GbdtParams& p) { p.rounds = 0; }, "rounds");
+  named([](GbdtParams& p) { p.eta = 0; }, "eta");
+  named([](GbdtParams& p) { p.subsample = 1.5; }, "subsample");
+  named([](GbdtParams& p) { p.colsample = 0; }, "colsample");
+  named([](GbdtParams& p) { p.max_depth = 0; }, "max_depth");
+  named([](GbdtParams& p) { p.nthread = 100000; }, "nthread");
+  named([](GbdtParams& p) { p.nthread = 0; }, "nthread");
+  EXPECT_NO_THROW(GbdtParams{}.validate("cfg"));
+
+  cropsight::testing::TempDir t;
+  std::ofstream(t / "half.json") << R"({"learner": {"attributes": )";
+  try {
+    Gbdt::load(t / "half.json");
+    ADD_FAILURE() << "a truncated model loaded";
+  } catch (const cropsight::Error& e) {
+    EXPECT_EQ(e.where(), (t / "half.json").string());
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+  }
+  Gbdt g;
+  GbdtParams p;
+  p.num_class = 2, p.rounds = 2, p.nthread = 1;
+  g.train({0, 1, 2, 3}, 4, 1, {0, 0, 1, 1}, {}, p);
+  std::filesystem::create_directories(t / "dir.json");
+  EXPECT_THROW(g.save(t / "dir.json"), cropsight::Error);
+  g.save(t / "ok.json");
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(t.path())) ++files;
+  EXPECT_EQ(files, 3);  // half.json, dir.json, ok.json: no temporary
+}
 }  // namespace

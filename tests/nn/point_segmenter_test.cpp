@@ -1,6 +1,9 @@
 #include <dlfcn.h>
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
+#include <limits>
 #include <random>
 
 #include "cropsight/core/error.hpp"
@@ -10,6 +13,11 @@
 namespace {
 using namespace cropsight;
 using namespace cropsight::nn;
+
+std::string io_bytes(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
 
 // A tiny cloud: points on a sphere; label by position band (3 classes), colour loosely tied to
 // the label, normals radial.
@@ -163,5 +171,73 @@ TEST(PointSegmenter, TrainLoopResumesFromCheckpoint) {
   logs = b.train(tr, va);  // continues at epoch 3
   ASSERT_EQ(logs.size(), 1u);
   EXPECT_EQ(logs[0].epoch, 3);
+}
+// Every training and architecture field is checked, named, before libtorch sees it: these values
+// crashed (batch_size 0), hung (threads 100000), trained nothing (batch_size 1) or gave stack traces.
+TEST(PointSegmenter, ConfigFieldsAreValidated) {
+  auto expect_named = [](void (*set)(PointNetConfig&), const std::string& key) {
+    auto c = tiny_config("pointresnet");
+    set(c);
+    try {
+      c.validate("cfg");
+      ADD_FAILURE() << key << " accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.where(), "cfg");
+      EXPECT_EQ(e.problem().rfind("'" + key + "'", 0), 0u) << e.what();
+    }
+    EXPECT_THROW(PointSegmenter{c}, Error) << key;
+  };
+  expect_named([](PointNetConfig& c) { c.batch_size = 0; }, "batch_size");
+  expect_named([](PointNetConfig& c) { c.batch_size = 1; }, "batch_size");
+  expect_named([](PointNetConfig& c) { c.lr = -1; }, "lr");
+  expect_named([](PointNetConfig& c) { c.lr = std::numeric_limits<double>::infinity(); }, "lr");
+  expect_named([](PointNetConfig& c) { c.dropout = 1; }, "dropout");
+  expect_named([](PointNetConfig& c) { c.width = 0; }, "width");
+  expect_named([](PointNetConfig& c) { c.k1 = 0; }, "k1");
+  expect_named([](PointNetConfig& c) { c.epochs = 0; }, "epochs");
+  expect_named([](PointNetConfig& c) { c.threads = 0; }, "threads");
+  expect_named([](PointNetConfig& c) { c.threads = kMaxThreads + 1; }, "threads");
+  expect_named([](PointNetConfig& c) { c.arch = "resnet"; }, "arch");
+  expect_named([](PointNetConfig& c) { c.scale_max = 0.5; }, "scale_max");
+  EXPECT_NO_THROW(tiny_config("pointnet2").validate("cfg"));
+  EXPECT_NO_THROW(PointNetConfig{}.validate("cfg"));
+}
+
+// A checkpoint or model of another shape is refused with the file's name (libtorch's load would
+// swap in the wrong-sized tensors and crash later); saving to a folder leaves no temporary.
+TEST(PointSegmenter, BadFilesAreNamed) {
+  cropsight::testing::TempDir t;
+  auto cfg = tiny_config("pointresnet");
+  cfg.epochs = 1;
+  cfg.batch_size = 2;
+  cfg.checkpoint = (t / "ck.pt").string();
+  const std::vector<Cloud> tr = {tiny_cloud(12), tiny_cloud(13)};
+  PointSegmenter a(cfg);
+  a.train(tr, {});
+  a.save(t / "m.pt");
+  cfg.width = 16;
+  cfg.epochs = 2;
+  PointSegmenter wide(cfg);
+  try {
+    wide.train(tr, {});
+    ADD_FAILURE() << "a checkpoint of width 8 resumed a net of width 16";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.where(), cfg.checkpoint);
+    EXPECT_NE(e.problem().find("do not fit"), std::string::npos) << e.what();
+  }
+  std::ofstream(t / "half.pt", std::ios::binary) << io_bytes(t / "m.pt").substr(0, 100);
+  try {
+    PointSegmenter::load(t / "half.pt");
+    ADD_FAILURE() << "a truncated model loaded";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.where(), (t / "half.pt").string());
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(PointSegmenter::load(t / "m.pt", 0), Error);
+  std::filesystem::create_directories(t / "dir.pt");
+  EXPECT_THROW(a.save(t / "dir.pt"), Error);
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(t.path())) files += e.path().filename() != "dir.pt";
+  EXPECT_EQ(files, 3);  // ck.pt, m.pt, half.pt: no temporary
 }
 }  // namespace

@@ -98,4 +98,22 @@ TEST(GrapeRoi, SharedCocoAnnotationsGiveRois) {
     EXPECT_LE(r.y + r.height, 720);
   }
 }
+TEST(GrapeRoi, ConfigValidated) {
+  auto named = [](void (*set)(GrapeRoiConfig&), const std::string& key) {
+    GrapeRoiConfig c;
+    set(c);
+    try {
+      c.validate("cfg");
+      ADD_FAILURE() << key << " accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.problem().rfind("'" + key + "'", 0), 0u) << e.what();
+    }
+    EXPECT_THROW(grape_rois({}, 10, 10, c), Error) << key;
+  };
+  named([](GrapeRoiConfig& c) { c.normal_k = 100000000; }, "normal_k");
+  named([](GrapeRoiConfig& c) { c.z_min = 5, c.z_max = 1; }, "z_max");
+  named([](GrapeRoiConfig& c) { c.bunch_category = -1; }, "bunch_category");
+  named([](GrapeRoiConfig& c) { c.min_score = 5; }, "min_score");
+  EXPECT_NO_THROW(GrapeRoiConfig{}.validate("cfg"));
+}
 }  // namespace

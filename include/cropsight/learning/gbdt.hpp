@@ -9,6 +9,9 @@
 
 namespace cropsight::learning {
 
+/// Largest nthread accepted (as nn::kMaxThreads): XGBoost crashes when asked for 100000.
+inline constexpr int kMaxThreads = 256;
+
 struct GbdtParams {
   int num_class = 6;
   int rounds = 200;  ///< boosting rounds
@@ -35,6 +38,12 @@ struct GbdtParams {
     v("nthread", nthread, "count; XGBoost threads");
     v("seed", seed, "1; random seed");
   }
+
+  /// Throws Error(where, "'PREFIXrounds' must be at least 1, got 0") for the first field out of
+  /// range: rounds, max_depth >= 1, eta > 0, subsample and colsample in (0, 1],
+  /// min_child_weight and lambda >= 0, max_bin >= 2, nthread in 1..kMaxThreads, num_class >= 2.
+  /// `prefix` is the fields' key path in a larger config ("gbdt.").
+  void validate(const std::string& where, const std::string& prefix = "") const;
 };
 
 class Gbdt {

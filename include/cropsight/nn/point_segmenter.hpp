@@ -17,6 +17,11 @@
 
 namespace cropsight::nn {
 
+/// Largest thread count accepted anywhere in the grape models (libtorch, XGBoost, FPFH): far
+/// beyond any machine this runs on, while libtorch hangs and OpenMP / XGBoost crash when asked
+/// for, say, 100000 threads. learning::kMaxThreads is the same cap.
+inline constexpr int kMaxThreads = 256;
+
 struct PointNetConfig {
   std::string arch = "pointresnet";  ///< "pointresnet" | "pointnet2" (MSG)
   std::string features = "xyzrgbn";  ///< "xyz" | "xyzn" | "xyzrgb" | "xyzrgbn" (paper Table 3)
@@ -68,6 +73,12 @@ struct PointNetConfig {
     v("threads", threads, "count; libtorch intra-op threads");
     v("seed", seed, "1; random seed");
   }
+
+  /// Throws Error(where, "'FIELD' must be ..., got VALUE") for the first field out of range
+  /// (counts below their minimum, lr not finite and positive, dropout outside [0, 1), threads
+  /// outside 1..kMaxThreads, an unknown arch or feature set ...): such values crashed or hung
+  /// libtorch, or trained nothing without a word.
+  void validate(const std::string& where) const;
 };
 
 /// One epoch's record.

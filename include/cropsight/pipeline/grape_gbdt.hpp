@@ -33,6 +33,12 @@ struct GrapeGbdtConfig {
       "count; fast recipe only: pass samples per training cloud, each featurised as at segment time (ours)");
     v("seed", seed, "1; sampling seed");
   }
+
+  /// Throws Error(where, "'gbdt.rounds' must be at least 1, got 0") for the first field out of
+  /// range, the nested features and gbdt fields included (GrapeFeatureConfig::validate,
+  /// learning::GbdtParams::validate): checked before any work, so that a bad value is named as
+  /// the user wrote it rather than failing deep in XGBoost.
+  void validate(const std::string& where) const;
 };
 
 /// Trains on the labelled `clouds` (labels 0..gbdt.num_class-1). `log` (optional) receives

@@ -17,6 +17,7 @@ struct GrapeDetection {
   Box2D box;
   int category = 0;  ///< 1 = grape bunch, 2 = peduncle (the dataset's COCO categories)
   float score = 1.f;
+  long annotation = -1;  ///< index in the file's array (read_coco_detections), for messages
 };
 
 struct GrapeRoiConfig {
@@ -36,6 +37,14 @@ struct GrapeRoiConfig {
     v("z_max", z_max, "m; farthest depth kept (paper: 3.0 m, Luo et al. Algorithm 1)");
     v("normal_k", normal_k, "count; KNN-PCA normal neighbours (paper: 30, Luo et al. 2.3)");
   }
+
+  /// Most normal neighbours accepted: a normal needs a local patch, and a k near the cloud size
+  /// makes the KNN-PCA quadratic (normal_k = 10^8 ran for hours).
+  static constexpr int kMaxNormalK = 1000;
+  /// Throws Error(where, "'z_max' must be > z_min = 5, got 1") for the first field out of range:
+  /// categories >= 0 and different, min_score in [0, 1], 0 <= z_min < z_max (finite),
+  /// normal_k in 3..kMaxNormalK.
+  void validate(const std::string& where) const;
 };
 
 /// Eq. 1: the ROI spanning a bunch box g and its peduncle box p:
