@@ -13,6 +13,7 @@
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/sequence.hpp"
+#include "grape_test_clouds.hpp"
 #include "testing/testing.hpp"
 
 namespace {
@@ -20,24 +21,11 @@ using namespace cropsight;
 using cropsight::testing::run_cli;
 namespace fs = std::filesystem;
 
-Cloud blobs(std::uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<float> g;
-  Cloud c;
-  for (int i = 0; i < 200; ++i) {
-    const int l = i < 100 ? 1 : 3;
-    const Eigen::Vector3f d = Eigen::Vector3f(g(rng), g(rng), g(rng)).normalized();
-    c.points.push_back(0.3f * d + Eigen::Vector3f(l == 1 ? -0.4f : 0.4f, 0, 0));
-    c.normals.push_back(d);
-    c.colors.emplace_back(l == 1 ? 0.2f : 0.3f, l == 1 ? 0.1f : 0.7f, 0.2f);
-    c.labels.push_back(l);
-  }
-  return c;
-}
-
 void write_clouds(const fs::path& dir, int n) {
   fs::create_directories(dir / "points");
-  for (int i = 0; i < n; ++i) io::write_grape_text(dir / "points" / ("c" + std::to_string(i) + ".txt"), blobs(i));
+  for (int i = 0; i < n; ++i)
+    io::write_grape_text(dir / "points" / ("c" + std::to_string(i) + ".txt"),
+                         cropsight::testing::two_blobs(std::uint32_t(i), 200));
 }
 
 std::string q(const fs::path& p) { return "'" + p.string() + "'"; }

@@ -6,31 +6,18 @@
 #include <random>
 
 #include "cropsight/io/grape_text.hpp"
+#include "grape_test_clouds.hpp"
 #include "testing/testing.hpp"
 
 namespace {
 using namespace cropsight;
 
-Cloud two_blobs(std::uint32_t seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<float> g;
-  Cloud c;
-  for (int i = 0; i < 400; ++i) {
-    const int l = i < 200 ? 1 : 3;
-    const Eigen::Vector3f d = Eigen::Vector3f(g(rng), g(rng), g(rng)).normalized();
-    c.points.push_back(0.3f * d + Eigen::Vector3f(l == 1 ? -0.4f : 0.4f, 0, 0));
-    c.normals.push_back(d);
-    c.colors.emplace_back(l == 1 ? 0.2f : 0.3f, l == 1 ? 0.1f : 0.7f, 0.2f);
-    c.labels.push_back(l);
-  }
-  return c;
-}
-
 // `n` two-blob clouds as DIR/points/c<i>.txt, the layout `--data DIR` reads.
 void write_blob_clouds(const std::filesystem::path& dir, int n) {
   std::filesystem::create_directories(dir / "points");
   for (int i = 0; i < n; ++i)
-    io::write_grape_text(dir / "points" / ("c" + std::to_string(i) + ".txt"), two_blobs(std::uint32_t(i)));
+    io::write_grape_text(dir / "points" / ("c" + std::to_string(i) + ".txt"),
+                         cropsight::testing::two_blobs(std::uint32_t(i)));
 }
 
 TEST(GrapeCli, TrainEvalSegmentAndBadInput) {
