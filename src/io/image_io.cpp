@@ -3,7 +3,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <cerrno>
 #include <cstring>
+#include <fstream>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
@@ -27,9 +29,14 @@ std::string describe(const cv::Mat& m) {
 
 cv::Mat load(const fs::path& path) {
   if (!fs::exists(path)) throw Error(path.string(), "file not found");
-  // imread returns an empty Mat both for unreadable and undecodable files.
+  // Checked before imread, which gives an empty Mat for every failure (and logs a warning line of
+  // its own for a file it cannot open): a permission or directory problem is fixed differently
+  // from a damaged file.
+  if (fs::is_directory(path)) throw Error(path.string(), "is a directory, not an image");
+  if (std::ifstream probe(path, std::ios::binary); !probe)
+    throw Error(path.string(), std::string("cannot open: ") + std::strerror(errno));
   cv::Mat m = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
-  if (m.empty()) throw Error(path.string(), "cannot read or decode image");
+  if (m.empty()) throw Error(path.string(), "cannot decode image (damaged, truncated or not an image file)");
   return m;
 }
 

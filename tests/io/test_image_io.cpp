@@ -96,6 +96,9 @@ TEST(ImageIo, MissingAndCorruptFiles) {
   write_file_atomic(tmp / "bad.png", "not a png");
   expect_error_names(
       tmp / "bad.png", [&] { read_u16(tmp / "bad.png"); }, "decode");
+  fs::create_directories(tmp / "dir.png");
+  expect_error_names(
+      tmp / "dir.png", [&] { read_u16(tmp / "dir.png"); }, "is a directory");
 }
 
 TEST(ImageIo, FailedWriteLeavesNothing) {
