@@ -56,6 +56,21 @@ int main(int argc, char** argv) {
   add_eval_stereo(*eval);
   add_simulate_seedling(*simulate);
 
+  // CLI11 reports a mistyped command as "A subcommand is required"; name it instead. Same one
+  // level down (cropsight detect brocoli).
+  for (CLI::App* level = &app; level;) {
+    const int pos = level == &app ? 1 : 2;
+    if (argc <= pos || argv[pos][0] == '-') break;
+    CLI::App* next = nullptr;
+    for (CLI::App* sub : level->get_subcommands({}))
+      if (sub->get_name() == argv[pos]) next = sub;
+    if (!next) {
+      std::fprintf(stderr, "cropsight: unknown command '%s%s%s' (see %s--help)\n", pos == 2 ? argv[1] : "",
+                   pos == 2 ? " " : "", argv[pos], pos == 2 ? (std::string(argv[1]) + " ").c_str() : "");
+      return 2;
+    }
+    level = pos == 1 && !next->get_subcommands({}).empty() ? next : nullptr;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

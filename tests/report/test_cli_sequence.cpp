@@ -32,6 +32,18 @@ class CliSequence : public ::testing::Test {
   fs::path seq = tmp / "seq";
 };
 
+// A mistyped command is named (CLI11 alone said "A subcommand is required").
+TEST(Cli, UnknownCommandsAreNamed) {
+  auto r = run_cli("frobnicate");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("unknown command 'frobnicate'"), std::string::npos) << r.err;
+  r = run_cli("detect brocoli --data x");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("unknown command 'detect brocoli'"), std::string::npos) << r.err;
+  r = run_cli("--version");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
 TEST_F(CliSequence, InfoJson) {
   const CommandResult r = run_cli("info " + q(seq) + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
