@@ -12,6 +12,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
+#include "cropsight/core/threads.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/pipeline/grape_eval.hpp"
 #include "cropsight/pipeline/grape_model.hpp"
@@ -29,7 +30,7 @@ struct EvalGrapeOptions {
 };
 
 void run(const EvalGrapeOptions& o) {
-  check_threads(o.threads);
+  check_thread_count(o.threads, "--threads");
   auto model = pipeline::GrapeModel::load(o.model, o.threads);
   o.mode.apply(model, o.threads);
   if (o.limit_set && o.limit < 1) throw Error("--limit", "must be at least 1, got " + std::to_string(o.limit));
@@ -69,7 +70,7 @@ void add_eval_grape(CLI::App& eval) {
   cmd->add_option("--fold", o->fold, "k/K: evaluate only fold k of the by-cloud split");
   cmd->add_option("--split-seed", o->split_seed, "Seed of the fold split (as in train grape)");
   auto* limit = cmd->add_option("--limit", o->limit, "Use only the first N clouds, N >= 1");
-  cmd->add_option("--threads", o->threads, "Threads, 1.." + std::to_string(kMaxGrapeThreads) + " (default 2)");
+  cmd->add_option("--threads", o->threads, "Threads, 1.." + std::to_string(kMaxThreads) + " (default 2)");
   o->mode.add_options(cmd);
   add_json_flag(cmd, o->common);
   cmd->callback([o, limit] {

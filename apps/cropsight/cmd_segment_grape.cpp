@@ -12,6 +12,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
+#include "cropsight/core/threads.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/pipeline/grape_model.hpp"
 #include "grape_network_mode.hpp"
@@ -26,7 +27,7 @@ struct SegmentGrapeOptions {
 };
 
 void run(const SegmentGrapeOptions& o) {
-  check_threads(o.threads);
+  check_thread_count(o.threads, "--threads");
   if (std::filesystem::is_directory(o.out)) throw Error(o.out, "is a directory, expected a file name");
   auto model = pipeline::GrapeModel::load(o.model, o.threads);
   o.mode.apply(model, o.threads);
@@ -59,7 +60,7 @@ void add_segment_grape(CLI::App& segment) {
          "not used)")
       ->required();
   cmd->add_option("--out", o->out, "Labelled text cloud to write")->required();
-  cmd->add_option("--threads", o->threads, "Threads, 1.." + std::to_string(kMaxGrapeThreads) + " (default 2)");
+  cmd->add_option("--threads", o->threads, "Threads, 1.." + std::to_string(kMaxThreads) + " (default 2)");
   o->mode.add_options(cmd);
   add_json_flag(cmd, o->common);
   cmd->callback([o] { run(*o); });

@@ -18,6 +18,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
+#include "cropsight/core/threads.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/nn/point_segmenter.hpp"
 #include "cropsight/pipeline/grape_eval.hpp"
@@ -108,7 +109,7 @@ void train_one(const std::string& model, const TrainConfigs& cfgs, const std::ve
 void run(const TrainGrapeOptions& o) {
   // Options first, each named: 0 or a negative count used to mean "the preset's" or "all"
   // without a word.
-  if (o.threads_set) check_threads(o.threads);
+  if (o.threads_set) check_thread_count(o.threads, "--threads");
   if (o.epochs_set && o.epochs < 1) throw Error("--epochs", "must be at least 1, got " + std::to_string(o.epochs));
   if (o.limit_set && o.limit < 1) throw Error("--limit", "must be at least 1, got " + std::to_string(o.limit));
   if (o.folds_set && o.folds < 2) throw Error("--folds", "must be at least 2, got " + std::to_string(o.folds));
@@ -223,7 +224,7 @@ void add_train_grape(CLI::App& train) {
                                 "Run K-fold (K >= 2) cross-validation by cloud, then train on all (with --out)");
   auto* limit = cmd->add_option("--limit", o->limit, "Use only the first N clouds, N >= 1 (quick runs)");
   auto* threads = cmd->add_option("--threads", o->threads,
-                                  "Threads for XGBoost / libtorch / FPFH, 1.." + std::to_string(kMaxGrapeThreads) +
+                                  "Threads for XGBoost / libtorch / FPFH, 1.." + std::to_string(kMaxThreads) +
                                       " (default: the preset's, 2); overrides --config/--set");
   cmd->add_option("--checkpoint", o->checkpoint, "Network checkpoint written every epoch and resumed from");
   cmd->add_option("--split-seed", o->split_seed, "Seed of the fold split");

@@ -1,18 +1,8 @@
 #include "grape_network_mode.hpp"
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/learning/gbdt.hpp"
-#include "cropsight/nn/point_segmenter.hpp"
 
 namespace cropsight::cli {
-
-static_assert(kMaxGrapeThreads == nn::kMaxThreads && kMaxGrapeThreads == learning::kMaxThreads,
-              "one thread cap for the CLI and both model libraries");
-
-void check_threads(int threads, const std::string& option) {
-  if (threads < 1 || threads > kMaxGrapeThreads)
-    throw Error(option, "must be in 1.." + std::to_string(kMaxGrapeThreads) + ", got " + std::to_string(threads));
-}
 
 void GrapeNetworkMode::add_options(CLI::App* cmd) {
   cmd->add_flag("--sampled", sampled,

@@ -10,13 +10,6 @@
 
 namespace cropsight::cli {
 
-/// Most --threads the grape commands accept (nn::kMaxThreads = learning::kMaxThreads): far beyond
-/// any machine they run on, while libtorch hangs and OpenMP / XGBoost crash when asked for 100000.
-inline constexpr int kMaxGrapeThreads = 256;
-
-/// Throws Error(option, ...) unless 1 <= threads <= kMaxGrapeThreads.
-void check_threads(int threads, const std::string& option = "--threads");
-
 struct GrapeNetworkMode {
   bool sampled = false;
   std::string sampling = "random";

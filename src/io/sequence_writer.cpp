@@ -48,13 +48,8 @@ void remove_stale_siblings(const fs::path& dir) {
     const std::string name = e.path().filename().string();
     if (name.rfind(prefix, 0) != 0) continue;
     const std::string rest = name.substr(prefix.size());
-    std::size_t at = 0;
-    if (rest.rfind("tmp-", 0) == 0)
-      at = 4;
-    else if (rest.rfind("old-", 0) == 0)
-      at = 4;
-    else
-      continue;
+    if (rest.rfind("tmp-", 0) != 0 && rest.rfind("old-", 0) != 0) continue;
+    const std::size_t at = 4;  // after "tmp-" / "old-"
     const std::size_t dash = rest.find('-', at);
     if (dash == std::string::npos || dash == at) continue;
     const std::string pid_text = rest.substr(at, dash - at);

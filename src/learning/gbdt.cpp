@@ -1,4 +1,5 @@
 #include "cropsight/learning/gbdt.hpp"
+#include "cropsight/core/threads.hpp"
 
 #include <xgboost/c_api.h>
 
@@ -358,8 +359,7 @@ Gbdt Gbdt::load(const std::filesystem::path& path, int nthread) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(where, "cannot open model file");
   if (std::filesystem::is_directory(path)) throw Error(where, "not a model file (a directory?)");
-  if (nthread < 1 || nthread > kMaxThreads)
-    throw Error("threads", "must be in 1.." + std::to_string(kMaxThreads) + ", got " + std::to_string(nthread));
+  check_thread_count(nthread, "threads");
   std::ostringstream ss;
   ss << in.rdbuf();
   const std::string text = ss.str();

@@ -3,10 +3,10 @@
 // docs/pipelines/grape-bunches.md: k-nearest-neighbour grouping instead of ball query, and
 // farthest-point sampling done in C++ (geometry::farthest_point_sample) outside autograd.
 #include "cropsight/nn/point_segmenter.hpp"
+#include "cropsight/core/threads.hpp"
 
 #include <dlfcn.h>
 #include <torch/torch.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -20,6 +20,7 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/geometry/farthest_point.hpp"
 #include "cropsight/geometry/knn_normals.hpp"
+#include "cropsight/io/files.hpp"
 
 namespace cropsight::nn {
 
@@ -45,30 +46,16 @@ std::string torch_reason(const std::exception& e) {
   return s.substr(0, s.find('\n'));
 }
 
-// Writes `a` to `path` through a temporary sibling, then renames it, removing the temporary on
-// any failure (nn does not link cropsight_io, whose io::write_atomic_with does the same).
+// Writes `a` to `path` through io::write_atomic_with (temporary sibling, then rename; removed on
+// any failure), with libtorch's error reduced to one line.
 void save_archive_atomic(torch::serialize::OutputArchive& a, const std::filesystem::path& path) {
-  namespace fs = std::filesystem;
-  const std::string where = path.string();
-  if (fs::is_directory(path)) throw Error(where, "is a directory, expected a file name");
-  std::error_code ec;
-  if (!path.parent_path().empty()) {
-    fs::create_directories(path.parent_path(), ec);
-    if (ec) throw Error(where, "cannot create directory: " + ec.message());
-  }
-  const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()));
-  try {
-    a.save_to(tmp.string());
-  } catch (const std::exception& e) {
-    fs::remove(tmp, ec);
-    throw Error(where, "cannot write: " + torch_reason(e));
-  }
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    const std::string why = ec.message();  // before remove() reuses ec
-    fs::remove(tmp, ec);
-    throw Error(where, "cannot write: " + why);
-  }
+  io::write_atomic_with(path, [&](const std::filesystem::path& tmp) {
+    try {
+      a.save_to(tmp.string());
+    } catch (const std::exception& e) {
+      throw Error(path.string(), "cannot write: " + torch_reason(e));
+    }
+  });
 }
 }  // namespace
 
@@ -718,8 +705,7 @@ void PointSegmenter::save(const std::filesystem::path& path) const {
 
 PointSegmenter PointSegmenter::load(const std::filesystem::path& path, int threads) {
   const std::string where = path.string();
-  if (threads < 1 || threads > kMaxThreads)
-    throw Error("threads", "must be in 1.." + std::to_string(kMaxThreads) + ", got " + std::to_string(threads));
+  check_thread_count(threads, "threads");
   if (!std::filesystem::exists(path)) throw Error(where, "no such model file");
   if (!std::filesystem::is_regular_file(path)) throw Error(where, "not a model file (a directory?)");
   torch::serialize::InputArchive a;

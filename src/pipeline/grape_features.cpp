@@ -1,6 +1,7 @@
 // Per-point features for the grape GBDT. Neighbourhood statistics use our nanoflann index
 // (geometry::PointIndex); FPFH uses PCL's FPFHEstimationOMP on the same k neighbourhoods.
 #include "cropsight/pipeline/grape_features.hpp"
+#include "cropsight/core/threads.hpp"
 
 #include <pcl/features/fpfh_omp.h>
 #include <pcl/point_types.h>
@@ -53,8 +54,7 @@ void GrapeFeatureConfig::validate(const std::string& where, const std::string& p
   at_least("k_small", k_small, 3, " (a neighbourhood's covariance needs three points)");
   at_least("k_large", k_large, 3, " (a neighbourhood's covariance needs three points)");
   at_least("threads", threads, 1, "");
-  if (threads > learning::kMaxThreads)
-    fail("threads", "must be at most " + std::to_string(learning::kMaxThreads), std::to_string(threads));
+  if (threads > kMaxThreads) fail("threads", "must be at most " + std::to_string(kMaxThreads), std::to_string(threads));
   at_least("sample", sample, 0, " (0 = every point)");
   at_least("carry_k", carry_k, 1, "");
   if (!(carry_colour >= 0 && std::isfinite(carry_colour))) {

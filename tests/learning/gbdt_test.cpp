@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <random>
 
@@ -126,8 +128,7 @@ TEST(Gbdt, ParamsValidatedAndErrorsOneLine) {
   std::filesystem::create_directories(t / "dir.json");
   EXPECT_THROW(g.save(t / "dir.json"), cropsight::Error);
   g.save(t / "ok.json");
-  int files = 0;
-  for (const auto& e : std::filesystem::directory_iterator(t.path())) ++files;
+  const auto files = std::distance(std::filesystem::directory_iterator(t.path()), {});
   EXPECT_EQ(files, 3);  // half.json, dir.json, ok.json: no temporary
 }
 }  // namespace

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/core/threads.hpp"
 #include "cropsight/nn/point_segmenter.hpp"
 #include "testing/testing.hpp"
 
@@ -196,7 +197,7 @@ TEST(PointSegmenter, ConfigFieldsAreValidated) {
   expect_named([](PointNetConfig& c) { c.k1 = 0; }, "k1");
   expect_named([](PointNetConfig& c) { c.epochs = 0; }, "epochs");
   expect_named([](PointNetConfig& c) { c.threads = 0; }, "threads");
-  expect_named([](PointNetConfig& c) { c.threads = kMaxThreads + 1; }, "threads");
+  expect_named([](PointNetConfig& c) { c.threads = cropsight::kMaxThreads + 1; }, "threads");
   expect_named([](PointNetConfig& c) { c.arch = "resnet"; }, "arch");
   expect_named([](PointNetConfig& c) { c.scale_max = 0.5; }, "scale_max");
   EXPECT_NO_THROW(tiny_config("pointnet2").validate("cfg"));

@@ -9,9 +9,6 @@
 
 namespace cropsight::learning {
 
-/// Largest nthread accepted (as nn::kMaxThreads): XGBoost crashes when asked for 100000.
-inline constexpr int kMaxThreads = 256;
-
 struct GbdtParams {
   int num_class = 6;
   int rounds = 200;  ///< boosting rounds

@@ -17,11 +17,6 @@
 
 namespace cropsight::nn {
 
-/// Largest thread count accepted anywhere in the grape models (libtorch, XGBoost, FPFH): far
-/// beyond any machine this runs on, while libtorch hangs and OpenMP / XGBoost crash when asked
-/// for, say, 100000 threads. learning::kMaxThreads is the same cap.
-inline constexpr int kMaxThreads = 256;
-
 struct PointNetConfig {
   std::string arch = "pointresnet";  ///< "pointresnet" | "pointnet2" (MSG)
   std::string features = "xyzrgbn";  ///< "xyz" | "xyzn" | "xyzrgb" | "xyzrgbn" (paper Table 3)

@@ -50,7 +50,7 @@ struct GrapeFeatureConfig {
   std::string recipe() const;
   static GrapeFeatureConfig from_recipe(const std::string& text, const std::string& where);
   /// Throws Error(where, "'PREFIXk_small' must be at least 3, got 1") for the first field out of
-  /// range: k_small, k_large >= 3, threads in 1..learning::kMaxThreads, sample >= 0,
+  /// range: k_small, k_large >= 3, threads in 1..kMaxThreads (core/threads.hpp), sample >= 0,
   /// carry_k >= 1, carry_colour >= 0. `prefix` is the fields' key path ("features.").
   void validate(const std::string& where, const std::string& prefix = "") const;
 };
