@@ -120,6 +120,43 @@ TEST_F(BroccoliCli, BenchReportsEveryPipelineAndThePclReference) {
   EXPECT_TRUE(j["pipelines"]["oes"].contains("speedup_vs_pcl"));
 }
 
+// bench --track (issue 4's timing target on the pipeline's own frames): the sizing + tracking time
+// of the OES detections, with the --set sizing keys it ran under; --pipelines picks what is timed.
+TEST_F(BroccoliCli, BenchTrackTimesSizingOnTheOesDetections) {
+  const fs::path model = dir() / "bench-track.json";
+  auto r = run_cli("train broccoli --data " + q(seq()) + " --config broccoli-oes-uk --out " + q(model) + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string base = "bench broccoli --data " + q(seq()) + " --model " + q(model) + " --frames 2";
+  r = run_cli(base + " --pipelines oes --track --json --set sizing.hull_max_points=500 --set tracking.use_poses=true");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["pipelines"].size(), 1u);
+  ASSERT_TRUE(j["pipelines"].contains("oes"));
+  EXPECT_FALSE(j["pipelines"]["oes"].contains("speedup_vs_pcl"));  // no PCL run to compare with
+  ASSERT_TRUE(j.contains("tracking"));
+  const auto& t = j["tracking"];
+  EXPECT_GT(t["detections_per_frame"].get<double>(), 0.0);  // the fixture's frames hold heads
+  EXPECT_GT(t["ms_per_frame"].get<double>(), 0.0);
+  EXPECT_GT(t["ratio_to_oes"].get<double>(), 0.0);
+  EXPECT_EQ(t["sizing"]["hull_max_points"].get<int>(), 500);
+  EXPECT_TRUE(t["use_poses"].get<bool>());
+  // Without --track no tracking section; the text form names the sizing line.
+  r = run_cli(base + " --pipelines oes,org --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(nlohmann::json::parse(r.out).contains("tracking"));
+  EXPECT_EQ(nlohmann::json::parse(r.out)["pipelines"].size(), 2u);
+  r = run_cli(base + " --pipelines oes --track");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("sizing + tracking"), std::string::npos) << r.out;
+  // Bad selections: one line naming the option.
+  for (const char* bad : {" --pipelines oes,pcll", " --pipelines org --track", " --pipelines oes,,org"}) {
+    r = run_cli(base + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_TRUE(r.err.find("--pipelines") != std::string::npos || r.err.find("--track") != std::string::npos) << r.err;
+  }
+}
+
 // A preset may carry the sizing.* / tracking.* keys of issue 4 (detect/eval --track read them):
 // train and bench must split them off before configuring the detector, and still reject typos.
 TEST_F(BroccoliCli, TrainAndBenchIgnoreTrackingKeysOfAPreset) {
