@@ -148,10 +148,11 @@ TEST(PointSegmenter, DeterministicGivenSeedAndRejectsBadInput) {
 // OpenBLAS's spinning thread pool slowed training 2.2x on two cores; a network leaves it at one
 // thread (when libtorch's BLAS is OpenBLAS, as on Debian).
 TEST(PointSegmenter, OpenBlasRunsSingleThreaded) {
+  // The backend plugin (and with it libtorch and its BLAS) is loaded by the first network.
+  PointSegmenter net(tiny_config("pointresnet"));
   using GetThreads = int (*)();
   auto get = reinterpret_cast<GetThreads>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
   if (!get) GTEST_SKIP() << "libtorch's BLAS is not OpenBLAS here";
-  PointSegmenter net(tiny_config("pointresnet"));
   EXPECT_EQ(get(), 1);
 }
 

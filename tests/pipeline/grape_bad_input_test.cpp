@@ -3,6 +3,7 @@
 // hang, and no partial output left behind.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -77,6 +78,27 @@ class GrapeBadInput : public ::testing::Test {
   cropsight::testing::TempDir t;
   std::string data;
 };
+
+// The networks' libtorch backend is a plugin loaded on first use (src/nn/segmenter_backend.hpp).
+// Without it a network command ends with one line that says how to point at it, and leaves no
+// output; the GBDT commands never need it. (This test's process only: ctest runs each test alone.)
+TEST_F(GrapeBadInput, MissingNetworkBackendIsOneLineAndGbdtNeedsNone) {
+  ASSERT_EQ(setenv("CROPSIGHT_NN_BACKEND", (t / "no" / "libcropsight_nn_torch.so").c_str(), 1), 0);
+  const fs::path out = t / "net.pt";
+  expect_one_line_error(run_cli("train grape --data " + data + kTinyNet + " --out " + q(out)),
+                        {"network backend", "CROPSIGHT_NN_BACKEND"}, "train without backend");
+  EXPECT_FALSE(fs::exists(out));
+  // A file that is no backend (here a model file) is named as such.
+  const std::string model = gbdt_model();  // trains and, below, segments without the backend
+  ASSERT_EQ(setenv("CROPSIGHT_NN_BACKEND", (t / "m.json").c_str(), 1), 0);
+  expect_one_line_error(run_cli("train grape --data " + data + kTinyNet + " --out " + q(out)),
+                        {"m.json", "network backend"}, "a file that is no backend");
+  const auto r = run_cli("segment grape --model " + model + " --input " + q(t / "data" / "points" / "c0.txt") +
+                         " --out " + q(t / "seg.txt"));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(t / "seg.txt"));
+  unsetenv("CROPSIGHT_NN_BACKEND");
+}
 
 // Bug: --threads 100000 crashed (OpenMP / XGBoost) or hung (libtorch); 0 and -1 passed silently.
 TEST_F(GrapeBadInput, ThreadsOutOfRange) {

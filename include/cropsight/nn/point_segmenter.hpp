@@ -1,8 +1,11 @@
 #pragma once
 // Point-cloud semantic segmentation networks on libtorch (CPU): PointNet++ with multi-scale
 // grouping and PointResNet (Luo et al.: three set-abstraction layers whose MLPs are residual
-// "ResMLP" blocks, feature propagation back to every point). libtorch stays inside
-// src/nn/*.cpp; this header only declares the configuration and a pimpl.
+// "ResMLP" blocks, feature propagation back to every point). libtorch stays inside the backend
+// plugin libcropsight_nn_torch.so (src/nn/torch/), which the first PointSegmenter built or loaded
+// in a process loads with dlopen (looked for in the program's ../lib/, beside the program, in the
+// build tree, then on the loader's path; $CROPSIGHT_NN_BACKEND names it explicitly); without it
+// the constructor and load() throw Error. This header only declares the configuration and a pimpl.
 //
 // Input clouds are normalised to the unit sphere (geometry::normalize_unit_sphere) before they
 // reach the network, both in training and in segmentation.
@@ -136,6 +139,7 @@ class PointSegmenter {
   std::size_t parameter_count() const;
 
  private:
+  PointSegmenter();  // load()
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
