@@ -5,35 +5,35 @@
 # ctest. Files are globbed so that adding a source file needs no edit here.
 function(cropsight_module)
   cmake_parse_arguments(M "" "NAME" "DEPS;PRIVATE_DEPS;TEST_DEPS;PCH" ${ARGN})
-  file(GLOB srcs CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/src/${M_NAME}/*.cpp)
+  file(GLOB srcs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/${M_NAME}/*.cpp)
   set(lib cropsight_${M_NAME})
   if(NOT srcs)
     # A module with headers only (or not started yet) is an interface library.
     add_library(${lib} INTERFACE)
-    target_include_directories(${lib} INTERFACE ${CMAKE_SOURCE_DIR}/include)
+    target_include_directories(${lib} INTERFACE ${PROJECT_SOURCE_DIR}/include)
     target_link_libraries(${lib} INTERFACE ${M_DEPS})
     add_library(cropsight::${M_NAME} ALIAS ${lib})
     return()
   endif()
   add_library(${lib} STATIC ${srcs})
-  target_include_directories(${lib} PUBLIC ${CMAKE_SOURCE_DIR}/include PRIVATE ${CMAKE_SOURCE_DIR}/src)
+  target_include_directories(${lib} PUBLIC ${PROJECT_SOURCE_DIR}/include PRIVATE ${PROJECT_SOURCE_DIR}/src)
   target_link_libraries(${lib} PUBLIC ${M_DEPS} PRIVATE ${M_PRIVATE_DEPS})
-  target_compile_definitions(${lib} PRIVATE CROPSIGHT_SOURCE_DIR="${CMAKE_SOURCE_DIR}")
+  target_compile_definitions(${lib} PRIVATE CROPSIGHT_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   if(M_PCH)
     target_precompile_headers(${lib} PRIVATE ${M_PCH})
   endif()
   add_library(cropsight::${M_NAME} ALIAS ${lib})
 
   if(CROPSIGHT_BUILD_TESTS)
-    file(GLOB tsrcs CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/tests/${M_NAME}/*.cpp)
+    file(GLOB tsrcs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/tests/${M_NAME}/*.cpp)
     if(tsrcs)
       add_executable(test_${M_NAME} ${tsrcs})
-      target_include_directories(test_${M_NAME} PRIVATE ${CMAKE_SOURCE_DIR}/tests ${CMAKE_SOURCE_DIR}/src)
+      target_include_directories(test_${M_NAME} PRIVATE ${PROJECT_SOURCE_DIR}/tests ${PROJECT_SOURCE_DIR}/src)
       target_link_libraries(test_${M_NAME} PRIVATE ${lib} ${M_PRIVATE_DEPS} ${M_TEST_DEPS} cropsight_testing GTest::gtest GTest::gtest_main)
       target_compile_definitions(test_${M_NAME} PRIVATE
-        CROPSIGHT_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
-        CROPSIGHT_SHARED_DATA_DIR="${CMAKE_SOURCE_DIR}/../shared/data"
-        CROPSIGHT_CLI="${CMAKE_BINARY_DIR}/bin/cropsight")
+        CROPSIGHT_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
+        CROPSIGHT_SHARED_DATA_DIR="${PROJECT_SOURCE_DIR}/../shared/data"
+        CROPSIGHT_CLI="${PROJECT_BINARY_DIR}/bin/cropsight")
       gtest_discover_tests(test_${M_NAME} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS ${M_NAME})
     endif()
   endif()
