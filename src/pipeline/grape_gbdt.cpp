@@ -84,13 +84,9 @@ learning::Gbdt train_grape_gbdt(const std::vector<Cloud>& clouds, const GrapeGbd
     if (l < 0 || l >= float(cfg.gbdt.num_class)) throw Error("train grape", "label out of range: " + std::to_string(l));
     count[std::size_t(l)] += 1;
   }
-  std::vector<double> present;
-  for (double c : count)
-    if (c > 0) present.push_back(c);
-  std::sort(present.begin(), present.end());
-  const double median = present[present.size() / 2];
+  const std::vector<double> class_weight = median_frequency_weights(count, cfg.class_weight_power);
   std::vector<float> w(n);
-  for (std::size_t i = 0; i < n; ++i) w[i] = float(std::pow(median / count[std::size_t(y[i])], cfg.class_weight_power));
+  for (std::size_t i = 0; i < n; ++i) w[i] = float(class_weight[std::size_t(y[i])]);
   if (log) log("training XGBoost on " + std::to_string(n) + " rows x " + std::to_string(F) + " features");
   learning::Gbdt model;
   model.train(X, n, F, y, w, cfg.gbdt);

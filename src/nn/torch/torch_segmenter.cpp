@@ -478,15 +478,9 @@ std::vector<EpochLog> TorchSegmenter::train(const std::vector<Cloud>& train, con
       if (l < 0 || l >= cfg.num_classes) throw Error("train", "label " + std::to_string(l) + " out of range");
       count[std::size_t(l)] += 1;
     }
-  std::vector<double> present;
-  for (double c : count)
-    if (c > 0) present.push_back(c);
-  std::sort(present.begin(), present.end());
-  const double median = present[present.size() / 2];
+  const std::vector<double> weights = median_frequency_weights(count, cfg.class_weight_power);
   I.class_weights = torch::ones({cfg.num_classes});
-  for (int c = 0; c < cfg.num_classes; ++c)
-    I.class_weights[c] =
-        count[std::size_t(c)] > 0 ? float(std::pow(median / count[std::size_t(c)], cfg.class_weight_power)) : 1.f;
+  for (int c = 0; c < cfg.num_classes; ++c) I.class_weights[c] = float(weights[std::size_t(c)]);
 
   if (!I.opt) I.make_optimizer();
   // Resume. A bad checkpoint is the user's file: name it, with libtorch's one-line reason.
