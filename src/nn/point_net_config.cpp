@@ -71,6 +71,7 @@ void PointNetConfig::validate(const std::string& where) const {
   at_least("lr_step", lr_step, 1);
   within("weight_decay", weight_decay, 0, false, inf, false);
   within("class_weight_power", class_weight_power, 0, false, inf, false);
+  within("lovasz_weight", lovasz_weight, 0, false, inf, false);
   within("scale_min", scale_min, 0, true, inf, false);
   within("scale_max", scale_max, scale_min, false, inf, false);
   within("jitter_sigma", jitter_sigma, 0, false, inf, false);

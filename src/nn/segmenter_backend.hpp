@@ -36,7 +36,7 @@ class SegmenterBackend {
 
 /// Bumped whenever SegmenterBackend, PointNetConfig, EpochLog or Cloud change layout: a plugin of
 /// another version is refused (it would be a build mix-up, never a supported combination).
-inline constexpr int kBackendApiVersion = 1;
+inline constexpr int kBackendApiVersion = 2;  // 2: PointNetConfig::lovasz_weight
 
 struct BackendApi {
   int version = 0;

@@ -1,6 +1,7 @@
 #include <dlfcn.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -52,8 +53,10 @@ PointNetConfig tiny_config(const std::string& arch) {
   return c;
 }
 
-void overfits(const std::string& arch) {
-  PointSegmenter net(tiny_config(arch));
+void overfits(const std::string& arch, double lovasz_weight = 0.0) {
+  auto cfg = tiny_config(arch);
+  cfg.lovasz_weight = lovasz_weight;
+  PointSegmenter net(cfg);
   const std::vector<Cloud> batch = {tiny_cloud(1), tiny_cloud(2)};
   double first = 0, last = 0, acc = 0;
   for (int it = 0; it < 150; ++it) {
@@ -72,6 +75,24 @@ void overfits(const std::string& arch) {
 
 TEST(PointSegmenter, PointResNetOverfitsTwoTinyClouds) { overfits("pointresnet"); }
 TEST(PointSegmenter, PointNet2MsgOverfitsTwoTinyClouds) { overfits("pointnet2"); }
+TEST(PointSegmenter, PointResNetWithLovaszOverfitsTwoTinyClouds) { overfits("pointresnet", 1.0); }
+
+// lovasz_weight adds the Lovász-softmax term (an IoU surrogate in [0, 1] per class, averaged) to
+// the cross-entropy: on the same initial weights the first step's loss rises by w × a value in
+// (0, 1] (the untrained net is far from every class's IoU of 1), and by nothing at weight 0.
+TEST(PointSegmenter, LovaszTermAddsABoundedIouSurrogate) {
+  const std::vector<Cloud> batch = {tiny_cloud(1), tiny_cloud(2)};
+  auto first_loss = [&](double w) {
+    auto cfg = tiny_config("pointresnet");
+    cfg.lovasz_weight = w;
+    PointSegmenter net(cfg);  // same seed: same initial weights
+    return net.train_step(batch).first;
+  };
+  const double ce = first_loss(0.0), one = first_loss(1.0), two = first_loss(2.0);
+  EXPECT_GT(one - ce, 0.05);
+  EXPECT_LE(one - ce, 1.0 + 1e-6);
+  EXPECT_NEAR(two - ce, 2.0 * (one - ce), 1e-4);
+}
 
 TEST(PointSegmenter, SaveLoadGivesIdenticalPredictions) {
   PointSegmenter net(tiny_config("pointresnet"));
@@ -198,6 +219,8 @@ TEST(PointSegmenter, ConfigFieldsAreValidated) {
   expect_named([](PointNetConfig& c) { c.k1 = 0; }, "k1");
   expect_named([](PointNetConfig& c) { c.epochs = 0; }, "epochs");
   expect_named([](PointNetConfig& c) { c.threads = 0; }, "threads");
+  expect_named([](PointNetConfig& c) { c.lovasz_weight = -1; }, "lovasz_weight");
+  expect_named([](PointNetConfig& c) { c.lovasz_weight = std::nan(""); }, "lovasz_weight");
   expect_named([](PointNetConfig& c) { c.threads = cropsight::kMaxThreads + 1; }, "threads");
   expect_named([](PointNetConfig& c) { c.arch = "resnet"; }, "arch");
   expect_named([](PointNetConfig& c) { c.scale_max = 0.5; }, "scale_max");

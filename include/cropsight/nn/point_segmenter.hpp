@@ -38,6 +38,7 @@ struct PointNetConfig {
   int lr_step = 10;
   double weight_decay = 1e-4;
   double class_weight_power = 0.5;  ///< CE weight = (median share / class share)^power
+  double lovasz_weight = 0.0;       ///< > 0 adds this × Lovász-softmax (an IoU surrogate) to the CE loss
   bool augment = true;              ///< rotation about the vertical (y) axis, scaling, jitter, colour jitter
   double scale_min = 0.85, scale_max = 1.15;
   double jitter_sigma = 0.005, colour_jitter = 0.05;
@@ -66,6 +67,8 @@ struct PointNetConfig {
     v("lr_step", lr_step, "epochs; learning-rate decay period");
     v("weight_decay", weight_decay, "1; Adam L2");
     v("class_weight_power", class_weight_power, "1; inverse-frequency CE weight exponent");
+    v("lovasz_weight", lovasz_weight,
+      "1; weight of the Lovasz-softmax term added to CE (ours; 0 = CE only, the paper)");
     v("augment", augment, "bool; rotation/scale/jitter/colour augmentation");
     v("val_every", val_every, "epochs; validation period");
     v("threads", threads, "count; libtorch intra-op threads");

@@ -208,6 +208,27 @@ struct SegNetImpl : torch::nn::Module {
 TORCH_MODULE(SegNet);
 
 // A cloud prepared for the network: normalised positions plus the selected channels.
+// Lovász-softmax (Berman et al., CVPR 2018): the convex surrogate of 1 − IoU for each class present
+// in the batch, averaged: per class, the points' errors |[y = c] − p_c| sorted in decreasing order,
+// weighted by the Jaccard loss's increments along that order. `p`: (points, classes) softmax.
+torch::Tensor lovasz_softmax(const torch::Tensor& p, const torch::Tensor& y) {
+  std::vector<torch::Tensor> per_class;
+  for (int64_t c = 0; c < p.size(1); ++c) {
+    const auto fg = y.eq(c).to(p.dtype());
+    if (fg.sum().item<float>() == 0.f) continue;  // absent from the batch: no IoU to lose
+    const auto errors = (fg - p.select(1, c)).abs();
+    const auto [sorted, order] = torch::sort(errors, /*dim=*/0, /*descending=*/true);
+    const auto g = fg.index_select(0, order);
+    const auto gts = g.sum();
+    const auto jaccard = 1.0 - (gts - g.cumsum(0)) / (gts + (1.0 - g).cumsum(0));
+    auto grad = jaccard.clone();
+    if (grad.size(0) > 1) grad.slice(0, 1).copy_(jaccard.slice(0, 1) - jaccard.slice(0, 0, -1));
+    per_class.push_back(torch::dot(sorted, grad.detach()));
+  }
+  if (per_class.empty()) return torch::zeros({}, p.options());
+  return torch::stack(per_class).mean();
+}
+
 struct Prepared {
   std::vector<Eigen::Vector3f> xyz, n, rgb;
   std::vector<int> labels;
@@ -374,6 +395,7 @@ struct TorchSegmenter::Impl {
     auto y = labels.reshape({-1});
     auto loss = torch::nn::functional::cross_entropy(
         flat, y, torch::nn::functional::CrossEntropyFuncOptions().weight(class_weights));
+    if (cfg.lovasz_weight > 0) loss = loss + cfg.lovasz_weight * lovasz_softmax(torch::softmax(flat, 1), y);
     loss.backward();
     opt->step();
     const double acc = flat.argmax(1).eq(y).to(torch::kDouble).mean().item<double>();
