@@ -20,6 +20,7 @@
 namespace {
 using namespace cropsight;
 using cropsight::testing::run_cli;
+using cropsight::testing::shell_quoted;
 namespace fs = std::filesystem;
 
 void write_clouds(const fs::path& dir, int n) {
@@ -28,8 +29,6 @@ void write_clouds(const fs::path& dir, int n) {
     io::write_grape_text(dir / "points" / ("c" + std::to_string(i) + ".txt"),
                          cropsight::testing::two_blobs(std::uint32_t(i), 200));
 }
-
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
 
 // A tiny network that trains in well under a second.
 const std::string kTinyNet =
@@ -63,17 +62,17 @@ class GrapeBadInput : public ::testing::Test {
   void SetUp() override {
     if (!fs::exists(cropsight::testing::cli_path())) GTEST_SKIP() << "CLI not built";
     write_clouds(t / "data", 3);
-    data = q(t / "data");
+    data = shell_quoted(t / "data");
   }
   // A small GBDT (trained once per test that needs it).
   std::string gbdt_model() {
     const fs::path m = t / "m.json";
     if (!fs::exists(m)) {
-      const auto r = run_cli("train grape --data " + data + " --model gbdt --out " + q(m) +
+      const auto r = run_cli("train grape --data " + data + " --model gbdt --out " + shell_quoted(m) +
                              " --set gbdt.rounds=2 --set points_per_cloud=100 --threads 1");
       EXPECT_EQ(r.exit_code, 0) << r.err;
     }
-    return q(m);
+    return shell_quoted(m);
   }
   cropsight::testing::TempDir t;
   std::string data;
@@ -85,16 +84,16 @@ class GrapeBadInput : public ::testing::Test {
 TEST_F(GrapeBadInput, MissingNetworkBackendIsOneLineAndGbdtNeedsNone) {
   ASSERT_EQ(setenv("CROPSIGHT_NN_BACKEND", (t / "no" / "libcropsight_nn_torch.so").c_str(), 1), 0);
   const fs::path out = t / "net.pt";
-  expect_one_line_error(run_cli("train grape --data " + data + kTinyNet + " --out " + q(out)),
+  expect_one_line_error(run_cli("train grape --data " + data + kTinyNet + " --out " + shell_quoted(out)),
                         {"network backend", "CROPSIGHT_NN_BACKEND"}, "train without backend");
   EXPECT_FALSE(fs::exists(out));
   // A file that is no backend (here a model file) is named as such.
   const std::string model = gbdt_model();  // trains and, below, segments without the backend
   ASSERT_EQ(setenv("CROPSIGHT_NN_BACKEND", (t / "m.json").c_str(), 1), 0);
-  expect_one_line_error(run_cli("train grape --data " + data + kTinyNet + " --out " + q(out)),
+  expect_one_line_error(run_cli("train grape --data " + data + kTinyNet + " --out " + shell_quoted(out)),
                         {"m.json", "network backend"}, "a file that is no backend");
-  const auto r = run_cli("segment grape --model " + model + " --input " + q(t / "data" / "points" / "c0.txt") +
-                         " --out " + q(t / "seg.txt"));
+  const auto r = run_cli("segment grape --model " + model + " --input " +
+                         shell_quoted(t / "data" / "points" / "c0.txt") + " --out " + shell_quoted(t / "seg.txt"));
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::exists(t / "seg.txt"));
   unsetenv("CROPSIGHT_NN_BACKEND");
@@ -103,28 +102,29 @@ TEST_F(GrapeBadInput, MissingNetworkBackendIsOneLineAndGbdtNeedsNone) {
 // Bug: --threads 100000 crashed (OpenMP / XGBoost) or hung (libtorch); 0 and -1 passed silently.
 TEST_F(GrapeBadInput, ThreadsOutOfRange) {
   const std::string model = gbdt_model();
-  const std::string cloud = q(t / "data" / "points" / "c0.txt");
+  const std::string cloud = shell_quoted(t / "data" / "points" / "c0.txt");
   for (const char* n : {"100000", "0", "-1"}) {
-    expect_one_line_error(run_cli("segment grape --model " + model + " --input " + cloud + " --out " + q(t / "o.txt") +
-                                  " --threads " + n),
+    expect_one_line_error(run_cli("segment grape --model " + model + " --input " + cloud + " --out " +
+                                  shell_quoted(t / "o.txt") + " --threads " + n),
                           {"--threads", "1..256"}, std::string("segment ") + n);
     expect_one_line_error(run_cli("eval grape --data " + data + " --model " + model + " --threads " + n),
                           {"--threads", "1..256"}, std::string("eval ") + n);
     expect_one_line_error(
-        run_cli("train grape --data " + data + " --model gbdt --out " + q(t / "x.json") + " --threads " + n),
+        run_cli("train grape --data " + data + " --model gbdt --out " + shell_quoted(t / "x.json") + " --threads " + n),
         {"--threads", "1..256"}, std::string("train ") + n);
   }
   // The presets' fields too.
-  expect_one_line_error(
-      run_cli("train grape --data " + data + " --model gbdt --out " + q(t / "x.json") + " --set gbdt.nthread=100000"),
-      {"'gbdt.nthread'"}, "gbdt.nthread");
-  expect_one_line_error(
-      run_cli("train grape --data " + data + " --model gbdt --out " + q(t / "x.json") + " --set features.threads=0"),
-      {"'features.threads'"}, "features.threads");
+  expect_one_line_error(run_cli("train grape --data " + data + " --model gbdt --out " + shell_quoted(t / "x.json") +
+                                " --set gbdt.nthread=100000"),
+                        {"'gbdt.nthread'"}, "gbdt.nthread");
+  expect_one_line_error(run_cli("train grape --data " + data + " --model gbdt --out " + shell_quoted(t / "x.json") +
+                                " --set features.threads=0"),
+                        {"'features.threads'"}, "features.threads");
   std::string net = kTinyNet;
   net.erase(net.find(" --threads 1"));
-  expect_one_line_error(run_cli("train grape --data " + data + net + " --out " + q(t / "n.pt") + " --set threads=0"),
-                        {"'threads'"}, "net threads");
+  expect_one_line_error(
+      run_cli("train grape --data " + data + net + " --out " + shell_quoted(t / "n.pt") + " --set threads=0"),
+      {"'threads'"}, "net threads");
   EXPECT_FALSE(fs::exists(t / "o.txt"));
   EXPECT_FALSE(fs::exists(t / "x.json"));
   EXPECT_FALSE(fs::exists(t / "n.pt"));
@@ -136,14 +136,15 @@ TEST_F(GrapeBadInput, NetworkConfigFields) {
   // (Each field's range is checked in tests/nn/point_segmenter_test.cpp; here, that the CLI names it.)
   for (const std::string kv : {"batch_size=0", "batch_size=-1", "lr=-1", "k1=0", "dropout=2", "width=0"}) {
     const std::string key = kv.substr(0, kv.find('='));
-    expect_one_line_error(run_cli("train grape --data " + data + kTinyNet + " --out " + q(t / "n.pt") + " --set " + kv),
-                          {"--config/--set", "'" + key + "'"}, kv);
+    expect_one_line_error(
+        run_cli("train grape --data " + data + kTinyNet + " --out " + shell_quoted(t / "n.pt") + " --set " + kv),
+        {"--config/--set", "'" + key + "'"}, kv);
   }
   for (const std::string kv :
        {"gbdt.rounds=0", "gbdt.eta=0", "gbdt.subsample=1.5", "gbdt.max_depth=0", "features.k_small=1"}) {
     const std::string key = kv.substr(0, kv.find('='));
     expect_one_line_error(
-        run_cli("train grape --data " + data + " --model gbdt --out " + q(t / "m.json") + " --set " + kv),
+        run_cli("train grape --data " + data + " --model gbdt --out " + shell_quoted(t / "m.json") + " --set " + kv),
         {"--config/--set", "'" + key + "'"}, kv);
   }
   EXPECT_FALSE(fs::exists(t / "n.pt"));
@@ -153,12 +154,12 @@ TEST_F(GrapeBadInput, NetworkConfigFields) {
 // Bug: --limit 0 / -5 meant all clouds, --epochs 0 / -1 the preset's, --folds -2 printed
 // "clouds 0, OAcc nan", and a fold holding no cloud evaluated nothing, all with exit 0.
 TEST_F(GrapeBadInput, CountsAndFolds) {
-  const std::string train = "train grape --data " + data + " --model gbdt --out " + q(t / "x.json");
+  const std::string train = "train grape --data " + data + " --model gbdt --out " + shell_quoted(t / "x.json");
   for (const char* n : {"0", "-5"}) expect_one_line_error(run_cli(train + " --limit " + n), {"--limit"}, n);
   for (const char* n : {"0", "-1"})
     expect_one_line_error(
-        run_cli("train grape --data " + data + kTinyNet + " --out " + q(t / "n.pt") + " --epochs " + n), {"--epochs"},
-        n);
+        run_cli("train grape --data " + data + kTinyNet + " --out " + shell_quoted(t / "n.pt") + " --epochs " + n),
+        {"--epochs"}, n);
   for (const char* n : {"-2", "0", "1"}) expect_one_line_error(run_cli(train + " --folds " + n), {"--folds"}, n);
   expect_one_line_error(run_cli(train + " --folds 4"), {"--folds", "4 folds need at least 4 clouds", "has 3"},
                         "folds 4");
@@ -180,12 +181,12 @@ TEST_F(GrapeBadInput, CountsAndFolds) {
 // and left the model's temporary behind.
 TEST_F(GrapeBadInput, OutputIsADirectory) {
   fs::create_directories(t / "o");
-  expect_one_line_error(run_cli("train grape --data " + data + kTinyNet + " --out " + q(t / "o")),
+  expect_one_line_error(run_cli("train grape --data " + data + kTinyNet + " --out " + shell_quoted(t / "o")),
                         {(t / "o").string(), "is a directory"}, "network");
-  expect_one_line_error(run_cli("train grape --data " + data + " --model gbdt --out " + q(t / "o")),
+  expect_one_line_error(run_cli("train grape --data " + data + " --model gbdt --out " + shell_quoted(t / "o")),
                         {(t / "o").string(), "is a directory"}, "gbdt");
   expect_one_line_error(run_cli("segment grape --model " + gbdt_model() + " --input " +
-                                q(t / "data" / "points" / "c0.txt") + " --out " + q(t / "o")),
+                                shell_quoted(t / "data" / "points" / "c0.txt") + " --out " + shell_quoted(t / "o")),
                         {(t / "o").string(), "is a directory"}, "segment");
   EXPECT_EQ(temporaries_in(t.path()), 0);
   EXPECT_TRUE(fs::is_empty(t / "o"));
@@ -194,8 +195,8 @@ TEST_F(GrapeBadInput, OutputIsADirectory) {
 // Bug: a bad --checkpoint or model file gave libtorch's / XGBoost's multi-line stack trace
 // ("internal error: PytorchStreamReader failed ..."), without the file's name.
 TEST_F(GrapeBadInput, BadCheckpointAndModelFiles) {
-  const std::string train = "train grape --data " + data + kTinyNet + " --out " + q(t / "n.pt");
-  auto r = run_cli(train + " --checkpoint " + q(t / "ck.pt"));
+  const std::string train = "train grape --data " + data + kTinyNet + " --out " + shell_quoted(t / "n.pt");
+  auto r = run_cli(train + " --checkpoint " + shell_quoted(t / "ck.pt"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string good_net = io::read_file(t / "n.pt"), good_ck = io::read_file(t / "ck.pt");
   std::ofstream(t / "empty.pt").flush();
@@ -207,22 +208,25 @@ TEST_F(GrapeBadInput, BadCheckpointAndModelFiles) {
   fs::copy_file(t / "m.json", t / "gbdt-as-ck.pt");
   // Resumed by a network of another width (and by another arch): the weights do not fit.
   for (const char* ck : {"empty.pt", "trunc.pt", "gbdt-as-ck.pt", "truncnet.pt"})
-    expect_one_line_error(run_cli(train + " --checkpoint " + q(t / ck)), {(t / ck).string()}, ck);
+    expect_one_line_error(run_cli(train + " --checkpoint " + shell_quoted(t / ck)), {(t / ck).string()}, ck);
   fs::copy_file(t / "ck.pt", t / "ck8.pt");
-  expect_one_line_error(run_cli(train + " --set width=8 --checkpoint " + q(t / "ck8.pt")),
+  expect_one_line_error(run_cli(train + " --set width=8 --checkpoint " + shell_quoted(t / "ck8.pt")),
                         {(t / "ck8.pt").string(), "do not fit"}, "width 8");
   std::string net2 = train;
   net2.replace(net2.find("pointresnet"), 11, "pointnet2");
   fs::copy_file(t / "ck.pt", t / "ck2.pt");
-  expect_one_line_error(run_cli(net2 + " --checkpoint " + q(t / "ck2.pt")), {(t / "ck2.pt").string()}, "pointnet2");
+  expect_one_line_error(run_cli(net2 + " --checkpoint " + shell_quoted(t / "ck2.pt")), {(t / "ck2.pt").string()},
+                        "pointnet2");
 
   // Model files: truncated network and GBDT, a broccoli model, an empty file.
   fs::copy_file(cropsight::testing::source_dir() / "models" / "broccoli-fec-uk.json", t / "broccoli.json");
   for (const char* m : {"truncnet.pt", "trunc.json", "broccoli.json", "empty.pt"}) {
-    expect_one_line_error(run_cli("eval grape --data " + data + " --model " + q(t / m)), {(t / m).string()}, m);
-    expect_one_line_error(run_cli("segment grape --model " + q(t / m) + " --input " +
-                                  q(t / "data" / "points" / "c0.txt") + " --out " + q(t / "o.txt")),
-                          {(t / m).string()}, m);
+    expect_one_line_error(run_cli("eval grape --data " + data + " --model " + shell_quoted(t / m)), {(t / m).string()},
+                          m);
+    expect_one_line_error(
+        run_cli("segment grape --model " + shell_quoted(t / m) + " --input " +
+                shell_quoted(t / "data" / "points" / "c0.txt") + " --out " + shell_quoted(t / "o.txt")),
+        {(t / m).string()}, m);
   }
   EXPECT_FALSE(fs::exists(t / "o.txt"));
 }
@@ -237,17 +241,18 @@ TEST_F(GrapeBadInput, LabelAndColourOutOfRange) {
            {"neg.txt", "0.1 0.2 0.3 0 0 1 0.5 -0.5 0.5 1\n", "line 1: colour value -0.5"}}) {
     write_clouds(t / name, 2);
     std::ofstream(t / name / "points" / "c9.txt") << text;
-    expect_one_line_error(run_cli("train grape --data " + q(t / name) + " --model gbdt --out " + q(t / "x.json")),
-                          {"c9.txt: " + want}, name);
+    expect_one_line_error(
+        run_cli("train grape --data " + shell_quoted(t / name) + " --model gbdt --out " + shell_quoted(t / "x.json")),
+        {"c9.txt: " + want}, name);
   }
   EXPECT_FALSE(fs::exists(t / "x.json"));
 }
 
 // Bug: --input DIR said "no points"; the help promised an optional label column.
 TEST_F(GrapeBadInput, SegmentInputDirectoryAndHelp) {
-  expect_one_line_error(
-      run_cli("segment grape --model " + gbdt_model() + " --input " + q(t / "data") + " --out " + q(t / "o.txt")),
-      {(t / "data").string(), "is a directory"}, "dir");
+  expect_one_line_error(run_cli("segment grape --model " + gbdt_model() + " --input " + shell_quoted(t / "data") +
+                                " --out " + shell_quoted(t / "o.txt")),
+                        {(t / "data").string(), "is a directory"}, "dir");
   const auto r = run_cli("segment grape --help");
   EXPECT_EQ(r.out.find("[label]"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("10 numbers"), std::string::npos) << r.out;
@@ -257,13 +262,13 @@ TEST_F(GrapeBadInput, SegmentInputDirectoryAndHelp) {
 TEST_F(GrapeBadInput, ModelDefaultsToThePresetsArch) {
   std::string args = kTinyNet;
   args.erase(args.find(" --model pointresnet"), 20);
-  auto r = run_cli("train grape --config grape-pointresnet --data " + data + args + " --out " + q(t / "n.pt") +
-                   " --limit 2 --json");
+  auto r = run_cli("train grape --config grape-pointresnet --data " + data + args + " --out " +
+                   shell_quoted(t / "n.pt") + " --limit 2 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["model"], "pointresnet");
-  expect_one_line_error(
-      run_cli("train grape --config grape-pointresnet --model gbdt --data " + data + " --out " + q(t / "x.json")),
-      {"--model", "pointresnet"}, "gbdt with a network preset");
+  expect_one_line_error(run_cli("train grape --config grape-pointresnet --model gbdt --data " + data + " --out " +
+                                shell_quoted(t / "x.json")),
+                        {"--model", "pointresnet"}, "gbdt with a network preset");
 }
 
 // roi-cloud: one 16x12 frame at 1 m, a bunch box and its peduncle.
@@ -278,11 +283,11 @@ class GrapeRoiBadInput : public ::testing::Test {
     io::write_color(t / "c.png", ColorImage(16, 12, Rgb8{100, 150, 50}));
     std::ofstream(t / "det.json") << R"([{"bbox": [2, 4, 8, 6], "category_id": 1, "score": 0.9},
                                          {"bbox": [5, 1, 2, 2], "category_id": 2, "score": 0.9}])";
-    base = "roi-cloud --color " + q(t / "c.png") + " --depth " + q(t / "d.png") + " --camera " + q(t / "camera.yaml") +
-           " --detections ";
+    base = "roi-cloud --color " + shell_quoted(t / "c.png") + " --depth " + shell_quoted(t / "d.png") + " --camera " +
+           shell_quoted(t / "camera.yaml") + " --detections ";
   }
   std::string run_to(const fs::path& out, const std::string& extra = "", const std::string& det = "det.json") {
-    last = run_cli(base + q(t / det) + " --out " + q(out) + extra);
+    last = run_cli(base + shell_quoted(t / det) + " --out " + shell_quoted(out) + extra);
     return last.err;
   }
   cropsight::testing::TempDir t;
@@ -329,13 +334,13 @@ TEST_F(GrapeRoiBadInput, OutputFolderIsReplacedWhole) {
 
   fs::create_directories(t / "mine");
   std::ofstream(t / "mine" / "notes.txt") << "keep";
-  expect_one_line_error(run_cli(base + q(t / "det.json") + " --out " + q(t / "mine")),
+  expect_one_line_error(run_cli(base + shell_quoted(t / "det.json") + " --out " + shell_quoted(t / "mine")),
                         {(t / "mine").string(), "other than a previous roi-cloud run's"}, "foreign folder");
   EXPECT_TRUE(fs::exists(t / "mine" / "notes.txt"));
   // A file, and a folder under a file (cannot be created).
-  expect_one_line_error(run_cli(base + q(t / "det.json") + " --out " + q(t / "c.png")),
+  expect_one_line_error(run_cli(base + shell_quoted(t / "det.json") + " --out " + shell_quoted(t / "c.png")),
                         {(t / "c.png").string(), "not a folder"}, "file");
-  expect_one_line_error(run_cli(base + q(t / "det.json") + " --out " + q(t / "c.png" / "o")),
+  expect_one_line_error(run_cli(base + shell_quoted(t / "det.json") + " --out " + shell_quoted(t / "c.png" / "o")),
                         {(t / "c.png" / "o").string(), "cannot create folder"}, "under a file");
   EXPECT_EQ(temporaries_in(t.path()), 0);
 }

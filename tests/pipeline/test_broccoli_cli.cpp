@@ -16,6 +16,7 @@
 namespace fs = std::filesystem;
 using namespace cropsight;
 using cropsight::testing::run_cli;
+using cropsight::testing::shell_quoted;
 
 namespace {
 class BroccoliCli : public ::testing::Test {
@@ -34,7 +35,6 @@ class BroccoliCli : public ::testing::Test {
   }
   static fs::path seq() { return *tmp_ / "seq"; }
   static fs::path dir() { return tmp_->path(); }
-  static std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
   static cropsight::testing::TempDir* tmp_;
 };
 cropsight::testing::TempDir* BroccoliCli::tmp_ = nullptr;
@@ -42,9 +42,9 @@ cropsight::testing::TempDir* BroccoliCli::tmp_ = nullptr;
 
 TEST_F(BroccoliCli, TrainEvalDetectAndErrors) {
   const fs::path model = dir() / "oes.json";
-  auto r = run_cli("train broccoli --data " + q(seq()) +
-                   " --pipeline oes --features vfh --classifier svm-rbf --config broccoli-oes-uk --out " + q(model) +
-                   " --json");
+  auto r = run_cli("train broccoli --data " + shell_quoted(seq()) +
+                   " --pipeline oes --features vfh --classifier svm-rbf --config broccoli-oes-uk --out " +
+                   shell_quoted(model) + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto tj = nlohmann::json::parse(r.out);
   EXPECT_EQ(tj["frames"], 6);
@@ -55,7 +55,7 @@ TEST_F(BroccoliCli, TrainEvalDetectAndErrors) {
   EXPECT_NEAR(std::stod(m.info.config.at("oes.distance_tolerance")), 0.005, 1e-9);  // the preset value was recorded
   EXPECT_EQ(m.info.provenance.at("seeds"), "21");
 
-  r = run_cli("eval broccoli --data " + q(seq()) + " --model " + q(model) + " --json");
+  r = run_cli("eval broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model) + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto ej = nlohmann::json::parse(r.out);
   for (const char* k : {"frames", "clusters", "accuracy", "precision", "recall", "specificity", "npv", "kappa", "ap50",
@@ -65,8 +65,8 @@ TEST_F(BroccoliCli, TrainEvalDetectAndErrors) {
   EXPECT_GT(ej["fps"].get<double>(), 0.0);
 
   const fs::path out = dir() / "det.jsonl", masks = dir() / "masks";
-  r = run_cli("detect broccoli --data " + q(seq()) + " --model " + q(model) + " --out " + q(out) + " --masks " +
-              q(masks));
+  r = run_cli("detect broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model) + " --out " +
+              shell_quoted(out) + " --masks " + shell_quoted(masks));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::ifstream in(out);
   int lines = 0;
@@ -84,19 +84,22 @@ TEST_F(BroccoliCli, TrainEvalDetectAndErrors) {
 
   // Errors: one line naming the problem, exit 2, no output file.
   const fs::path none = dir() / "none.jsonl";
-  r = run_cli("detect broccoli --data " + q(seq()) + " --model " + q(dir() / "missing.json") + " --out " + q(none));
+  r = run_cli("detect broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(dir() / "missing.json") +
+              " --out " + shell_quoted(none));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("missing.json"), std::string::npos) << r.err;
-  r = run_cli("detect broccoli --data " + q(seq()) + " --model " + q(model) + " --out " + q(none) +
-              " --set pipeline=fec");
+  r = run_cli("detect broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model) + " --out " +
+              shell_quoted(none) + " --set pipeline=fec");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("pipeline 'oes'"), std::string::npos) << r.err;
-  r = run_cli("eval broccoli --data " + q(seq()) + " --model " + q(model) + " --set oes.no_such_key=1");
+  r = run_cli("eval broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model) +
+              " --set oes.no_such_key=1");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("no_such_key"), std::string::npos) << r.err;
-  r = run_cli("eval broccoli --data " + q(dir() / "no-seq") + " --model " + q(model));
+  r = run_cli("eval broccoli --data " + shell_quoted(dir() / "no-seq") + " --model " + shell_quoted(model));
   EXPECT_EQ(r.exit_code, 2);
-  r = run_cli("train broccoli --data " + q(seq()) + " --pipeline watershed --out " + q(dir() / "x.json"));
+  r = run_cli("train broccoli --data " + shell_quoted(seq()) + " --pipeline watershed --out " +
+              shell_quoted(dir() / "x.json"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("watershed"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(none));
@@ -106,10 +109,11 @@ TEST_F(BroccoliCli, TrainEvalDetectAndErrors) {
 
 TEST_F(BroccoliCli, BenchReportsEveryPipelineAndThePclReference) {
   const fs::path model = dir() / "bench.json";
-  auto r = run_cli("train broccoli --data " + q(seq()) +
-                   " --config broccoli-fec-uk --set outliers.enabled=false --out " + q(model) + " --quiet");
+  auto r = run_cli("train broccoli --data " + shell_quoted(seq()) +
+                   " --config broccoli-fec-uk --set outliers.enabled=false --out " + shell_quoted(model) + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  r = run_cli("bench broccoli --data " + q(seq()) + " --model " + q(model) + " --frames 2 --json");
+  r = run_cli("bench broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model) +
+              " --frames 2 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   for (const char* p : {"oes", "org", "fec", "pcl_reference"}) {
@@ -124,9 +128,11 @@ TEST_F(BroccoliCli, BenchReportsEveryPipelineAndThePclReference) {
 // of the OES detections, with the --set sizing keys it ran under; --pipelines picks what is timed.
 TEST_F(BroccoliCli, BenchTrackTimesSizingOnTheOesDetections) {
   const fs::path model = dir() / "bench-track.json";
-  auto r = run_cli("train broccoli --data " + q(seq()) + " --config broccoli-oes-uk --out " + q(model) + " --quiet");
+  auto r = run_cli("train broccoli --data " + shell_quoted(seq()) + " --config broccoli-oes-uk --out " +
+                   shell_quoted(model) + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::string base = "bench broccoli --data " + q(seq()) + " --model " + q(model) + " --frames 2";
+  const std::string base =
+      "bench broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model) + " --frames 2";
   r = run_cli(base + " --pipelines oes --track --json --set sizing.hull_max_points=500 --set tracking.use_poses=true");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
@@ -167,24 +173,26 @@ TEST_F(BroccoliCli, TrainAndBenchIgnoreTrackingKeysOfAPreset) {
          "  bbox_offset_mm: 12.5\ntracking:\n  use_poses: true\n";
   }
   const fs::path model = dir() / "tracking-keys.json";
-  auto r = run_cli("train broccoli --data " + q(seq()) + " --config " + q(preset) + " --out " + q(model) + " --quiet");
+  auto r = run_cli("train broccoli --data " + shell_quoted(seq()) + " --config " + shell_quoted(preset) + " --out " +
+                   shell_quoted(model) + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const learning::Model m = learning::load_model(model);
   for (const auto& [k, v] : m.info.config) {
     EXPECT_NE(k.rfind("sizing.", 0), 0u) << k;
     EXPECT_NE(k.rfind("tracking.", 0), 0u) << k;
   }
-  r = run_cli("bench broccoli --data " + q(seq()) + " --model " + q(model) +
+  r = run_cli("bench broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model) +
               " --frames 1 --json --set tracking.use_poses=true --set sizing.estimator=bbox");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(nlohmann::json::parse(r.out)["pipelines"].contains("oes"));
   // A misspelt tracking key is still an error, with one line.
-  r = run_cli("train broccoli --data " + q(seq()) + " --config " + q(preset) + " --set tracking.no_such_key=1 --out " +
-              q(dir() / "typo.json"));
+  r = run_cli("train broccoli --data " + shell_quoted(seq()) + " --config " + shell_quoted(preset) +
+              " --set tracking.no_such_key=1 --out " + shell_quoted(dir() / "typo.json"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("no_such_key"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir() / "typo.json"));
-  r = run_cli("bench broccoli --data " + q(seq()) + " --model " + q(model) + " --frames 1 --set sizing.estimmator=x");
+  r = run_cli("bench broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model) +
+              " --frames 1 --set sizing.estimmator=x");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("estimmator"), std::string::npos) << r.err;
 }
@@ -192,15 +200,17 @@ TEST_F(BroccoliCli, TrainAndBenchIgnoreTrackingKeysOfAPreset) {
 // Outputs that would destroy or hide data are refused before any work, with one line naming them.
 TEST_F(BroccoliCli, OutputsNeverDestroyUnrelatedFilesAndBadOptionsAreRefused) {
   const fs::path model = dir() / "outputs.json";
-  auto r = run_cli("train broccoli --data " + q(seq()) + " --config broccoli-oes-uk --out " + q(model) + " --quiet");
+  auto r = run_cli("train broccoli --data " + shell_quoted(seq()) + " --config broccoli-oes-uk --out " +
+                   shell_quoted(model) + " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::string base = "detect broccoli --data " + q(seq()) + " --model " + q(model) + " --quiet --out ";
+  const std::string base =
+      "detect broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model) + " --quiet --out ";
 
   // --masks replaces its directory as a whole: a folder with other files in it is refused, untouched.
   const fs::path docs = dir() / "docs";
   fs::create_directories(docs / "sub");
   std::ofstream(docs / "notes.txt") << "keep me\n";
-  r = run_cli(base + q(dir() / "d1.jsonl") + " --masks " + q(docs));
+  r = run_cli(base + shell_quoted(dir() / "d1.jsonl") + " --masks " + shell_quoted(docs));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("not a mask of an earlier run"), std::string::npos) << r.err;
   EXPECT_TRUE(fs::exists(docs / "notes.txt"));
@@ -208,32 +218,35 @@ TEST_F(BroccoliCli, OutputsNeverDestroyUnrelatedFilesAndBadOptionsAreRefused) {
   EXPECT_FALSE(fs::exists(dir() / "d1.jsonl"));
   // A previous run's masks (and a trailing slash) are replaced, and no temporary is left.
   const fs::path masks = dir() / "masks2";
-  r = run_cli(base + q(dir() / "d2.jsonl") + " --masks " + q(masks));
+  r = run_cli(base + shell_quoted(dir() / "d2.jsonl") + " --masks " + shell_quoted(masks));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  r = run_cli(base + q(dir() / "d2.jsonl") + " --masks " + q(masks.string() + "/"));
+  r = run_cli(base + shell_quoted(dir() / "d2.jsonl") + " --masks " + shell_quoted(masks.string() + "/"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::exists(masks / "000005.png"));
   for (const auto& e : fs::directory_iterator(dir()))
     EXPECT_EQ(e.path().filename().string().find(".masks2."), std::string::npos) << e.path();
 
   // --out naming a directory: said so (it used to read "cannot write: Success").
-  r = run_cli(base + q(docs));
+  r = run_cli(base + shell_quoted(docs));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
 
   // Counts and ranges: errors, not silent defaults.
-  r = run_cli("bench broccoli --data " + q(seq()) + " --model " + q(model) + " --frames 100 --json");
+  r = run_cli("bench broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model) +
+              " --frames 100 --json");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--frames"), std::string::npos) << r.err;
-  r = run_cli("bench broccoli --data " + q(seq()) + " --model " + q(model) + " --frames -1 --json");
+  r = run_cli("bench broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model) +
+              " --frames -1 --json");
   EXPECT_EQ(r.exit_code, 2);
-  r = run_cli("eval broccoli --data " + q(seq()) + " --model " + q(model) + " --track --map-min-points -1 --quiet");
+  r = run_cli("eval broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model) +
+              " --track --map-min-points -1 --quiet");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--map-min-points"), std::string::npos) << r.err;
-  r = run_cli(base + q(dir() / "d3.jsonl") + " --set depth.min_depth=-5");
+  r = run_cli(base + shell_quoted(dir() / "d3.jsonl") + " --set depth.min_depth=-5");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("depth.min_depth"), std::string::npos) << r.err;
-  r = run_cli(base + q(dir() / "d3.jsonl") + " --track --set tracking.position_cap_m=-1");
+  r = run_cli(base + shell_quoted(dir() / "d3.jsonl") + " --track --set tracking.position_cap_m=-1");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("tracking.position_cap_m"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir() / "d3.jsonl"));
@@ -242,12 +255,14 @@ TEST_F(BroccoliCli, OutputsNeverDestroyUnrelatedFilesAndBadOptionsAreRefused) {
   const fs::path no_truth = dir() / "seq-no-truth";
   fs::copy(seq(), no_truth, fs::copy_options::recursive);
   fs::remove(no_truth / "groundtruth.json");
-  r = run_cli("eval broccoli --data " + q(no_truth) + " --model " + q(model) + " --track --quiet");
+  r = run_cli("eval broccoli --data " + shell_quoted(no_truth) + " --model " + shell_quoted(model) +
+              " --track --quiet");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("groundtruth.json"), std::string::npos) << r.err;
 
   // report: settings only drive the detection sections, so without --model they are an error.
-  r = run_cli("report --data " + q(seq()) + " --out " + q(dir() / "r.html") + " --set oes.min_size=nan");
+  r = run_cli("report --data " + shell_quoted(seq()) + " --out " + shell_quoted(dir() / "r.html") +
+              " --set oes.min_size=nan");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--model"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir() / "r.html"));
@@ -257,8 +272,8 @@ TEST_F(BroccoliCli, OutputsNeverDestroyUnrelatedFilesAndBadOptionsAreRefused) {
   const std::string payload = j["payload"];
   j["payload"] = payload.substr(0, payload.size() / 2);
   std::ofstream(dir() / "half.json") << j.dump();
-  r = run_cli("detect broccoli --data " + q(seq()) + " --model " + q(dir() / "half.json") + " --quiet --out " +
-              q(dir() / "d4.jsonl"));
+  r = run_cli("detect broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(dir() / "half.json") +
+              " --quiet --out " + shell_quoted(dir() / "d4.jsonl"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("half.json"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("truncated"), std::string::npos) << r.err;

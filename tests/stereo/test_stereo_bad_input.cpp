@@ -20,20 +20,23 @@
 #include "cropsight/stereo/middlebury.hpp"
 #include "cropsight/stereo/seedling_detector.hpp"
 #include "cropsight/stereo/stereo_io.hpp"
+#include "seedling_cli_fixture.hpp"
 #include "testing/testing.hpp"
 
 namespace fs = std::filesystem;
 using cropsight::testing::CommandResult;
 using cropsight::testing::run_cli;
+using cropsight::testing::shell_quoted;
 
 namespace {
 
-class StereoBadInput : public ::testing::Test {
+class StereoBadInput : public SeedlingCliFixture<StereoBadInput> {
+ public:
+  static constexpr const char* kSimulateArgs = " --pairs 1 --seed 5 --calib-pairs 0 --quiet";
+
  protected:
   static void SetUpTestSuite() {
-    tmp_ = new cropsight::testing::TempDir;
-    sim_ok_ =
-        run_cli("simulate seedling --out " + q(data()) + " --pairs 1 --seed 5 --calib-pairs 0 --quiet").exit_code == 0;
+    SeedlingCliFixture::SetUpTestSuite();
     // Small textured pairs for the disparity checks (fast): 8-bit colour, 8-bit grey, 16-bit.
     cv::Mat c(48, 64, CV_8UC3), g(48, 64, CV_8UC1), w(48, 64, CV_16UC3);
     cv::randu(c, 0, 255);
@@ -43,24 +46,15 @@ class StereoBadInput : public ::testing::Test {
     cv::imwrite((dir() / "g.png").string(), g);
     cv::imwrite((dir() / "w16.png").string(), w);
   }
-  static void TearDownTestSuite() {
-    delete tmp_;
-    tmp_ = nullptr;
-  }
-  void SetUp() override { ASSERT_TRUE(sim_ok_) << "simulate seedling failed"; }
-  static fs::path dir() { return tmp_->path(); }
-  static fs::path data() { return *tmp_ / "pairs"; }
-  static fs::path pair0() { return data() / "pair_000"; }
-  static std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
   static std::string pair_args() {
-    return " --left " + q(pair0() / "left.png") + " --right " + q(pair0() / "right.png");
+    return " --left " + shell_quoted(pair0() / "left.png") + " --right " + shell_quoted(pair0() / "right.png");
   }
-  static std::string small_pair() { return " --left " + q(dir() / "c.png") + " --right " + q(dir() / "c.png"); }
-  // The error contract: exit 2, exactly one line on stderr that names `what`, no OpenCV text.
+  static std::string small_pair() {
+    return " --left " + shell_quoted(dir() / "c.png") + " --right " + shell_quoted(dir() / "c.png");
+  }
+  // The error contract (one line naming `what`) and no OpenCV text.
   static void expect_error(const CommandResult& r, const std::string& what) {
-    EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_NE(r.err.find(what), std::string::npos) << "expected '" << what << "' in: " << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    expect_one_line_error(r, what);
     EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("OpenCV"), std::string::npos) << r.err;
   }
@@ -79,11 +73,7 @@ class StereoBadInput : public ::testing::Test {
     for (const auto& e : fs::directory_iterator(parent)) n += e.path().filename().string().rfind('.', 0) == 0;
     return n;
   }
-  static cropsight::testing::TempDir* tmp_;
-  static bool sim_ok_;
 };
-cropsight::testing::TempDir* StereoBadInput::tmp_ = nullptr;
-bool StereoBadInput::sim_ok_ = false;
 
 }  // namespace
 
@@ -92,14 +82,15 @@ bool StereoBadInput::sim_ok_ = false;
 TEST_F(StereoBadInput, SimulateSeedlingRefusesExistingAndBadCounts) {
   const fs::path out = dir() / "sim";
   fs::remove_all(out);
-  ASSERT_EQ(run_cli("simulate seedling --out " + q(out) + " --pairs 2 --calib-pairs 0 --quiet").exit_code, 0);
+  ASSERT_EQ(run_cli("simulate seedling --out " + shell_quoted(out) + " --pairs 2 --calib-pairs 0 --quiet").exit_code,
+            0);
   ASSERT_TRUE(fs::exists(out / "pair_001"));
   // Rerun over it without --force: refused, old data set untouched.
-  auto r = run_cli("simulate seedling --out " + q(out) + " --pairs 1 --calib-pairs 0 --quiet");
+  auto r = run_cli("simulate seedling --out " + shell_quoted(out) + " --pairs 1 --calib-pairs 0 --quiet");
   expect_error(r, "--force");
   EXPECT_TRUE(fs::exists(out / "pair_001"));
   // With --force and fewer pairs: the old pair_001 must not survive next to the new rig.yaml.
-  r = run_cli("simulate seedling --out " + q(out) + " --pairs 1 --calib-pairs 0 --quiet --force");
+  r = run_cli("simulate seedling --out " + shell_quoted(out) + " --pairs 1 --calib-pairs 0 --quiet --force");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::exists(out / "pair_000" / "left.png"));
   EXPECT_TRUE(fs::exists(out / "rig.yaml"));
@@ -109,14 +100,15 @@ TEST_F(StereoBadInput, SimulateSeedlingRefusesExistingAndBadCounts) {
   const fs::path other = dir() / "not_data";
   fs::create_directories(other);
   std::ofstream(other / "notes.txt") << "keep me\n";
-  expect_error(run_cli("simulate seedling --out " + q(other) + " --pairs 1 --calib-pairs 0 --quiet --force"),
+  expect_error(run_cli("simulate seedling --out " + shell_quoted(other) + " --pairs 1 --calib-pairs 0 --quiet --force"),
                "not a seedling data set");
   EXPECT_TRUE(fs::exists(other / "notes.txt"));
   // Counts: at least one pair, bounded, checked before anything is written.
   const fs::path fresh = dir() / "fresh";
-  expect_error(run_cli("simulate seedling --out " + q(fresh) + " --pairs 0 --calib-pairs 0"), "--pairs");
-  expect_error(run_cli("simulate seedling --out " + q(fresh) + " --pairs 2000000000"), "--pairs");
-  expect_error(run_cli("simulate seedling --out " + q(fresh) + " --pairs 1 --calib-pairs -1"), "--calib-pairs");
+  expect_error(run_cli("simulate seedling --out " + shell_quoted(fresh) + " --pairs 0 --calib-pairs 0"), "--pairs");
+  expect_error(run_cli("simulate seedling --out " + shell_quoted(fresh) + " --pairs 2000000000"), "--pairs");
+  expect_error(run_cli("simulate seedling --out " + shell_quoted(fresh) + " --pairs 1 --calib-pairs -1"),
+               "--calib-pairs");
   EXPECT_FALSE(fs::exists(fresh));
   EXPECT_EQ(hidden_entries(dir()), 0);
 }
@@ -125,8 +117,9 @@ TEST_F(StereoBadInput, SimulateSeedlingRefusesExistingAndBadCounts) {
 TEST_F(StereoBadInput, DetectSeedlingWritesNoOutputWhenOneFails) {
   std::ofstream(dir() / "plain_file") << "x";
   const fs::path mask = dir() / "d2_mask.png", top = dir() / "d2_top.png";
-  const auto r = run_cli("detect seedling" + pair_args() + " --calib " + q(data() / "rig.yaml") + " --mask " + q(mask) +
-                         " --top-view " + q(top) + " --out " + q(dir() / "plain_file" / "result.json"));
+  const auto r = run_cli("detect seedling" + pair_args() + " --calib " + shell_quoted(data() / "rig.yaml") +
+                         " --mask " + shell_quoted(mask) + " --top-view " + shell_quoted(top) + " --out " +
+                         shell_quoted(dir() / "plain_file" / "result.json"));
   expect_error(r, "result.json");
   EXPECT_FALSE(fs::exists(mask));
   EXPECT_FALSE(fs::exists(top));
@@ -136,34 +129,38 @@ TEST_F(StereoBadInput, DetectSeedlingWritesNoOutputWhenOneFails) {
 // Bug 3: search ranges and windows that would hang or exhaust memory are refused up front.
 TEST_F(StereoBadInput, DisparityBoundsRangesAndWindows) {
   const fs::path out = dir() / "b3.png";
-  expect_error(run_cli("stereo disparity" + small_pair() + " --max-disp 1048576 --out " + q(out)), "--max-disp");
-  auto r = run_cli("stereo disparity" + small_pair() + " --max-disp 128 --out " + q(out));  // image is 64 px wide
+  expect_error(run_cli("stereo disparity" + small_pair() + " --max-disp 1048576 --out " + shell_quoted(out)),
+               "--max-disp");
+  auto r =
+      run_cli("stereo disparity" + small_pair() + " --max-disp 128 --out " + shell_quoted(out));  // image is 64 px wide
   expect_error(r, "--max-disp");
   EXPECT_NE(r.err.find("width"), std::string::npos) << r.err;
   expect_error(run_cli("stereo disparity" + small_pair() +
                        " --max-disp 16 --set engine=opencv --set rank_radius=100000 "
                        "--out " +
-                       q(out)),
+                       shell_quoted(out)),
                "rank_radius");
-  expect_error(
-      run_cli("stereo disparity" + small_pair() + " --max-disp 16 --set num_disparities=1048576 --out " + q(out)),
-      "num_disparities");
+  expect_error(run_cli("stereo disparity" + small_pair() + " --max-disp 16 --set num_disparities=1048576 --out " +
+                       shell_quoted(out)),
+               "num_disparities");
   EXPECT_FALSE(fs::exists(out));
 }
 
 // Bug 4: values OpenCV asserts on are caught with a message naming the option.
 TEST_F(StereoBadInput, CalibrateAndOutputsRejectWhatOpenCvWouldAssertOn) {
-  const std::string cal = "stereo calibrate --images " + q(dir()) + " --out " + q(dir() / "never.yaml");
+  const std::string cal =
+      "stereo calibrate --images " + shell_quoted(dir()) + " --out " + shell_quoted(dir() / "never.yaml");
   expect_error(run_cli(cal + " --square-mm inf"), "--square-mm");
   expect_error(run_cli(cal + " --square-mm 1e300"), "--square-mm");
   expect_error(run_cli(cal + " --board 2x2"), "--board");
   EXPECT_FALSE(fs::exists(dir() / "never.yaml"));
   // Outputs without an image extension, or folders.
-  expect_error(run_cli("stereo disparity" + small_pair() + " --max-disp 16 --out " + q(dir() / "noext")), "--out");
-  expect_error(run_cli("stereo disparity" + small_pair() + " --max-disp 16 --out " + q(dir())), "--out");
-  const std::string det = "detect seedling" + pair_args() + " --calib " + q(data() / "rig.yaml");
-  expect_error(run_cli(det + " --mask " + q(dir() / "mask_noext")), "--mask");
-  expect_error(run_cli(det + " --top-view " + q(dir())), "--top-view");
+  expect_error(run_cli("stereo disparity" + small_pair() + " --max-disp 16 --out " + shell_quoted(dir() / "noext")),
+               "--out");
+  expect_error(run_cli("stereo disparity" + small_pair() + " --max-disp 16 --out " + shell_quoted(dir())), "--out");
+  const std::string det = "detect seedling" + pair_args() + " --calib " + shell_quoted(data() / "rig.yaml");
+  expect_error(run_cli(det + " --mask " + shell_quoted(dir() / "mask_noext")), "--mask");
+  expect_error(run_cli(det + " --top-view " + shell_quoted(dir())), "--top-view");
   EXPECT_FALSE(fs::exists(dir() / "noext"));
   EXPECT_FALSE(fs::exists(dir() / "mask_noext"));
 }
@@ -171,14 +168,14 @@ TEST_F(StereoBadInput, CalibrateAndOutputsRejectWhatOpenCvWouldAssertOn) {
 // Bug 5: a lossy / 8-bit disparity file is refused; input images must be 8-bit and of one kind.
 TEST_F(StereoBadInput, DisparityAndDetectCheckFormatsAndImageKinds) {
   const fs::path out = dir() / "d.jpg";
-  expect_error(run_cli("stereo disparity" + small_pair() + " --max-disp 16 --out " + q(out)), "--out");
+  expect_error(run_cli("stereo disparity" + small_pair() + " --max-disp 16 --out " + shell_quoted(out)), "--out");
   EXPECT_FALSE(fs::exists(out));
   const fs::path png = dir() / "b5.png";
-  expect_error(run_cli("stereo disparity --left " + q(dir() / "w16.png") + " --right " + q(dir() / "c.png") +
-                       " --max-disp 16 --out " + q(png)),
+  expect_error(run_cli("stereo disparity --left " + shell_quoted(dir() / "w16.png") + " --right " +
+                       shell_quoted(dir() / "c.png") + " --max-disp 16 --out " + shell_quoted(png)),
                "w16.png");
-  auto r = run_cli("stereo disparity --left " + q(dir() / "g.png") + " --right " + q(dir() / "c.png") +
-                   " --max-disp 16 --out " + q(png));
+  auto r = run_cli("stereo disparity --left " + shell_quoted(dir() / "g.png") + " --right " +
+                   shell_quoted(dir() / "c.png") + " --max-disp 16 --out " + shell_quoted(png));
   expect_error(r, "c.png");
   EXPECT_NE(r.err.find("grey"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(png));
@@ -190,10 +187,10 @@ TEST_F(StereoBadInput, DisparityAndDetectCheckFormatsAndImageKinds) {
   cv::cvtColor(left, grey, cv::COLOR_BGR2GRAY);
   cv::imwrite(l16.string(), wide);
   cv::imwrite(lgrey.string(), grey);
-  const std::string rest =
-      " --right " + q(pair0() / "right.png") + " --calib " + q(data() / "rig.yaml") + " --out " + q(dir() / "b5.json");
-  expect_error(run_cli("detect seedling --left " + q(l16) + rest), "left16.png");
-  expect_error(run_cli("detect seedling --left " + q(lgrey) + rest), "right.png");
+  const std::string rest = " --right " + shell_quoted(pair0() / "right.png") + " --calib " +
+                           shell_quoted(data() / "rig.yaml") + " --out " + shell_quoted(dir() / "b5.json");
+  expect_error(run_cli("detect seedling --left " + shell_quoted(l16) + rest), "left16.png");
+  expect_error(run_cli("detect seedling --left " + shell_quoted(lgrey) + rest), "right.png");
   EXPECT_FALSE(fs::exists(dir() / "b5.json"));
 }
 
@@ -218,12 +215,12 @@ fs::path fake_middlebury(const fs::path& root, const cv::Mat& tsukuba_gt) {
 // Bug 6: eval stereo rejects a ground truth of the wrong depth and one with nothing to score.
 TEST_F(StereoBadInput, EvalStereoRejectsBadGroundTruth) {
   auto r = run_cli("eval stereo --json --middlebury " +
-                   q(fake_middlebury(dir() / "mb16", cv::Mat(48, 64, CV_16U, cv::Scalar(40 * 256)))));
+                   shell_quoted(fake_middlebury(dir() / "mb16", cv::Mat(48, 64, CV_16U, cv::Scalar(40 * 256)))));
   expect_error(r, "disp_left.pgm");
   EXPECT_NE(r.err.find("16-bit"), std::string::npos) << r.err;
   EXPECT_TRUE(r.out.empty());
   r = run_cli("eval stereo --json --middlebury " +
-              q(fake_middlebury(dir() / "mb0", cv::Mat(48, 64, CV_8U, cv::Scalar(0)))));
+              shell_quoted(fake_middlebury(dir() / "mb0", cv::Mat(48, 64, CV_8U, cv::Scalar(0)))));
   expect_error(r, "disp_left.pgm");
   EXPECT_NE(r.err.find("no valid pixel"), std::string::npos) << r.err;
   EXPECT_TRUE(r.out.empty());
@@ -236,7 +233,7 @@ TEST_F(StereoBadInput, EvalSeedlingRejectsBadTruth) {
     m.convertTo(w, CV_16U, 257);
     cv::imwrite(p.string(), w);
   });
-  auto r = run_cli("eval seedling --no-opencv --json --data " + q(m16));
+  auto r = run_cli("eval seedling --no-opencv --json --data " + shell_quoted(m16));
   expect_error(r, "mask.png");
   EXPECT_TRUE(r.out.empty());
   const fs::path h0 = data_with("height0", "truth.json", [](const fs::path& p) {
@@ -251,7 +248,7 @@ TEST_F(StereoBadInput, EvalSeedlingRejectsBadTruth) {
     t = t.substr(0, k) + "\"height_m\": 0" + t.substr(e);
     std::ofstream(p) << t;
   });
-  r = run_cli("eval seedling --no-opencv --json --data " + q(h0));
+  r = run_cli("eval seedling --no-opencv --json --data " + shell_quoted(h0));
   expect_error(r, "truth.json");
   EXPECT_NE(r.err.find("height_m"), std::string::npos) << r.err;
   EXPECT_TRUE(r.out.empty());
@@ -259,8 +256,8 @@ TEST_F(StereoBadInput, EvalSeedlingRejectsBadTruth) {
 
 // Bug 8: out-of-range configuration values fail naming the key (and --set, not an image).
 TEST_F(StereoBadInput, OutOfRangeConfigNamesTheKey) {
-  const std::string det = "detect seedling" + pair_args() + " --calib " + q(data() / "rig.yaml") + " --out " +
-                          q(dir() / "b8.json") + " --set ";
+  const std::string det = "detect seedling" + pair_args() + " --calib " + shell_quoted(data() / "rig.yaml") +
+                          " --out " + shell_quoted(dir() / "b8.json") + " --set ";
   for (const std::string& kv :
        {std::string("min_depth=5 --set max_depth=1"), std::string("gmm.tolerance=-1"),
         std::string("gmm.components=100000"), std::string("gmm.components=0"), std::string("min_depth=nan")}) {
@@ -275,19 +272,21 @@ TEST_F(StereoBadInput, OutOfRangeConfigNamesTheKey) {
   const fs::path out = dir() / "b8.png";
   for (const std::string& kv :
        {std::string("p1=-5"), std::string("uniqueness_ratio=-5"), std::string("engine=bogus")}) {
-    const auto r = run_cli("stereo disparity" + small_pair() + " --max-disp 16 --out " + q(out) + " --set " + kv);
+    const auto r =
+        run_cli("stereo disparity" + small_pair() + " --max-disp 16 --out " + shell_quoted(out) + " --set " + kv);
     expect_error(r, "'" + kv.substr(0, kv.find('=')) + "'");
     EXPECT_NE(r.err.find("--set"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find("c.png"), std::string::npos) << r.err;
   }
-  expect_error(run_cli("stereo disparity" + small_pair() + " --max-disp 16 --method sad --window 0 --out " + q(out)),
-               "--window");
+  expect_error(
+      run_cli("stereo disparity" + small_pair() + " --max-disp 16 --method sad --window 0 --out " + shell_quoted(out)),
+      "--window");
   EXPECT_FALSE(fs::exists(out));
   // Calibration YAML: an unknown (misspelt) key is refused, naming the file and the key.
   const fs::path rig = dir() / "rig_extra.yaml";
   fs::copy_file(data() / "rig.yaml", rig, fs::copy_options::overwrite_existing);
   std::ofstream(rig, std::ios::app) << "baseline_mm: 60\n";
-  const auto r = run_cli("detect seedling" + pair_args() + " --calib " + q(rig));
+  const auto r = run_cli("detect seedling" + pair_args() + " --calib " + shell_quoted(rig));
   expect_error(r, "rig_extra.yaml");
   EXPECT_NE(r.err.find("baseline_mm"), std::string::npos) << r.err;
 }

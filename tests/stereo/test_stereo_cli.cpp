@@ -9,49 +9,34 @@
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "seedling_cli_fixture.hpp"
 #include "testing/testing.hpp"
 
 namespace fs = std::filesystem;
 using cropsight::testing::run_cli;
+using cropsight::testing::shell_quoted;
 
 namespace {
 
-class StereoCli : public ::testing::Test {
+class StereoCli : public SeedlingCliFixture<StereoCli> {
+ public:
+  static constexpr const char* kSimulateArgs = " --pairs 2 --seed 77 --calib-pairs 0";
+
  protected:
   static void SetUpTestSuite() {
-    tmp_ = new cropsight::testing::TempDir;
-    sim_ok_ = run_cli("simulate seedling --out " + q(data()) + " --pairs 2 --seed 77 --calib-pairs 0").exit_code == 0;
+    SeedlingCliFixture::SetUpTestSuite();
     // A right image of another size than the simulated left one.
     cv::Mat small(240, 320, CV_8UC3, cv::Scalar(90, 120, 60));
     cv::imwrite((dir() / "small.png").string(), small);
   }
-  static void TearDownTestSuite() {
-    delete tmp_;
-    tmp_ = nullptr;
-  }
-  void SetUp() override { ASSERT_TRUE(sim_ok_) << "simulate seedling failed"; }
-  static fs::path dir() { return tmp_->path(); }
-  static fs::path data() { return *tmp_ / "pairs"; }
-  static fs::path pair0() { return data() / "pair_000"; }
-  static std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
-  // The error contract: exit 2, exactly one line on stderr that names `what`.
-  static void expect_one_line_error(const cropsight::testing::CommandResult& r, const std::string& what) {
-    EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_NE(r.err.find(what), std::string::npos) << r.err;
-    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-  }
-  static cropsight::testing::TempDir* tmp_;
-  static bool sim_ok_;
 };
-cropsight::testing::TempDir* StereoCli::tmp_ = nullptr;
-bool StereoCli::sim_ok_ = false;
 
 }  // namespace
 
 TEST_F(StereoCli, DisparityWritesPngAndReportsFullCoverage) {
   const fs::path out = dir() / "disp.png";
-  const auto r = run_cli("stereo disparity --left " + q(pair0() / "left.png") + " --right " + q(pair0() / "right.png") +
-                         " --max-disp 64 --out " + q(out) + " --json");
+  const auto r = run_cli("stereo disparity --left " + shell_quoted(pair0() / "left.png") + " --right " +
+                         shell_quoted(pair0() / "right.png") + " --max-disp 64 --out " + shell_quoted(out) + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["method"], "sgm");
@@ -64,23 +49,24 @@ TEST_F(StereoCli, DisparityWritesPngAndReportsFullCoverage) {
 
 TEST_F(StereoCli, DisparityErrors) {
   const fs::path out = dir() / "never.png";
-  auto r = run_cli("stereo disparity --left " + q(dir() / "missing.png") + " --right " + q(pair0() / "right.png") +
-                   " --out " + q(out));
+  auto r = run_cli("stereo disparity --left " + shell_quoted(dir() / "missing.png") + " --right " +
+                   shell_quoted(pair0() / "right.png") + " --out " + shell_quoted(out));
   expect_one_line_error(r, "missing.png");
-  r = run_cli("stereo disparity --left " + q(pair0() / "left.png") + " --right " + q(dir() / "small.png") + " --out " +
-              q(out));
+  r = run_cli("stereo disparity --left " + shell_quoted(pair0() / "left.png") + " --right " +
+              shell_quoted(dir() / "small.png") + " --out " + shell_quoted(out));
   expect_one_line_error(r, "small.png");
   EXPECT_NE(r.err.find("differs"), std::string::npos) << r.err;
-  r = run_cli("stereo disparity --left " + q(pair0() / "left.png") + " --right " + q(pair0() / "right.png") +
-              " --max-disp 64 --set engine=fast --out " + q(out));
+  r = run_cli("stereo disparity --left " + shell_quoted(pair0() / "left.png") + " --right " +
+              shell_quoted(pair0() / "right.png") + " --max-disp 64 --set engine=fast --out " + shell_quoted(out));
   expect_one_line_error(r, "engine");
   EXPECT_FALSE(fs::exists(out));
 }
 
 TEST_F(StereoCli, DetectSeedlingWritesResult) {
   const fs::path out = dir() / "result.json";
-  const auto r = run_cli("detect seedling --left " + q(pair0() / "left.png") + " --right " + q(pair0() / "right.png") +
-                         " --calib " + q(data() / "rig.yaml") + " --out " + q(out));
+  const auto r = run_cli("detect seedling --left " + shell_quoted(pair0() / "left.png") + " --right " +
+                         shell_quoted(pair0() / "right.png") + " --calib " + shell_quoted(data() / "rig.yaml") +
+                         " --out " + shell_quoted(out));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(std::ifstream(out));
   EXPECT_TRUE(j["found"].get<bool>());
@@ -91,17 +77,19 @@ TEST_F(StereoCli, DetectSeedlingWritesResult) {
 
 TEST_F(StereoCli, DetectSeedlingErrors) {
   const fs::path out = dir() / "never.json";
-  auto r = run_cli("detect seedling --left " + q(pair0() / "left.png") + " --right " + q(pair0() / "right.png") +
-                   " --calib " + q(dir() / "missing.yaml") + " --out " + q(out));
+  auto r = run_cli("detect seedling --left " + shell_quoted(pair0() / "left.png") + " --right " +
+                   shell_quoted(pair0() / "right.png") + " --calib " + shell_quoted(dir() / "missing.yaml") +
+                   " --out " + shell_quoted(out));
   expect_one_line_error(r, "missing.yaml");
-  r = run_cli("detect seedling --left " + q(pair0() / "left.png") + " --right " + q(dir() / "small.png") + " --calib " +
-              q(data() / "rig.yaml") + " --out " + q(out));
+  r = run_cli("detect seedling --left " + shell_quoted(pair0() / "left.png") + " --right " +
+              shell_quoted(dir() / "small.png") + " --calib " + shell_quoted(data() / "rig.yaml") + " --out " +
+              shell_quoted(out));
   expect_one_line_error(r, "small.png");
   EXPECT_FALSE(fs::exists(out));
 }
 
 TEST_F(StereoCli, EvalSeedlingScoresPairs) {
-  const auto r = run_cli("eval seedling --data " + q(data()) + " --no-opencv --json");
+  const auto r = run_cli("eval seedling --data " + shell_quoted(data()) + " --no-opencv --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["pairs"], 2);
@@ -112,7 +100,7 @@ TEST_F(StereoCli, EvalSeedlingScoresPairs) {
 }
 
 TEST_F(StereoCli, EvalSeedlingErrors) {
-  auto r = run_cli("eval seedling --data " + q(dir() / "nowhere") + " --json");
+  auto r = run_cli("eval seedling --data " + shell_quoted(dir() / "nowhere") + " --json");
   expect_one_line_error(r, "nowhere");
   EXPECT_TRUE(r.out.empty());
   // A pair whose right image has another size than its left one.
@@ -122,7 +110,7 @@ TEST_F(StereoCli, EvalSeedlingErrors) {
   for (const char* f : {"left.png", "disparity.png", "mask.png", "truth.json"})
     fs::copy_file(pair0() / f, bad / "pair_000" / f, fs::copy_options::overwrite_existing);
   fs::copy_file(dir() / "small.png", bad / "pair_000" / "right.png", fs::copy_options::overwrite_existing);
-  r = run_cli("eval seedling --data " + q(bad) + " --no-opencv --json");
+  r = run_cli("eval seedling --data " + shell_quoted(bad) + " --no-opencv --json");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("pair_000"), std::string::npos) << r.err;
   EXPECT_TRUE(r.out.empty());
@@ -131,7 +119,7 @@ TEST_F(StereoCli, EvalSeedlingErrors) {
 TEST_F(StereoCli, EvalStereoOnMiddlebury) {
   const auto mb = cropsight::testing::shared_data_dir() / "middlebury";
   CROPSIGHT_REQUIRE_DATA(mb);
-  const auto r = run_cli("eval stereo --middlebury " + q(mb) + " --json");
+  const auto r = run_cli("eval stereo --middlebury " + shell_quoted(mb) + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_LE(j["mean_bad1"].get<double>(), 8.0);
@@ -140,7 +128,7 @@ TEST_F(StereoCli, EvalStereoOnMiddlebury) {
 }
 
 TEST_F(StereoCli, EvalStereoErrors) {
-  auto r = run_cli("eval stereo --middlebury " + q(dir() / "no_middlebury") + " --json");
+  auto r = run_cli("eval stereo --middlebury " + shell_quoted(dir() / "no_middlebury") + " --json");
   expect_one_line_error(r, "no_middlebury");
   EXPECT_TRUE(r.out.empty());
   // Four pairs of the right names; tsukuba's right image has another size.
@@ -154,7 +142,7 @@ TEST_F(StereoCli, EvalStereoErrors) {
     const bool pgm = std::string(p) == "tsukuba" || std::string(p) == "venus";
     cv::imwrite((mb / p / (pgm ? "disp_left.pgm" : "disp_left.png")).string(), gt);
   }
-  r = run_cli("eval stereo --middlebury " + q(mb) + " --json");
+  r = run_cli("eval stereo --middlebury " + shell_quoted(mb) + " --json");
   expect_one_line_error(r, "tsukuba");
   EXPECT_NE(r.err.find("differ"), std::string::npos) << r.err;
   EXPECT_TRUE(r.out.empty());

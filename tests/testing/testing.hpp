@@ -31,6 +31,8 @@ struct CommandResult {
   std::string out;  ///< stdout
   std::string err;  ///< stderr
 };
+/// `p` in single quotes, for the shell command lines of run_cli (test paths hold no quote).
+inline std::string shell_quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 /// Runs the CLI with `args` (a shell-quoted argument string) and captures its output.
 CommandResult run_cli(const std::string& args);
 

@@ -16,6 +16,7 @@
 namespace fs = std::filesystem;
 using namespace cropsight;
 using cropsight::testing::run_cli;
+using cropsight::testing::shell_quoted;
 
 namespace {
 class TrackingCli : public ::testing::Test {
@@ -27,9 +28,9 @@ class TrackingCli : public ::testing::Test {
     for (int i = 0; i < s.frames(); ++i) w.write(s.render(i));
     w.set_groundtruth(s.groundtruth());
     w.finish();
-    const auto r = run_cli("train broccoli --data " + q(seq()) + " --config " +
-                           q(cropsight::testing::source_dir() / "configs" / "broccoli-oes-uk.yaml") + " --out " +
-                           q(model()) + " --quiet");
+    const auto r = run_cli("train broccoli --data " + shell_quoted(seq()) + " --config " +
+                           shell_quoted(cropsight::testing::source_dir() / "configs" / "broccoli-oes-uk.yaml") +
+                           " --out " + shell_quoted(model()) + " --quiet");
     trained_ = r.exit_code == 0;
     if (!trained_) train_error_ = r.err;
   }
@@ -41,7 +42,6 @@ class TrackingCli : public ::testing::Test {
   static fs::path seq() { return *tmp_ / "seq"; }
   static fs::path model() { return *tmp_ / "oes.json"; }
   static fs::path dir() { return tmp_->path(); }
-  static std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
   static cropsight::testing::TempDir* tmp_;
   static bool trained_;
   static std::string train_error_;
@@ -53,8 +53,9 @@ std::string TrackingCli::train_error_;
 
 TEST_F(TrackingCli, DetectWritesTheMap) {
   const fs::path out = dir() / "det.jsonl", map = dir() / "map.csv";
-  const auto r = run_cli("detect broccoli --data " + q(seq()) + " --model " + q(model()) + " --out " + q(out) +
-                         " --track --map " + q(map) + " --json --set tracking.use_poses=true");
+  const auto r =
+      run_cli("detect broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model()) + " --out " +
+              shell_quoted(out) + " --track --map " + shell_quoted(map) + " --json --set tracking.use_poses=true");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto summary = nlohmann::json::parse(r.out);
   const auto heads = tracking::read_field_map(map);
@@ -96,7 +97,7 @@ TEST_F(TrackingCli, DetectWritesTheMap) {
 }
 
 TEST_F(TrackingCli, EvalReportsMapSizeAndTemporalAp) {
-  const auto r = run_cli("eval broccoli --data " + q(seq()) + " --model " + q(model()) +
+  const auto r = run_cli("eval broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model()) +
                          " --track --fit-size-bias --json --set tracking.use_poses=true");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
@@ -116,8 +117,8 @@ TEST_F(TrackingCli, EvalReportsMapSizeAndTemporalAp) {
 
 TEST_F(TrackingCli, ReportWithModel) {
   const fs::path html = dir() / "report.html";
-  const auto r =
-      run_cli("report --data " + q(seq()) + " --model " + q(model()) + " --frames 2 --out " + q(html) + " --json");
+  const auto r = run_cli("report --data " + shell_quoted(seq()) + " --model " + shell_quoted(model()) +
+                         " --frames 2 --out " + shell_quoted(html) + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string page = io::read_file(html);
   EXPECT_GE(std::size_t(std::count(page.begin(), page.end(), '<')), 100u);
@@ -128,26 +129,28 @@ TEST_F(TrackingCli, ReportWithModel) {
 
 TEST_F(TrackingCli, BadInputIsOneLineAndNoOutput) {
   const fs::path out = dir() / "none.jsonl", map = dir() / "none.csv", html = dir() / "none.html";
-  auto r = run_cli("detect broccoli --data " + q(seq()) + " --model " + q(model()) + " --out " + q(out) + " --map " +
-                   q(map));
+  auto r = run_cli("detect broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model()) + " --out " +
+                   shell_quoted(out) + " --map " + shell_quoted(map));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--map"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(out));
   EXPECT_FALSE(fs::exists(map));
-  r = run_cli("eval broccoli --data " + q(seq()) + " --model " + q(model()) + " --fit-size-bias");
+  r = run_cli("eval broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model()) + " --fit-size-bias");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--track"), std::string::npos) << r.err;
-  r = run_cli("eval broccoli --data " + q(seq()) + " --model " + q(model()) +
+  r = run_cli("eval broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model()) +
               " --track --set tracking.association_radius_m=0");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("association_radius_m"), std::string::npos) << r.err;
-  r = run_cli("eval broccoli --data " + q(seq()) + " --model " + q(model()) + " --track --set sizing.estimator=cube");
+  r = run_cli("eval broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model()) +
+              " --track --set sizing.estimator=cube");
   EXPECT_EQ(r.exit_code, 2);
-  r = run_cli("detect broccoli --data " + q(seq()) + " --model " + q(model()) + " --out " + q(out) +
-              " --track --set tracking.bogus=1");
+  r = run_cli("detect broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model()) + " --out " +
+              shell_quoted(out) + " --track --set tracking.bogus=1");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_FALSE(fs::exists(out));
-  r = run_cli("report --data " + q(seq()) + " --model " + q(dir() / "missing.json") + " --out " + q(html));
+  r = run_cli("report --data " + shell_quoted(seq()) + " --model " + shell_quoted(dir() / "missing.json") + " --out " +
+              shell_quoted(html));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_FALSE(fs::exists(html));
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
