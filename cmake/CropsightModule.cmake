@@ -1,11 +1,21 @@
-# cropsight_module(NAME <m> [DEPS <public targets>...] [PRIVATE_DEPS <targets>...] [TEST_DEPS <targets>...])
+# cropsight_module(NAME <m> [SUBDIRS <folders>...] [DEPS <public targets>...] [PRIVATE_DEPS <targets>...]
+#                  [TEST_DEPS <targets>...])
 #
-# Builds library cropsight_<m> from src/<m>/*.cpp (public headers in include/cropsight/<m>/),
-# and, when tests/<m>/ holds *.cpp files, the GoogleTest executable test_<m> registered with
-# ctest. Files are globbed so that adding a source file needs no edit here.
+# Builds library cropsight_<m> from src/<m>/*.cpp and src/<m>/<subdir>/*.cpp for each SUBDIRS
+# folder (public headers in include/cropsight/<m>/[<subdir>/]), and, when tests/<m>/ (or
+# tests/<m>/<subdir>/) holds *.cpp files, the GoogleTest executable test_<m> registered with ctest.
+# Files are globbed so that adding a source file needs no edit here. Sub-folders are listed, not
+# globbed recursively, because some modules keep a separately built part in a sub-folder
+# (src/nn/torch/ is the libtorch plugin, never linked into cropsight_nn).
 function(cropsight_module)
-  cmake_parse_arguments(M "" "NAME" "DEPS;PRIVATE_DEPS;TEST_DEPS;PCH" ${ARGN})
-  file(GLOB srcs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/src/${M_NAME}/*.cpp)
+  cmake_parse_arguments(M "" "NAME" "SUBDIRS;DEPS;PRIVATE_DEPS;TEST_DEPS;PCH" ${ARGN})
+  set(src_globs ${PROJECT_SOURCE_DIR}/src/${M_NAME}/*.cpp)
+  set(test_globs ${PROJECT_SOURCE_DIR}/tests/${M_NAME}/*.cpp)
+  foreach(d IN LISTS M_SUBDIRS)
+    list(APPEND src_globs ${PROJECT_SOURCE_DIR}/src/${M_NAME}/${d}/*.cpp)
+    list(APPEND test_globs ${PROJECT_SOURCE_DIR}/tests/${M_NAME}/${d}/*.cpp)
+  endforeach()
+  file(GLOB srcs CONFIGURE_DEPENDS ${src_globs})
   set(lib cropsight_${M_NAME})
   if(NOT srcs)
     # A module with headers only (or not started yet) is an interface library.
@@ -25,7 +35,7 @@ function(cropsight_module)
   add_library(cropsight::${M_NAME} ALIAS ${lib})
 
   if(CROPSIGHT_BUILD_TESTS)
-    file(GLOB tsrcs CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/tests/${M_NAME}/*.cpp)
+    file(GLOB tsrcs CONFIGURE_DEPENDS ${test_globs})
     if(tsrcs)
       add_executable(test_${M_NAME} ${tsrcs})
       target_include_directories(test_${M_NAME} PRIVATE ${PROJECT_SOURCE_DIR}/tests ${PROJECT_SOURCE_DIR}/src)
