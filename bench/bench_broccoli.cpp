@@ -19,9 +19,9 @@
 
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/pipeline/broccoli_training.hpp"
-#include "cropsight/pipeline/pcl_reference.hpp"
-#include "cropsight/sim/broccoli_sim.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_training.hpp"
+#include "cropsight/pipeline/broccoli/pcl_reference.hpp"
+#include "cropsight/sim/broccoli/broccoli_sim.hpp"
 
 using namespace cropsight;
 
@@ -49,9 +49,9 @@ struct Fixture {
     }
     sim::BroccoliSimulator train(sim::BroccoliSimConfig{}, 5, 6);
     auto cfg = config("fec");
-    pipeline::BroccoliDatasetBuilder builder(cfg);
+    pipeline::BroccoliDatasetBuilder builder(cfg, {});
     for (int i = 0; i < train.frames(); ++i) builder.add_frame(train.render(i));
-    model = std::make_shared<learning::Model>(pipeline::train_broccoli_model(builder.dataset(), cfg, {}));
+    model = std::make_shared<learning::Model>(pipeline::train_broccoli_model(builder.dataset(), cfg, {}, {}));
   }
 
  public:

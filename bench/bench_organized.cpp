@@ -89,7 +89,7 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr pcl_input() {
 }
 
 std::vector<Segment> oes_segments(const OrganizedCloud& c) {
-  segmentation::FloodFillWorkspace ws;
+  segmentation::OrganizedClusteringWorkspace ws;
   const auto edges = geometry::detect_organized_edges(c, {.high_curvature_threshold = kCrease});
   return segmentation::segment_oes(c, edges, {}, ws);
 }
@@ -150,7 +150,7 @@ BENCHMARK(BM_Edges_PCL)->Unit(benchmark::kMillisecond);
 void BM_FloodFill_OES(benchmark::State& st) {
   const OrganizedCloud& c = input_with_normals();
   const auto edges = geometry::detect_organized_edges(c, {.high_curvature_threshold = kCrease});
-  segmentation::FloodFillWorkspace ws;
+  segmentation::OrganizedClusteringWorkspace ws;
   std::size_t n = 0;
   for (auto _ : st) {
     auto segs = segmentation::segment_oes(c, edges, {}, ws);
@@ -163,7 +163,7 @@ BENCHMARK(BM_FloodFill_OES)->Unit(benchmark::kMillisecond);
 
 void BM_FloodFill_ORG(benchmark::State& st) {
   const OrganizedCloud& c = input_with_normals();
-  segmentation::FloodFillWorkspace ws;
+  segmentation::OrganizedClusteringWorkspace ws;
   std::size_t n = 0;
   for (auto _ : st) {
     auto segs = segmentation::segment_org(c, {.curvature_threshold = kCrease}, ws);
@@ -259,7 +259,7 @@ template <bool kOes>
 void BM_EndToEnd(benchmark::State& st) {
   OrganizedCloud c = input();
   geometry::IntegralNormalEstimator est;
-  segmentation::FloodFillWorkspace ws;
+  segmentation::OrganizedClusteringWorkspace ws;
   std::vector<std::uint8_t> edges;
   std::vector<float> h(features::kVfhBins);
   std::size_t n = 0;

@@ -1,28 +1,60 @@
 #pragma once
-// Helpers shared by the broccoli sub-commands (train / detect / eval / bench broccoli).
-#include <filesystem>
+// Helpers shared by the broccoli sub-commands (train / detect / eval / bench broccoli, report
+// --model): building the pipeline from a model and the preset, and formatting the library's
+// results (text or JSON). Nothing here computes a result.
+#include <CLI/CLI.hpp>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
+#include "cli_common.hpp"
 #include "cropsight/core/timer.hpp"
 #include "cropsight/learning/model.hpp"
-#include "cropsight/pipeline/broccoli_training.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_tracking_eval.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_training.hpp"
 
 namespace cropsight::cli {
 
 /// "a,b,c" → {"a", "b", "c"}; throws Error(option, ...) when empty or a part is empty.
 std::vector<std::string> split_list(const std::string& text, const std::string& option);
 
-/// Loads a model file for the broccoli detector; throws Error(path, ...) when it is missing,
-/// malformed or was trained for another task.
-std::shared_ptr<const learning::Model> load_broccoli_model(const std::filesystem::path& path);
+/// A model file and the config its pipeline runs with (defaults ← model ← preset ← --set).
+struct LoadedBroccoli {
+  std::shared_ptr<const learning::Model> model;
+  pipeline::BroccoliPipelineConfig config;
+};
+LoadedBroccoli load_broccoli(const std::string& model_path, const CommonOptions& common, bool track);
+
+/// --track (both) and --map (detect) or --map-min-points / --fit-size-bias (eval).
+struct TrackOptions {
+  bool track = false;
+  std::string map;             ///< detect: --map FILE
+  bool fit_size_bias = false;  ///< eval: fit the size bias correction on the evaluated data
+  int map_min_points = 300;    ///< eval: true heads count for the map when seen with this many points
+};
+void add_track_options(CLI::App* cmd, TrackOptions& o, bool detect);
 
 /// Per-stage mean milliseconds per frame as JSON {"cloud": 1.2, ...}.
 nlohmann::json stages_json(const std::vector<StageTimer::Stage>& stages, long frames);
 
 /// Table I + II metrics of an evaluation as JSON (NaN → null).
 nlohmann::json eval_json(const pipeline::BroccoliEvalResult& r);
+
+/// The tracking figures as the keys of `eval broccoli --track --json` (NaN → null).
+/// ap50_temporal / map50_95_temporal are the offline figures under their earlier names.
+nlohmann::json tracking_json(const pipeline::BroccoliTrackingFigures& f);
+
+/// One detection of `detect broccoli`'s JSON lines (id = 1-based number in the frame).
+nlohmann::json detection_json(const Detection& d, int id);
+
+/// detect --track: adds "heads" [{id, track_id, diameter_mm, bbox_mm, hull_mm, harvestable,
+/// field}], "predicted" [{track_id, points, centroid}] and "camera_estimate" to a frame's line.
+void add_tracking_json(const pipeline::BroccoliFrameResult& r, const tracking::HeadMapper& mapper,
+                       nlohmann::json& line);
+
+/// Human-readable lines of the tracking figures.
+void print_tracking_summary(const pipeline::BroccoliTrackingFigures& f);
 
 }  // namespace cropsight::cli

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
@@ -33,6 +34,8 @@ void add_config_options(CLI::App* cmd, CommonOptions& o) {
   cmd->add_option("--config", o.config, "Preset name (configs/<name>.yaml) or YAML file");
   cmd->add_option("--set", o.sets, "Override a parameter: key=value (repeatable)")->take_all();
 }
+
+nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 void print_json(const nlohmann::json& j) { std::cout << j.dump() << std::endl; }
 

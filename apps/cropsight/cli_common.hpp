@@ -23,6 +23,10 @@ struct CommonOptions {
 void add_json_flag(CLI::App* cmd, CommonOptions& o);
 void add_config_options(CLI::App* cmd, CommonOptions& o);
 
+/// A number for JSON output: NaN and ±inf (undefined figures) become null, which every JSON
+/// reader accepts (nlohmann would write them as null too, but only by accident of its dump).
+nlohmann::json json_number(double v);
+
 /// Prints `j` as one line of JSON on stdout.
 void print_json(const nlohmann::json& j);
 

@@ -1,42 +1,28 @@
-// cropsight detect broccoli: runs a trained detector over a sequence and writes one JSON line
-// per frame (detections.jsonl) and, with --masks, one 16-bit PNG per frame whose pixels hold the
-// 1-based detection number (0 = none). Outputs appear atomically: the JSONL is written to a
-// temporary name and renamed; masks go to a temporary sibling directory renamed at the end.
-//
-// Extension point (sizing / tracking, src/measure + src/tracking): add options in
-// add_detect_broccoli() and push a DetectHooks entry in run(); each hook sees every frame's
-// detections (and may fill Detection::size_m / track_id and extra JSON fields) and is finished
-// once after the last frame (e.g. to write --map map.csv).
-#include <unistd.h>
+// cropsight detect broccoli: runs the broccoli pipeline of a trained model over a sequence and
+// writes one JSON line per frame (detections.jsonl) and, with --masks, one 16-bit PNG per frame
+// whose pixels hold the 1-based detection number (0 = none). With --track, every line also carries
+// the heads' sizes and track ids and the predicted heads, and --map writes the field map. Outputs
+// appear atomically: the JSONL and the map are written to temporary names and renamed; masks go
+// to a temporary sibling directory that replaces --masks at the end.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
-
-#include <algorithm>
-#include <chrono>
-#include <functional>
+#include <optional>
 #include <system_error>
 
 #include "broccoli_cli.hpp"
-#include "broccoli_tracking.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/pipeline/broccoli_detector.hpp"
-#include "cropsight/pipeline/broccoli_training.hpp"
+#include "cropsight/tracking/field_map_io.hpp"
 
 namespace cropsight::cli {
 
 namespace fs = std::filesystem;
-
-/// Per-frame and end-of-run callbacks for modules that build on broccoli detections.
-struct DetectHooks {
-  std::function<void(const RgbdFrame&, const pipeline::BroccoliDetector&, std::vector<Detection>&, nlohmann::json&)>
-      frame;
-  std::function<void(nlohmann::json& summary)> finish;
-};
 
 namespace {
 struct DetectOptions {
@@ -45,14 +31,6 @@ struct DetectOptions {
   bool quiet = false;
   TrackOptions track;  // --track, --map (issue 4)
 };
-
-nlohmann::json detection_json(const Detection& d, int id) {
-  return {{"id", id},
-          {"score", d.score},
-          {"centroid", {d.centroid.x(), d.centroid.y(), d.centroid.z()}},
-          {"box", {d.box.x, d.box.y, d.box.width, d.box.height}},
-          {"points", d.indices.size()}};
-}
 
 // The --masks directory, checked before any work: it is replaced as a whole at the end, so it must
 // be new, empty, or a previous run's masks (NNNNNN.png files only) — never a folder that holds
@@ -78,59 +56,21 @@ fs::path mask_directory(const std::string& masks) {
   return dir;
 }
 
-// Puts the finished directory `tmp` in place of `dir`; the previous `dir` is moved aside first and
-// removed only once the new one is in place, so a failure leaves the old masks.
-void replace_directory(const fs::path& tmp, const fs::path& dir) {
-  std::error_code ec;
-  const fs::path old = dir.parent_path() / ("." + dir.filename().string() + ".old-" + std::to_string(::getpid()));
-  const bool had_old = fs::exists(dir, ec);
-  if (had_old) {
-    fs::rename(dir, old, ec);
-    if (ec) throw Error(dir.string(), "cannot replace the previous masks: " + ec.message());
-  }
-  fs::rename(tmp, dir, ec);
-  if (ec) {
-    std::error_code ec2;
-    if (had_old) fs::rename(old, dir, ec2);
-    throw Error(dir.string(), "cannot write the masks: " + ec.message());
-  }
-  if (had_old) fs::remove_all(old, ec);
+void write_mask(const fs::path& dir, const RgbdFrame& frame, const std::vector<Detection>& dets) {
+  LabelImage mask(frame.depth.width, frame.depth.height, 0);
+  for (std::size_t k = 0; k < dets.size(); ++k)
+    for (int idx : dets[k].indices) mask.data[std::size_t(idx)] = std::uint16_t(k + 1);
+  io::write_u16(dir / io::frame_file_name(frame.index), mask);
 }
 
 void run(const DetectOptions& o) {
-  const auto model = load_broccoli_model(o.model);
-  ConfigMap config = o.common.config_map();
-  const ConfigMap track_keys = take_tracking_keys(config);  // sizing.* / tracking.* (issue 4)
-  const auto cfg = pipeline::config_for_model(*model, config, o.model);
-  pipeline::BroccoliDetector detector(cfg);
-  detector.set_model(model, o.model);
+  if (!o.track.map.empty() && !o.track.track) throw Error("--map", "needs --track");
+  const LoadedBroccoli b = load_broccoli(o.model, o.common, o.track.track);
+  pipeline::BroccoliPipeline pipe(b.config, b.model, o.model);
   io::SequenceReader reader(o.data);
-  std::vector<DetectHooks> hooks;  // sizing / tracking hooks are added here (see the file comment)
-  if (o.track.track || !o.track.map.empty()) {
-    auto tracker =
-        std::make_shared<DetectTracking>(o.track, track_keys, o.common.config.empty() ? "--set" : o.common.config);
-    hooks.push_back({[tracker](const RgbdFrame& f, const pipeline::BroccoliDetector& d, std::vector<Detection>& dets,
-                               nlohmann::json& line) { tracker->frame(f, d, dets, line); },
-                     [tracker](nlohmann::json& summary) { tracker->finish(summary); }});
-  }
-
-  // Masks: a temporary sibling directory, renamed over --masks at the end.
   const fs::path masks_dir = mask_directory(o.masks);
-  fs::path mask_tmp;
-  if (!o.masks.empty()) {
-    mask_tmp = masks_dir.parent_path() / ("." + masks_dir.filename().string() + ".tmp-" + std::to_string(::getpid()));
-    std::error_code ec;
-    fs::remove_all(mask_tmp, ec);
-    fs::create_directories(mask_tmp, ec);
-    if (ec) throw Error(o.masks, "cannot create the mask directory: " + ec.message());
-  }
-  struct Cleanup {
-    fs::path p;
-    ~Cleanup() {
-      std::error_code ec;
-      if (!p.empty()) fs::remove_all(p, ec);
-    }
-  } cleanup{mask_tmp};
+  std::optional<io::TempDirectory> masks_tmp;
+  if (!o.masks.empty()) masks_tmp.emplace(masks_dir);
 
   std::string lines;
   long total = 0;
@@ -138,24 +78,16 @@ void run(const DetectOptions& o) {
   Progress progress("detect broccoli: " + o.data, reader.size(), o.quiet || o.common.json);
   for (int i = 0; i < reader.size(); ++i) {
     const RgbdFrame frame = reader.read(i);
-    const auto t0 = std::chrono::steady_clock::now();
-    detector.process(frame);
-    std::vector<Detection> dets = detector.detections();
-    ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    const pipeline::BroccoliFrameResult& r = pipe.process(frame);
+    ms += r.detect_ms;
     nlohmann::json line{{"frame", frame.index}, {"timestamp", frame.timestamp}};
-    for (auto& h : hooks)
-      if (h.frame) h.frame(frame, detector, dets, line);
+    if (o.track.track) add_tracking_json(r, pipe.mapper(), line);
     nlohmann::json arr = nlohmann::json::array();
-    for (std::size_t k = 0; k < dets.size(); ++k) arr.push_back(detection_json(dets[k], int(k) + 1));
+    for (std::size_t k = 0; k < r.detections.size(); ++k) arr.push_back(detection_json(r.detections[k], int(k) + 1));
     line["detections"] = std::move(arr);
     lines += line.dump() + "\n";
-    total += long(dets.size());
-    if (!mask_tmp.empty()) {
-      LabelImage mask(frame.depth.width, frame.depth.height, 0);
-      for (std::size_t k = 0; k < dets.size(); ++k)
-        for (int idx : dets[k].indices) mask.data[std::size_t(idx)] = std::uint16_t(k + 1);
-      io::write_u16(mask_tmp / io::frame_file_name(frame.index), mask);
-    }
+    total += long(r.detections.size());
+    if (masks_tmp) write_mask(masks_tmp->path(), frame, r.detections);
     progress.update(i + 1);
   }
   progress.finish();
@@ -164,14 +96,21 @@ void run(const DetectOptions& o) {
                          {"out", o.out},
                          {"frames", reader.size()},
                          {"detections", total},
-                         {"pipeline", cfg.pipeline},
+                         {"pipeline", config_name(b.config.detector.pipeline)},
                          {"fps", ms > 0 ? 1000.0 * reader.size() / ms : 0.0}};
-  for (auto& h : hooks)
-    if (h.finish) h.finish(summary);
+  if (o.track.track) {
+    const auto& map = pipe.finish();
+    summary["map_heads"] = map.size();
+    summary["harvestable"] = std::count_if(map.begin(), map.end(), [](const auto& h) { return h.harvestable; });
+    summary["size_estimator"] = b.config.sizing.estimator;
+    if (!o.track.map.empty()) {
+      tracking::write_field_map(o.track.map, map);
+      summary["map"] = o.track.map;
+    }
+  }
   io::write_file_atomic(o.out, lines);
-  if (!mask_tmp.empty()) {
-    replace_directory(mask_tmp, masks_dir);
-    cleanup.p.clear();
+  if (masks_tmp) {
+    masks_tmp->commit("masks");
     summary["masks"] = o.masks;
   }
   if (o.common.json) {

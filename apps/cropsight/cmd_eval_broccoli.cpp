@@ -6,12 +6,12 @@
 #include <optional>
 
 #include "broccoli_cli.hpp"
-#include "broccoli_tracking.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/pipeline/broccoli_training.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_tracking_eval.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_training.hpp"
 
 namespace cropsight::cli {
 
@@ -24,20 +24,14 @@ struct EvalOptions {
 };
 
 void run(const EvalOptions& o) {
-  const auto model = load_broccoli_model(o.model);
-  ConfigMap config = o.common.config_map();
-  const ConfigMap track_keys = take_tracking_keys(config);  // sizing.* / tracking.* (issue 4)
-  const auto cfg = pipeline::config_for_model(*model, config, o.model);
-  pipeline::BroccoliDetector detector(cfg);
-  detector.set_model(model, o.model);
-  pipeline::BroccoliEvaluator evaluator(detector);
   if (o.track.fit_size_bias && !o.track.track) throw Error("--fit-size-bias", "needs --track");
   if (o.track.map_min_points < 0) throw Error("--map-min-points", "must be >= 0 (0: every true head counts)");
-  std::optional<EvalTracking> tracker;
-  if (o.track.track) {
-    tracker.emplace(track_keys, cfg, o.common.config.empty() ? "--set" : o.common.config);
-    tracker->set_map_min_points(o.track.map_min_points);
-  }
+  const LoadedBroccoli b = load_broccoli(o.model, o.common, o.track.track);
+  pipeline::BroccoliPipeline pipe(b.config, b.model, o.model);
+  pipeline::BroccoliEvaluator evaluator(pipe);
+  std::optional<pipeline::BroccoliTrackingEvaluator> tracker;
+  if (o.track.track)
+    tracker.emplace(pipeline::BroccoliTrackingEvalOptions{o.track.map_min_points, o.track.fit_size_bias, {}});
   for (const auto& dir : split_list(o.data, "--data")) {
     io::SequenceReader reader(dir);
     if (!reader.info().has_labels) throw Error(dir, "sequence has no labels/ (evaluation needs ground truth)");
@@ -45,24 +39,26 @@ void run(const EvalOptions& o) {
     if (tracker && !reader.info().has_groundtruth)
       throw Error(dir, "sequence has no groundtruth.json (--track evaluates the map and sizes against it)");
     Progress progress("eval broccoli: " + dir, reader.size(), o.quiet || o.common.json);
-    if (tracker) tracker->begin_sequence(reader);
+    pipe.start_pass();
+    if (tracker) tracker->begin_pass(reader.groundtruth(), !reader.poses().empty(), dir);
     for (int i = 0; i < reader.size(); ++i) {
       const RgbdFrame frame = reader.read(i);  // read outside the timed section
-      evaluator.add_frame(frame);
-      if (tracker) tracker->frame(frame, detector);  // sizing + temporal filter on this frame
+      evaluator.add_frame(frame);              // the pipeline's steps on this frame, then Table I / II
+      if (tracker) tracker->add_frame(frame, pipe);
       progress.update(i + 1);
     }
-    if (tracker) tracker->end_sequence();
+    if (tracker) tracker->end_pass(pipe);
     progress.finish();
   }
   const auto r = evaluator.result();
   nlohmann::json j = eval_json(r);
   j["model"] = o.model;
   j["data"] = o.data;
-  j["pipeline"] = cfg.pipeline;
-  j["features"] = cfg.features;
-  j["classifier"] = model->params.type;
-  if (tracker) j.update(tracker->json(o.track.fit_size_bias));
+  j["pipeline"] = config_name(b.config.detector.pipeline);
+  j["features"] = b.config.detector.features;
+  j["classifier"] = b.model->params.type;
+  std::optional<pipeline::BroccoliTrackingFigures> figures;
+  if (tracker) j.update(tracking_json(*(figures = tracker->result())));
   if (o.common.json) {
     print_json(j);
     return;
@@ -81,7 +77,7 @@ void run(const EvalOptions& o) {
   std::printf("  AP50 %.4f  mAP50:95 %.4f  visible (%lld heads with >= detection.visible_truth_points points)\n",
               r.ap50_visible, r.map50_95_visible, static_cast<long long>(r.truth_heads_visible));
   std::printf("  %.1f fps (%.2f ms/frame, pipeline only)\n", r.fps(), r.frames ? r.pipeline_ms / r.frames : 0.0);
-  if (tracker) print_tracking_summary(j);
+  if (figures) print_tracking_summary(*figures);
 }
 }  // namespace
 

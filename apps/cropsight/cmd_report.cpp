@@ -1,15 +1,17 @@
 // cropsight report --data SEQ --out page.html: one self-contained HTML page (embedded PNGs,
 // inline CSS/SVG) with the sequence summary and renders of a few evenly spaced frames.
-// Detection results (issue 4, --model) are meant to be appended as further HtmlPage sections.
+// With --model, the broccoli pipeline runs over the (labelled) sequence and its tracking
+// evaluation adds the detection, precision-recall, field-map, size and timing sections.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
-#include "broccoli_tracking.hpp"
+#include "broccoli_cli.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/sequence.hpp"
+#include "cropsight/report/broccoli_report_data.hpp"
 #include "cropsight/report/html_page.hpp"
 #include "cropsight/report/sequence_page.hpp"
 
@@ -22,6 +24,33 @@ struct ReportOptions {
   std::string model;  // --model: broccoli detection, sizing and map sections (issue 4)
   int frames = 4;
 };
+
+// The broccoli sections; returns the tracking figures as `eval broccoli --track --json` has them.
+nlohmann::json add_broccoli(report::HtmlPage& page, const ReportOptions& o) {
+  const LoadedBroccoli b = load_broccoli(o.model, o.common, /*track=*/true);
+  pipeline::BroccoliPipeline pipe(b.config, b.model, o.model);
+  io::SequenceReader reader(o.data);
+  if (!reader.info().has_labels)
+    throw Error(o.data, "sequence has no labels/ (the broccoli report needs ground truth)");
+  pipeline::BroccoliTrackingEvaluator tracker(
+      {.overlay_frames = report::evenly_spaced_frames(reader.size(), o.frames)});
+  tracker.begin_pass(reader.groundtruth(), !reader.poses().empty(), o.data);
+  Progress progress("report broccoli: " + o.data, reader.size(), o.common.json);
+  for (int i = 0; i < reader.size(); ++i) {
+    const RgbdFrame frame = reader.read(i);
+    pipe.process(frame);
+    tracker.add_frame(frame, pipe);
+    progress.update(i + 1);
+  }
+  progress.finish();
+  tracker.end_pass(pipe);
+  const pipeline::BroccoliTrackingFigures figures = tracker.result();
+  report::BroccoliReportData d = report::broccoli_report_data(figures, tracker.material());
+  d.model = o.model;
+  d.stages = pipe.detector().timer().stages();
+  report::add_broccoli_sections(page, d);
+  return tracking_json(figures);
+}
 
 void run(const ReportOptions& o) {
   if (o.frames < 1) throw Error("--frames", "must be at least 1");
@@ -38,8 +67,7 @@ void run(const ReportOptions& o) {
   po.frames_shown = o.frames;
   report::add_sequence_sections(page, reader, summary, po);
   nlohmann::json broccoli;
-  if (!o.model.empty())
-    broccoli = add_broccoli_report(page, o.data, o.model, o.common.config_map(), o.frames, o.common.json);
+  if (!o.model.empty()) broccoli = add_broccoli(page, o);
   page.write(o.out);
   const std::string abs = std::filesystem::absolute(o.out).lexically_normal().string();
   if (o.common.json) {

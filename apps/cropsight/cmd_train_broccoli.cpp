@@ -1,18 +1,16 @@
 // cropsight train broccoli: clusters every frame of labelled sequences with the chosen pipeline,
 // labels clusters by the majority rule (pipeline/broccoli_truth.hpp), trains the classifier
 // (optionally after a cross-validated grid search) and writes one model file.
-#include <chrono>
 #include <cstdio>
 #include <optional>
 
 #include "broccoli_cli.hpp"
-#include "broccoli_tracking.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/learning/grid_search.hpp"
-#include "cropsight/pipeline/broccoli_training.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_training.hpp"
 
 namespace cropsight::cli {
 
@@ -27,23 +25,24 @@ struct TrainOptions {
 void run(const TrainOptions& o) {
   // defaults ← preset ← --set ← explicit flags; keys "grid.*" configure the grid search.
   ConfigMap all = o.common.config_map();
-  // sizing.* / tracking.* (issue 4) configure detect/eval --track, not training; checked all the same.
-  tracking::HeadMapperConfig{}.apply(take_tracking_keys(all), o.common.config.empty() ? "--set" : o.common.config);
-  ConfigMap grid_keys, detector_keys;
-  for (const auto& [k, v] : all) (k.rfind("grid.", 0) == 0 ? grid_keys : detector_keys)[k] = v;
-  pipeline::BroccoliDetectorConfig cfg;
-  apply_config(cfg, detector_keys, o.common.config.empty() ? "--set" : o.common.config);
+  // The whole preset is one BroccoliPipelineConfig: sizing.* / tracking.* configure detect/eval
+  // --track, not training, and are checked all the same.
+  ConfigMap grid_keys, pipeline_keys;
+  for (const auto& [k, v] : all) (k.rfind("grid.", 0) == 0 ? grid_keys : pipeline_keys)[k] = v;
+  pipeline::BroccoliPipelineConfig full;
+  apply_config(full, pipeline_keys, o.common.config.empty() ? "--set" : o.common.config);
   learning::GridSearchConfig grid;
   apply_config(grid, grid_keys, "--set", "grid.");
-  if (!o.pipeline.empty()) cfg.pipeline = o.pipeline;
-  if (!o.features.empty()) cfg.features = o.features;
-  if (!o.classifier.empty()) cfg.classifier.type = o.classifier;
-  cfg.validate("--pipeline/--features/--classifier");
+  if (!o.pipeline.empty()) detail::parse_value("--pipeline", "pipeline", o.pipeline, full.detector.pipeline);
+  if (!o.features.empty()) full.detector.features = o.features;
+  if (!o.classifier.empty()) full.detector.classifier.type = o.classifier;
+  full.validate("--pipeline/--features/--classifier");
+  pipeline::BroccoliDetectorConfig& cfg = full.detector;
 
   const auto sequences = split_list(o.data, "--data");
-  pipeline::BroccoliDatasetBuilder builder(cfg);
+  pipeline::BroccoliDatasetBuilder builder(cfg, full.truth);
   std::string seeds, varieties;
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   for (const auto& dir : sequences) {
     io::SequenceReader reader(dir);
     if (!reader.info().has_labels) throw Error(dir, "sequence has no labels/ (training needs ground truth)");
@@ -83,21 +82,26 @@ void run(const TrainOptions& o) {
                  {"metric", grid.metric}};
     provenance["grid_search"] = grid_json.dump();
   }
-  const learning::Model model = pipeline::train_broccoli_model(data, cfg, provenance);
+  const learning::Model model = pipeline::train_broccoli_model(data, cfg, full.truth, provenance);
   learning::save_model(o.out, model);
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double secs = clock.seconds();
 
-  nlohmann::json j{
-      {"model", o.out},          {"pipeline", cfg.pipeline},          {"features", cfg.features},
-      {"feature_dim", data.dim}, {"classifier", cfg.classifier.type}, {"frames", builder.frames()},
-      {"samples", data.size()},  {"positives", data.positives()},     {"model_size", model.classifier->model_size()},
-      {"seconds", secs}};
+  nlohmann::json j{{"model", o.out},
+                   {"pipeline", config_name(cfg.pipeline)},
+                   {"features", cfg.features},
+                   {"feature_dim", data.dim},
+                   {"classifier", cfg.classifier.type},
+                   {"frames", builder.frames()},
+                   {"samples", data.size()},
+                   {"positives", data.positives()},
+                   {"model_size", model.classifier->model_size()},
+                   {"seconds", secs}};
   if (o.grid_search) j["grid_search"] = grid_json;
   if (o.common.json) {
     print_json(j);
   } else {
     std::printf("trained %s (%s, %s, %s) on %ld frames: %zu clusters, %zu heads; %zu %s; wrote %s (%.1f s)\n",
-                cfg.classifier.type.c_str(), cfg.pipeline.c_str(), cfg.features.c_str(), o.data.c_str(),
+                cfg.classifier.type.c_str(), config_name(cfg.pipeline).c_str(), cfg.features.c_str(), o.data.c_str(),
                 builder.frames(), data.size(), data.positives(), model.classifier->model_size(),
                 cfg.classifier.type == "knn" ? "samples" : "support vectors", o.out.c_str(), secs);
   }

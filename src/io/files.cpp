@@ -56,6 +56,40 @@ void write_file_atomic(const fs::path& path, const std::string& content) {
   });
 }
 
+void replace_directory(const fs::path& tmp, const fs::path& dir, const std::string& what) {
+  std::error_code ec;
+  const fs::path old = temp_sibling(dir).concat(".old");
+  const bool had_old = fs::exists(dir, ec);
+  if (had_old) {
+    fs::rename(dir, old, ec);
+    if (ec) throw Error(dir.string(), "cannot replace the previous " + what + ": " + ec.message());
+  }
+  fs::rename(tmp, dir, ec);
+  if (ec) {
+    const std::string why = ec.message();
+    if (had_old) fs::rename(old, dir, ec);
+    throw Error(dir.string(), "cannot write the " + what + ": " + why);
+  }
+  if (had_old) fs::remove_all(old, ec);
+}
+
+TempDirectory::TempDirectory(const fs::path& dir) : dir_(dir), path_(temp_sibling(dir)) {
+  std::error_code ec;
+  fs::remove_all(path_, ec);
+  fs::create_directories(path_, ec);
+  if (ec) throw Error(dir.string(), "cannot create a temporary directory beside it: " + ec.message());
+}
+
+TempDirectory::~TempDirectory() {
+  std::error_code ec;
+  if (!committed_) fs::remove_all(path_, ec);
+}
+
+void TempDirectory::commit(const std::string& what) {
+  replace_directory(path_, dir_, what);
+  committed_ = true;
+}
+
 std::string read_file(const fs::path& path) {
   // A directory opens as a stream on Linux and reads as empty: say what it is instead.
   if (std::error_code ec; fs::is_directory(path, ec)) throw Error(path.string(), "is a directory, not a file");

@@ -133,12 +133,9 @@ std::vector<Eigen::Vector3f> stride_subsample(const std::vector<Eigen::Vector3f>
 
 HeadSizer::HeadSizer(const HeadSizeConfig& cfg)
     : cfg_(cfg), estimator_(parse_size_estimator(cfg.estimator)), engine_(parse_hull_engine(cfg.hull_engine)) {
-  if (cfg_.min_points < 1) throw Error("sizing.min_points", "must be at least 1");
-  if (cfg_.hull_max_points < 0) throw Error("sizing.hull_max_points", "must be >= 0 (0 = all points)");
+  check_config(cfg_, "sizing", "sizing.");  // the ranges declared in HeadSizeConfig::visit
   if (!(cfg_.market_min_mm <= cfg_.market_max_mm))
     throw Error("sizing.market_min_mm", "market window is empty (min > max)");
-  if (!(cfg_.bbox_scale > 0.0) || !(cfg_.hull_scale > 0.0))
-    throw Error("sizing", "bias-correction scales must be positive");
   if (estimator_ == SizeEstimator::convex_hull && !cfg_.compute_hull)
     throw Error("sizing.compute_hull", "the hull estimator is chosen but compute_hull is false");
 }

@@ -152,7 +152,7 @@ void add_broccoli_sections(HtmlPage& page, const BroccoliReportData& d) {
   page.section("Precision–recall (IoU 0.50 … 0.95)");
   if (!d.pr_single.empty()) page.svg(pr_plot(d.pr_single, "single-frame detection"), "Every cluster ranked by score");
   if (!d.pr_tracked.empty())
-    page.svg(pr_plot(d.pr_tracked, "with the temporal filter"),
+    page.svg(pr_plot(d.pr_tracked, "with the temporal filter (offline: the map of the whole pass)"),
              "Detections of heads confirmed by the temporal filter ranked first");
   std::vector<std::vector<std::string>> rows;
   for (std::size_t i = 0; i < d.pr_single.size(); ++i)

@@ -9,19 +9,19 @@ namespace cropsight::segmentation {
 
 namespace {
 
-// Link bits (flood_fill.hpp LinkBits) of every pixel from the per-pair similarity of the OES or
-// ORG predicate, computed row by row in branch-free loops (vectorised; AVX2 clone at run time).
-// The float expressions are those of OesPredicate / OrgPredicate::similar(p, q) with p the left
-// / upper pixel; they are symmetric (exactly: only squares and products of the same operands),
-// so the link serves both directions. NaN positions or normals compare false: no link.
+// Link bits (flood_fill.hpp LinkBits) of every pixel from the per-pair rules of OES or ORG
+// (within_tolerance, normals_agree: the same functions OesPredicate / OrgPredicate::similar call,
+// with p the left / upper pixel), computed row by row in branch-free loops (vectorised; AVX2 clone
+// at run time). The rules are symmetric, so the link serves both directions. NaN positions or
+// normals compare false: no link.
 template <bool kOrg>
 inline void row_links(int w, const float* __restrict x, const float* __restrict y, const float* __restrict z,
                       const float* __restrict nx, const float* __restrict ny, const float* __restrict nz, int step,
                       int count, float tol2, float cos_angle, std::uint8_t* __restrict out) {
   for (int i = 0; i < count; ++i) {
-    const float dx = x[i] - x[i + step], dy = y[i] - y[i + step], dz = z[i] - z[i + step];
-    bool ok = dx * dx + dy * dy + dz * dz < tol2;
-    if constexpr (kOrg) ok = ok & (nx[i] * nx[i + step] + ny[i] * ny[i + step] + nz[i] * nz[i + step] > cos_angle);
+    bool ok = within_tolerance(x[i] - x[i + step], y[i] - y[i + step], z[i] - z[i + step], tol2);
+    if constexpr (kOrg)
+      ok = ok & normals_agree(nx[i], ny[i], nz[i], nx[i + step], ny[i + step], nz[i + step], cos_angle);
     out[i] = std::uint8_t(ok);
   }
 }
@@ -40,15 +40,13 @@ __attribute__((target_clones("avx2", "default"))) void compute_links_impl(
   }
   if (h > 1) row_links<kOrg>(w, x, y, z, nx, ny, nz, w, int(n) - w, tol2, cos_angle, down);
   for (std::size_t i = n - std::size_t(w); i < n; ++i) down[i] = 0;
-  // Member bit (OES: valid and not a barrier edge; ORG: valid with a normal — OesPredicate /
-  // OrgPredicate::member; |f| <= max is isfinite, false for NaN), in its own loop so that it
-  // vectorises, then the byte-only combination with right/down of the pixel and left/up from
-  // its neighbours (row 0 has no up link, column 0 no left link).
-  constexpr float kMax = std::numeric_limits<float>::max();
-  for (std::size_t i = 0; i < n; ++i) {
-    const float a = kOrg ? nx[i] : 0.0f;
-    const std::uint8_t e = kOrg ? std::uint8_t(0) : std::uint8_t(edges[i] & barrier);
-    links[i] = (std::fabs(z[i]) <= kMax) & (std::fabs(a) <= kMax) & (e == 0) ? kLinkMember : 0;
+  // Member bit (oes_member / org_member, as the predicates' member()), in its own loop so that it
+  // vectorises, then the byte-only combination with right/down of the pixel and left/up from its
+  // neighbours (row 0 has no up link, column 0 no left link).
+  if constexpr (kOrg) {
+    for (std::size_t i = 0; i < n; ++i) links[i] = org_member(z[i], nx[i]) ? kLinkMember : 0;
+  } else {
+    for (std::size_t i = 0; i < n; ++i) links[i] = oes_member(z[i], edges[i], barrier) ? kLinkMember : 0;
   }
   for (int v = 0; v < h; ++v) {
     const std::size_t o = std::size_t(v) * w;
@@ -84,7 +82,7 @@ struct OrgLinks {
 // order of their roots (= the fill's attempt order); each segment's indices are written run by
 // run in raster order (ascending), and ws.labels gets the segment id or -1, as flood_fill does.
 std::vector<Segment> oes_components(int width, int height, const std::uint8_t* bits, int min_size, int max_size,
-                                    int min_size_border, FloodFillWorkspace& ws) {
+                                    int min_size_border, OrganizedClusteringWorkspace& ws) {
   if (width <= 0 || height <= 0) return {};
   const int n = width * height;
   // Run k: runs[2k] = its first pixel, runs[2k + 1] = its length; parent[k]: union-find parent
@@ -193,7 +191,7 @@ std::vector<Segment> oes_components(int width, int height, const std::uint8_t* b
   return out;
 }
 
-std::uint8_t* link_buffers(const OrganizedCloud& cloud, FloodFillWorkspace& ws) {
+std::uint8_t* link_buffers(const OrganizedCloud& cloud, OrganizedClusteringWorkspace& ws) {
   ws.links.resize(3 * cloud.size());
   return ws.links.data();
 }
@@ -205,7 +203,7 @@ void check_sizes(const char* where, float tolerance, int min_size, int max_size)
 }  // namespace
 
 std::vector<Segment> segment_oes(const OrganizedCloud& cloud, const std::vector<std::uint8_t>& edges,
-                                 const OesConfig& cfg, FloodFillWorkspace& ws) {
+                                 const OesConfig& cfg, OrganizedClusteringWorkspace& ws) {
   check_sizes("oes", cfg.distance_tolerance, cfg.min_size, cfg.max_size);
   if (cfg.min_size_border < 0) throw Error("oes", "min_size_border must be >= 0");
   if (edges.size() != cloud.size()) throw Error("oes", "edge label image size differs from the cloud size");
@@ -223,7 +221,7 @@ std::vector<Segment> segment_oes(const OrganizedCloud& cloud, const std::vector<
   return segs;
 }
 
-std::vector<Segment> segment_org(const OrganizedCloud& cloud, const OrgConfig& cfg, FloodFillWorkspace& ws) {
+std::vector<Segment> segment_org(const OrganizedCloud& cloud, const OrgConfig& cfg, OrganizedClusteringWorkspace& ws) {
   check_sizes("org", cfg.distance_tolerance, cfg.min_size, cfg.max_size);
   if (!cloud.has_normals() || cloud.nx.size() != cloud.size() || cloud.curvature.size() != cloud.size())
     throw Error("org", "the cloud has no normals (estimate them first)");

@@ -74,6 +74,7 @@ FrameAssociation HeadMapper::add_frame(int frame, const OrganizedCloud& cloud, s
     m.field_position = filter_.transform().to_field(a.camera_position, obs[k].centroid);
     m.size = obs[k].size;
     m.partial = obs[k].partial;
+    m.confirmed_online = m.track_id >= 0 && filter_.confirmed_now(m.track_id);
     measured_.push_back(m);
   }
   return a;
@@ -97,6 +98,15 @@ float HeadMapper::filtered_score(const MeasuredDetection& d) const {
 
 std::optional<float> HeadMapper::predicted_score(int track_id) const {
   if (!confirmed(track_id)) return std::nullopt;
+  return kConfirmedBonus - 1.0f;
+}
+
+float HeadMapper::online_score(const MeasuredDetection& d) {
+  return d.confirmed_online ? d.score + kConfirmedBonus : d.score;
+}
+
+std::optional<float> HeadMapper::online_predicted_score(const PredictedHead& p) {
+  if (!p.confirmed_online) return std::nullopt;
   return kConfirmedBonus - 1.0f;
 }
 
@@ -137,6 +147,7 @@ std::vector<PredictedHead> HeadMapper::predict_missed(const OrganizedCloud& clou
     p.track_id = h.id;
     p.centre = c.cast<float>();
     p.radius_m = float(r);
+    p.confirmed_online = filter_.confirmed_now(h);
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     const double r2 = r * r, z_max = c.z() + half_cap;  // the visible (upper) half, and the cap's slack
     for (int v = v0; v <= v1; ++v)

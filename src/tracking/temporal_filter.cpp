@@ -63,18 +63,7 @@ Score score_of(const std::vector<int>& a, const std::vector<Eigen::Vector3d>& de
 
 TemporalFilter::TemporalFilter(const TemporalFilterConfig& cfg, const measure::HeadSizer& sizer)
     : cfg_(cfg), sizer_(sizer), transform_(FieldTransform::parse(cfg.camera_to_field)) {
-  if (!(cfg_.association_radius_m > 0.0)) throw Error("tracking.association_radius_m", "must be positive");
-  if (cfg_.max_missed_frames < 1) throw Error("tracking.max_missed_frames", "must be at least 1");
-  if (!(cfg_.motion_search_radius_m >= 0.0)) throw Error("tracking.motion_search_radius_m", "must be >= 0");
-  if (!(cfg_.merge_radius_m >= 0.0)) throw Error("tracking.merge_radius_m", "must be >= 0");
-  if (!(cfg_.predict_radius_scale > 0.0)) throw Error("tracking.predict_radius_scale", "must be positive");
-  if (cfg_.predict_min_points < 1) throw Error("tracking.predict_min_points", "must be at least 1");
-  if (!(cfg_.position_cap_m >= 0.0)) throw Error("tracking.position_cap_m", "must be >= 0 (0: no cap)");
-  if (!(cfg_.partial_association_radius_m >= 0.0)) throw Error("tracking.partial_association_radius_m", "must be >= 0");
-  if (!std::isfinite(cfg_.initial_score) || !std::isfinite(cfg_.score_increment) ||
-      !std::isfinite(cfg_.min_track_score) || !std::isfinite(cfg_.edge_track_score))
-    throw Error("tracking",
-                "scores (initial_score, score_increment, min_track_score, edge_track_score) must be finite");
+  check_config(cfg_, "tracking", "tracking.");  // the ranges declared in TemporalFilterConfig::visit
   if (cfg_.initial_velocity.size() != 3)
     throw Error("tracking.initial_velocity", "expects three numbers [x, y, z] (m/frame)");
   v_c_ = Eigen::Vector3d(cfg_.initial_velocity[0], cfg_.initial_velocity[1], cfg_.initial_velocity[2]);
@@ -110,6 +99,20 @@ void TemporalFilter::add_sample(TrackedHead& h, const Eigen::Vector3d& p, const 
   }
 }
 
+// What one update() works on, passed from step to step.
+struct TemporalFilter::Step {
+  int frame = 0;
+  int steps = 0;  // frames since the previous update (skipped frames advance the prediction)
+  Eigen::Vector3d x_prev = Eigen::Vector3d::Zero(), x_pred = Eigen::Vector3d::Zero();
+  std::vector<int> used;             // indices of the whole detections the tracker takes
+  std::vector<Eigen::Vector3d> rel;  // their offsets from the camera, field axes
+  std::vector<Eigen::Vector3d> det;  // their field positions for the predicted camera
+  std::vector<int> assoc;            // per used detection: index into tracked_, or -1
+  std::vector<char> seen;            // per head of T before this frame: detected now
+  std::size_t old_count = 0;         // heads in T before this frame
+  FrameAssociation out;
+};
+
 FrameAssociation TemporalFilter::update(int frame, const std::vector<HeadObservation>& detections,
                                         const std::optional<Eigen::Vector3d>& camera_position) {
   const std::string where = "frame " + std::to_string(frame);
@@ -117,110 +120,126 @@ FrameAssociation TemporalFilter::update(int frame, const std::vector<HeadObserva
   if (frame <= last_frame_) throw Error(where, "frames must arrive in increasing order");
   if (cfg_.use_poses && !camera_position)
     throw Error(where, "tracking.use_poses is set but the frame has no camera position (poses.csv)");
+  Step s;
+  s.frame = frame;
+  s.out.track_ids.assign(detections.size(), -1);
+  s.out.new_track.assign(detections.size(), false);
+  predict_camera(camera_position, s);     // 1.
+  place_detections(detections, s);        //    D in the field frame
+  associate_detections(s);                // 2.-3.
+  correct_camera(s);                      // 4.
+  update_heads(detections, s);            // 5.
+  add_partial_detections(detections, s);  //    (extension)
+  retire_missed_heads(s);                 // 6.
+  s.out.camera_position = x_c_;
+  s.out.camera_velocity = v_c_;
+  return s.out;
+}
 
-  // 1. Prediction of the camera position.
-  const Eigen::Vector3d x_prev = x_c_;
-  const int steps = started_ ? frame - last_frame_ : 0;  // skipped frames advance the prediction
-  Eigen::Vector3d x_pred;
+// 1. Prediction of the camera position.
+void TemporalFilter::predict_camera(const std::optional<Eigen::Vector3d>& camera_position, Step& s) {
+  s.x_prev = x_c_;
+  s.steps = started_ ? s.frame - last_frame_ : 0;
   if (cfg_.use_poses) {
-    x_pred = *camera_position;
+    s.x_pred = *camera_position;
   } else if (!started_) {
-    x_pred = (cfg_.anchor_first_pose && camera_position) ? *camera_position : Eigen::Vector3d::Zero();
+    s.x_pred = (cfg_.anchor_first_pose && camera_position) ? *camera_position : Eigen::Vector3d::Zero();
   } else {
-    x_pred = x_c_ + double(steps) * v_c_;
+    s.x_pred = x_c_ + double(s.steps) * v_c_;
   }
-  if (!started_) first_frame_ = frame;
+  if (!started_) first_frame_ = s.frame;
   started_ = true;
-  last_frame_ = frame;
+  last_frame_ = s.frame;
+}
 
-  FrameAssociation out;
-  out.track_ids.assign(detections.size(), -1);
-  out.new_track.assign(detections.size(), false);
-
-  // Detections in the field frame relative to the predicted camera position.
-  std::vector<int> used;  // indices of detections the tracker takes
-  std::vector<Eigen::Vector3d> rel;
+// Whole detections in the field frame relative to the predicted camera position.
+void TemporalFilter::place_detections(const std::vector<HeadObservation>& detections, Step& s) const {
   for (int j = 0; j < int(detections.size()); ++j) {
     const auto& d = detections[std::size_t(j)];
     if (!(double(d.score) >= cfg_.min_detection_score) || !d.centroid.allFinite() || d.partial) continue;
-    used.push_back(j);
-    rel.push_back(transform_.rotation * d.centroid.cast<double>());
+    s.used.push_back(j);
+    s.rel.push_back(transform_.rotation * d.centroid.cast<double>());
   }
-  std::vector<Eigen::Vector3d> det(rel.size());
-  for (std::size_t k = 0; k < rel.size(); ++k) det[k] = x_pred + rel[k];
+  s.det.resize(s.rel.size());
+  for (std::size_t k = 0; k < s.rel.size(); ++k) s.det[k] = s.x_pred + s.rel[k];
+}
 
-  // 2.–3. Association (with the optional shift vote).
+// 2.-3. Association, with the shift vote when the prediction leaves pairs unexplained.
+void TemporalFilter::associate_detections(Step& s) const {
   std::vector<Pair> scratch;
   Eigen::Vector3d shift = Eigen::Vector3d::Zero();
-  std::vector<int> assoc = associate(det, tracked_, shift, cfg_.association_radius_m, scratch);
-  if (cfg_.motion_search && !cfg_.use_poses && !det.empty() && !tracked_.empty()) {
-    Score best = score_of(assoc, det, tracked_, shift);
-    const std::size_t possible = std::min(det.size(), tracked_.size());
-    if (std::size_t(best.n) < possible) {
-      out.motion_searched = true;
-      const double r2 = cfg_.motion_search_radius_m * cfg_.motion_search_radius_m;
-      std::vector<Pair> tmp;
-      bool searched = false;
-      for (const auto& h : tracked_)
-        for (const auto& p : det) {
-          const Eigen::Vector3d s = h.position - p;
-          if (s.squaredNorm() > r2) continue;
-          auto a = associate(det, tracked_, s, cfg_.association_radius_m, tmp);
-          const Score sc = score_of(a, det, tracked_, s);
-          // Strictly more pairs than the prediction explains; among shifts with as many pairs the
-          // smallest residual wins.
-          if (sc.n > best.n || (searched && sc.n == best.n && sc.residual < best.residual)) {
-            searched = true;
-            best = sc;
-            shift = s;
-            assoc = std::move(a);
-          }
-        }
+  s.assoc = associate(s.det, tracked_, shift, cfg_.association_radius_m, scratch);
+  if (!cfg_.motion_search || cfg_.use_poses || s.det.empty() || tracked_.empty()) return;
+  Score best = score_of(s.assoc, s.det, tracked_, shift);
+  const std::size_t possible = std::min(s.det.size(), tracked_.size());
+  if (std::size_t(best.n) >= possible) return;
+  s.out.motion_searched = true;
+  const double r2 = cfg_.motion_search_radius_m * cfg_.motion_search_radius_m;
+  bool searched = false;
+  for (const auto& h : tracked_)
+    for (const auto& p : s.det) {
+      const Eigen::Vector3d shift_try = h.position - p;
+      if (shift_try.squaredNorm() > r2) continue;
+      auto a = associate(s.det, tracked_, shift_try, cfg_.association_radius_m, scratch);
+      const Score sc = score_of(a, s.det, tracked_, shift_try);
+      // Strictly more pairs than the prediction explains; among shifts with as many pairs the
+      // smallest residual wins.
+      if (sc.n > best.n || (searched && sc.n == best.n && sc.residual < best.residual)) {
+        searched = true;
+        best = sc;
+        s.assoc = std::move(a);
+      }
     }
-  }
+}
 
-  // 4. Camera correction by the mean displacement of the associated pairs (heads placed by
-  // partial detections only are off-centre: they do not move the camera).
+// 4. Camera correction by the mean displacement of the associated pairs (heads placed by partial
+// detections only are off-centre: they do not move the camera).
+void TemporalFilter::correct_camera(Step& s) {
   Eigen::Vector3d delta = Eigen::Vector3d::Zero();
   int n_assoc = 0;
-  for (std::size_t k = 0; k < det.size(); ++k)
-    if (assoc[k] >= 0 && tracked_[std::size_t(assoc[k])].whole_frames() > 0) {
-      delta += tracked_[std::size_t(assoc[k])].position - det[k];
+  for (std::size_t k = 0; k < s.det.size(); ++k)
+    if (s.assoc[k] >= 0 && tracked_[std::size_t(s.assoc[k])].whole_frames() > 0) {
+      delta += tracked_[std::size_t(s.assoc[k])].position - s.det[k];
       ++n_assoc;
     }
   if (cfg_.use_poses) {
-    x_c_ = x_pred;
+    x_c_ = s.x_pred;
   } else {
-    x_c_ = n_assoc ? Eigen::Vector3d(x_pred + delta / double(n_assoc)) : x_pred;
+    x_c_ = n_assoc ? Eigen::Vector3d(s.x_pred + delta / double(n_assoc)) : s.x_pred;
   }
-  if (steps > 0 && (n_assoc > 0 || cfg_.use_poses)) v_c_ = (x_c_ - x_prev) / double(steps);
-  out.associated = n_assoc;
+  if (s.steps > 0 && (n_assoc > 0 || cfg_.use_poses)) v_c_ = (x_c_ - s.x_prev) / double(s.steps);
+  s.out.associated = n_assoc;
+}
 
-  // 5. Score, running averages, new heads.
-  std::vector<char> seen(tracked_.size(), 0);
-  const std::size_t old_count = tracked_.size();
-  for (std::size_t k = 0; k < det.size(); ++k) {
-    const auto& d = detections[std::size_t(used[k])];
-    const Eigen::Vector3d p = x_c_ + rel[k];
-    if (assoc[k] >= 0) {
-      auto& h = tracked_[std::size_t(assoc[k])];
-      touch(h, frame);
+// 5. Score and running averages of associated heads; unassociated detections start heads.
+void TemporalFilter::update_heads(const std::vector<HeadObservation>& detections, Step& s) {
+  s.seen.assign(tracked_.size(), 0);
+  s.old_count = tracked_.size();
+  for (std::size_t k = 0; k < s.det.size(); ++k) {
+    const std::size_t j = std::size_t(s.used[k]);
+    const auto& d = detections[j];
+    const Eigen::Vector3d p = x_c_ + s.rel[k];
+    if (s.assoc[k] >= 0) {
+      auto& h = tracked_[std::size_t(s.assoc[k])];
+      touch(h, s.frame);
       add_sample(h, p, d);
-      seen[std::size_t(assoc[k])] = 1;
-      out.track_ids[std::size_t(used[k])] = h.id;
+      s.seen[std::size_t(s.assoc[k])] = 1;
+      s.out.track_ids[j] = h.id;
     } else {
-      TrackedHead h = new_head(frame, p);
+      TrackedHead h = new_head(s.frame, p);
       add_sample(h, p, d);
       h.position = p;
       tracked_.push_back(h);
-      out.track_ids[std::size_t(used[k])] = h.id;
-      out.new_track[std::size_t(used[k])] = true;
+      s.out.track_ids[j] = h.id;
+      s.out.new_track[j] = true;
     }
   }
+}
 
-  // Partial detections (see the header): the nearest head within partial_association_radius_m
-  // that this frame's detections have not claimed; with partial_tracks they keep it alive and
-  // raise its score, or start a head.
+// Partial detections (see the header): the nearest head within partial_association_radius_m that
+// this frame's detections have not claimed; with partial_tracks they keep it alive and raise its
+// score, or start a head.
+void TemporalFilter::add_partial_detections(const std::vector<HeadObservation>& detections, Step& s) {
   const double pr2 = cfg_.partial_association_radius_m * cfg_.partial_association_radius_m;
   for (std::size_t j = 0; j < detections.size(); ++j) {
     const auto& d = detections[j];
@@ -229,18 +248,18 @@ FrameAssociation TemporalFilter::update(int frame, const std::vector<HeadObserva
     double best = pr2;
     int nearest = -1;
     for (std::size_t i = 0; i < tracked_.size(); ++i) {
-      if (cfg_.partial_tracks && i < seen.size() && seen[i]) continue;
-      if (cfg_.partial_tracks && i >= old_count) continue;  // started by this frame
+      if (cfg_.partial_tracks && i < s.seen.size() && s.seen[i]) continue;
+      if (cfg_.partial_tracks && i >= s.old_count) continue;  // started by this frame
       const double d2 = (tracked_[i].position - p).squaredNorm();
       if (d2 <= best) best = d2, nearest = int(i);
     }
     if (!cfg_.partial_tracks) {
-      if (nearest >= 0) out.track_ids[j] = tracked_[std::size_t(nearest)].id;
+      if (nearest >= 0) s.out.track_ids[j] = tracked_[std::size_t(nearest)].id;
       continue;
     }
     if (nearest >= 0) {
       auto& h = tracked_[std::size_t(nearest)];
-      touch(h, frame);
+      touch(h, s.frame);
       if (h.whole_frames() == 0) {  // placed by partial detections only: average them
         const double m = double(h.partial_frames);
         h.position = (h.position * m + p) / (m + 1.0);
@@ -248,34 +267,32 @@ FrameAssociation TemporalFilter::update(int frame, const std::vector<HeadObserva
       }
       h.partial_frames += 1;
       h.frames_seen += 1;
-      seen[std::size_t(nearest)] = 1;
-      out.track_ids[j] = h.id;
+      s.seen[std::size_t(nearest)] = 1;
+      s.out.track_ids[j] = h.id;
     } else {
-      TrackedHead h = new_head(frame, p);
+      TrackedHead h = new_head(s.frame, p);
       h.mean_detection_score = double(d.score);
       h.partial_frames = h.frames_seen = 1;
       tracked_.push_back(h);
-      out.track_ids[j] = h.id;
-      out.new_track[j] = true;
+      s.out.track_ids[j] = h.id;
+      s.out.new_track[j] = true;
     }
   }
+}
 
-  // 6. Heads undetected for max_missed_frames frames move to the map.
+// 6. Heads undetected for max_missed_frames frames move to the map.
+void TemporalFilter::retire_missed_heads(const Step& s) {
   std::vector<TrackedHead> keep;
   keep.reserve(tracked_.size());
   for (std::size_t i = 0; i < tracked_.size(); ++i) {
     auto& h = tracked_[i];
-    if (i < old_count && !seen[i]) h.missed += std::max(steps, 1);
+    if (i < s.old_count && !s.seen[i]) h.missed += std::max(s.steps, 1);
     if (h.missed >= cfg_.max_missed_frames)
       mapped_.push_back(h);
     else
       keep.push_back(h);
   }
   tracked_.swap(keep);
-
-  out.camera_position = x_c_;
-  out.camera_velocity = v_c_;
-  return out;
 }
 
 void TemporalFilter::absorb(TrackedHead& into, const TrackedHead& later) const {
@@ -342,6 +359,22 @@ void TemporalFilter::merge_lost_and_found() {
   mapped_ = std::move(groups);
 }
 
+double TemporalFilter::edge_threshold() const {
+  return cfg_.edge_track_score < 0.0 ? cfg_.min_track_score : std::min(cfg_.edge_track_score, cfg_.min_track_score);
+}
+
+bool TemporalFilter::confirmed_now(const TrackedHead& h) const {
+  // Online the recording's first frame is known, its last is not: only a head seen in the first
+  // frame gets the lower edge threshold here.
+  return h.score >= (h.first_frame == first_frame_ ? edge_threshold() : cfg_.min_track_score);
+}
+
+bool TemporalFilter::confirmed_now(int id) const {
+  for (const auto& h : tracked_)
+    if (h.id == id) return confirmed_now(h);
+  return false;
+}
+
 std::vector<TrackedHead> TemporalFilter::finish() {
   if (finished_) throw Error("temporal filter", "finish() called twice");
   finished_ = true;
@@ -351,8 +384,7 @@ std::vector<TrackedHead> TemporalFilter::finish() {
   std::vector<TrackedHead> map;
   // Heads whose track the recording cut (seen in its first or last frame) need edge_track_score,
   // never more than min_track_score; < 0 keeps the paper's single threshold.
-  const double edge =
-      cfg_.edge_track_score < 0.0 ? cfg_.min_track_score : std::min(cfg_.edge_track_score, cfg_.min_track_score);
+  const double edge = edge_threshold();
   for (const auto& h : mapped_) {
     const bool cut = h.first_frame == first_frame_ || h.last_frame == last_frame_;
     if (h.score >= (cut ? edge : cfg_.min_track_score)) map.push_back(h);

@@ -76,3 +76,78 @@ TEST(StageTimer, Accumulates) {
   EXPECT_EQ(t.stages()[0].count, 2);
   EXPECT_DOUBLE_EQ(t.total_ms(), 6.0);
 }
+
+namespace enum_test {
+enum class Variant { oes, org, fec };
+constexpr std::array<const char*, 3> config_names(Variant) { return {"oes", "org", "fec"}; }
+struct WithEnum {
+  Variant variant = Variant::oes;
+  template <class V>
+  void visit(V& v) {
+    v("variant", variant, "oes | org | fec");
+  }
+};
+}  // namespace enum_test
+
+TEST(Config, EnumFieldsParseAndDumpTheirSpellings) {
+  enum_test::WithEnum c;
+  apply_config(c, {{"variant", "fec"}}, "preset.yaml");
+  EXPECT_EQ(c.variant, enum_test::Variant::fec);
+  const auto dump = dump_config(c);
+  ASSERT_EQ(dump.size(), 1u);
+  EXPECT_EQ(std::get<1>(dump[0]), "fec");
+  try {
+    apply_config(c, {{"variant", "kmeans"}}, "preset.yaml");
+    FAIL() << "an unknown spelling must throw";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("preset.yaml"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("oes, org, fec"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("kmeans"), std::string::npos);
+  }
+  EXPECT_EQ(c.variant, enum_test::Variant::fec);  // unchanged by the failed parse
+}
+
+namespace range_test {
+struct WithRanges {
+  int min_points = 20;
+  double fraction = 0.5;
+  double offset = 0.0;
+  template <class V>
+  void visit(V& v) {
+    v("min_points", min_points, "points", Range::at_least(1));
+    v("fraction", fraction, "share", Range::in(0, 1).open_below());
+    v("offset", offset, "mm", Range{});
+  }
+};
+}  // namespace range_test
+
+TEST(Config, RangesDeclaredWithTheFieldAreCheckedOnApplyAndOnDemand) {
+  range_test::WithRanges c;
+  apply_config(c, {{"min_points", "1"}, {"fraction", "1"}}, "p.yaml");  // both ends that are inside
+  EXPECT_EQ(c.min_points, 1);
+  auto message = [&](const ConfigMap& m) {
+    try {
+      range_test::WithRanges d;
+      apply_config(d, m, "p.yaml");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message({{"min_points", "0"}}), "p.yaml: 'min_points' must be >= 1, got 0");
+  EXPECT_EQ(message({{"fraction", "0"}}), "p.yaml: 'fraction' must be in (0, 1], got 0");
+  // check_config sees values set in code too, with a key prefix.
+  c.fraction = 1.5;
+  try {
+    check_config(c, "sizing", "sizing.");
+    FAIL() << "fraction 1.5 passed";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "sizing: 'sizing.fraction' must be in (0, 1], got 1.5");
+  }
+  c.fraction = 0.5;
+  c.offset = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(check_config(c, "sizing"), Error);  // Range{}: finite
+  // The documentation dump carries the rule.
+  const auto dump = dump_config(range_test::WithRanges{});
+  EXPECT_EQ(std::get<2>(dump[0]), "points (must be >= 1)");
+}

@@ -11,7 +11,7 @@
 
 #include "cropsight/core/organized_cloud.hpp"
 #include "cropsight/measure/head_size.hpp"
-#include "cropsight/sim/broccoli_sim.hpp"
+#include "cropsight/sim/broccoli/broccoli_sim.hpp"
 #include "measure/hull_candidates.hpp"
 #include "measure/qhull_reference.hpp"
 

@@ -95,7 +95,7 @@ TEST(OesPredicate, EdgesAreBarriersAndDistanceSplits) {
   const float xs[5] = {0.000f, 0.001f, 0.002f, 0.003f, 0.053f};
   for (int i = 0; i < 5; ++i) c.x[i] = xs[i], c.y[i] = 0, c.z[i] = 0.8f;
   const std::vector<std::uint8_t> edges = {0, 2, 0, 0, 0};
-  FloodFillWorkspace ws;
+  segmentation::OrganizedClusteringWorkspace ws;
   auto segs = segmentation::segment_oes(
       c, edges, {.distance_tolerance = 0.01f, .barrier_labels = 7, .min_size = 1, .max_size = 10}, ws);
   ASSERT_EQ(segs.size(), 3u);  // {0}, {2,3}, {4}
@@ -122,7 +122,7 @@ TEST(OesPredicate, BorderSegmentsMayUseASmallerMinimum) {
   for (int v = 1; v < 4; ++v)
     for (int u : {0, 1, 5, 6}) set(u, v);
   const std::vector<std::uint8_t> edges(c.size(), 0);
-  FloodFillWorkspace ws;
+  segmentation::OrganizedClusteringWorkspace ws;
   segmentation::OesConfig cfg{.distance_tolerance = 0.01f, .barrier_labels = 0, .min_size = 7, .max_size = 100};
   EXPECT_TRUE(segmentation::segment_oes(c, edges, cfg, ws).empty());
   cfg.min_size_border = 6;
@@ -148,7 +148,7 @@ TEST(OrgPredicate, NormalAngleAndCurvatureRule) {
     c.nx[i] = std::sin(a), c.ny[i] = 0, c.nz[i] = -std::cos(a);
     c.curvature[i] = i == 5 ? 0.2f : 0.01f;
   }
-  FloodFillWorkspace ws;
+  segmentation::OrganizedClusteringWorkspace ws;
   const segmentation::OrgConfig cfg{.angle_threshold = 5.0f * float(M_PI) / 180.0f,
                                     .curvature_threshold = 0.05f,
                                     .distance_tolerance = 0.01f,

@@ -43,7 +43,7 @@ TEST(OrganizedClustering, OesAndOrgFindTheDomes) {
   auto scene = cropsight::testing::make_synthetic_scene();
   auto& c = scene.cloud;
   geometry::estimate_normals_integral(c);
-  segmentation::FloodFillWorkspace ws;
+  segmentation::OrganizedClusteringWorkspace ws;
   // Depth edges alone do not separate a dome from the ground it grows out of (a crease, no
   // depth jump): the curvature barrier does.
   const auto plain = geometry::detect_organized_edges(c);
@@ -70,7 +70,8 @@ TEST(OrganizedClustering, PrecomputedLinksGiveThePredicatesSegments) {
   auto& c = scene.cloud;
   geometry::estimate_normals_integral(c);
   const auto edges = geometry::detect_organized_edges(c, {.high_curvature_threshold = 0.02f});
-  segmentation::FloodFillWorkspace ws, ref_ws;
+  segmentation::OrganizedClusteringWorkspace ws;
+  segmentation::FloodFillWorkspace ref_ws;
   auto same = [](const std::vector<Segment>& a, const std::vector<Segment>& b) {
     ASSERT_EQ(a.size(), b.size());
     for (std::size_t k = 0; k < a.size(); ++k) {
@@ -130,7 +131,8 @@ TEST(OrganizedClustering, OesComponentsMatchTheFloodFillOnRandomGrids) {
     const int max_size = min_size + int(rng() % 400);
     const segmentation::OesConfig cfg{
         .distance_tolerance = 0.004f, .barrier_labels = int(rng() % 16), .min_size = min_size, .max_size = max_size};
-    segmentation::FloodFillWorkspace ws, ref_ws;
+    segmentation::OrganizedClusteringWorkspace ws;
+    segmentation::FloodFillWorkspace ref_ws;
     const auto got = segmentation::segment_oes(c, edges, cfg, ws);
     const segmentation::OesPredicate pred{c.x.data(),
                                           c.y.data(),

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "cropsight/io/config_yaml.hpp"
-#include "cropsight/sim/broccoli_sim.hpp"
+#include "cropsight/sim/broccoli/broccoli_sim.hpp"
 #include "testing/testing.hpp"
 
 namespace {

@@ -263,7 +263,8 @@ TEST(HeadMapper, PredictsTheHeadsAFrameMissed) {
   HeadMapper mapper;
   OrganizedCloud small(10, 10);
   EXPECT_THROW(mapper.predict_missed(small, cam), Error);  // intrinsics of another image size
-  HeadMapperConfig bad;
-  bad.apply({{"tracking.predict_radius_scale", "0"}}, "test");
+  HeadMapperConfig bad;  // the range declared with the field: refused where it is read, and in code
+  EXPECT_THROW(bad.apply({{"tracking.predict_radius_scale", "0"}}, "test"), Error);
+  bad.tracking.predict_radius_scale = 0.0;
   EXPECT_THROW(HeadMapper{bad}, Error);
 }

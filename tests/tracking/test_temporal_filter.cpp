@@ -414,3 +414,43 @@ TEST(FieldTransform, ParsesAndRoundTrips) {
   EXPECT_THROW(FieldTransform::parse("x,-y"), Error);
   EXPECT_THROW(FieldTransform::parse("x,-y,-w"), Error);
 }
+
+// Online confirmation knows only the frames so far: a head becomes confirmed at the frame its score
+// reaches min_track_score (edge_track_score when it was seen in the first frame), never earlier,
+// and one whose track ends before that never is, although the pass-level map (finish) may keep it
+// when the recording's last frame cut its track.
+TEST(TemporalFilter, ConfirmedNowKnowsOnlyTheFramesSoFar) {
+  TemporalFilterConfig cfg;
+  cfg.use_poses = true;
+  cfg.min_track_score = 3.0;
+  cfg.edge_track_score = 2.0;
+  TemporalFilter f(cfg);
+  const Eigen::Vector3d cam(0.0, 0.0, 0.8);
+  auto obs = [](float x) {
+    HeadObservation o;
+    o.centroid = Eigen::Vector3f(x, 0.0f, 0.7f);
+    o.score = 1.0f;
+    return o;
+  };
+  // Head A is seen from frame 0 (the edge rule), head B from frame 1, head C only in frames 3-4.
+  std::vector<int> a_ids, b_ids, c_ids;
+  std::vector<bool> a_now, b_now, c_now;
+  for (int frame = 0; frame < 5; ++frame) {
+    std::vector<HeadObservation> d{obs(-0.2f)};
+    if (frame >= 1) d.push_back(obs(0.0f));
+    if (frame >= 3) d.push_back(obs(0.2f));
+    const auto a = f.update(frame, d, cam);
+    a_now.push_back(f.confirmed_now(a.track_ids[0]));
+    if (frame >= 1) b_now.push_back(f.confirmed_now(a.track_ids[1]));
+    if (frame >= 3) c_now.push_back(f.confirmed_now(a.track_ids[2]));
+    if (frame == 3) c_ids.push_back(a.track_ids[2]);
+  }
+  EXPECT_EQ(a_now, (std::vector<bool>{false, true, true, true, true}));  // score 2 at frame 1: edge rule
+  EXPECT_EQ(b_now, (std::vector<bool>{false, false, true, true}));       // score 3 at frame 3
+  EXPECT_EQ(c_now, (std::vector<bool>{false, false}));                   // score 2, not a first-frame head
+  EXPECT_FALSE(f.confirmed_now(9999));                                   // no such head
+  // After the pass, C reaches the map by the last-frame rule that online could not know.
+  const auto map = f.finish();
+  EXPECT_EQ(map.size(), 3u);
+  EXPECT_TRUE(std::any_of(map.begin(), map.end(), [&](const TrackedHead& h) { return h.id == c_ids[0]; }));
+}

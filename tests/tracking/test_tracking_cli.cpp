@@ -9,7 +9,7 @@
 
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/sim/broccoli_sim.hpp"
+#include "cropsight/sim/broccoli/broccoli_sim.hpp"
 #include "cropsight/tracking/field_map_io.hpp"
 #include "testing/testing.hpp"
 

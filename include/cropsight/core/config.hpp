@@ -9,7 +9,27 @@
 // and these helpers apply flat "key=value" maps (from a YAML preset, flattened with dots, and
 // from --set key=value) to it, or dump it back. Unknown keys are an error, so a typo in a preset
 // or on the command line never passes silently.
+//
+// Field types: bool, std::string, arithmetic, std::vector<double|int>, and enums that declare
+// their spellings with a free function found by argument-dependent lookup,
+//
+//   enum class Variant { oes, org, fec };
+//   constexpr std::array<const char*, 3> config_names(Variant) { return {"oes", "org", "fec"}; }
+//
+// (index = enumerator value), so that a preset says "oes" while the code switches on the enum.
+//
+// A numeric field may declare its valid range where it is declared, as a fourth argument:
+//
+//   v("min_points", min_points, "points; ...", Range::at_least(1));
+//   v("subsample", subsample, "fraction; ...", Range::in(0.0, 1.0).open_below());
+//
+// apply_config checks the values it sets (the error names the preset or "--set" and the key) and
+// check_config checks every field (for values set in code), so a struct's validate() keeps only
+// the rules that tie fields together.
+#include <array>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <string>
@@ -23,7 +43,57 @@ namespace cropsight {
 /// Flat key → value text. Keys are dotted paths ("oes.depth_tolerance").
 using ConfigMap = std::map<std::string, std::string>;
 
+/// The valid range of a numeric config field (see above). Non-finite values are never valid
+/// (NaN is refused by the parser already; ±inf here).
+struct Range {
+  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+  bool lo_open = false, hi_open = false;
+
+  static constexpr Range at_least(double v) { return {v}; }
+  static constexpr Range above(double v) { return {v, std::numeric_limits<double>::infinity(), true}; }
+  static constexpr Range in(double a, double b) { return {a, b}; }
+  constexpr Range open_below() const { return {lo, hi, true, hi_open}; }
+  constexpr Range open_above() const { return {lo, hi, lo_open, true}; }
+  bool contains(double v) const {
+    return std::isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+  }
+  /// "must be >= 1", "must be > 0", "must be in (0, 1]".
+  std::string rule() const {
+    auto num = [](double v) {
+      std::ostringstream o;
+      o.imbue(std::locale::classic());
+      o << v;
+      return o.str();
+    };
+    if (std::isinf(lo) && std::isinf(hi)) return "must be finite";
+    if (std::isinf(hi)) return std::string(lo_open ? "must be > " : "must be >= ") + num(lo);
+    if (std::isinf(lo)) return std::string(hi_open ? "must be < " : "must be <= ") + num(hi);
+    return std::string("must be in ") + (lo_open ? "(" : "[") + num(lo) + ", " + num(hi) + (hi_open ? ")" : "]");
+  }
+};
+
+/// An enum field: its spellings come from config_names(T{}) (see above).
+template <typename T>
+concept ConfigEnum = std::is_enum_v<T> && requires {
+  config_names(T{});
+};
+
+/// The spelling of an enum value ("?" for a value outside the table).
+template <ConfigEnum T>
+std::string config_name(T value) {
+  const auto names = config_names(T{});
+  const auto i = static_cast<std::size_t>(value);
+  return i < names.size() ? names[i] : "?";
+}
+
 namespace detail {
+template <ConfigEnum T>
+std::string enum_choices() {
+  std::string out;
+  for (const char* n : config_names(T{})) out += (out.empty() ? "" : ", ") + std::string(n);
+  return out;
+}
+
 template <typename T>
 void parse_value(const std::string& where, const std::string& key, const std::string& text, T& out) {
   if constexpr (std::is_same_v<T, bool>) {
@@ -35,6 +105,14 @@ void parse_value(const std::string& where, const std::string& key, const std::st
       throw Error(where, "'" + key + "' expects true/false, got '" + text + "'");
   } else if constexpr (std::is_same_v<T, std::string>) {
     out = text;
+  } else if constexpr (ConfigEnum<T>) {
+    const auto names = config_names(T{});
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (text == names[i]) {
+        out = static_cast<T>(i);
+        return;
+      }
+    throw Error(where, "'" + key + "' expects one of " + enum_choices<T>() + ", got '" + text + "'");
   } else if constexpr (std::is_arithmetic_v<T>) {
     std::istringstream in(text);
     in.imbue(std::locale::classic());
@@ -66,6 +144,8 @@ std::string format_value(const T& v) {
     return v ? "true" : "false";
   } else if constexpr (std::is_same_v<T, std::string>) {
     return v;
+  } else if constexpr (ConfigEnum<T>) {
+    return config_name(v);
   } else if constexpr (std::is_same_v<T, std::vector<double>> || std::is_same_v<T, std::vector<int>>) {
     std::ostringstream o;
     o.imbue(std::locale::classic());
@@ -80,6 +160,13 @@ std::string format_value(const T& v) {
     o << v;
     return o.str();
   }
+}
+
+template <typename T>
+void check_range(const std::string& where, const std::string& key, const T& value, const Range& range) {
+  static_assert(std::is_arithmetic_v<T> && !std::is_same_v<T, bool>, "a Range needs a numeric field");
+  if (!range.contains(double(value)))
+    throw Error(where, "'" + key + "' " + range.rule() + ", got " + format_value(value));
 }
 
 struct ApplyVisitor {
@@ -101,11 +188,36 @@ struct ApplyVisitor {
       }
     }
   }
+  template <typename T>
+  void operator()(const char* name, T& field, const char* doc, const Range& range) {
+    (*this)(name, field, doc);
+    if (values.count(prefix + name)) check_range(where, prefix + name, field, range);
+  }
+};
+
+struct CheckVisitor {
+  const std::string& where;
+  std::string prefix;
+  template <typename T>
+  void operator()(const char* name, T& field, const char* /*doc*/) {
+    if constexpr (requires { field.visit(*this); }) {
+      CheckVisitor sub{where, prefix + name + "."};
+      field.visit(sub);
+    }
+  }
+  template <typename T>
+  void operator()(const char* name, T& field, const char* /*doc*/, const Range& range) {
+    check_range(where, prefix + name, field, range);
+  }
 };
 
 struct DumpVisitor {
   std::vector<std::tuple<std::string, std::string, std::string>>& out;  // key, value, doc
   std::string prefix;
+  template <typename T>
+  void operator()(const char* name, T& field, const char* doc, const Range& range) {
+    out.emplace_back(prefix + name, format_value(field), std::string(doc) + " (" + range.rule() + ")");
+  }
   template <typename T>
   void operator()(const char* name, T& field, const char* doc) {
     const std::string key = prefix + name;
@@ -129,6 +241,13 @@ void apply_config(Config& cfg, const ConfigMap& values, const std::string& where
   for (const auto& [key, value] : values) {
     if (key.rfind(prefix, 0) == 0 && !used.count(key)) throw Error(where, "unknown configuration key '" + key + "'");
   }
+}
+
+/// Checks every field that declares a Range; throws Error(where, "'key' must be ..., got ...").
+template <typename Config>
+void check_config(const Config& cfg, const std::string& where, const std::string& prefix = "") {
+  detail::CheckVisitor v{where, prefix};
+  const_cast<Config&>(cfg).visit(v);  // visit() only reads through CheckVisitor
 }
 
 /// Every field as (dotted key, value text, documentation), in declaration order.

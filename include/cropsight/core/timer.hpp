@@ -6,6 +6,21 @@
 
 namespace cropsight {
 
+/// Wall-clock time since construction (or restart()): the one way to time a span of code that is
+/// not a named stage (a whole command, a training run).
+class Stopwatch {
+ public:
+  Stopwatch() : start_(std::chrono::steady_clock::now()) {}
+  void restart() { start_ = std::chrono::steady_clock::now(); }
+  double ms() const {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+  }
+  double seconds() const { return ms() / 1000.0; }
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+};
+
 class StageTimer {
  public:
   struct Stage {

@@ -37,6 +37,17 @@ struct RankedHit {
 };
 double average_precision(std::vector<RankedHit> ranked, std::int64_t num_truth);
 
+/// One frame's ground-truth point sets and scored detections, kept whole (for precision-recall
+/// curves, report::pr_curves); DetectionApAccumulator keeps only the overlaps.
+struct ScoredFrame {
+  std::vector<std::vector<int>> truth;
+  struct Det {
+    float score = 0.0f;
+    std::vector<int> indices;
+  };
+  std::vector<Det> detections;
+};
+
 /// Accumulates frames, then answers AP at any threshold. Only the IoU of overlapping
 /// (detection, truth) pairs is kept, not the point sets.
 class DetectionApAccumulator {

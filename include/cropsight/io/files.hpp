@@ -13,6 +13,30 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& con
 /// library writers (PCL, OpenCV) that need a file name.
 void write_atomic_with(const std::filesystem::path& path,
                        const std::function<void(const std::filesystem::path& tmp)>& write);
+/// Puts the finished directory `tmp` in place of `dir`. A previous `dir` is moved aside first
+/// and removed only once the new one is in place, so a failure leaves the old contents. Throws
+/// Error(dir, "cannot write the <what>: ...").
+void replace_directory(const std::filesystem::path& tmp, const std::filesystem::path& dir,
+                       const std::string& what = "directory");
+
+/// An empty temporary sibling of `dir` (".NAME.tmp-PID-RANDOM"), for outputs that must appear
+/// whole (write into it, then replace_directory and release). Removed by the destructor unless
+/// released, so a failed run leaves nothing that looks complete.
+class TempDirectory {
+ public:
+  explicit TempDirectory(const std::filesystem::path& dir);
+  ~TempDirectory();
+  TempDirectory(const TempDirectory&) = delete;
+  TempDirectory& operator=(const TempDirectory&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  /// Moves the temporary in place of `dir` (replace_directory); nothing is removed afterwards.
+  void commit(const std::string& what = "directory");
+
+ private:
+  std::filesystem::path dir_, path_;
+  bool committed_ = false;
+};
+
 /// Whole file as a string. Throws Error(path, "cannot read ...").
 std::string read_file(const std::filesystem::path& path);
 

@@ -33,6 +33,12 @@ struct InstanceTruth {
 struct GroundTruth {
   std::vector<InstanceTruth> instances;
   std::map<std::string, std::string> attributes;  ///< free-form sequence-level truth (variety, seed...)
+  /// The instance with this id, or nullptr (a linear search: passes hold tens of instances).
+  const InstanceTruth* find(int id) const {
+    for (const auto& t : instances)
+      if (t.id == id) return &t;
+    return nullptr;
+  }
 };
 
 struct CameraPose {

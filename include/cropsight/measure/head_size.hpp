@@ -63,22 +63,25 @@ struct HeadSizeConfig {
     v("compute_hull", compute_hull, "bool; also run the convex-hull estimator for every head");
     v("hull_engine", hull_engine,
       "quickhull | qhull; our Quickhull (tested against qhull, 4x faster) or qhull via PCL (paper's library)");
-    v("min_points", min_points, "points; heads with fewer valid points are not measured (not in the paper)");
+    v("min_points", min_points, "points; heads with fewer valid points are not measured (not in the paper)",
+      Range::at_least(1));
     v("hull_max_points", hull_max_points,
       "points; 0 = hull of all points (paper); > 0 = hull of an even subsample of at most this many (speed: 500 "
       "cuts the time by a third to a half at the same accuracy once the bias is fitted with the same value; "
-      "docs/pipelines/broccoli-sizing-tracking.md)");
+      "docs/pipelines/broccoli-sizing-tracking.md)",
+      Range::at_least(0));
     v("hull_prefilter", hull_prefilter,
       "bool; organised clouds: before qhull, drop points that are not vertices of their image row's and column's "
       "2D hull (exact for a pinhole deprojection, checked per head, else all points; not in the paper: speed)");
-    v("bbox_scale", bbox_scale, "1; bias correction d' = scale*d + offset of the bounding box (paper: none, 1)");
-    v("bbox_offset_mm", bbox_offset_mm, "mm; bias correction offset of the bounding box (paper: none, 0)");
-    v("hull_scale", hull_scale, "1; bias correction scale of the convex hull (paper: none, 1)");
-    v("hull_offset_mm", hull_offset_mm, "mm; bias correction offset of the convex hull (paper: none, 0)");
+    v("bbox_scale", bbox_scale, "1; bias correction d' = scale*d + offset of the bounding box (paper: none, 1)",
+      Range::above(0));
+    v("bbox_offset_mm", bbox_offset_mm, "mm; bias correction offset of the bounding box (paper: none, 0)", Range{});
+    v("hull_scale", hull_scale, "1; bias correction scale of the convex hull (paper: none, 1)", Range::above(0));
+    v("hull_offset_mm", hull_offset_mm, "mm; bias correction offset of the convex hull (paper: none, 0)", Range{});
     v("market_min_mm", market_min_mm,
-      "mm; smallest harvestable diameter (paper: market-dependent, not given; assumption 100 mm)");
+      "mm; smallest harvestable diameter (paper: market-dependent, not given; assumption 100 mm)", Range{});
     v("market_max_mm", market_max_mm,
-      "mm; largest harvestable diameter (paper: market-dependent, not given; assumption 180 mm)");
+      "mm; largest harvestable diameter (paper: market-dependent, not given; assumption 180 mm)", Range{});
   }
 };
 

@@ -10,19 +10,13 @@
 #include <vector>
 
 #include "cropsight/core/timer.hpp"
+#include "cropsight/eval/detection_ap.hpp"
 #include "cropsight/report/html_page.hpp"
 
 namespace cropsight::report {
 
 /// One frame for precision–recall: ground-truth point sets and scored detections (pixel indices).
-struct PrFrame {
-  std::vector<std::vector<int>> truth;
-  struct Det {
-    float score = 0.0f;
-    std::vector<int> indices;
-  };
-  std::vector<Det> detections;
-};
+using PrFrame = eval::ScoredFrame;
 
 struct PrCurve {
   double iou = 0.5;

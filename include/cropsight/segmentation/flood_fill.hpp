@@ -40,14 +40,10 @@ namespace cropsight::segmentation {
 struct FloodFillWorkspace {
   /// Per pixel: index into the returned segments, or -1 (unlabelled / in a rejected segment).
   std::vector<int> labels;
-  std::vector<int> members;         // pixels of the segment being grown, in BFS order (also the queue)
-  std::vector<int> columns;         // their columns (saves a division per pixel)
-  std::vector<int> remap;           // fill attempt → kept segment id or -1
-  std::vector<int*> slots;          // final pass: next index slot per kept segment (+ a dummy)
-  std::vector<std::uint8_t> links;  // per pixel link bits of a LinkPredicate (organized_clustering)
-  std::vector<int> runs;            // segment_oes: (first pixel, length) of each row run of members
-  std::vector<int> parents;         // segment_oes: union-find parent per run, then component per run
-  std::vector<int> sizes;           // segment_oes: pixels per component, then kept segment id or -1
+  std::vector<int> members;  // pixels of the segment being grown, in BFS order (also the queue)
+  std::vector<int> columns;  // their columns (saves a division per pixel)
+  std::vector<int> remap;    // fill attempt → kept segment id or -1
+  std::vector<int*> slots;   // final pass: next index slot per kept segment (+ a dummy)
 };
 
 /// Link bits of a pixel for predicates that precompute similar() per 4-neighbour pair (see

@@ -13,6 +13,7 @@
 //   below `curvature_threshold` (PCL RegionGrowing's rule), and only such pixels seed segments.
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "cropsight/core/organized_cloud.hpp"
@@ -64,6 +65,24 @@ struct OrgConfig {
   }
 };
 
+/// The link rules of OES and ORG, defined once: the per-pair predicates below and the vectorised
+/// link pass of segment_oes / segment_org (organized_clustering.cpp) both evaluate these.
+/// Membership: a valid point (|z| <= FLT_MAX is isfinite, false for NaN; a form that vectorises)
+/// that no barrier edge label excludes (OES) or that has a normal (ORG).
+inline bool oes_member(float z, std::uint8_t edge, std::uint8_t barrier) {
+  return (std::fabs(z) <= std::numeric_limits<float>::max()) & ((edge & barrier) == 0);
+}
+inline bool org_member(float z, float nx) {
+  return (std::fabs(z) <= std::numeric_limits<float>::max()) & (std::fabs(nx) <= std::numeric_limits<float>::max());
+}
+/// 4-neighbours closer than the distance tolerance (`tol2` squared, m²). Symmetric exactly (squares
+/// of differences of the same operands), so one evaluation serves both directions of a link.
+inline bool within_tolerance(float dx, float dy, float dz, float tol2) { return dx * dx + dy * dy + dz * dz < tol2; }
+/// ORG: unit normals within the angle threshold (normals face the camera: no abs).
+inline bool normals_agree(float ax, float ay, float az, float bx, float by, float bz, float cos_angle) {
+  return ax * bx + ay * by + az * bz > cos_angle;
+}
+
 /// OES predicate over raw arrays (cloud x/y/z and edge labels), all of width·height.
 struct OesPredicate {
   const float* x;
@@ -73,13 +92,10 @@ struct OesPredicate {
   std::uint8_t barrier;       // labels that exclude a pixel
   float tol2;                 // squared distance tolerance, m²
 
-  bool member(int q) const { return std::isfinite(z[q]) && (edges[q] & barrier) == 0; }
+  bool member(int q) const { return oes_member(z[q], edges[q], barrier); }
   bool seed(int s) const { return member(s); }
   bool expands(int) const { return true; }
-  bool similar(int p, int q) const {
-    const float dx = x[p] - x[q], dy = y[p] - y[q], dz = z[p] - z[q];
-    return dx * dx + dy * dy + dz * dz < tol2;
-  }
+  bool similar(int p, int q) const { return within_tolerance(x[p] - x[q], y[p] - y[q], z[p] - z[q], tol2); }
 };
 
 /// ORG predicate over raw arrays (positions, unit normals, curvature), all of width·height.
@@ -95,14 +111,21 @@ struct OrgPredicate {
   float max_curvature;  // curvature_threshold
   float tol2;           // squared distance tolerance, m²
 
-  bool member(int q) const { return std::isfinite(z[q]) && std::isfinite(nx[q]); }
+  bool member(int q) const { return org_member(z[q], nx[q]); }
   bool seed(int s) const { return member(s) && expands(s); }
   bool expands(int p) const { return curvature[p] < max_curvature; }
   bool similar(int p, int q) const {
-    const float dx = x[p] - x[q], dy = y[p] - y[q], dz = z[p] - z[q];
-    if (dx * dx + dy * dy + dz * dz >= tol2) return false;
-    return nx[p] * nx[q] + ny[p] * ny[q] + nz[p] * nz[q] > cos_angle;  // normals face the camera: no abs
+    return within_tolerance(x[p] - x[q], y[p] - y[q], z[p] - z[q], tol2) &&
+           normals_agree(nx[p], ny[p], nz[p], nx[q], ny[q], nz[q], cos_angle);
   }
+};
+
+/// The flood fill's buffers plus those of the organised clusterings' own passes. Not thread-safe.
+struct OrganizedClusteringWorkspace : FloodFillWorkspace {
+  std::vector<std::uint8_t> links;  // per pixel link bits (3 planes: links, right, down)
+  std::vector<int> runs;            // segment_oes: (first pixel, length) of each row run of members
+  std::vector<int> parents;         // segment_oes: union-find parent per run, then component per run
+  std::vector<int> sizes;           // segment_oes: pixels per component, then kept segment id or -1
 };
 
 /// OES segmentation. `edges` from geometry::detect_organized_edges on the same cloud.
@@ -113,10 +136,10 @@ struct OrgPredicate {
 /// ws.labels as flood_fill_segments with OesPredicate / OrgPredicate (tests/segmentation checks it).
 /// Throws Error("oes", ...) when sizes disagree or the config is invalid.
 std::vector<Segment> segment_oes(const OrganizedCloud& cloud, const std::vector<std::uint8_t>& edges,
-                                 const OesConfig& cfg, FloodFillWorkspace& ws);
+                                 const OesConfig& cfg, OrganizedClusteringWorkspace& ws);
 
 /// ORG segmentation; requires cloud.has_normals() (geometry::IntegralNormalEstimator).
 /// Throws Error("org", ...) when normals are missing or the config is invalid.
-std::vector<Segment> segment_org(const OrganizedCloud& cloud, const OrgConfig& cfg, FloodFillWorkspace& ws);
+std::vector<Segment> segment_org(const OrganizedCloud& cloud, const OrgConfig& cfg, OrganizedClusteringWorkspace& ws);
 
 }  // namespace cropsight::segmentation

@@ -21,7 +21,7 @@
 #include <cstdint>
 
 #include "cropsight/core/rgbd_frame.hpp"
-#include "cropsight/sim/broccoli_config.hpp"
+#include "cropsight/sim/broccoli/broccoli_config.hpp"
 #include "cropsight/sim/renderer.hpp"
 
 namespace cropsight::sim {

@@ -10,7 +10,9 @@
 //
 // with confirmed_bonus larger than any score spread, so detections of confirmed heads rank before
 // every unconfirmed one (a detection is never removed: ranking it last is never worse for AP than
-// dropping it).
+// dropping it). That score knows the whole pass (offline: ap50_offline). online_score(d) uses
+// instead whether the head was confirmed at d's own frame (online: ap50_online, what a harvester
+// acting live gets).
 //
 // It can also predict the heads a frame missed (tracking.predict_missed, an extension): for each
 // head in T that the frame did not detect, the frame's points within predict_radius_scale × the
@@ -60,6 +62,9 @@ struct MeasuredDetection {
   Eigen::Vector3d field_position = Eigen::Vector3d::Zero();
   measure::HeadSize size;  ///< invalid for partial detections (not measured)
   bool partial = false;    ///< box within tracking.border_margin_px of the image border
+  /// Its head was confirmed at this frame (TemporalFilter::confirmed_now): what a robot acting
+  /// live knows, unlike confirmed()/filtered_score(), which know the whole pass.
+  bool confirmed_online = false;
 };
 
 /// A head of T that the last frame did not detect, and its points in that frame (see above).
@@ -69,6 +74,7 @@ struct PredictedHead {
   Eigen::Vector3f centroid = Eigen::Vector3f::Zero();  ///< of those points, camera frame (m)
   Eigen::Vector3f centre = Eigen::Vector3f::Zero();    ///< the ball's centre, camera frame (m)
   float radius_m = 0.0f;                               ///< the ball's radius (m)
+  bool confirmed_online = false;                       ///< the head was confirmed at this frame
 };
 
 class HeadMapper {
@@ -94,6 +100,10 @@ class HeadMapper {
   /// Rank score of a predicted set of head `track_id` (after finish()): after every confirmed
   /// detection (kConfirmedBonus − 1) when the head is in the map; otherwise nullopt (not a detection).
   std::optional<float> predicted_score(int track_id) const;
+  /// The same two scores as a robot acting at the detection's frame has them (no hindsight): the
+  /// bonus when the head was confirmed at that frame (MeasuredDetection::confirmed_online).
+  static float online_score(const MeasuredDetection& d);
+  static std::optional<float> online_predicted_score(const PredictedHead& p);
   const measure::HeadSizer& sizer() const { return sizer_; }
   const TemporalFilter& filter() const { return filter_; }
 

@@ -82,34 +82,41 @@ struct TemporalFilterConfig {
   template <class V>
   void visit(V& v) {
     v("association_radius_m", association_radius_m,
-      "m; a detection joins the nearest tracked head within this distance (paper: 0.05 m, Kusumam §4.5)");
+      "m; a detection joins the nearest tracked head within this distance (paper: 0.05 m, Kusumam §4.5)",
+      Range::above(0));
     v("max_missed_frames", max_missed_frames,
-      "frames; a head undetected this many frames in a row leaves T for the map M (paper: 3, §4.5)");
-    v("initial_score", initial_score, "1; tracking score of a new head (paper: score per detection; 1)");
-    v("score_increment", score_increment, "1; score added per associated detection (paper: 1)");
+      "frames; a head undetected this many frames in a row leaves T for the map M (paper: 3, §4.5)",
+      Range::at_least(1));
+    v("initial_score", initial_score, "1; tracking score of a new head (paper: score per detection; 1)", Range{});
+    v("score_increment", score_increment, "1; score added per associated detection (paper: 1)", Range{});
     v("min_track_score", min_track_score,
       "1; heads whose final score is below this are dropped from the map (paper: threshold, value not given; 3 "
-      "= seen in 3 frames)");
+      "= seen in 3 frames)",
+      Range{});
     v("edge_track_score", edge_track_score,
       "1; the threshold for heads seen in the sequence's first or last frame, whose track the recording cut "
-      "(extension, never above min_track_score; < 0: min_track_score, the paper's single threshold)");
+      "(extension, never above min_track_score; < 0: min_track_score, the paper's single threshold)",
+      Range{});
     v("min_detection_score", min_detection_score,
-      "classifier score; detections below it are ignored by the tracker (default: keep all)");
+      "classifier score; detections below it are ignored by the tracker (default: keep all)", Range{});
     v("use_poses", use_poses, "bool; take x_c from poses.csv instead of estimating it (paper: no odometry, false)");
     v("anchor_first_pose", anchor_first_pose,
       "bool; start x_c at the first frame's pose when there is one, so the map shares the truth's field frame");
     v("motion_search", motion_search,
       "bool; when the predicted camera motion associates nothing, vote for the shift that does (extension)");
-    v("motion_search_radius_m", motion_search_radius_m, "m; largest camera shift per frame the vote considers");
+    v("motion_search_radius_m", motion_search_radius_m, "m; largest camera shift per frame the vote considers",
+      Range::at_least(0));
     v("initial_velocity", initial_velocity, "m/frame, field frame [x, y, z]; v_c before the first estimate (0)");
     v("camera_to_field", camera_to_field,
       "axes; field X,Y,Z as signed camera axes (camera looks straight down; simulator: y,x,-z)");
     v("border_margin_px", border_margin_px,
       "px; a detection whose box comes this close to the image border is partial: it is neither sized nor used "
-      "to move heads or the camera (extension; -1 = off, every detection is whole as in the paper)");
+      "to move heads or the camera (extension; -1 = off, every detection is whole as in the paper)",
+      Range::at_least(-1));
     v("partial_association_radius_m", partial_association_radius_m,
       "m; a partial detection takes the id of the nearest tracked head within this distance (its centroid is "
-      "off-centre) so that it is credited to that head");
+      "off-centre) so that it is credited to that head",
+      Range::at_least(0));
     v("partial_tracks", partial_tracks,
       "bool; partial detections raise the score of (and start) heads, without moving the camera or a head that "
       "has whole detections (extension; false = they only take the nearest head's id)");
@@ -117,19 +124,23 @@ struct TemporalFilterConfig {
       "m; a head's position is the centroid of its points within this depth of its top (HeadMapper; the 2nd "
       "percentile of depth is the top), which the viewing angle hardly moves, unlike the centroid of the whole "
       "visible cap that drifted the estimated camera by ~2.5 % of the travel (extension; 0 = centroid of all "
-      "points as in the paper)");
+      "points as in the paper)",
+      Range::at_least(0));
     v("merge_radius_m", merge_radius_m,
       "m; at the end, a head whose track started after another's ended within this distance of it is merged into "
       "it when that one reached min_track_score (the same head lost and found again; extension, default the "
-      "association radius 0.05 m; 0 = off, the paper's map keeps both)");
+      "association radius 0.05 m; 0 = off, the paper's map keeps both)",
+      Range::at_least(0));
     v("predict_missed", predict_missed,
       "bool; a head in T that a frame did not detect gets a predicted point set in that frame: the frame's points "
       "in a ball around where the filter expects it (HeadMapper::predict_missed; used by ap50_temporal and written "
       "by detect --track; extension, the paper's filter only re-ranks detections; false = off)");
     v("predict_radius_scale", predict_radius_scale,
       "1; the ball's radius as a multiple of the head's radius (half its running bounding-box width; chosen on "
-      "tuning seeds 101/103 uk, 102/104 spain: 1.3)");
-    v("predict_min_points", predict_min_points, "points; fewer points in the ball give no predicted set");
+      "tuning seeds 101/103 uk, 102/104 spain: 1.3)",
+      Range::above(0));
+    v("predict_min_points", predict_min_points, "points; fewer points in the ball give no predicted set",
+      Range::at_least(1));
   }
 };
 
@@ -186,6 +197,13 @@ class TemporalFilter {
   /// (merge_radius_m); detections labelled with an absorbed id belong to the kept head.
   const std::vector<std::pair<int, int>>& merged_ids() const { return merged_ids_; }
 
+  /// Online confirmation (what a robot acting at the current frame knows): head `id` is in T and
+  /// its score already reaches min_track_score, or edge_track_score when it was seen in the
+  /// recording's first frame. finish() decides with hindsight (the last frame, merges); a head
+  /// confirmed now is not always in the final map and the other way round.
+  bool confirmed_now(int id) const;
+  bool confirmed_now(const TrackedHead& h) const;
+
   /// Every head ever created (T ∪ M, before the score threshold), by id.
   std::vector<TrackedHead> all_heads() const;
   const std::vector<TrackedHead>& tracked() const { return tracked_; }
@@ -196,11 +214,21 @@ class TemporalFilter {
   const TemporalFilterConfig& config() const { return cfg_; }
 
  private:
+  struct Step;  // one update()'s working state (temporal_filter.cpp)
+  // The steps of update(), in order (numbers as in the comment at the top of this file).
+  void predict_camera(const std::optional<Eigen::Vector3d>& camera_position, Step& s);   // 1.
+  void place_detections(const std::vector<HeadObservation>& detections, Step& s) const;  // D in the field
+  void associate_detections(Step& s) const;                                              // 2.-3.
+  void correct_camera(Step& s);                                                          // 4.
+  void update_heads(const std::vector<HeadObservation>& detections, Step& s);            // 5.
+  void add_partial_detections(const std::vector<HeadObservation>& detections, Step& s);  // extension
+  void retire_missed_heads(const Step& s);                                               // 6.
   void add_sample(TrackedHead& h, const Eigen::Vector3d& p, const HeadObservation& d) const;
   TrackedHead new_head(int frame, const Eigen::Vector3d& p);  ///< next id, initial score, at p
   void touch(TrackedHead& h, int frame) const;                ///< seen this frame: score, last frame
   void merge_lost_and_found();                                ///< mapped_: merge_radius_m (see above)
   void absorb(TrackedHead& into, const TrackedHead& later) const;
+  double edge_threshold() const;  ///< edge_track_score, never above min_track_score (< 0: min_track_score)
 
   TemporalFilterConfig cfg_;
   measure::HeadSizer sizer_;

@@ -29,8 +29,7 @@
 #include "cropsight/core/segment.hpp"
 #include "cropsight/core/timer.hpp"
 #include "cropsight/learning/model.hpp"
-#include "cropsight/pipeline/broccoli_config.hpp"
-#include "cropsight/pipeline/broccoli_truth.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_config.hpp"
 #include "cropsight/segmentation/flood_fill.hpp"
 
 namespace cropsight::pipeline {
@@ -46,7 +45,6 @@ struct BroccoliCandidate {
   bool head = false;            ///< score > threshold + margin
   int normal_points = -1;       ///< points of the segment with a normal (-1: not counted, min_normal_points 0)
   bool described = true;        ///< normal_points >= detection.min_normal_points (else never a head)
-  ClusterTruth truth;           ///< filled when the frame has labels
 };
 
 class BroccoliDetector {
@@ -84,6 +82,9 @@ class BroccoliDetector {
   void make_cloud(const RgbdFrame& frame);  // deprojection + depth-range filter
   void normals(std::span<const int> select = {});
   void cluster();  // normals (all pixels, or only the kept OES segments' pixels) + edges + clustering
+  void cluster_oes();
+  void cluster_org();
+  void cluster_fec();
 
   BroccoliDetectorConfig cfg_;
   features::FeatureSet feature_set_;
@@ -96,7 +97,7 @@ class BroccoliDetector {
   CameraIntrinsics ray_camera_;
   std::unique_ptr<geometry::IntegralNormalEstimator> normals_;
   std::vector<std::uint8_t> edges_;
-  segmentation::FloodFillWorkspace flood_;
+  segmentation::OrganizedClusteringWorkspace flood_;
   std::vector<Segment> segments_;
   std::vector<int> valid_;
   std::vector<BroccoliCandidate> candidates_;  // a pool: only grows, so its buffers are reused

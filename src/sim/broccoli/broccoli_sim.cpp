@@ -1,4 +1,4 @@
-#include "cropsight/sim/broccoli_sim.hpp"
+#include "cropsight/sim/broccoli/broccoli_sim.hpp"
 
 #include <tbb/parallel_for.h>
 

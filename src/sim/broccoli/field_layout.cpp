@@ -2,9 +2,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cropsight/sim/broccoli_field.hpp"
+#include "cropsight/sim/broccoli/broccoli_field.hpp"
 #include "cropsight/sim/random.hpp"
-#include "value_noise.hpp"
+#include "sim/value_noise.hpp"
 
 namespace cropsight::sim {
 

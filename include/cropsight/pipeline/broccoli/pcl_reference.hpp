@@ -10,7 +10,7 @@
 #include "cropsight/core/rgbd_frame.hpp"
 #include "cropsight/core/timer.hpp"
 #include "cropsight/learning/model.hpp"
-#include "cropsight/pipeline/broccoli_config.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_config.hpp"
 
 namespace cropsight::pipeline {
 

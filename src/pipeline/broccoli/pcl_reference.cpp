@@ -1,4 +1,4 @@
-#include "cropsight/pipeline/pcl_reference.hpp"
+#include "cropsight/pipeline/broccoli/pcl_reference.hpp"
 
 #include <pcl/features/integral_image_normal.h>
 #include <pcl/features/vfh.h>

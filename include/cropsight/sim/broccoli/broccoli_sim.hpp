@@ -19,8 +19,8 @@
 
 #include "cropsight/core/rgbd_frame.hpp"
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/sim/broccoli_config.hpp"
-#include "cropsight/sim/broccoli_field.hpp"
+#include "cropsight/sim/broccoli/broccoli_config.hpp"
+#include "cropsight/sim/broccoli/broccoli_field.hpp"
 #include "cropsight/sim/tof_sensor.hpp"
 
 namespace cropsight::sim {

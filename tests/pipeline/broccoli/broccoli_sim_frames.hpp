@@ -4,7 +4,7 @@
 
 #include "cropsight/core/rgbd_frame.hpp"
 #include "cropsight/io/config_yaml.hpp"
-#include "cropsight/sim/broccoli_sim.hpp"
+#include "cropsight/sim/broccoli/broccoli_sim.hpp"
 #include "testing/testing.hpp"
 
 namespace cropsight::testdata {

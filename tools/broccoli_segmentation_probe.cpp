@@ -1,11 +1,10 @@
-// Not a test: measures how well a detector preset SEGMENTS the labelled heads of recorded
+// A tuning tool (not a test): measures how well a detector preset SEGMENTS the labelled heads of recorded
 // sequences, independently of any classifier (the upper bound of AP50 recall). Used to tune the
 // simulator's plant geometry and the OES/ORG presets on training seeds (docs/simulator.md,
 // docs/pipelines/broccoli-heads.md "Tuning"). Run with
 //
 //   CROPSIGHT_SEG_PROBE=seq1[,seq2] CROPSIGHT_SEG_PRESET=broccoli-oes-uk [CROPSIGHT_SEG_FRAMES=10]
-//   [CROPSIGHT_SEG_SET="key=value;key=value"]
-//     test_pipeline --gtest_also_run_disabled_tests --gtest_filter='*SegmentationProbe*'
+//   [CROPSIGHT_SEG_SET="key=value;key=value"] build/bin/broccoli_segmentation_probe
 //
 // Per labelled head instance (every head with a visible point in a frame, as AP counts them) it
 // finds the cluster overlapping it most and prints how many reach IoU >= 0.5 ("found"), how many
@@ -17,8 +16,6 @@
 // also classifies the clusters and lists the misclassified ones. CROPSIGHT_SEG_DUMP=DIR writes three
 // frames (from CROPSIGHT_SEG_DUMP_FROM, default 1) as PNG: depth (turbo), cluster borders black,
 // head outlines white, merged heads' and false positives' clusters magenta, with enlarged crops.
-#include <gtest/gtest.h>
-
 #include <cstdio>
 #include <cstdlib>
 #include <opencv2/imgcodecs.hpp>
@@ -26,13 +23,13 @@
 #include <sstream>
 #include <string>
 
+#include "cropsight/core/error.hpp"
 #include "cropsight/geometry/organized_edges.hpp"
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/learning/model.hpp"
-#include "cropsight/pipeline/broccoli_detector.hpp"
-#include "cropsight/pipeline/broccoli_truth.hpp"
-#include "testing/testing.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_detector.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_truth.hpp"
 
 using namespace cropsight;
 using namespace cropsight::pipeline;
@@ -95,25 +92,28 @@ void dump(const std::string& dir, int frame, const OrganizedCloud& cloud, std::s
 }
 }  // namespace
 
-TEST(BroccoliSegmentationProbe, DISABLED_HeadsFoundPerPreset) {
+int probe() {
   const char* seqs = std::getenv("CROPSIGHT_SEG_PROBE");
-  if (!seqs) GTEST_SKIP() << "set CROPSIGHT_SEG_PROBE=seq[,seq]";
+  if (!seqs) {
+    std::fprintf(stderr, "broccoli_segmentation_probe: set CROPSIGHT_SEG_PROBE=seq[,seq] (see the file's comment)\n");
+    return 2;
+  }
   const char* preset_env = std::getenv("CROPSIGHT_SEG_PRESET");
   const std::string preset = preset_env ? preset_env : "broccoli-oes-uk";
   const int max_frames = std::getenv("CROPSIGHT_SEG_FRAMES") ? std::atoi(std::getenv("CROPSIGHT_SEG_FRAMES")) : 10;
-  ConfigMap values = io::load_config_map(cropsight::testing::source_dir() / "configs" / (preset + ".yaml"));
+  ConfigMap values = io::load_config_map(io::find_preset(preset));
   if (const char* set = std::getenv("CROPSIGHT_SEG_SET"))
     for (const auto& kv : split(set, ';')) {
       const auto eq = kv.find('=');
-      ASSERT_NE(eq, std::string::npos) << kv;
+      if (eq == std::string::npos) throw Error("CROPSIGHT_SEG_SET", "expected key=value, got '" + kv + "'");
       values[kv.substr(0, eq)] = kv.substr(eq + 1);
     }
   BroccoliDetectorConfig cfg;
   apply_config(cfg, values, preset);
   cfg.validate(preset);
-  const int min_size = cfg.pipeline == "oes"   ? cfg.oes.min_size
-                       : cfg.pipeline == "org" ? cfg.org.min_size
-                                               : cfg.fec.min_size;
+  const int min_size = cfg.pipeline == BroccoliVariant::oes   ? cfg.oes.min_size
+                       : cfg.pipeline == BroccoliVariant::org ? cfg.org.min_size
+                                                              : cfg.fec.min_size;
   BroccoliDetector det(cfg);
   // With CROPSIGHT_SEG_MODEL, also lists the misclassified clusters (size, share of their majority head).
   if (const char* m = std::getenv("CROPSIGHT_SEG_MODEL"))
@@ -135,7 +135,7 @@ TEST(BroccoliSegmentationProbe, DISABLED_HeadsFoundPerPreset) {
         for (const auto& c : cands) {
           // Majority head of the cluster, whatever its share (truth.head_id is 0 below one half).
           const auto any = cluster_truth(c.segment.indices, det.cloud().labels, 0.0f);
-          const bool is_head = c.truth.head_id != 0;
+          const bool is_head = cluster_truth(c.segment.indices, det.cloud().labels).head_id != 0;
           if (c.head && !is_head) fp_clusters.push_back(int(&c - cands.data()));
           if (c.head != is_head) {
             std::size_t with_normal = 0;
@@ -226,4 +226,14 @@ TEST(BroccoliSegmentationProbe, DISABLED_HeadsFoundPerPreset) {
   std::printf(
       "SEGPROBE visible (>= 300 points): %ld, found %ld, merged %ld, pieces whose union reaches 0.5 %ld, other %ld\n",
       vis, vis_found, vis_merged, vis_union, vis_other);
+  return 0;
+}
+
+int main() {
+  try {
+    return probe();
+  } catch (const Error& e) {
+    std::fprintf(stderr, "broccoli_segmentation_probe: %s\n", e.what());
+    return 2;
+  }
 }

@@ -10,7 +10,7 @@
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/learning/model.hpp"
-#include "cropsight/pipeline/broccoli_training.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_training.hpp"
 #include "testing/testing.hpp"
 
 namespace fs = std::filesystem;

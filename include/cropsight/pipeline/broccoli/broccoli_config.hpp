@@ -6,9 +6,11 @@
 //             point clouds for autonomous robotic harvesting", IROS 2020 (OES / ORG / FEC)
 //   [kusumam] Kusumam, Krajník, Pearson, Duckett, Cielniak, "3D-vision based detection,
 //             localization, and sizing of broccoli heads in the field", J. Field Robotics 2017
+#include <array>
 #include <cstdint>
 #include <string>
 
+#include "cropsight/core/config.hpp"
 #include "cropsight/features/feature_set.hpp"
 #include "cropsight/geometry/depth_filter.hpp"
 #include "cropsight/geometry/integral_normals.hpp"
@@ -32,37 +34,59 @@ struct OutlierStageConfig {
   }
 };
 
+/// The detector's decision rules.
 struct BroccoliDetectionConfig {
-  float score_margin = 0.0f;       ///< added to the classifier's threshold (0 SVM, 0.5 KNN)
-  float min_head_fraction = 0.5f;  ///< cluster-truth rule, see broccoli_truth.hpp
-  int min_truth_points = 0;        ///< AP: ground-truth heads with fewer visible points are not counted
-  int visible_truth_points = 300;  ///< ap50_visible: heads with fewer visible points are ignored
-  int min_normal_points = 0;       ///< clusters with fewer points with a normal are not classified
+  float score_margin = 0.0f;  ///< added to the classifier's threshold (0 SVM, 0.5 KNN)
+  int min_normal_points = 0;  ///< clusters with fewer points with a normal are not classified
 
   template <class V>
   void visit(V& v) {
     v("score_margin", score_margin,
       "score units; a cluster is a head when score > classifier threshold + margin (0: the classifier's own "
       "decision, as in [montes])");
-    v("min_head_fraction", min_head_fraction,
-      "fraction; a cluster is a true head when at least this share of its points lies on one labelled head "
-      "(ours: 0.5, the majority rule)");
-    v("min_truth_points", min_truth_points,
-      "points; ground-truth heads with fewer visible (valid, in depth range) points are left out of AP "
-      "(0 = every labelled head counts)");
-    v("visible_truth_points", visible_truth_points,
-      "points; for ap50_visible / map50_95_visible, ground-truth heads with fewer visible points are ignored "
-      "(COCO-style: not counted, and a detection of one is not a false positive); 300 = the field map's "
-      "rule for a true head (ours; the paper does not state its rule for partly visible heads)");
     v("min_normal_points", min_normal_points,
       "points; a cluster with fewer points that have a normal has no shape descriptor (VFH reads normals; "
       "integral-image normals are undefined within normal_smoothing_size of the image border and next to depth "
-      "changes): it is never a head (lowest score) and is left out of training (ours; 0 = classify every cluster)");
+      "changes): it is never a head (lowest score) and is left out of training (ours; 0 = classify every cluster)",
+      Range::at_least(0));
   }
 };
 
+/// How ground truth is joined to clusters, for training labels and evaluation only: the detector
+/// never reads these. Their keys stay "detection.*" (BroccoliPipelineConfig visits them under that
+/// name) so that presets and the model files written before the split keep loading.
+struct BroccoliTruthRules {
+  float min_head_fraction = 0.5f;  ///< cluster-truth rule, see broccoli_truth.hpp
+  int min_truth_points = 0;        ///< AP: ground-truth heads with fewer visible points are not counted
+  int visible_truth_points = 300;  ///< ap50_visible: heads with fewer visible points are ignore regions
+
+  template <class V>
+  void visit(V& v) {
+    v("min_head_fraction", min_head_fraction,
+      "fraction; a cluster is a true head when at least this share of its points lies on one labelled head "
+      "(ours: 0.5, the majority rule)",
+      Range::in(0, 1).open_below());
+    v("min_truth_points", min_truth_points,
+      "points; ground-truth heads with fewer visible (valid, in depth range) points are left out of AP "
+      "(0 = every labelled head counts)",
+      Range::at_least(0));
+    v("visible_truth_points", visible_truth_points,
+      "points; for ap50_visible / map50_95_visible, ground-truth heads with fewer visible points are ignore "
+      "regions (COCO-style: not counted, and a detection of one is not a false positive); 300 = the field map's "
+      "rule for a true head (ours; the paper does not state its rule for partly visible heads)",
+      Range::at_least(0));
+  }
+  /// Throws Error(where, ...) for a value out of range.
+  void validate(const std::string& where) const;
+};
+
+/// The clustering of [montes] §III: organised edge segmentation, organised region growing, or
+/// (fast) Euclidean clustering on the unorganised cloud.
+enum class BroccoliVariant { oes, org, fec };
+constexpr std::array<const char*, 3> config_names(BroccoliVariant) { return {"oes", "org", "fec"}; }
+
 struct BroccoliDetectorConfig {
-  std::string pipeline = "oes";  ///< oes | org | fec
+  BroccoliVariant pipeline = BroccoliVariant::oes;
   std::string features = "vfh";  ///< FeatureSet spec, e.g. "vfh" or "vfh,va,geom"
   geometry::DepthRangeConfig depth;
   geometry::IntegralNormalConfig normals;
@@ -93,7 +117,7 @@ struct BroccoliDetectorConfig {
     v("detection", detection, "decision and ground-truth rules");
   }
 
-  /// Throws Error(where, ...) for an unknown pipeline or feature spec.
+  /// Throws Error(where, ...) for an unknown feature spec or a value out of range.
   void validate(const std::string& where) const;
   /// Feature block names in order, e.g. {"vfh", "va"} (the model file's "features").
   std::vector<std::string> feature_names() const;

@@ -11,7 +11,7 @@
 #include <memory>
 #include <vector>
 
-#include "cropsight/sim/broccoli_config.hpp"
+#include "cropsight/sim/broccoli/broccoli_config.hpp"
 #include "cropsight/sim/mesh.hpp"
 
 namespace cropsight::sim {

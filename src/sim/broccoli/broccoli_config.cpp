@@ -1,4 +1,4 @@
-#include "cropsight/sim/broccoli_config.hpp"
+#include "cropsight/sim/broccoli/broccoli_config.hpp"
 
 #include <cmath>
 #include <string>

@@ -9,8 +9,8 @@
 #include "broccoli_sim_frames.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/config_yaml.hpp"
-#include "cropsight/pipeline/broccoli_training.hpp"
-#include "cropsight/pipeline/pcl_reference.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_training.hpp"
+#include "cropsight/pipeline/broccoli/pcl_reference.hpp"
 #include "testing/testing.hpp"
 
 using namespace cropsight;
@@ -40,7 +40,7 @@ TEST(BroccoliPresets, EveryPresetAppliesAndValidates) {
   for (const char* p : {"oes", "org", "fec"})
     for (const char* v : {"uk", "spain"}) {
       const auto cfg = preset(std::string("broccoli-") + p + "-" + v);
-      EXPECT_EQ(cfg.pipeline, p);
+      EXPECT_EQ(config_name(cfg.pipeline), p);
     }
   EXPECT_FLOAT_EQ(preset("broccoli-fec-uk").fec.tolerance, 0.005f);     // paper: 5 mm UK
   EXPECT_FLOAT_EQ(preset("broccoli-fec-spain").fec.tolerance, 0.004f);  // paper: 4 mm Spain
@@ -50,17 +50,16 @@ TEST(BroccoliPresets, EveryPresetAppliesAndValidates) {
 
 TEST(BroccoliDetector, RejectsBadConfigAndMismatchingModels) {
   BroccoliDetectorConfig bad;
-  bad.pipeline = "kmeans";
-  EXPECT_THROW(BroccoliDetector{bad}, Error);
-  bad = {};
+  EXPECT_THROW(apply_config(bad, {{"pipeline", "kmeans"}}, "preset"), Error);  // oes | org | fec
+
   bad.features = "vfh,sift";
   EXPECT_THROW(BroccoliDetector{bad}, Error);
 
   BroccoliDetectorConfig cfg = preset("broccoli-oes-uk");
-  BroccoliDatasetBuilder builder(cfg);
+  BroccoliDatasetBuilder builder(cfg, {});
   for (int i = 0; i < 3; ++i) builder.add_frame(train_frames()[std::size_t(i)]);
-  auto model = std::make_shared<learning::Model>(train_broccoli_model(builder.dataset(), cfg, {}));
-  cfg.pipeline = "fec";
+  auto model = std::make_shared<learning::Model>(train_broccoli_model(builder.dataset(), cfg, {}, {}));
+  cfg.pipeline = BroccoliVariant::fec;
   BroccoliDetector fec(cfg);
   try {
     fec.set_model(model, "m.json");
@@ -68,7 +67,7 @@ TEST(BroccoliDetector, RejectsBadConfigAndMismatchingModels) {
   } catch (const Error& e) {
     EXPECT_NE(e.problem().find("pipeline 'oes'"), std::string::npos) << e.what();
   }
-  cfg.pipeline = "oes";
+  cfg.pipeline = BroccoliVariant::oes;
   cfg.features = "vfh,va";
   BroccoliDetector other_features(cfg);
   EXPECT_THROW(other_features.set_model(model, "m.json"), Error);
@@ -137,14 +136,16 @@ TEST(BroccoliDetector, CloudMatchesTheScalarDeprojection) {
 // End to end: train on simulated seed 11, test on seed 12 (never seen in training).
 TEST(BroccoliDetector, TrainedOnOneSeedDetectsHeadsOnAnother) {
   const BroccoliDetectorConfig cfg = preset("broccoli-oes-uk");
-  BroccoliDatasetBuilder builder(cfg);
+  BroccoliDatasetBuilder builder(cfg, {});
   for (const auto& f : train_frames()) builder.add_frame(f);
   ASSERT_GT(builder.dataset().positives(), 5u);
   auto model = std::make_shared<learning::Model>(
-      train_broccoli_model(builder.dataset(), cfg, {{"data", "simulated uk seed 11"}}));
-  BroccoliDetector det(cfg);
-  det.set_model(model);
-  BroccoliEvaluator ev(det);
+      train_broccoli_model(builder.dataset(), cfg, {}, {{"data", "simulated uk seed 11"}}));
+  BroccoliPipelineConfig pc;
+  pc.detector = cfg;
+  pc.track = false;
+  BroccoliPipeline pipe(pc, model);
+  BroccoliEvaluator ev(pipe);
   for (const auto& f : test_frames()) ev.add_frame(f);
   const auto r = ev.result();
   EXPECT_EQ(r.frames, 6);
@@ -162,17 +163,15 @@ TEST(BroccoliDetector, TrainedOnOneSeedDetectsHeadsOnAnother) {
   EXPECT_GE(r.ap50_visible, r.ap50);
   EXPECT_GE(r.ap50_in_view, r.ap50);
   // With the threshold at 1 point, "visible" is every head: the same AP.
-  BroccoliDetectorConfig all = cfg;
-  all.detection.visible_truth_points = 1;
-  BroccoliDetector det1(all);
-  det1.set_model(model);
-  BroccoliEvaluator ev1(det1);
+  BroccoliPipelineConfig all = pc;
+  all.truth.visible_truth_points = 1;
+  BroccoliPipeline pipe1(all, model);
+  BroccoliEvaluator ev1(pipe1);
   for (const auto& f : test_frames()) ev1.add_frame(f);
   EXPECT_EQ(ev1.result().truth_heads_visible, r.truth_heads);
   EXPECT_DOUBLE_EQ(ev1.result().ap50_visible, r.ap50);
   // Detections are the positive candidates, best first, with camera-frame centroids in range.
-  det.process(test_frames()[0]);
-  const auto dets = det.detections();
+  const auto dets = pipe.process(test_frames()[0]).detections;
   for (std::size_t i = 0; i < dets.size(); ++i) {
     EXPECT_GT(dets[i].score, 0.0f);
     if (i) {
@@ -190,9 +189,9 @@ TEST(BroccoliDetector, TrainedOnOneSeedDetectsHeadsOnAnother) {
 TEST(BroccoliDetector, ClustersWithoutNormalsAreNeverHeads) {
   BroccoliDetectorConfig cfg = preset("broccoli-oes-uk");
   cfg.detection.min_normal_points = 0;
-  BroccoliDatasetBuilder all(cfg);
+  BroccoliDatasetBuilder all(cfg, {});
   for (const auto& f : train_frames()) all.add_frame(f);
-  auto model = std::make_shared<learning::Model>(train_broccoli_model(all.dataset(), cfg, {}));
+  auto model = std::make_shared<learning::Model>(train_broccoli_model(all.dataset(), cfg, {}, {}));
   BroccoliDetector plain(cfg);
   plain.set_model(model);
   cfg.detection.min_normal_points = 3;
@@ -224,7 +223,7 @@ TEST(BroccoliDetector, ClustersWithoutNormalsAreNeverHeads) {
   EXPECT_GT(undescribed, 0) << "the simulated frames have border slivers without normals";
   EXPECT_GT(compared, 0);
   // Training leaves them out.
-  BroccoliDatasetBuilder some(cfg);
+  BroccoliDatasetBuilder some(cfg, {});
   for (const auto& f : train_frames()) some.add_frame(f);
   EXPECT_LT(some.dataset().size(), all.dataset().size());
   cfg.detection.min_normal_points = -1;
@@ -236,9 +235,9 @@ TEST(BroccoliDetector, ClustersWithoutNormalsAreNeverHeads) {
 TEST(PclReference, MatchesOurFecPipeline) {
   BroccoliDetectorConfig cfg = preset("broccoli-fec-uk");
   cfg.outliers.enabled = false;
-  BroccoliDatasetBuilder builder(cfg);
+  BroccoliDatasetBuilder builder(cfg, {});
   for (int i = 0; i < 3; ++i) builder.add_frame(train_frames()[std::size_t(i)]);
-  auto model = std::make_shared<learning::Model>(train_broccoli_model(builder.dataset(), cfg, {}));
+  auto model = std::make_shared<learning::Model>(train_broccoli_model(builder.dataset(), cfg, {}, {}));
   BroccoliDetector ours(cfg);
   ours.set_model(model);
   PclReferencePipeline pcl(cfg, model);

@@ -1,7 +1,8 @@
 #pragma once
 // Training and evaluation of broccoli head detectors over frames with ground truth. Frame
 // sources are the caller's (a SequenceReader in the CLI, simulated frames in tests), so these
-// classes take one RgbdFrame at a time.
+// classes take one RgbdFrame at a time. Ground truth is joined to the detector's clusters here,
+// by the rules of BroccoliTruthRules (the detector never reads labels).
 #include <cstdint>
 #include <map>
 #include <string>
@@ -12,7 +13,9 @@
 #include "cropsight/eval/detection_ap.hpp"
 #include "cropsight/learning/dataset.hpp"
 #include "cropsight/learning/model.hpp"
-#include "cropsight/pipeline/broccoli_detector.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_detector.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_truth.hpp"
 
 namespace cropsight::pipeline {
 
@@ -20,7 +23,7 @@ namespace cropsight::pipeline {
 /// rule of broccoli_truth.hpp.
 class BroccoliDatasetBuilder {
  public:
-  explicit BroccoliDatasetBuilder(const BroccoliDetectorConfig& cfg);
+  BroccoliDatasetBuilder(const BroccoliDetectorConfig& cfg, const BroccoliTruthRules& truth);
   /// Throws Error("frame N", ...) when the frame has no label image.
   void add_frame(const RgbdFrame& frame);
   const learning::Dataset& dataset() const { return data_; }
@@ -28,22 +31,19 @@ class BroccoliDatasetBuilder {
 
  private:
   BroccoliDetector detector_;
+  BroccoliTruthRules truth_;
   learning::Dataset data_;
   long frames_ = 0;
 };
 
-/// The detector configuration as a flat map (what a model file records).
-ConfigMap config_map(const BroccoliDetectorConfig& cfg);
+/// The training configuration as a flat map (what a model file records): the detector's keys and
+/// the truth rules (detection.*) the training labels were made with; never sizing.* / tracking.*.
+ConfigMap config_map(const BroccoliDetectorConfig& cfg, const BroccoliTruthRules& truth);
 
 /// Trains cfg.classifier on `data` and fills the model's metadata (task, pipeline, features,
 /// config, provenance).
 learning::Model train_broccoli_model(const learning::Dataset& data, const BroccoliDetectorConfig& cfg,
-                                     std::map<std::string, std::string> provenance);
-
-/// The detector configuration a model was trained with, overlaid with `overrides` (a preset and
-/// --set values): defaults ← model ← overrides. Throws Error(where, ...) on an unknown key.
-BroccoliDetectorConfig config_for_model(const learning::Model& model, const ConfigMap& overrides,
-                                        const std::string& where);
+                                     const BroccoliTruthRules& truth, std::map<std::string, std::string> provenance);
 
 struct BroccoliEvalResult {
   long frames = 0;
@@ -64,17 +64,18 @@ struct BroccoliEvalResult {
   std::vector<StageTimer::Stage> stages;  ///< per-stage totals
 };
 
-/// Runs a detector (with a model) over frames with labels and accumulates Table I and II metrics.
+/// Runs a pipeline over frames with labels and accumulates Table I and II metrics of its detector.
 /// AP ranks every cluster by its score (all candidates, not only those above the threshold).
 class BroccoliEvaluator {
  public:
-  explicit BroccoliEvaluator(BroccoliDetector& detector);
-  /// Throws Error("frame N", ...) when the frame has no label image.
+  explicit BroccoliEvaluator(BroccoliPipeline& pipeline);
+  /// pipeline.process(frame), then the frame's figures (the result stays in pipeline.last() for a
+  /// BroccoliTrackingEvaluator). Throws Error("frame N", ...) when the frame has no label image.
   void add_frame(const RgbdFrame& frame);
   BroccoliEvalResult result() const;
 
  private:
-  BroccoliDetector& det_;
+  BroccoliPipeline& pipeline_;
   BroccoliEvalResult r_;
   eval::DetectionApAccumulator ap_, ap_view_, ap_visible_;
   std::vector<bool> cut_, small_;

@@ -1,4 +1,4 @@
-#include "cropsight/pipeline/broccoli_detector.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_detector.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -51,7 +51,7 @@ std::size_t BroccoliDetector::feature_dimension() const { return feature_set_.di
 
 void BroccoliDetector::set_model(std::shared_ptr<const learning::Model> model, const std::string& where) {
   if (model) {
-    learning::require_compatible(model->info, kBroccoliTask, cfg_.pipeline, cfg_.feature_names(),
+    learning::require_compatible(model->info, kBroccoliTask, config_name(cfg_.pipeline), cfg_.feature_names(),
                                  int(feature_set_.dimension()), where);
   }
   model_ = std::move(model);
@@ -99,34 +99,50 @@ void BroccoliDetector::normals(std::span<const int> select) {
 }
 
 void BroccoliDetector::cluster() {
-  if (cfg_.pipeline == "oes") {
-    // OES segments without normals (unless crease edges need the curvature): the normals are
-    // then computed only for the pixels of the kept segments, the only ones VFH reads.
-    const bool lazy = !(cfg_.edges.high_curvature_threshold > 0.0f);
-    if (!lazy) normals();
-    {
-      auto t = timer_.scope("edges");
-      geometry::detect_organized_edges(cloud_, cfg_.edges, edges_);
-    }
-    {
-      auto t = timer_.scope("clustering");
-      segments_ = segmentation::segment_oes(cloud_, edges_, cfg_.oes, flood_);
-    }
-    if (lazy) normals(flood_.labels);
-  } else if (cfg_.pipeline == "org") {
-    normals();
-    auto t = timer_.scope("clustering");
-    segments_ = segmentation::segment_org(cloud_, cfg_.org, flood_);
-  } else {
-    normals();
-    valid_ = geometry::valid_indices(cloud_);
-    if (cfg_.outliers.enabled) {
-      auto t = timer_.scope("outliers");
-      valid_ = geometry::remove_statistical_outliers(cloud_, valid_, cfg_.outliers.sor);
-    }
-    auto t = timer_.scope("clustering");
-    segments_ = segmentation::euclidean_clusters(cloud_, valid_, cfg_.fec);
+  switch (cfg_.pipeline) {
+    case BroccoliVariant::oes:
+      cluster_oes();
+      return;
+    case BroccoliVariant::org:
+      cluster_org();
+      return;
+    case BroccoliVariant::fec:
+      cluster_fec();
+      return;
   }
+}
+
+void BroccoliDetector::cluster_oes() {
+  // OES segments without normals (unless crease edges need the curvature): the normals are then
+  // computed only for the pixels of the kept segments, the only ones VFH reads.
+  const bool lazy = !(cfg_.edges.high_curvature_threshold > 0.0f);
+  if (!lazy) normals();
+  {
+    auto t = timer_.scope("edges");
+    geometry::detect_organized_edges(cloud_, cfg_.edges, edges_);
+  }
+  {
+    auto t = timer_.scope("clustering");
+    segments_ = segmentation::segment_oes(cloud_, edges_, cfg_.oes, flood_);
+  }
+  if (lazy) normals(flood_.labels);
+}
+
+void BroccoliDetector::cluster_org() {
+  normals();
+  auto t = timer_.scope("clustering");
+  segments_ = segmentation::segment_org(cloud_, cfg_.org, flood_);
+}
+
+void BroccoliDetector::cluster_fec() {
+  normals();
+  valid_ = geometry::valid_indices(cloud_);
+  if (cfg_.outliers.enabled) {
+    auto t = timer_.scope("outliers");
+    valid_ = geometry::remove_statistical_outliers(cloud_, valid_, cfg_.outliers.sor);
+  }
+  auto t = timer_.scope("clustering");
+  segments_ = segmentation::euclidean_clusters(cloud_, valid_, cfg_.fec);
 }
 
 std::span<const BroccoliCandidate> BroccoliDetector::process(const RgbdFrame& frame) {
@@ -154,8 +170,6 @@ std::span<const BroccoliCandidate> BroccoliDetector::process(const RgbdFrame& fr
         c.normal_points = with_normal;
         c.described = with_normal >= cfg_.detection.min_normal_points;
       }
-      c.truth = cloud_.has_labels() ? cluster_truth(c.segment.indices, cloud_.labels, cfg_.detection.min_head_fraction)
-                                    : ClusterTruth{};
     }
   }
   {

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "cropsight/pipeline/broccoli_truth.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_truth.hpp"
 
 using namespace cropsight;
 using namespace cropsight::pipeline;

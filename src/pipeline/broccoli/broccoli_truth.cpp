@@ -1,4 +1,4 @@
-#include "cropsight/pipeline/broccoli_truth.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_truth.hpp"
 
 #include <algorithm>
 #include <array>

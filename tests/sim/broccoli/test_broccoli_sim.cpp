@@ -9,7 +9,7 @@
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/sim/broccoli_sim.hpp"
+#include "cropsight/sim/broccoli/broccoli_sim.hpp"
 #include "cropsight/sim/tof_sensor.hpp"
 #include "testing/testing.hpp"
 

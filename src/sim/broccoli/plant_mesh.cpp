@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cropsight/sim/broccoli_field.hpp"
+#include "cropsight/sim/broccoli/broccoli_field.hpp"
 #include "cropsight/sim/random.hpp"
-#include "leaf_mesh.hpp"
-#include "value_noise.hpp"
+#include "sim/leaf_mesh.hpp"
+#include "sim/value_noise.hpp"
 
 namespace cropsight::sim {
 

@@ -1,0 +1,50 @@
+#pragma once
+// Timing of the broccoli pipelines as deployed, for `cropsight bench broccoli` and library users
+// who compare settings on their own frames: frames already in memory (I/O excluded) and without
+// label images, one warm-up frame first, wall clock and this thread's CPU time per frame. Call
+// from a single-threaded section (the paper's figures are single-threaded; the CLI caps TBB to
+// one thread) so that the CPU time is the pipeline's alone. Speed ratios between pipelines timed
+// in the same process are the robust figures on a shared machine.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cropsight/core/rgbd_frame.hpp"
+#include "cropsight/core/timer.hpp"
+#include "cropsight/learning/model.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_detector.hpp"
+#include "cropsight/pipeline/broccoli/pcl_reference.hpp"
+#include "cropsight/tracking/head_mapper.hpp"
+
+namespace cropsight::pipeline {
+
+struct PipelineTiming {
+  double ms = 0;      ///< wall clock, total over the timed frames
+  double cpu_ms = 0;  ///< thread CPU time, total
+  long frames = 0;
+  long clusters = 0;  ///< clusters (detectors) or detections (tracking) over the timed frames
+  std::vector<StageTimer::Stage> stages;
+  double ms_per_frame() const { return frames ? ms / double(frames) : 0.0; }
+  double fps() const { return ms > 0 ? 1000.0 * double(frames) / ms : 0.0; }
+  double cpu_ms_per_frame() const { return frames ? cpu_ms / double(frames) : 0.0; }
+  double cpu_fps() const { return cpu_ms > 0 ? 1000.0 * double(frames) / cpu_ms : 0.0; }
+  double clusters_per_frame() const { return frames ? double(clusters) / double(frames) : 0.0; }
+};
+
+/// `repeat` passes of detector.process over `frames`, after one warm-up frame. Throws Error when
+/// `frames` is empty.
+PipelineTiming time_detector(BroccoliDetector& detector, const std::vector<RgbdFrame>& frames, int repeat);
+/// The same for the PCL reference pipeline.
+PipelineTiming time_pcl_reference(PclReferencePipeline& pcl, const std::vector<RgbdFrame>& frames, int repeat);
+/// Sizing + the temporal filter on `detector`'s detections of the same frames: per frame
+/// HeadMapper::add_frame + predict_missed, finish() once per pass — everything tracking adds to
+/// the detector (BroccoliPipeline steps 2-4). The detector runs untimed in that loop.
+PipelineTiming time_tracking(BroccoliDetector& detector, const tracking::HeadMapperConfig& cfg,
+                             const std::vector<RgbdFrame>& frames, int repeat);
+
+/// `model`'s classifier under the tag of another clustering variant (rebuilt from its own
+/// serialisation), so that one model times every variant: for timing only.
+std::shared_ptr<const learning::Model> model_for_variant(const std::shared_ptr<const learning::Model>& model,
+                                                         BroccoliVariant variant, const std::string& where);
+
+}  // namespace cropsight::pipeline

@@ -1,0 +1,25 @@
+#include "cropsight/pipeline/broccoli/broccoli_config.hpp"
+
+#include <sstream>
+
+#include "cropsight/core/error.hpp"
+
+namespace cropsight::pipeline {
+
+void BroccoliDetectorConfig::validate(const std::string& where) const {
+  features::FeatureSet::parse(features, where);
+  classifier.validate(where);
+  depth.validate();
+  check_config(*this, where);  // the ranges declared in visit()
+}
+
+void BroccoliTruthRules::validate(const std::string& where) const { check_config(*this, where, "detection."); }
+
+std::vector<std::string> BroccoliDetectorConfig::feature_names() const {
+  std::vector<std::string> out;
+  std::istringstream in(features::FeatureSet::parse(features, "features").spec());
+  for (std::string part; std::getline(in, part, ',');) out.push_back(part);
+  return out;
+}
+
+}  // namespace cropsight::pipeline

@@ -1,0 +1,76 @@
+#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/core/timer.hpp"
+
+namespace cropsight::pipeline {
+
+namespace {
+// The whole config is checked before any step is built from it, so that an error names the key.
+const BroccoliDetectorConfig& validated_detector(const BroccoliPipelineConfig& cfg, const std::string& where) {
+  cfg.validate(where);
+  return cfg.detector;
+}
+}  // namespace
+
+void BroccoliPipelineConfig::validate(const std::string& where) const {
+  detector.validate(where);
+  truth.validate(where);
+  tracking::HeadMapper check(mapping());  // sizing.* and tracking.* are checked where they are used
+}
+
+std::shared_ptr<const learning::Model> load_broccoli_model(const std::filesystem::path& path) {
+  auto m = std::make_shared<learning::Model>(learning::load_model(path));
+  if (m->info.task != kBroccoliTask)
+    throw Error(path.string(), "model was trained for task '" + m->info.task + "', not broccoli heads");
+  return m;
+}
+
+BroccoliPipelineConfig broccoli_config_for_model(const learning::Model& model, const ConfigMap& overrides,
+                                                 const std::string& where, const std::string& overrides_where) {
+  BroccoliPipelineConfig cfg;
+  apply_config(cfg, model.info.config, where);
+  apply_config(cfg, overrides, overrides_where);
+  cfg.validate(where);
+  return cfg;
+}
+
+BroccoliPipeline::BroccoliPipeline(const BroccoliPipelineConfig& cfg, std::shared_ptr<const learning::Model> model,
+                                   const std::string& where)
+    : cfg_(cfg), detector_(validated_detector(cfg, where)) {
+  if (!model) throw Error(where, "the broccoli pipeline needs a model");
+  detector_.set_model(std::move(model), where);
+  start_pass();
+}
+
+void BroccoliPipeline::start_pass() {
+  if (cfg_.track) mapper_.emplace(cfg_.mapping());
+}
+
+const BroccoliFrameResult& BroccoliPipeline::process(const RgbdFrame& frame) {
+  BroccoliFrameResult& r = result_;
+  r.frame = frame.index;
+  r.predicted.clear();
+  r.association = {};
+  r.track_ms = 0.0;
+  Stopwatch clock;
+  detector_.process(frame);  // 1. cloud → normals → clusters → features → classifier
+  r.detections = detector_.detections();
+  r.detect_ms = clock.ms();
+  if (!mapper_) return r;
+  clock.restart();
+  // 2. + 3. size every whole head, then the temporal filter (sets size_m and track_id)
+  r.association = mapper_->add_frame(frame.index, detector_.cloud(), r.detections, frame.camera_position);
+  r.predicted = mapper_->predict_missed(detector_.cloud(), frame.camera);  // 4. heads this frame missed
+  r.track_ms = clock.ms();
+  return r;
+}
+
+const std::vector<tracking::TrackedHead>& BroccoliPipeline::finish() { return mapper_ ? mapper_->finish() : no_map_; }
+
+const tracking::HeadMapper& BroccoliPipeline::mapper() const {
+  if (!mapper_) throw Error("broccoli pipeline", "tracking is off (track = false): there is no head mapper");
+  return *mapper_;
+}
+
+}  // namespace cropsight::pipeline
