@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Captures the outputs of the shipped models through one cropsight binary, so that a refactoring
+# can be checked to change no result (issue 21): run it with the binary before and after, then
+# tools/golden-compare.py BEFORE AFTER (timings and paths are left out of the comparison).
+#
+#   tools/golden-outputs.sh BUILD/bin/cropsight OUT_DIR [DATA_DIR]
+#
+# DATA_DIR (default OUT_DIR/data) keeps the simulated sequences between runs; the grape clouds come
+# from scripts/unpack-grape.sh. Takes about two minutes on two cores.
+set -euo pipefail
+bin="$(realpath "$1")"
+out="$2"
+here="$(cd "$(dirname "$0")/.." && pwd)"
+data="${3:-$out/data}"
+mkdir -p "$out" "$data"
+cd "$here"
+[[ -d "$data/uk-2001" ]] || "$bin" simulate broccoli --variety uk --seed 2001 --frames 50 --out "$data/uk-2001" >/dev/null
+[[ -d "$data/spain-2002" ]] || "$bin" simulate broccoli --variety spain --seed 2002 --frames 20 --out "$data/spain-2002" >/dev/null
+S="$data/uk-2001"; P="$data/spain-2002"
+run() { local name="$1"; shift; "$bin" "$@" > "$out/$name.json" 2> "$out/$name.err" || echo "exit $?" >> "$out/$name.err"; }
+run eval-oes-uk eval broccoli --data "$S" --model models/broccoli-oes-uk.json --json --quiet
+run eval-org-spain eval broccoli --data "$P" --model models/broccoli-org-spain.json --json --quiet
+run eval-fec-uk eval broccoli --data "$S" --model models/broccoli-fec-uk.json --json --quiet
+run eval-track-poses eval broccoli --data "$S,$P" --model models/broccoli-oes-uk.json --track --json --quiet --set tracking.use_poses=true --set sizing.estimator=hull
+run eval-track-fit eval broccoli --data "$P" --model models/broccoli-oes-spain.json --track --fit-size-bias --json --quiet
+run detect-track detect broccoli --data "$S" --model models/broccoli-oes-uk.json --out "$out/detect.jsonl" --masks "$out/masks" --track --map "$out/map.csv" --json --quiet
+run detect-plain detect broccoli --data "$P" --model models/broccoli-fec-spain.json --out "$out/detect-plain.jsonl" --json --quiet
+run report report --data "$P" --model models/broccoli-oes-spain.json --out "$out/report.html" --json
+run train train broccoli --data "$P" --config broccoli-oes-spain --out "$out/train-model.json" --json --quiet
+# Grape: the shipped GBDT and the fast recipe on four clouds of fold 1, one cloud segmented.
+if grape="$(scripts/unpack-grape.sh 2>/dev/null)"; then
+  cloud="$(ls "$grape"/points/*.txt | head -1)"
+  run segment-grape segment grape --model models/grape-gbdt.json --input "$cloud" --out "$out/segment-grape.txt" --json
+  run eval-grape eval grape --data "$grape" --model models/grape-gbdt-fast4096-fold1.json --fold 1/4 --limit 8 --json
+fi
+# Seedlings and stereo: a small simulated set.
+[[ -d "$data/seedlings" ]] || "$bin" simulate seedling --seed 4711 --pairs 4 --out "$data/seedlings" >/dev/null 2>&1 || true
+if [[ -d "$data/seedlings" ]]; then
+  run eval-seedling eval seedling --data "$data/seedlings" --no-opencv --quiet --json
+  run eval-seedling-fast eval seedling --data "$data/seedlings" --config seedling-fast --no-opencv --quiet --json
+fi
+[[ -d ../shared/data/middlebury ]] && run eval-stereo eval stereo --middlebury ../shared/data/middlebury --json
+echo "$out"
