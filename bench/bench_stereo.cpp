@@ -11,7 +11,7 @@
 // 4096 points the fast seedling pipeline hands to its GMM for the simulated pair (28 EM
 // iterations, what `eval seedling` reports as ms_gmm); our second Arg 0 = the portable SSE2
 // build of the EM, 1 = what fit_gmm() runs (the AVX2 + FMA build where the CPU has it),
-// and the whole seedling pipeline (detect_seedling) with the shipped presets: Arg 0 =
+// and the whole seedling pipeline (SeedlingPipeline::process) with the shipped presets: Arg 0 =
 // configs/seedling.yaml (OpenCV engine), Arg 1 = configs/seedling-fast.yaml (census engine).
 //   build/bin/bench_stereo --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -19,11 +19,10 @@
 
 #include <random>
 
-#include "cropsight/io/config_yaml.hpp"
+#include "cropsight/pipeline/seedling/seedling_pipeline.hpp"
 #include "cropsight/segmentation/gmm.hpp"
-#include "cropsight/sim/seedling.hpp"
+#include "cropsight/sim/seedling/seedling_sim.hpp"
 #include "cropsight/stereo/disparity.hpp"
-#include "cropsight/stereo/seedling_detector.hpp"
 #include "segmentation/gmm_kernels.hpp"
 
 using namespace cropsight;
@@ -62,13 +61,7 @@ void BM_DisparityCensus128(benchmark::State& st) {
 }
 void BM_CensusSgmMatcherOnly128(benchmark::State& st) {
   // The matcher alone: grey input, no speckle filter, no filling; range(0) = 0 forces SSE2.
-  GrayImage l(pair().left.width, pair().left.height), r(l.width, l.height);
-  for (std::size_t i = 0; i < l.size(); ++i) {
-    const auto& a = pair().left.data[i];
-    const auto& b = pair().right.data[i];
-    l.data[i] = std::uint8_t((a.r * 77 + a.g * 150 + a.b * 29) >> 8);
-    r.data[i] = std::uint8_t((b.r * 77 + b.g * 150 + b.b * 29) >> 8);
-  }
+  const GrayImage l = stereo::grey_levels(pair().left), r = stereo::grey_levels(pair().right);
   stereo::DisparityConfig cfg;
   cfg.num_disparities = 128;
   cfg.speckle_window = 0;
@@ -86,23 +79,16 @@ void BM_DisparityOpenCvEngine128(benchmark::State& st) {
 void BM_DisparityOpenCvSgbm128(benchmark::State& st) {
   for (auto _ : st) benchmark::DoNotOptimize(stereo::opencv_sgbm_disparity(pair().left, pair().right, 128));
 }
-stereo::SeedlingConfig preset_config(const std::string& preset) {
-  const auto path = io::find_preset(std::string(CROPSIGHT_SOURCE_DIR) + "/configs/" + preset + ".yaml");
-  stereo::SeedlingConfig cfg;
-  apply_config(cfg, io::load_config_map(path), path.string());
-  return cfg;
+pipeline::SeedlingPipeline preset_pipeline(const std::string& preset) {
+  return pipeline::SeedlingPipeline::from_preset(std::string(CROPSIGHT_SOURCE_DIR) + "/configs/" + preset + ".yaml");
 }
 
-stereo::RectifiedGeometry sim_geometry() {
-  sim::SeedlingSimConfig sc;
-  const auto rig = sc.rig();
-  return {rig.width, rig.height, rig.f, rig.cx, rig.cy, rig.cx, rig.baseline()};
-}
+stereo::RectifiedGeometry sim_geometry() { return sim::rectified_geometry(sim::SeedlingSimConfig{}.rig()); }
 
 // The down-sampled candidates the fast preset's GMM sees for the simulated pair.
 const std::vector<Eigen::Vector3f>& seedling_points() {
   static const std::vector<Eigen::Vector3f> pts =
-      stereo::detect_seedling(pair().left, pair().right, sim_geometry(), preset_config("seedling-fast")).sampled;
+      preset_pipeline("seedling-fast").process(pair().left, pair().right, sim_geometry()).sampled;
   return pts;
 }
 
@@ -129,10 +115,10 @@ void BM_GmmOpenCvEm(benchmark::State& st) {
 
 void BM_SeedlingPipeline(benchmark::State& st) {
   const std::string preset = st.range(0) == 0 ? "seedling" : "seedling-fast";
-  const stereo::SeedlingConfig cfg = preset_config(preset);
+  const pipeline::SeedlingPipeline seedlings = preset_pipeline(preset);
   const stereo::RectifiedGeometry g = sim_geometry();
   st.SetLabel(preset);
-  for (auto _ : st) benchmark::DoNotOptimize(stereo::detect_seedling(pair().left, pair().right, g, cfg));
+  for (auto _ : st) benchmark::DoNotOptimize(seedlings.process(pair().left, pair().right, g));
 }
 
 }  // namespace

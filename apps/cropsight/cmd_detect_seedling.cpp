@@ -1,5 +1,6 @@
 // cropsight detect seedling (issue 5): one stereo pair + calibration -> seedling envelope box,
-// image mask, top-view mask and per-stage timings.
+// image mask, top-view mask and per-stage timings. The detection is pipeline::SeedlingPipeline;
+// this file parses options, reads the pair, and writes the outputs.
 #include <unistd.h>
 
 #include <cstdio>
@@ -17,35 +18,6 @@
 #include "seedling_cli.hpp"
 
 namespace cropsight::cli {
-
-stereo::SeedlingConfig seedling_config(const CommonOptions& o) {
-  stereo::SeedlingConfig cfg;
-  apply_checked_config(cfg, o, "seedling", stereo::validate_seedling_config);
-  return cfg;
-}
-
-nlohmann::json seedling_json(const stereo::SeedlingDetection& d) {
-  nlohmann::json t = nlohmann::json::object();
-  for (const auto& s : d.timer.stages()) t[s.name] = s.total_ms;
-  t["total"] = d.timer.total_ms();
-  return {
-      {"found", d.found},
-      {"envelope",
-       {{"length_m", d.envelope.length},
-        {"width_m", d.envelope.width},
-        {"height_m", d.envelope.height},
-        {"volume_m3", d.envelope.volume()}}},
-      {"top_view_area_m2", d.top_view.area()},
-      {"plane", {{"normal", {d.plane_normal.x(), d.plane_normal.y(), d.plane_normal.z()}}, {"d", d.plane_d}}},
-      {"points",
-       {{"reconstructed", d.points_total},
-        {"above_soil", d.points_candidates},
-        {"sampled", d.points_sampled},
-        {"seedling_sampled", d.points_seedling_sampled},
-        {"seedling_dense", int(d.points.size())}}},
-      {"gmm", {{"components", d.gmm.model.size()}, {"iterations", d.gmm.iterations}, {"chosen", d.chosen_components}}},
-      {"timings_ms", t}};
-}
 
 namespace {
 
@@ -103,20 +75,13 @@ void run(const Options& o) {
   if (!o.out.empty()) check_json_output(o.out);
   if (!o.mask.empty()) stereo::check_image_output(o.mask, "--mask", false);
   if (!o.top_view.empty()) stereo::check_image_output(o.top_view, "--top-view", false);
-  const auto cfg = seedling_config(o.common);
+  const auto seedlings = seedling_pipeline(o.common);
   const auto calib = stereo::load_calibration(o.calib);
   auto [l, r] = stereo::read_color_pair(o.left, o.right);
   if (l.width != calib.width || l.height != calib.height)
     throw Error(o.left, "image size differs from the calibration " + o.calib);
-  stereo::RectifiedGeometry geo;
-  if (stereo::is_rectified(calib)) {
-    geo = stereo::rectified_geometry(calib);
-  } else {
-    stereo::StereoRectifier rect(calib);
-    std::tie(l, r) = rect.rectify(l, r, o.left);
-    geo = rect.geometry();
-  }
-  const auto det = stereo::detect_seedling(l, r, geo, cfg, o.left);
+  const auto pair = stereo::rectify_pair(calib, std::move(l), std::move(r), o.left);
+  const auto det = seedlings.process(pair.left, pair.right, pair.geometry, o.left);
   nlohmann::json j = seedling_json(det);
   j["left"] = o.left;
   j["right"] = o.right;

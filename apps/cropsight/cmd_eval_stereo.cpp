@@ -1,8 +1,8 @@
 // cropsight eval stereo (issue 5): bad-1 / bad-2 (percent of ground-truth pixels off by more than
 // 1 / 2 px, a pixel without estimate counting as bad) and time on the Middlebury pairs, for our
 // matcher and for plain OpenCV StereoSGBM run in the same process; optionally the paper's SAD /
-// SSD 55x55 block-matching baselines.
-#include <chrono>
+// SSD 55x55 block-matching baselines. The evaluation is stereo::evaluate_middlebury(); this file
+// chooses the matchers and formats the figures.
 #include <cstdio>
 
 #include "cli_common.hpp"
@@ -21,31 +21,18 @@ struct Options {
   bool baselines = false;
 };
 
-template <class F>
-nlohmann::json evaluate(const std::vector<stereo::MiddleburyPair>& pairs, F&& match) {
+// The CLI's JSON form of one matcher's evaluation (keys as before the evaluation moved to the library).
+nlohmann::json to_json(const stereo::MiddleburyEvaluation& e) {
   nlohmann::json j = {{"pairs", nlohmann::json::object()}};
-  double s1 = 0, s2 = 0;
-  for (const auto& p : pairs) {
-    const int nd = ((p.max_disparity + 1 + 15) / 16) * 16;  // search range: the pair's range, rounded up
-    const auto t0 = std::chrono::steady_clock::now();
-    const stereo::DisparityImage d = match(p, nd);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    const auto st = stereo::bad_pixels(d, p.truth, p.name);
-    j["pairs"][p.name] = {
-        {"bad1", st.bad1}, {"bad2", st.bad2}, {"invalid", st.invalid}, {"ms", ms}, {"num_disparities", nd}};
-    s1 += st.bad1;
-    s2 += st.bad2;
-  }
-  j["mean_bad1"] = s1 / double(pairs.size());
-  j["mean_bad2"] = s2 / double(pairs.size());
+  for (const auto& p : e.pairs)
+    j["pairs"][p.name] = {{"bad1", p.stats.bad1},
+                          {"bad2", p.stats.bad2},
+                          {"invalid", p.stats.invalid},
+                          {"ms", p.ms},
+                          {"num_disparities", p.num_disparities}};
+  j["mean_bad1"] = e.mean_bad1;
+  j["mean_bad2"] = e.mean_bad2;
   return j;
-}
-
-GrayImage gray(const ColorImage& c) {
-  GrayImage g(c.width, c.height);
-  for (std::size_t i = 0; i < c.size(); ++i)
-    g.data[i] = std::uint8_t((c.data[i].r * 77 + c.data[i].g * 150 + c.data[i].b * 29) >> 8);
-  return g;
 }
 
 void run(const Options& o) {
@@ -55,20 +42,21 @@ void run(const Options& o) {
     stereo::validate_disparity_config(c, where);
   });
   const auto pairs = stereo::load_middlebury(o.middlebury);
-  nlohmann::json j = evaluate(pairs, [&](const stereo::MiddleburyPair& p, int nd) {
+  nlohmann::json j = to_json(stereo::evaluate_middlebury(pairs, [&](const stereo::MiddleburyPair& p, int nd) {
     stereo::DisparityConfig c = cfg;
     c.num_disparities = nd;
     return stereo::compute_disparity(p.left, p.right, c, p.name);
-  });
-  j["opencv_sgbm"] = evaluate(pairs, [&](const stereo::MiddleburyPair& p, int nd) {
+  }));
+  j["opencv_sgbm"] = to_json(stereo::evaluate_middlebury(pairs, [&](const stereo::MiddleburyPair& p, int nd) {
     return stereo::opencv_sgbm_disparity(p.left, p.right, nd, 3, p.name);
-  });
+  }));
   if (o.baselines) {
     for (auto cost : {stereo::BlockCost::kSad, stereo::BlockCost::kSsd})
       j[cost == stereo::BlockCost::kSad ? "sad55" : "ssd55"] =
-          evaluate(pairs, [&](const stereo::MiddleburyPair& p, int nd) {
-            return stereo::block_matching(gray(p.left), gray(p.right), nd, 55, cost, p.name);
-          });
+          to_json(stereo::evaluate_middlebury(pairs, [&](const stereo::MiddleburyPair& p, int nd) {
+            return stereo::block_matching(stereo::grey_levels(p.left), stereo::grey_levels(p.right), nd, 55, cost,
+                                          p.name);
+          }));
   }
   j["rule"] = "percent of ground-truth pixels with |error| > 1 (bad1) or > 2 (bad2) px; no estimate = bad";
   if (o.common.json) {

@@ -15,7 +15,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
-#include "cropsight/sim/seedling.hpp"
+#include "cropsight/sim/seedling/seedling_sim.hpp"
 #include "cropsight/stereo/calibration.hpp"
 
 namespace cropsight::cli {
@@ -62,24 +62,6 @@ struct TempDirGuard {
   }
 };
 
-stereo::StereoCalibration ideal_calibration(const sim::SeedlingSimConfig& cfg) {
-  // The simulated views are already rectified: the rig's calibration is ideal.
-  const sim::StereoRigModel rig = cfg.rig();
-  stereo::StereoCalibration c;
-  c.width = rig.width;
-  c.height = rig.height;
-  c.K1 << rig.f, 0, rig.cx, 0, rig.f, rig.cy, 0, 0, 1;
-  c.K2 = c.K1;
-  c.D1 = c.D2 = std::vector<double>(5, 0.0);
-  c.R = rig.R;
-  c.T = rig.T;
-  Eigen::Matrix3d tx;
-  tx << 0, -c.T.z(), c.T.y(), c.T.z(), 0, -c.T.x(), -c.T.y(), c.T.x(), 0;
-  c.E = tx * c.R;
-  c.F = c.K2.inverse().transpose() * c.E * c.K1.inverse();
-  return c;
-}
-
 void run(const Options& o) {
   if (o.pairs < 1 || o.pairs > sim::kMaxSeedlingPairs)
     throw Error("--pairs",
@@ -110,7 +92,7 @@ void run(const Options& o) {
     sim::write_seedling_dataset(
         tmp.path, cfg, o.pairs, o.seed, o.calib_pairs,
         [](int done, void* p) { static_cast<Progress*>(p)->update(done); }, &progress);
-    stereo::save_calibration(tmp.path / "rig.yaml", ideal_calibration(cfg));
+    stereo::save_calibration(tmp.path / "rig.yaml", sim::ideal_calibration(cfg.rig()));
   } catch (const Error& e) {
     throw Error(out.string(), e.problem());  // name --out, not the hidden temporary
   }

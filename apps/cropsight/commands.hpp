@@ -26,6 +26,7 @@ void add_roi_cloud(CLI::App& app);
 
 // Broccoli seedlings from stereo (issue 5): stereo calibrate|disparity, detect / eval / simulate seedling, eval stereo
 void add_stereo(CLI::App& app);
+void add_stereo_disparity(CLI::App& parent);  // called by add_stereo
 void add_detect_seedling(CLI::App& detect);
 void add_eval_seedling(CLI::App& eval);
 void add_eval_stereo(CLI::App& eval);

@@ -1,13 +1,14 @@
 #pragma once
 // Shared by the seedling and stereo sub-commands (detect / eval / simulate seedling, stereo,
-// eval stereo): configuration loading and the JSON form of a detection.
+// eval stereo): configuration loading and the JSON forms of a detection and an evaluation.
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "cli_common.hpp"
 #include "cropsight/core/config.hpp"
 #include "cropsight/io/config_yaml.hpp"
-#include "cropsight/stereo/seedling_detector.hpp"
+#include "cropsight/pipeline/seedling/seedling_eval.hpp"
+#include "cropsight/pipeline/seedling/seedling_pipeline.hpp"
 
 namespace cropsight::cli {
 
@@ -33,10 +34,12 @@ void apply_checked_config(Config& cfg, const CommonOptions& o, const std::string
   validate(cfg, "--set");
 }
 
-/// SeedlingConfig from the preset (default configs/seedling.yaml) and --set overrides, validated
-/// (stereo::validate_seedling_config); errors name the preset file or "--set" and the key.
-stereo::SeedlingConfig seedling_config(const CommonOptions& o);
+/// The seedling pipeline of the preset (default configs/seedling.yaml) with the --set overrides,
+/// validated (pipeline::validate_seedling_config); errors name the preset file or "--set" and the key.
+pipeline::SeedlingPipeline seedling_pipeline(const CommonOptions& o);
 /// found, envelope, plane, point counts, timings in ms per stage.
-nlohmann::json seedling_json(const stereo::SeedlingDetection& d);
+nlohmann::json seedling_json(const pipeline::SeedlingDetection& d);
+/// The figures of an evaluation, per pair and averaged (the cv::ml::EM keys only when compared).
+nlohmann::json seedling_evaluation_json(const pipeline::SeedlingEvaluation& e);
 
 }  // namespace cropsight::cli

@@ -392,4 +392,17 @@ DisparityImage block_matching(const GrayImage& left, const GrayImage& right, int
   return out;
 }
 
+GrayImage grey_levels(const ColorImage& c) {
+  GrayImage g(c.width, c.height);
+  for (std::size_t i = 0; i < c.size(); ++i)
+    g.data[i] = std::uint8_t((c.data[i].r * 77 + c.data[i].g * 150 + c.data[i].b * 29) >> 8);
+  return g;
+}
+
+double valid_percent(const DisparityImage& d) {
+  long valid = 0;
+  for (float v : d.data) valid += std::isfinite(v);
+  return 100.0 * double(valid) / double(std::max<std::size_t>(1, d.size()));
+}
+
 }  // namespace cropsight::stereo

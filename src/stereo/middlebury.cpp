@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/core/timer.hpp"
 #include "cropsight/stereo/stereo_io.hpp"
 
 namespace cropsight::stereo {
@@ -70,6 +71,27 @@ BadPixelStats bad_pixels(const DisparityImage& est, const DisparityImage& truth,
     s.invalid = 100.0 * double(inv) / double(n);
   }
   return s;
+}
+
+MiddleburyEvaluation evaluate_middlebury(const std::vector<MiddleburyPair>& pairs, const MiddleburyMatcher& match) {
+  MiddleburyEvaluation e;
+  double s1 = 0, s2 = 0;
+  for (const auto& p : pairs) {
+    const int nd = ((p.max_disparity + 1 + 15) / 16) * 16;
+    StageTimer t;
+    DisparityImage d;
+    {
+      auto scope = t.scope("match");
+      d = match(p, nd);
+    }
+    const BadPixelStats st = bad_pixels(d, p.truth, p.name);
+    e.pairs.push_back({p.name, st, t.total_ms(), nd});
+    s1 += st.bad1;
+    s2 += st.bad2;
+  }
+  e.mean_bad1 = s1 / double(pairs.size());
+  e.mean_bad2 = s2 / double(pairs.size());
+  return e;
 }
 
 }  // namespace cropsight::stereo

@@ -2,6 +2,7 @@
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
+#include <utility>
 
 #include "cropsight/core/error.hpp"
 #include "cv_convert.hpp"
@@ -85,6 +86,16 @@ RectifiedGeometry rectified_geometry(const StereoCalibration& c) {
   g.cy = c.K1(1, 2);
   g.baseline = c.baseline();
   return g;
+}
+
+RectifiedPair rectify_pair(const StereoCalibration& calib, ColorImage left, ColorImage right,
+                           const std::string& where) {
+  if (left.width != calib.width || left.height != calib.height)
+    throw Error(where, "image size differs from the calibration");
+  if (is_rectified(calib)) return {std::move(left), std::move(right), rectified_geometry(calib)};
+  StereoRectifier rect(calib);
+  auto [l, r] = rect.rectify(left, right, where);
+  return {std::move(l), std::move(r), rect.geometry()};
 }
 
 }  // namespace cropsight::stereo

@@ -8,13 +8,11 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/config_yaml.hpp"
-#include "cropsight/sim/seedling.hpp"
+#include "cropsight/sim/seedling/seedling_sim.hpp"
 #include "cropsight/stereo/calibration.hpp"
 #include "cropsight/stereo/disparity.hpp"
 #include "cropsight/stereo/middlebury.hpp"
 #include "cropsight/stereo/reconstruct.hpp"
-#include "cropsight/stereo/seedling_detector.hpp"
-#include "cropsight/stereo/seedling_eval.hpp"
 #include "testing/testing.hpp"
 
 using namespace cropsight;
@@ -205,100 +203,4 @@ TEST(Reconstruct, DepthFromDisparity) {
   EXPECT_NEAR(sp.points[0].z(), 500 * 0.06 / 10, 1e-6);
   EXPECT_NEAR(sp.points[0].x(), (2 - 1.5) * 3.0 / 500, 1e-6);
   EXPECT_EQ(sp.pixels[0], 1 * 4 + 2);
-}
-
-namespace {
-// The simulator renders already-rectified views: its rig's pinhole model is the rectified geometry.
-RectifiedGeometry simulated_rig_geometry(const sim::SeedlingSimConfig& cfg) {
-  const auto rig = cfg.rig();
-  return {rig.width, rig.height, rig.f, rig.cx, rig.cy, rig.cx, rig.baseline()};
-}
-}  // namespace
-
-TEST(SeedlingDetector, RecognisesSimulatedSeedlings) {
-  sim::SeedlingSimConfig cfg;
-  cfg.supersample = 1;
-  const RectifiedGeometry g = simulated_rig_geometry(cfg);
-  SeedlingConfig sc;
-  for (int k = 0; k < 2; ++k) {
-    const auto p = sim::simulate_seedling_pair(cfg, 4242, k);
-    const auto det = detect_seedling(p.left, p.right, g, sc);
-    ASSERT_TRUE(det.found);
-    EXPECT_EQ(det.points_sampled, 4096);
-    const auto s = score_seedling(det, p.disparity, p.mask, g, p.plane_normal, p.plane_d, p.envelope);
-    EXPECT_GE(s.iou, 0.5) << "pair " << k;
-    EXPECT_NEAR(s.volume_ratio, 1.0, 0.35) << "pair " << k;
-  }
-  ColorImage small(100, 80);
-  EXPECT_THROW(detect_seedling(small, small, g, sc), Error);
-}
-
-namespace {
-
-// The shipped fast preset, configs/seedling-fast.yaml (census engine).
-SeedlingConfig fast_preset() {
-  SeedlingConfig sc;
-  const auto preset = cropsight::testing::source_dir() / "configs" / "seedling-fast.yaml";
-  apply_config(sc, io::load_config_map(preset), preset.string());
-  return sc;
-}
-
-// The detection found the simulated seedling: top-view IoU >= 0.5, envelope volume within 30 %.
-void expect_recognised(const SeedlingDetection& d, const sim::SeedlingPair& p, const RectifiedGeometry& g, int k) {
-  ASSERT_TRUE(d.found) << "pair " << k;
-  const auto s = score_seedling(d, p.disparity, p.mask, g, p.plane_normal, p.plane_d, p.envelope);
-  EXPECT_GE(s.iou, 0.5) << "pair " << k;
-  EXPECT_NEAR(s.volume_ratio, 1.0, 0.3) << "pair " << k;
-}
-
-}  // namespace
-
-// The census engine raises scattered soil pixels above the height threshold; the image-space
-// opening of the candidate mask must remove them without losing the plant.
-TEST(SeedlingDetector, CandidateOpeningDropsCensusSoilSpeckles) {
-  sim::SeedlingSimConfig cfg;
-  cfg.supersample = 1;
-  const RectifiedGeometry g = simulated_rig_geometry(cfg);
-  // The fast preset, colour test off, opening switched off and on.
-  SeedlingConfig sc = fast_preset();
-  ASSERT_EQ(sc.disparity.engine, "census");
-  sc.candidate_min_exg = -1.0;
-  for (int k = 0; k < 2; ++k) {
-    const auto p = sim::simulate_seedling_pair(cfg, 4242, k);
-    sc.candidate_open = 0;
-    const auto raw = detect_seedling(p.left, p.right, g, sc);
-    sc.candidate_open = 1;
-    const auto opened = detect_seedling(p.left, p.right, g, sc);
-    EXPECT_LT(opened.points_candidates, raw.points_candidates) << "pair " << k;
-    expect_recognised(opened, p, g, k);
-  }
-}
-
-// Soil pixels next to a leaf edge take the leaf's disparity from the matching window; they are
-// soil-coloured. The preset's excess-green test must take them out of the seedling's dense points
-// (fewer of its pixels outside the true seedling mask) while keeping the seedling itself.
-TEST(SeedlingDetector, ExcessGreenTestDropsFattenedSoilPixels) {
-  sim::SeedlingSimConfig cfg;
-  cfg.supersample = 1;
-  const RectifiedGeometry g = simulated_rig_geometry(cfg);
-  SeedlingConfig sc = fast_preset();
-  ASSERT_GT(sc.candidate_min_exg, -1.0) << "the fast preset is expected to use the colour test";
-  const double exg = sc.candidate_min_exg;
-  auto outside = [](const SeedlingDetection& d, const GrayImage& truth) {
-    int n = 0;
-    for (int px : d.pixels) n += truth.data[std::size_t(px)] == 0;
-    return d.pixels.empty() ? 1.0 : double(n) / double(d.pixels.size());
-  };
-  for (int k = 0; k < 2; ++k) {
-    const auto p = sim::simulate_seedling_pair(cfg, 4242, k);
-    sc.candidate_min_exg = -1.0;
-    const auto off = detect_seedling(p.left, p.right, g, sc);
-    sc.candidate_min_exg = exg;
-    const auto on = detect_seedling(p.left, p.right, g, sc);
-    ASSERT_TRUE(off.found && on.found) << "pair " << k;
-    EXPECT_LT(on.points_candidates, off.points_candidates) << "pair " << k;
-    EXPECT_LT(outside(on, p.mask), outside(off, p.mask)) << "pair " << k;
-    EXPECT_LT(outside(on, p.mask), 0.05) << "pair " << k;
-    expect_recognised(on, p, g, k);
-  }
 }

@@ -14,11 +14,10 @@
 #include <string>
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/sim/seedling.hpp"
+#include "cropsight/sim/seedling/seedling_sim.hpp"
 #include "cropsight/stereo/calibration.hpp"
 #include "cropsight/stereo/disparity.hpp"
 #include "cropsight/stereo/middlebury.hpp"
-#include "cropsight/stereo/seedling_detector.hpp"
 #include "cropsight/stereo/stereo_io.hpp"
 #include "seedling_cli_fixture.hpp"
 #include "testing/testing.hpp"
@@ -319,13 +318,6 @@ TEST(StereoValidation, ConfigErrorsNameTheKey) {
   d.num_disparities = 128;
   expect_throw_naming([&] { compute_disparity(img, img, d, "img"); }, "image width");
   expect_throw_naming([&] { block_matching(img, img, 16, 0, BlockCost::kSad, "img"); }, "window");
-  SeedlingConfig s;
-  s.gmm.tolerance = -1;
-  expect_throw_naming([&] { validate_seedling_config(s, "x"); }, "'gmm.tolerance'");
-  s = SeedlingConfig{};
-  s.topview_cell = 1e-9;
-  expect_throw_naming([&] { validate_seedling_config(s, "x"); }, "'topview_cell'");
-  EXPECT_NO_THROW(validate_seedling_config(SeedlingConfig{}, "x"));
   EXPECT_NO_THROW(validate_disparity_config(DisparityConfig{}, "x"));
 }
 

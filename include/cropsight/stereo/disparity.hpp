@@ -130,6 +130,13 @@ inline constexpr int kMaxBlockWindow = 255;
 DisparityImage block_matching(const GrayImage& left, const GrayImage& right, int num_disparities, int window,
                               BlockCost cost, const std::string& where = "stereo pair");
 
+/// Grey levels (R*77 + G*150 + B*29) >> 8 of a colour image: the input of the block-matching
+/// baselines (stereo disparity --method sad|ssd, eval stereo --baselines).
+GrayImage grey_levels(const ColorImage& image);
+
+/// Percent of pixels with an estimate (finite disparity); 0 for an empty image.
+double valid_percent(const DisparityImage& disparity);
+
 /// Fills NaN pixels in place: each takes the smaller of its nearest valid left / right neighbours
 /// on the same row (occlusions belong to the background), then a `median`-window median is
 /// applied to the filled pixels only. Rows without any valid pixel are filled from the rows above

@@ -1,6 +1,7 @@
 #pragma once
 // The four classic Middlebury pairs (../shared/data/middlebury/) and the bad-pixel metric.
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,5 +34,24 @@ struct BadPixelStats {
 /// Sizes must agree and the truth must have a valid pixel, else Error(where, ...).
 BadPixelStats bad_pixels(const DisparityImage& estimate, const DisparityImage& truth,
                          const std::string& where = "disparity");
+
+/// One matcher's scores on the Middlebury pairs (eval stereo).
+struct MiddleburyPairResult {
+  std::string name;
+  BadPixelStats stats;
+  double ms = 0;            ///< the matcher's wall time on this pair
+  int num_disparities = 0;  ///< search range it was given
+};
+struct MiddleburyEvaluation {
+  std::vector<MiddleburyPairResult> pairs;
+  double mean_bad1 = 0, mean_bad2 = 0;  ///< percent, mean over the pairs
+};
+
+/// A matcher under test: the pair and the search range to use.
+using MiddleburyMatcher = std::function<DisparityImage(const MiddleburyPair& pair, int num_disparities)>;
+
+/// Runs `match` on every pair with the pair's true range rounded up to a multiple of 16 (largest
+/// true disparity + 1) as search range, timing it, and scores it with bad_pixels().
+MiddleburyEvaluation evaluate_middlebury(const std::vector<MiddleburyPair>& pairs, const MiddleburyMatcher& match);
 
 }  // namespace cropsight::stereo

@@ -4,6 +4,7 @@
 // (cx, cy) and rows; a left pixel (u, v) with disparity d lies at Z = f * B / d, X = (u - cx) Z / f,
 // Y = (v - cy) Z / f in the rectified left camera frame (x right, y down, z forward, metres).
 #include <memory>
+#include <string>
 #include <utility>
 
 #include "cropsight/core/image.hpp"
@@ -43,5 +44,16 @@ class StereoRectifier {
 bool is_rectified(const StereoCalibration& calib);
 /// The rectified geometry of `calib`: read directly when is_rectified(), else Bouguet's.
 RectifiedGeometry rectified_geometry(const StereoCalibration& calib);
+
+/// A pair ready for matching: rectified images and their geometry.
+struct RectifiedPair {
+  ColorImage left, right;
+  RectifiedGeometry geometry;
+};
+
+/// Rectifies a raw pair with `calib` (Bouguet), or passes it through when is_rectified(calib).
+/// Throws Error(where, ...) when the left image's size differs from the calibration.
+RectifiedPair rectify_pair(const StereoCalibration& calib, ColorImage left, ColorImage right,
+                           const std::string& where = "stereo pair");
 
 }  // namespace cropsight::stereo

@@ -1,15 +1,16 @@
 #pragma once
-// The seedling paper's envelope box of a plant's points, defined once for the detector and the
+// The seedling paper's envelope box of a plant's points, defined once for the seedling pipeline and the
 // simulator's ground truth (header-only so that both use the very same definition).
 //   height: largest distance of a point above the soil plane n . x + d = 0 (n unit, pointing up);
 //   length, width: extents of the points projected on the plane along their two principal axes
 //   (length >= width); volume = length * width * height.
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <vector>
 
-namespace cropsight::stereo {
+namespace cropsight::measure {
 
 struct EnvelopeBox {
   double length = 0, width = 0, height = 0;                  ///< m
@@ -43,4 +44,4 @@ inline EnvelopeBox envelope_box(const std::vector<Eigen::Vector3d>& points, cons
   return box;
 }
 
-}  // namespace cropsight::stereo
+}  // namespace cropsight::measure

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/sim/seedling.hpp"
+#include "cropsight/sim/seedling/seedling_sim.hpp"
 
 using namespace cropsight;
 

@@ -10,7 +10,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
-#include "cropsight/sim/seedling.hpp"
+#include "cropsight/sim/seedling/seedling_sim.hpp"
 
 namespace cropsight::sim {
 
@@ -65,6 +65,26 @@ cv::Mat bgr(const ColorImage& im) {
 }
 
 }  // namespace
+
+stereo::StereoCalibration ideal_calibration(const StereoRigModel& rig) {
+  stereo::StereoCalibration c;
+  c.width = rig.width;
+  c.height = rig.height;
+  c.K1 << rig.f, 0, rig.cx, 0, rig.f, rig.cy, 0, 0, 1;
+  c.K2 = c.K1;
+  c.D1 = c.D2 = std::vector<double>(5, 0.0);
+  c.R = rig.R;
+  c.T = rig.T;
+  Eigen::Matrix3d tx;  // [T]x: E = [T]x R
+  tx << 0, -c.T.z(), c.T.y(), c.T.z(), 0, -c.T.x(), -c.T.y(), c.T.x(), 0;
+  c.E = tx * c.R;
+  c.F = c.K2.inverse().transpose() * c.E * c.K1.inverse();
+  return c;
+}
+
+stereo::RectifiedGeometry rectified_geometry(const StereoRigModel& rig) {
+  return {rig.width, rig.height, rig.f, rig.cx, rig.cy, rig.cx, rig.baseline()};
+}
 
 CheckerboardPair render_checkerboard_pair(const StereoRigModel& rig, int cols, int rows, double square,
                                           const Eigen::Matrix3d& R_board, const Eigen::Vector3d& t_board,

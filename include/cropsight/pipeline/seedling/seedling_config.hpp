@@ -1,47 +1,17 @@
 #pragma once
-// Broccoli-seedling recognition from a rectified stereo pair (issue 5; after "A method for
-// broccoli seedling recognition in natural environment based on binocular stereo vision and
-// Gaussian mixture model"):
-//
-//   disparity (SGBM + LR check + hole filling) → 3D points (invalid removed) → soil plane
-//   (RANSAC) → points above the soil → non-uniform grid down-sampling to exactly 4096 points →
-//   GMM (EM, K = 10) → recognition rule → KNN outlier filter → dense seedling points, top-view
-//   mask, envelope box, per-stage timings.
-//
-// Recognition rule (why: transplanted seedlings stand clearly above the soil and above the low
-// weeds around them, and form one connected plant):
-//   1. Only points higher than `min_height` above the fitted soil plane enter the GMM (the soil
-//      itself would otherwise take most components; this is our change to the paper's order).
-//      With candidate_open > 0 the left-image mask of these candidates is first opened (ellipse
-//      of that radius), which drops soil pixels raised by disparity errors (they are scattered).
-//      With candidate_min_exg > -1, candidates whose left-image colour is not green enough
-//      (excess-green index below it) are dropped first: the soil pixels next to a leaf edge that
-//      the matching window gave the leaf's disparity lie outside the leaf in 3D and stretch the
-//      envelope box (foreground fattening).
-//   2. The seed component is the one whose member points have the largest mean height (among
-//      components with at least `min_component_points` points).
-//   3. Components are added while one of them has a mean height >= `height_ratio` x the seed's
-//      and a member point within `join_distance` of the points chosen so far (the lower leaves
-//      of the same plant touch the upper ones; distant weeds do not).
-//   4. The chosen points go through the KNN outlier filter (mean distance to k neighbours above
-//      mean + alpha sigma removed).
-//   5. Dense result: every reconstructed point above `min_height` whose top-view cell lies
-//      within `topview_dilate` cells of a kept sampled point, restricted to the largest connected
-//      top-view region (one plant is one connected region seen from above).
-#include <Eigen/Core>
+// The one configuration of the broccoli-seedling pipeline (SeedlingPipeline): every step's
+// parameters, filled from one preset (configs/seedling.yaml, the accurate default;
+// configs/seedling-fast.yaml, the census engine and an excess-green test) and overridable key by
+// key (--set key=value on the CLI). Keys are flat ("min_height", "gmm.components") so that the
+// presets and the commands in docs/pipelines/broccoli-seedlings.md keep working unchanged.
 #include <string>
-#include <vector>
 
-#include "cropsight/core/image.hpp"
-#include "cropsight/core/timer.hpp"
 #include "cropsight/geometry/grid_sampling.hpp"
 #include "cropsight/geometry/statistical_outlier.hpp"
 #include "cropsight/segmentation/gmm.hpp"
 #include "cropsight/stereo/disparity.hpp"
-#include "cropsight/stereo/envelope.hpp"
-#include "cropsight/stereo/rectification.hpp"
 
-namespace cropsight::stereo {
+namespace cropsight::pipeline {
 
 struct SeedlingConfig {
   /// 64 disparities cover depths >= 0.3 m for the simulated rig (f = 320 px, B = 60 mm).
@@ -52,8 +22,8 @@ struct SeedlingConfig {
   /// seed 4711 (this engine 100 % / 92.7 % / 104.7 %): configs/seedling-fast.yaml. Dropping the
   /// explicit check (lr_check = -1) halves the SGM time but gave a 105.9 % volume ratio on seed
   /// 8080 (103.9 % with it). See docs/pipelines/broccoli-seedlings.md.
-  DisparityConfig disparity = [] {
-    DisparityConfig d;
+  stereo::DisparityConfig disparity = [] {
+    stereo::DisparityConfig d;
     d.num_disparities = 64;
     d.engine = "opencv";
     d.uniqueness_ratio = 10;
@@ -118,43 +88,12 @@ inline constexpr int kMaxSampledPoints = 1 << 20;
 /// (0 < min_depth < max_depth, finite), heights, RANSAC settings, the disparity block
 /// (validate_disparity_config with prefix "disparity."), sampling, gmm (1 <= components <=
 /// min(kMaxGmmComponents, sampling.target_points), tolerance >= 0), outlier filter and top-view
-/// raster. detect_seedling() runs it too (where = the image).
+/// raster. The SeedlingPipeline constructor runs it too (where = "seedling config").
 void validate_seedling_config(const SeedlingConfig& cfg, const std::string& where);
 
-/// A raster of the soil plane: cell (i, j) covers plane coordinates origin + (i, j) * cell along
-/// the axes e1 = n.unitOrthogonal(), e2 = n x e1.
-struct TopViewMask {
-  GrayImage mask;  ///< 255 = seedling
-  Eigen::Vector2d origin = Eigen::Vector2d::Zero();
-  double cell = 0;
-  double area() const;  ///< m^2 of set cells
-};
+/// The configuration of `preset` (a name under configs/, e.g. "seedling-fast", or a YAML path)
+/// applied over the defaults and validated. Throws Error(preset file, ...) naming the key of a
+/// malformed or out-of-range value.
+SeedlingConfig load_seedling_config(const std::string& preset = "seedling");
 
-struct SeedlingDetection {
-  bool found = false;
-  std::vector<Eigen::Vector3f> points;  ///< dense seedling points, rectified left camera frame
-  std::vector<int> pixels;              ///< their left-image indices
-  GrayImage image_mask;                 ///< left image, 255 = seedling
-  TopViewMask top_view;
-  EnvelopeBox envelope;
-  Eigen::Vector3d plane_normal = Eigen::Vector3d::UnitZ();  ///< soil: n . x + d = 0, n towards the camera
-  double plane_d = 0;
-  int points_total = 0, points_candidates = 0, points_sampled = 0, points_seedling_sampled = 0;
-  segmentation::GmmResult gmm;
-  std::vector<Eigen::Vector3f> sampled;  ///< the down-sampled candidates the GMM saw
-  std::vector<int> chosen_components;
-  StageTimer timer;  ///< stages: disparity, reconstruct, plane, sample, gmm, recognise, outlier, output
-};
-
-/// Detects the seedling in a rectified pair with the given rectified geometry. Throws
-/// Error(where, ...) for mismatched image sizes or an invalid configuration.
-SeedlingDetection detect_seedling(const ColorImage& left, const ColorImage& right, const RectifiedGeometry& geometry,
-                                  const SeedlingConfig& cfg, const std::string& where = "stereo pair");
-
-/// Rasterises points (any frame, same as the plane) onto the soil plane n . x + d = 0 with the
-/// given cell; `origin` is chosen so that both masks of an IoU share one grid (pass the same
-/// origin and size). Cells holding a point are set, then closed with a 3x3 kernel.
-TopViewMask rasterize_top_view(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& n, double cell,
-                               const Eigen::Vector2d& origin, int width, int height);
-
-}  // namespace cropsight::stereo
+}  // namespace cropsight::pipeline

@@ -9,7 +9,7 @@
 #include <random>
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/sim/seedling.hpp"
+#include "cropsight/sim/seedling/seedling_sim.hpp"
 #include "seedling_render.hpp"
 
 namespace cropsight::sim {
@@ -151,7 +151,9 @@ StereoRigModel SeedlingSimConfig::rig() const {
   return r;
 }
 
-SeedlingPair simulate_seedling_pair(const SeedlingSimConfig& cfg, std::uint64_t seed, int index) {
+namespace {
+
+void check_config(const SeedlingSimConfig& cfg) {
   const std::string where = "seedling simulator";
   if (cfg.width < 32 || cfg.height < 32) throw Error(where, "image size too small");
   if (!(cfg.hfov_deg > 10 && cfg.hfov_deg < 170)) throw Error(where, "hfov_deg must be in (10, 170)");
@@ -161,6 +163,57 @@ SeedlingPair simulate_seedling_pair(const SeedlingSimConfig& cfg, std::uint64_t 
   if (cfg.leaves_min < 1 || cfg.leaves_max < cfg.leaves_min) throw Error(where, "invalid leaf count range");
   if (cfg.weeds_min < 0 || cfg.weeds_max < cfg.weeds_min) throw Error(where, "invalid weed count range");
   if (cfg.supersample < 1 || cfg.supersample > 8) throw Error(where, "supersample must be in 1..8");
+}
+
+// One view of the scene: supersampled shading times the exposure gain, plus sensor noise drawn
+// from its own generator (seeded by the caller, so the two views' noise is independent).
+ColorImage render_view(const SMesh& mesh, const View& v, const SeedlingSimConfig& cfg, double gain,
+                       std::uint64_t tex_seed, std::uint64_t noise_seed) {
+  const int ss = cfg.supersample;
+  Samples s;
+  rasterize(mesh, v, ss, s);
+  ColorImage img(v.width, v.height);
+  Uniform nu(noise_seed);
+  for (int y = 0; y < v.height; ++y)
+    for (int x = 0; x < v.width; ++x) {
+      Eigen::Vector3f acc = Eigen::Vector3f::Zero();
+      for (int j = 0; j < ss; ++j)
+        for (int i = 0; i < ss; ++i) acc += sample_color(mesh, s, (y * ss + j) * s.w + x * ss + i, tex_seed);
+      acc *= float(gain / (ss * ss));
+      auto ch = [&](float c) {
+        return std::uint8_t(std::clamp(std::lround(c + cfg.noise_sigma * nu.normal()), 0L, 255L));
+      };
+      img.at(x, y) = Rgb8{ch(acc.x()), ch(acc.y()), ch(acc.z())};
+    }
+  return img;
+}
+
+// Ground truth of the left view (disparity and seedling mask at pixel centres), the soil plane and
+// the seedling's envelope box in the left camera frame: x_c = R_cw^T (x_w - C).
+void set_ground_truth(SeedlingPair& out, const SMesh& mesh, std::size_t seedling_vertices, const StereoRigModel& rig,
+                      const View& vl, const Eigen::Matrix3d& R_cw, const Eigen::Vector3d& C,
+                      const Eigen::Vector3d& seedling) {
+  Samples g;
+  rasterize(mesh, vl, 1, g);
+  out.disparity = Image<float>(rig.width, rig.height, std::numeric_limits<float>::quiet_NaN());
+  out.mask = GrayImage(rig.width, rig.height, 0);
+  for (int i = 0; i < rig.width * rig.height; ++i) {
+    if (std::isfinite(g.depth[i])) out.disparity.data[i] = float(rig.f * rig.baseline() / g.depth[i]);
+    if (g.tri[i] >= 0 && mesh.label[std::size_t(g.tri[i])] == 1) out.mask.data[i] = 255;
+  }
+  const Eigen::Matrix3d R_wc = R_cw.transpose();
+  out.plane_normal = R_wc * Eigen::Vector3d::UnitZ();
+  out.plane_d = C.z();  // n_c . x_c = z_w - C_z
+  out.seedling_base = R_wc * (seedling - C);
+  std::vector<Eigen::Vector3d> verts;
+  for (std::size_t k = 0; k < seedling_vertices; ++k) verts.push_back(R_wc * (mesh.p[k].cast<double>() - C));
+  out.envelope = measure::envelope_box(verts, out.plane_normal, out.plane_d);
+}
+
+}  // namespace
+
+SeedlingPair simulate_seedling_pair(const SeedlingSimConfig& cfg, std::uint64_t seed, int index) {
+  check_config(cfg);
 
   Uniform u(seed * 0x9E3779B97F4A7C15ull + std::uint64_t(index) * 0xD1B54A32D192ED03ull + 1);
   const StereoRigModel rig = cfg.rig();
@@ -201,47 +254,13 @@ SeedlingPair simulate_seedling_pair(const SeedlingSimConfig& cfg, std::uint64_t 
   View vr = vl;
   vr.C = C_right;
   const std::uint64_t tex_seed = seed * 31 + std::uint64_t(index);
-  const int ss = cfg.supersample;
   const double gain_right = u(0.97, 1.03);  // the two sensors never match exactly
   std::mt19937_64 noise_rng(tex_seed ^ 0xABCDEFull);
-  auto render_view = [&](const View& v, double gain) {
-    Samples s;
-    rasterize(mesh, v, ss, s);
-    ColorImage img(rig.width, rig.height);
-    Uniform nu(noise_rng());
-    for (int y = 0; y < rig.height; ++y)
-      for (int x = 0; x < rig.width; ++x) {
-        Eigen::Vector3f acc = Eigen::Vector3f::Zero();
-        for (int j = 0; j < ss; ++j)
-          for (int i = 0; i < ss; ++i) acc += sample_color(mesh, s, (y * ss + j) * s.w + x * ss + i, tex_seed);
-        acc *= float(out.exposure * gain / (ss * ss));
-        auto ch = [&](float v) {
-          return std::uint8_t(std::clamp(std::lround(v + cfg.noise_sigma * nu.normal()), 0L, 255L));
-        };
-        img.at(x, y) = Rgb8{ch(acc.x()), ch(acc.y()), ch(acc.z())};
-      }
-    return img;
-  };
-  out.left = render_view(vl, 1.0);
-  out.right = render_view(vr, gain_right);
+  // Left first: each view draws its noise seed from noise_rng in this order.
+  out.left = render_view(mesh, vl, cfg, out.exposure * 1.0, tex_seed, noise_rng());
+  out.right = render_view(mesh, vr, cfg, out.exposure * gain_right, tex_seed, noise_rng());
 
-  // Ground truth at pixel centres of the left view.
-  Samples g;
-  rasterize(mesh, vl, 1, g);
-  out.disparity = Image<float>(rig.width, rig.height, std::numeric_limits<float>::quiet_NaN());
-  out.mask = GrayImage(rig.width, rig.height, 0);
-  for (int i = 0; i < rig.width * rig.height; ++i) {
-    if (std::isfinite(g.depth[i])) out.disparity.data[i] = float(rig.f * rig.baseline() / g.depth[i]);
-    if (g.tri[i] >= 0 && mesh.label[std::size_t(g.tri[i])] == 1) out.mask.data[i] = 255;
-  }
-  // Soil plane and seedling in the left camera frame: x_c = R_cw^T (x_w - C).
-  const Eigen::Matrix3d R_wc = R_cw.transpose();
-  out.plane_normal = R_wc * Eigen::Vector3d::UnitZ();
-  out.plane_d = C.z();  // n_c . x_c = z_w - C_z
-  out.seedling_base = R_wc * (seedling - C);
-  std::vector<Eigen::Vector3d> verts;
-  for (std::size_t k = 0; k < seedling_vertices; ++k) verts.push_back(R_wc * (mesh.p[k].cast<double>() - C));
-  out.envelope = stereo::envelope_box(verts, out.plane_normal, out.plane_d);
+  set_ground_truth(out, mesh, seedling_vertices, rig, vl, R_cw, C, seedling);
   return out;
 }
 

@@ -15,7 +15,9 @@
 #include <vector>
 
 #include "cropsight/core/image.hpp"
-#include "cropsight/stereo/envelope.hpp"
+#include "cropsight/measure/envelope.hpp"
+#include "cropsight/stereo/calibration.hpp"
+#include "cropsight/stereo/rectification.hpp"
 
 namespace cropsight::sim {
 
@@ -27,6 +29,12 @@ struct StereoRigModel {
   Eigen::Vector3d T{-0.06, 0.0, 0.0};  ///< m; the right camera at +60 mm along x
   double baseline() const { return T.norm(); }
 };
+
+/// The rig's calibration (K, zero distortion, R, T, E, F): the simulated views are already
+/// rectified, so it is ideal (stereo::is_rectified() holds). Written as DIR/rig.yaml.
+stereo::StereoCalibration ideal_calibration(const StereoRigModel& rig);
+/// The rig's pinhole model as the rectified geometry the reconstruction needs.
+stereo::RectifiedGeometry rectified_geometry(const StereoRigModel& rig);
 
 struct SeedlingSimConfig {
   int width = 640, height = 480;                  ///< px per eye (paper: 640x480)
@@ -68,9 +76,9 @@ struct SeedlingSimConfig {
 
 struct SeedlingPair {
   ColorImage left, right;
-  Image<float> disparity;        ///< px, left view; NaN where nothing was hit
-  GrayImage mask;                ///< 255 where the left view sees the seedling
-  stereo::EnvelopeBox envelope;  ///< of the seedling mesh (true physical extent)
+  Image<float> disparity;         ///< px, left view; NaN where nothing was hit
+  GrayImage mask;                 ///< 255 where the left view sees the seedling
+  measure::EnvelopeBox envelope;  ///< of the seedling mesh (true physical extent)
   Eigen::Vector3d plane_normal;  ///< soil plane in the left camera frame: n . x + d = 0, n towards the camera side (up)
   double plane_d = 0;
   Eigen::Vector3d seedling_base;  ///< left camera frame, m
