@@ -1,7 +1,8 @@
 # cropsight — top-level entry points. Each target installs what is missing (Debian packages,
 # scripts/install-deps.sh), configures and builds before it runs.
 #
-#   make demo    main job on built-in (simulated) data; prints the path of the HTML page
+#   make demo    main job on built-in (simulated) data; prints the path of the HTML page. Builds
+#                only the CLI and what it needs (not the tests, benchmarks or examples)
 #   make test    the test suite (ctest)
 #   make build   build only (Release, portable flags)
 #   make bench   micro-benchmarks and end-to-end benchmarks
@@ -39,7 +40,10 @@ test: build
 	@scripts/unpack-grape.sh >/dev/null 2>&1 || echo "grape archive not unpacked: the real-cloud grape tests will skip"
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
 
-demo: build
+# The demo runs the CLI alone (scripts/demo.sh), so it builds the `cropsight` target and its
+# dependencies only; `make test` / `make build` afterwards build the rest in the same tree.
+demo: configure
+	cmake --build $(BUILD) -j $(JOBS) --target cropsight
 	@scripts/demo.sh $(BUILD)
 
 bench: build

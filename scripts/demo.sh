@@ -3,7 +3,9 @@
 # seed the shipped models never saw), validates it with `cropsight info`, runs the OES broccoli
 # head detector with the shipped model (detections, masks, temporal filter and field map),
 # evaluates it against the simulator's ground truth, and writes one self-contained HTML report
-# with `cropsight report --model`. The last line printed is the absolute path of the page.
+# with `cropsight report --model`: it opens with the result (detections over frames, field map,
+# sizes, timing), then the sequence's data summary. The last line printed is the absolute path of
+# the page. `make demo` builds only the `cropsight` target before running this.
 set -euo pipefail
 
 BUILD=${1:-build}

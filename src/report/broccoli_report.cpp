@@ -144,21 +144,19 @@ std::string pr_plot(const std::vector<PrCurve>& curves, const std::string& title
 }  // namespace
 
 void add_broccoli_sections(HtmlPage& page, const BroccoliReportData& d) {
-  page.section("Broccoli heads: detection, sizing and field map");
+  // The result in the order a reader asks for it: what was detected in the frames, the map it
+  // adds up to, the sizes, the time it took; then the figures against ground truth. The
+  // sequence's own summary (sequence_page.hpp) is the page's data part and follows all of this.
+  page.section("Broccoli heads: detections over frames");
   page.paragraph("Sequence " + d.sequence + ", model " + d.model + ", " + std::to_string(d.frames) +
                  " frames. Size estimator: " + d.estimator + ".");
-  page.key_values(d.metrics, "Key figures (map and size metrics per head; ap50 per frame and point set)");
-
-  page.section("Precision–recall (IoU 0.50 … 0.95)");
-  if (!d.pr_single.empty()) page.svg(pr_plot(d.pr_single, "single-frame detection"), "Every cluster ranked by score");
-  if (!d.pr_tracked.empty())
-    page.svg(pr_plot(d.pr_tracked, "with the temporal filter (offline: the map of the whole pass)"),
-             "Detections of heads confirmed by the temporal filter ranked first");
-  std::vector<std::vector<std::string>> rows;
-  for (std::size_t i = 0; i < d.pr_single.size(); ++i)
-    rows.push_back({fmt(d.pr_single[i].iou, "%.2f"), fmt(d.pr_single[i].ap),
-                    i < d.pr_tracked.size() ? fmt(d.pr_tracked[i].ap) : "n/a"});
-  page.table({"IoU", "AP single frame", "AP temporal filter"}, rows);
+  if (!d.overlays.empty()) {
+    page.paragraph(
+        "Depth with detections: green = head confirmed by the temporal filter, red = not confirmed, magenta = "
+        "a confirmed head this frame missed, predicted by the filter (tracking.predict_missed); white outlines = "
+        "ground-truth heads.");
+    page.figures(d.overlays);
+  }
 
   page.section("Field map");
   {
@@ -232,14 +230,19 @@ void add_broccoli_sections(HtmlPage& page, const BroccoliReportData& d) {
              "Detector stages and the sizing + tracking step");
   }
 
-  if (!d.overlays.empty()) {
-    page.section("Frames");
-    page.paragraph(
-        "Depth with detections: green = head confirmed by the temporal filter, red = not confirmed, magenta = "
-        "a confirmed head this frame missed, predicted by the filter (tracking.predict_missed); white outlines = "
-        "ground-truth heads.");
-    page.figures(d.overlays);
-  }
+  page.section("Key figures");
+  page.key_values(d.metrics, "Map and size metrics per head; ap50 per frame and point set");
+
+  page.section("Precision–recall (IoU 0.50 … 0.95)");
+  if (!d.pr_single.empty()) page.svg(pr_plot(d.pr_single, "single-frame detection"), "Every cluster ranked by score");
+  if (!d.pr_tracked.empty())
+    page.svg(pr_plot(d.pr_tracked, "with the temporal filter (offline, after the pass)"),
+             "Detections of heads confirmed by the temporal filter ranked first");
+  std::vector<std::vector<std::string>> rows;
+  for (std::size_t i = 0; i < d.pr_single.size(); ++i)
+    rows.push_back({fmt(d.pr_single[i].iou, "%.2f"), fmt(d.pr_single[i].ap),
+                    i < d.pr_tracked.size() ? fmt(d.pr_tracked[i].ap) : "n/a"});
+  page.table({"IoU", "AP single frame", "AP temporal filter (offline, after the pass)"}, rows);
 }
 
 }  // namespace cropsight::report

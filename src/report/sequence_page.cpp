@@ -30,7 +30,7 @@ std::vector<int> evenly_spaced_frames(int frames, int count) {
 void add_sequence_sections(HtmlPage& page, const io::SequenceReader& reader, const SequenceSummary& s,
                            const SequencePageOptions& o) {
   const CameraIntrinsics& cam = s.info.camera;
-  page.section("Sequence summary");
+  page.section("Sequence summary", HtmlPage::Part::Data);
   std::vector<std::pair<std::string, std::string>> rows = {
       {"directory", s.info.dir.string()},
       {"frames", std::to_string(s.info.frames)},
@@ -46,7 +46,7 @@ void add_sequence_sections(HtmlPage& page, const io::SequenceReader& reader, con
   for (const auto& [k, v] : reader.groundtruth().attributes) rows.push_back({"truth: " + k, v});
   page.key_values(rows);
 
-  page.section("Camera");
+  page.section("Camera", HtmlPage::Part::Data);
   std::string distortion;
   for (double d : cam.distortion) distortion += (distortion.empty() ? "" : ", ") + fmt(d, "%.6g");
   page.key_values({{"sensor", cam.sensor.empty() ? "(unspecified)" : cam.sensor},
@@ -67,7 +67,7 @@ void add_sequence_sections(HtmlPage& page, const io::SequenceReader& reader, con
     page.svg(svg_line_plot(series, {"Valid depth fraction per frame", "frame", "fraction", 560, 260, true}));
   }
 
-  page.section("Frames");
+  page.section("Frames", HtmlPage::Part::Data);
   const std::vector<int> shown = evenly_spaced_frames(s.info.frames, o.frames_shown);
   const int factor = std::max(1, (o.min_display_width + cam.width - 1) / cam.width);
   DepthRange range{s.depth_min_m, s.depth_max_m};
@@ -99,7 +99,7 @@ void add_sequence_sections(HtmlPage& page, const io::SequenceReader& reader, con
 
   const auto& inst = reader.groundtruth().instances;
   if (!inst.empty()) {
-    page.section("Ground truth");
+    page.section("Ground truth", HtmlPage::Part::Data);
     std::vector<std::vector<std::string>> trows;
     for (std::size_t k = 0; k < inst.size() && int(k) < o.max_instances_listed; ++k) {
       const auto& t = inst[k];

@@ -148,5 +148,30 @@ TEST_F(CliSequence, ReportWritesOnePage) {
   EXPECT_FALSE(fs::exists(tmp / "bad.html"));
 }
 
+// What `make demo` runs (scripts/demo.sh), smaller: a simulated sequence and the shipped model.
+// The page opens with the detections over frames; the sequence's metadata table comes after the
+// results (it was the page's first screen before).
+TEST(CliReport, WithModelOpensWithTheResult) {
+  TempDir tmp;
+  const fs::path seq = tmp / "uk", page = tmp / "page.html";
+  CommandResult r = run_cli("simulate broccoli --variety uk --frames 4 --seed 7 --out " + shell_quoted(seq));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_cli("report --data " + shell_quoted(seq) + " --model " +
+              shell_quoted(source_dir() / "models" / "broccoli-oes-uk.json") + " --frames 2 --json --out " +
+              shell_quoted(page));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string h = io::read_file(page);
+  const std::size_t result = h.find("<h2>Broccoli heads: detections over frames</h2>");
+  ASSERT_NE(result, std::string::npos);
+  EXPECT_EQ(h.find("<h2>"), result) << "the first section is not the result";
+  for (const char* later : {"<h2>Field map</h2>", "<h2>Size</h2>", "<h2>Timing</h2>"})
+    EXPECT_LT(result, h.find(later)) << later;
+  const std::size_t data = h.find("<h2>Sequence summary</h2>");
+  ASSERT_NE(data, std::string::npos);
+  EXPECT_LT(h.find("<h2>Timing</h2>"), data);
+  EXPECT_LT(h.find("data:image/png;base64,"), data);  // the detection overlays come first
+  EXPECT_GT(h.find("valid depth fraction"), data);    // the metadata table follows the results
+}
+
 }  // namespace
 }  // namespace cropsight

@@ -39,6 +39,36 @@ TEST(HtmlPage, EscapesText) {
   EXPECT_NE(h.find("<title>T&lt;1&gt;</title>"), std::string::npos);
 }
 
+// Result sections come before data sections whatever order they were added in, and every
+// section stays closed where it was opened.
+TEST(HtmlPage, ResultPartComesBeforeDataPart) {
+  HtmlPage page("parts");
+  page.section("Data one", HtmlPage::Part::Data);
+  page.paragraph("data text");
+  page.section("Result one");
+  page.paragraph("result text");
+  page.section("Data two", HtmlPage::Part::Data);
+  page.section("Result two", HtmlPage::Part::Result);  // left open: html() closes it
+  const std::string h = page.html();
+  const auto at = [&](const std::string& s) {
+    const auto p = h.find(s);
+    EXPECT_NE(p, std::string::npos) << s;
+    return p;
+  };
+  EXPECT_LT(at("<h2>Result one</h2>"), at("<p>result text</p>"));
+  EXPECT_LT(at("<p>result text</p>"), at("<h2>Result two</h2>"));
+  EXPECT_LT(at("<h2>Result two</h2>"), at("<h2>Data one</h2>"));
+  EXPECT_LT(at("<h2>Data one</h2>"), at("<p>data text</p>"));
+  EXPECT_LT(at("<p>data text</p>"), at("<h2>Data two</h2>"));
+  std::size_t open = 0, close = 0;
+  for (std::size_t p = h.find("<section>"); p != std::string::npos; p = h.find("<section>", p + 1)) ++open;
+  for (std::size_t p = h.find("</section>"); p != std::string::npos; p = h.find("</section>", p + 1)) ++close;
+  EXPECT_EQ(open, 4u);
+  EXPECT_EQ(close, 4u);
+  // The open result section is closed before the data part starts (no nesting across parts).
+  EXPECT_NE(h.find("</section>\n<section>\n<h2>Data one"), std::string::npos) << h;
+}
+
 TEST(HtmlPage, EvenlySpacedFrames) {
   EXPECT_EQ(evenly_spaced_frames(30, 4), (std::vector<int>{0, 10, 19, 29}));
   EXPECT_EQ(evenly_spaced_frames(3, 5), (std::vector<int>{0, 1, 2}));

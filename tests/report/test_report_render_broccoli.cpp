@@ -13,8 +13,12 @@
 #include "cropsight/eval/detection_ap.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/image_io.hpp"
+#include "cropsight/io/sequence.hpp"
 #include "cropsight/report/broccoli_report.hpp"
+#include "cropsight/report/sequence_page.hpp"
+#include "cropsight/report/sequence_summary.hpp"
 #include "cropsight/report/svg_charts.hpp"
+#include "io/sequence_fixture.hpp"
 #include "testing/testing.hpp"
 
 using namespace cropsight;
@@ -140,6 +144,41 @@ TEST(BroccoliReport, ChartsDrawEveryMark) {
   EXPECT_NE(bars.find("normals &lt;&amp;&gt;"), std::string::npos);
 }
 
+// `cropsight report --model` adds the sequence sections first and the broccoli sections after
+// (apps/cropsight/cmd_report.cpp); the page must still open with the result — detections over
+// frames, field map, sizes, timing, then the figures against truth — and only then the data summary.
+TEST(BroccoliReport, PageOpensWithTheResultThenTheData) {
+  cropsight::testing::TempDir dir;
+  cropsight::testing::write_fixture_sequence(dir / "seq", 5);
+  const io::SequenceReader reader(dir / "seq");
+  HtmlPage page("demo order");
+  add_sequence_sections(page, reader, summarize_sequence(reader), {});
+  add_broccoli_sections(page, sample_data());
+  const std::string html = page.html();
+  const std::vector<std::string> order = {"<h2>Broccoli heads: detections over frames</h2>",
+                                          "<h2>Field map</h2>",
+                                          "<h2>Size</h2>",
+                                          "<h2>Timing</h2>",
+                                          "<h2>Key figures</h2>",
+                                          "<h2>Precision–recall",
+                                          "<h2>Sequence summary</h2>",
+                                          "<h2>Camera</h2>",
+                                          "<h2>Frames</h2>",
+                                          "<h2>Ground truth</h2>"};
+  std::size_t prev = 0;
+  for (const auto& h : order) {
+    const std::size_t p = html.find(h);
+    ASSERT_NE(p, std::string::npos) << h;
+    EXPECT_GT(p, prev) << h << " is out of order";
+    prev = p;
+  }
+  // The first heading after the title is the result, and the detections' frames (embedded PNGs)
+  // come before the metadata table.
+  EXPECT_EQ(html.find("<h2>"), html.find(order.front()));
+  EXPECT_LT(html.find("data:image/png;base64,"), html.find("<h2>Sequence summary</h2>"));
+  EXPECT_LT(html.find("<h2>Timing</h2>"), html.find("ground-truth instances"));
+}
+
 TEST(BroccoliReport, PageRendersInHeadlessChromium) {
   HtmlPage page("broccoli report test");
   add_broccoli_sections(page, sample_data());
@@ -157,6 +196,8 @@ TEST(BroccoliReport, PageRendersInHeadlessChromium) {
   EXPECT_GE(count_of(dom, "cs-mark"), 20);
   EXPECT_NE(dom.find("Field map"), std::string::npos);
   EXPECT_NE(dom.find("Precision"), std::string::npos);
+  EXPECT_LT(dom.find("detections over frames"), dom.find("Field map"));  // the browser keeps the order
+  EXPECT_LT(dom.find("Timing"), dom.find("Precision"));
 
   // A screenshot: the plots must paint something other than the white page.
   run(chromium(dir / "profile-shot") + "--window-size=1000,3000 --screenshot=" + (dir / "shot.png").string() +

@@ -1,8 +1,11 @@
 #pragma once
-// The broccoli sections of `cropsight report --data SEQ --model MODEL` (issue 4): precision–recall
-// curves at IoU 0.50…0.95 (Montes et al. Fig. 3), the field map with true and estimated heads
-// (Kusumam et al. Fig. 17/18), estimated against true size (Fig. 15), size error against the
-// head's distance from the optical axis (Fig. 16), per-stage timing and overlays of a few frames.
+// The broccoli sections of `cropsight report --data SEQ --model MODEL` (issue 4), in the order
+// the page shows them (the result first, issue 21): overlays of a few frames with the
+// detections, the field map with true and estimated heads (Kusumam et al. Fig. 17/18), estimated
+// against true size (Fig. 15) and size error against the head's distance from the optical axis
+// (Fig. 16), per-stage timing, the key figures, and precision–recall curves at IoU 0.50…0.95
+// (Montes et al. Fig. 3). They are result sections: the sequence's own sections
+// (sequence_page.hpp, the data part) follow them on the page.
 // The data are plain values gathered by the caller (the CLI runs the detector and tracker); this
 // module only computes curves and draws.
 #include <string>
@@ -56,7 +59,7 @@ struct BroccoliReportData {
   std::vector<Figure> overlays;
 };
 
-/// Appends the broccoli sections to `page`.
+/// Appends the broccoli sections to `page`, in its result part.
 void add_broccoli_sections(HtmlPage& page, const BroccoliReportData& data);
 
 }  // namespace cropsight::report

@@ -10,6 +10,11 @@
 //   page.write("page.html");   // atomic
 //
 // All text arguments are HTML-escaped; only raw_html() and svg() insert markup as given.
+//
+// A page has two parts: results first, then the data they were computed from. A section opened
+// with Part::Data (the sequence summary, camera, frames, ground truth) is shown after every
+// Part::Result section, whatever order the sections were added in, so a page opens with what was
+// found (detections, map, sizes, timing) and not with a table of metadata.
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -30,10 +35,15 @@ Figure make_figure(const ColorImage& image, std::string caption, int display_wid
 
 class HtmlPage {
  public:
+  /// Where a section is shown: every Result section comes before every Data section.
+  enum class Part { Result, Data };
+
   explicit HtmlPage(std::string title);
 
-  /// Starts a new <section> with an <h2> heading (closing the previous one).
-  void section(const std::string& heading);
+  /// Starts a new <section> with an <h2> heading (closing the previous one) in `part`; what is
+  /// added next (headings, tables, figures, ...) belongs to it. Content added before the first
+  /// section belongs to the result part.
+  void section(const std::string& heading, Part part = Part::Result);
   void heading(const std::string& text, int level = 3);
   void paragraph(const std::string& text);
   /// A table; every row should have header.size() cells. Cells are plain text.
@@ -55,8 +65,10 @@ class HtmlPage {
 
  private:
   void close_section();
+  std::string& body() { return body_[part_ == Part::Result ? 0 : 1]; }
   std::string title_;
-  std::string body_;
+  std::string body_[2];  ///< result part, data part
+  Part part_ = Part::Result;
   bool in_section_ = false;
 };
 

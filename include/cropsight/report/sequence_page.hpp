@@ -1,7 +1,9 @@
 #pragma once
 // The sequence part of the demo page: summary table, camera, ground truth, valid depth per
-// frame, and depth / colour / label renders of a few evenly spaced frames. Later pages (e.g.
-// detections with --model) append their own sections to the same HtmlPage.
+// frame, and depth / colour / label renders of a few evenly spaced frames. These are the page's
+// data part (HtmlPage::Part::Data): result sections added to the same HtmlPage (e.g. the
+// broccoli detections with --model, broccoli_report.hpp) are shown before them, in whichever
+// order the two were added.
 #include <vector>
 
 #include "cropsight/io/sequence.hpp"
@@ -19,7 +21,7 @@ struct SequencePageOptions {
 /// `count` frame indices spread evenly over [0, frames-1], first and last included, no repeats.
 std::vector<int> evenly_spaced_frames(int frames, int count);
 
-/// Adds the sequence sections to `page`.
+/// Adds the sequence sections to `page`, in its data part.
 void add_sequence_sections(HtmlPage& page, const io::SequenceReader& reader, const SequenceSummary& summary,
                            const SequencePageOptions& options = {});
 
