@@ -24,7 +24,6 @@
 #include "cropsight/pipeline/grape_eval.hpp"
 #include "cropsight/pipeline/grape_gbdt.hpp"
 #include "cropsight/pipeline/grape_model.hpp"
-#include "grape_network_mode.hpp"
 
 namespace cropsight::cli {
 namespace {
