@@ -15,9 +15,9 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/threads.hpp"
 #include "cropsight/io/grape_text.hpp"
+#include "cropsight/pipeline/grape/grape_eval.hpp"
+#include "cropsight/pipeline/grape/grape_model.hpp"
 #include "cropsight/pipeline/grape/grape_segmenter.hpp"
-#include "cropsight/pipeline/grape_eval.hpp"
-#include "cropsight/pipeline/grape_model.hpp"
 #include "grape_segmenter_options.hpp"
 
 namespace cropsight::cli {

@@ -28,7 +28,7 @@
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/pipeline/grape_roi.hpp"
+#include "cropsight/pipeline/grape/grape_roi.hpp"
 
 namespace cropsight::cli {
 namespace {

@@ -12,7 +12,7 @@
 #include "cropsight/core/config.hpp"
 #include "cropsight/core/config_range.hpp"
 #include "cropsight/core/threads.hpp"
-#include "cropsight/pipeline/grape_model.hpp"
+#include "cropsight/pipeline/grape/grape_model.hpp"
 
 namespace cropsight::pipeline {
 

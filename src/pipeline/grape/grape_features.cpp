@@ -1,6 +1,6 @@
 // Per-point features for the grape GBDT. Neighbourhood statistics use our nanoflann index
 // (geometry::PointIndex); FPFH uses PCL's FPFHEstimationOMP on the same k neighbourhoods.
-#include "cropsight/pipeline/grape_features.hpp"
+#include "cropsight/pipeline/grape/grape_features.hpp"
 #include "cropsight/core/threads.hpp"
 
 #include <pcl/features/fpfh_omp.h>
@@ -19,7 +19,7 @@
 #include "cropsight/geometry/knn_normals.hpp"
 #include "cropsight/learning/gbdt.hpp"
 #include "geometry/point_kdtree.hpp"
-#include "parallel_rows.hpp"
+#include "pipeline/parallel_rows.hpp"
 
 namespace cropsight::pipeline {
 

@@ -1,4 +1,4 @@
-#include "cropsight/pipeline/grape_gbdt.hpp"
+#include "cropsight/pipeline/grape/grape_gbdt.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "cropsight/core/class_scores.hpp"
 #include "cropsight/core/error.hpp"
 #include "geometry/point_kdtree.hpp"
-#include "parallel_rows.hpp"
+#include "pipeline/parallel_rows.hpp"
 
 namespace cropsight::pipeline {
 

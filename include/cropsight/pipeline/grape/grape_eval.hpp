@@ -22,7 +22,7 @@
 
 #include "cropsight/core/cloud.hpp"
 #include "cropsight/eval/segmentation_metrics.hpp"
-#include "cropsight/pipeline/grape_model.hpp"
+#include "cropsight/pipeline/grape/grape_model.hpp"
 
 namespace cropsight::pipeline {
 

@@ -4,7 +4,7 @@
 #include <fstream>
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/pipeline/grape_roi.hpp"
+#include "cropsight/pipeline/grape/grape_roi.hpp"
 #include "testing/testing.hpp"
 
 namespace {

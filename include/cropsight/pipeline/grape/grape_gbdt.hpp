@@ -9,7 +9,7 @@
 
 #include "cropsight/core/cloud.hpp"
 #include "cropsight/learning/gbdt.hpp"
-#include "cropsight/pipeline/grape_features.hpp"
+#include "cropsight/pipeline/grape/grape_features.hpp"
 
 namespace cropsight::pipeline {
 

@@ -1,4 +1,4 @@
-#include "cropsight/pipeline/grape_model.hpp"
+#include "cropsight/pipeline/grape/grape_model.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/learning/gbdt.hpp"
 #include "cropsight/nn/point_segmenter.hpp"
-#include "cropsight/pipeline/grape_gbdt.hpp"
+#include "cropsight/pipeline/grape/grape_gbdt.hpp"
 
 namespace cropsight::pipeline {
 

@@ -17,9 +17,9 @@
 #include "cropsight/geometry/farthest_point.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/learning/gbdt.hpp"
-#include "cropsight/pipeline/grape_eval.hpp"
-#include "cropsight/pipeline/grape_gbdt.hpp"
-#include "cropsight/pipeline/grape_model.hpp"
+#include "cropsight/pipeline/grape/grape_eval.hpp"
+#include "cropsight/pipeline/grape/grape_gbdt.hpp"
+#include "cropsight/pipeline/grape/grape_model.hpp"
 #include "testing/testing.hpp"
 
 namespace {

@@ -1,4 +1,4 @@
-#include "cropsight/pipeline/grape_eval.hpp"
+#include "cropsight/pipeline/grape/grape_eval.hpp"
 
 #include <chrono>
 #include <cmath>

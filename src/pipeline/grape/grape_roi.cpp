@@ -1,4 +1,4 @@
-#include "cropsight/pipeline/grape_roi.hpp"
+#include "cropsight/pipeline/grape/grape_roi.hpp"
 
 #include <algorithm>
 #include <cmath>

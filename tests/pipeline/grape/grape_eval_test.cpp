@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/pipeline/grape_eval.hpp"
+#include "cropsight/pipeline/grape/grape_eval.hpp"
 
 namespace {
 using namespace cropsight;
