@@ -21,9 +21,9 @@
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/learning/gbdt.hpp"
 #include "cropsight/nn/point_segmenter.hpp"
-#include "cropsight/pipeline/grape_features.hpp"
-#include "cropsight/pipeline/grape_gbdt.hpp"
-#include "cropsight/pipeline/grape_model.hpp"
+#include "cropsight/pipeline/grape/grape_features.hpp"
+#include "cropsight/pipeline/grape/grape_gbdt.hpp"
+#include "cropsight/pipeline/grape/grape_model.hpp"
 
 namespace {
 namespace fs = std::filesystem;

@@ -1,11 +1,12 @@
 // cropsight eval grape: OAcc / mAcc / mIoU, per-class accuracy and IoU and time per cloud of a
 // trained grape segmentation model on labelled text clouds.
 //
-//   cropsight eval grape --data DIR --model MODEL [--fold k/K] [--limit N] [--sampled [--sampling random|fps]
-//   [--carry-k K]] [--votes N] [--ensemble MODEL2 [--ensemble-weight W]] [--json]
+//   cropsight eval grape --data DIR (--model MODEL | --config PRESET) [--fold k/K] [--limit N]
+//   [--sampled [--sampling random|fps] [--carry-k K]] [--votes N] [--ensemble MODEL2 [--ensemble-weight W]] [--json]
 //
 // --fold k/K evaluates only the clouds of fold k (the split of `train grape --val-fold k/K`),
-// so that a model is only ever scored on clouds it was not trained on.
+// so that a model is only ever scored on clouds it was not trained on (configs/grape-best-fold1.yaml
+// is the shipped best recipe with its models trained without fold 1 of 4).
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -14,25 +15,28 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/threads.hpp"
 #include "cropsight/io/grape_text.hpp"
-#include "cropsight/pipeline/grape_eval.hpp"
-#include "cropsight/pipeline/grape_model.hpp"
-#include "grape_network_mode.hpp"
+#include "cropsight/pipeline/grape/grape_eval.hpp"
+#include "cropsight/pipeline/grape/grape_model.hpp"
+#include "cropsight/pipeline/grape/grape_segmenter.hpp"
+#include "grape_segmenter_options.hpp"
 
 namespace cropsight::cli {
 namespace {
 struct EvalGrapeOptions {
   CommonOptions common;
-  std::string data, model, fold;
+  std::string data, fold;
   int limit = 0, threads = 2;
   bool limit_set = false;  // --limit given (0 or less is an error, not "all")
-  GrapeNetworkMode mode;
+  GrapeSegmenterOptions segmenter;
   std::uint64_t split_seed = 1;
 };
 
 void run(const EvalGrapeOptions& o) {
   check_thread_count(o.threads, "--threads");
-  auto model = pipeline::GrapeModel::load(o.model, o.threads);
-  o.mode.apply(model, o.threads);
+  auto cfg = o.segmenter.config();
+  cfg.threads = o.threads;
+  const pipeline::GrapeSegmenter segmenter(cfg, "command line");
+  const pipeline::GrapeModel& model = segmenter.model();
   if (o.limit_set && o.limit < 1) throw Error("--limit", "must be at least 1, got " + std::to_string(o.limit));
   auto files = io::list_grape_clouds(o.data);
   if (o.limit_set && std::size_t(o.limit) < files.size()) files.resize(std::size_t(o.limit));
@@ -53,11 +57,11 @@ void run(const EvalGrapeOptions& o) {
   if (o.common.json) {
     auto j = nlohmann::json::parse(ev.json());
     j["model"] = model.kind();
-    if (model.kind() != "gbdt") j["mode"] = o.mode.name();
-    o.mode.describe(j);
+    if (model.kind() != "gbdt") j["mode"] = segmenter.mode();
+    GrapeSegmenterOptions::describe(cfg, j);
     print_json(j);
   } else {
-    std::printf("model %s (%s)\n%s", o.model.c_str(), model.kind().c_str(), ev.text().c_str());
+    std::printf("model %s (%s)\n%s", cfg.model.c_str(), model.kind().c_str(), ev.text().c_str());
   }
 }
 }  // namespace
@@ -66,12 +70,11 @@ void add_eval_grape(CLI::App& eval) {
   auto o = std::make_shared<EvalGrapeOptions>();
   auto* cmd = eval.add_subcommand("grape", "Evaluate a grape segmentation model on labelled text clouds");
   cmd->add_option("--data", o->data, "Folder of labelled text clouds (directly or under points/)")->required();
-  cmd->add_option("--model", o->model, "Model file (gbdt .json or network .pt)")->required();
   cmd->add_option("--fold", o->fold, "k/K: evaluate only fold k of the by-cloud split");
   cmd->add_option("--split-seed", o->split_seed, "Seed of the fold split (as in train grape)");
   auto* limit = cmd->add_option("--limit", o->limit, "Use only the first N clouds, N >= 1");
   cmd->add_option("--threads", o->threads, "Threads, 1.." + std::to_string(kMaxThreads) + " (default 2)");
-  o->mode.add_options(cmd);
+  o->segmenter.add_options(cmd);  // no default preset: the shipped models saw every shared cloud
   add_json_flag(cmd, o->common);
   cmd->callback([o, limit] {
     o->limit_set = limit->count() > 0;

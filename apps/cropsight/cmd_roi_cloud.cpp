@@ -1,6 +1,7 @@
-// cropsight roi-cloud: grape pipeline stages 1-3 on one RGB-D frame. Bunch and peduncle boxes
-// (COCO-style JSON) → ROIs (Eq. 1, overlapping ROIs merged) → coloured ROI clouds (Algorithm 1)
-// → KNN-PCA normals (k = 30, towards the camera) → unit-sphere normalisation. Each ROI is
+// cropsight roi-cloud: grape pipeline stages 1-3 on one RGB-D frame (pipeline::grape_roi_clouds).
+// Bunch and peduncle boxes (COCO-style JSON) → ROIs (Eq. 1, overlapping ROIs merged) → coloured
+// ROI clouds (Algorithm 1) → KNN-PCA normals (k = 30, towards the camera) → unit-sphere
+// normalisation. Each ROI is
 // written as DIR/roi_NNN.txt in the dataset's text format (label column 0), ready for
 // `segment grape`, plus DIR/rois.json with the boxes and the normalisation (centroid in metres,
 // camera frame, and scale) that maps the cloud back to metres: p_m = p * scale + centroid.
@@ -23,12 +24,11 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
-#include "cropsight/geometry/knn_normals.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/pipeline/grape_roi.hpp"
+#include "cropsight/pipeline/grape/grape_roi.hpp"
 
 namespace cropsight::cli {
 namespace {
@@ -109,42 +109,17 @@ void run(const RoiCloudOptions& o) {
   if (cam.width != depth.width || cam.height != depth.height)
     throw Error(o.camera, "camera size differs from the depth image");
   const auto dets = pipeline::read_coco_detections(o.detections, o.image_id);
-  // A box wholly outside the image (detections of another image, or of another size) would
-  // otherwise vanish without a word.
-  std::size_t outside = 0;
-  for (const auto& d : dets) {
-    if (d.category != cfg.bunch_category && d.category != cfg.peduncle_category) continue;
+  // Compute everything first (the library's stages 1-3), then write: no partial output on a
+  // failure half-way.
+  const pipeline::GrapeRoiFrame frame = pipeline::grape_roi_clouds(depth, color, cam, dets, cfg);
+  for (const auto& d : frame.outside) {
     const Box2D& b = d.box;
-    if (b.x < depth.width && b.y < depth.height && b.x + b.width > 0 && b.y + b.height > 0) continue;
-    ++outside;
     std::fprintf(stderr,
                  "cropsight: warning: %s: annotation %ld: bbox [%d, %d, %d, %d] lies outside the %dx%d image; "
                  "skipped\n",
                  o.detections.c_str(), d.annotation, b.x, b.y, b.width, b.height, depth.width, depth.height);
   }
-  const auto rois = pipeline::grape_rois(dets, depth.width, depth.height, cfg);
-
-  // Compute everything first, then write: no partial output on a failure half-way.
-  struct Out {
-    Cloud cloud;
-    Box2D box;
-    Eigen::Vector3f centroid;
-    float scale;
-  };
-  std::vector<Out> outs;
-  for (const auto& r : rois) {
-    Out out;
-    out.box = r;
-    out.cloud = pipeline::roi_cloud(depth, color, cam, r, cfg);
-    if (out.cloud.size() < 3) continue;  // nothing measurable in this ROI
-    geometry::KnnNormalsConfig ncfg;
-    ncfg.k = std::min(cfg.normal_k, int(out.cloud.size()));  // no more neighbours than points
-    ncfg.viewpoint = Eigen::Vector3f::Zero();                // the camera centre, in the camera frame
-    out.cloud.normals = geometry::knn_normals(out.cloud.points, ncfg);
-    std::tie(out.centroid, out.scale) = geometry::normalize_unit_sphere(out.cloud.points);
-    out.cloud.labels.assign(out.cloud.size(), 0);
-    outs.push_back(std::move(out));
-  }
+  const auto& outs = frame.rois;
   nlohmann::json list = nlohmann::json::array();
   for (std::size_t i = 0; i < outs.size(); ++i) {
     char name[32];
@@ -156,7 +131,7 @@ void run(const RoiCloudOptions& o) {
                     {"centroid_m", {outs[i].centroid.x(), outs[i].centroid.y(), outs[i].centroid.z()}},
                     {"scale_m", outs[i].scale}});
   }
-  nlohmann::json j = {{"detections", dets.size()}, {"outside_image", outside}, {"rois", list}};
+  nlohmann::json j = {{"detections", dets.size()}, {"outside_image", frame.outside.size()}, {"rois", list}};
   write_folder_atomic(out_dir, o.out, [&](const fs::path& dir) {
     for (std::size_t i = 0; i < outs.size(); ++i)
       io::write_grape_text(dir / list[i]["file"].get<std::string>(), outs[i].cloud);

@@ -1,9 +1,12 @@
-// cropsight segment grape: labels every point of a text cloud with a trained model and writes
-// the cloud back in the dataset's format with the predicted label in the last column.
+// cropsight segment grape: labels every point of a text cloud with a grape segmenter
+// (pipeline::GrapeSegmenter: a preset, or --model and the mode flags) and writes the cloud back in
+// the dataset's format with the predicted label in the last column.
 //
-//   cropsight segment grape --model MODEL --input CLOUD.txt --out LABELLED.txt
+//   cropsight segment grape [--config PRESET] [--model MODEL] --input CLOUD.txt --out LABELLED.txt
 //                           [--sampled [--sampling random|fps] [--carry-k K]] [--votes N]
 //                           [--ensemble MODEL2 [--ensemble-weight W]] [--json]
+//
+// Without --config and --model the shipped best recipe runs (configs/grape-best.yaml).
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -14,26 +17,27 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/threads.hpp"
 #include "cropsight/io/grape_text.hpp"
-#include "cropsight/pipeline/grape_model.hpp"
-#include "grape_network_mode.hpp"
+#include "cropsight/pipeline/grape/grape_segmenter.hpp"
+#include "grape_segmenter_options.hpp"
 
 namespace cropsight::cli {
 namespace {
 struct SegmentGrapeOptions {
   CommonOptions common;
-  std::string model, input, out;
+  std::string input, out;
   int threads = 2;
-  GrapeNetworkMode mode;
+  GrapeSegmenterOptions segmenter;
 };
 
 void run(const SegmentGrapeOptions& o) {
   check_thread_count(o.threads, "--threads");
   if (std::filesystem::is_directory(o.out)) throw Error(o.out, "is a directory, expected a file name");
-  auto model = pipeline::GrapeModel::load(o.model, o.threads);
-  o.mode.apply(model, o.threads);
+  auto cfg = o.segmenter.config();
+  cfg.threads = o.threads;
+  const pipeline::GrapeSegmenter segmenter(cfg, "command line");
   Cloud cloud = io::read_grape_text(o.input);
   const auto t0 = std::chrono::steady_clock::now();
-  cloud.labels = model.segment(cloud);
+  cloud.labels = segmenter.segment(cloud);
   const double ms = 1000.0 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   io::write_grape_text(o.out, cloud);
   std::vector<long> counts(6, 0);
@@ -41,8 +45,8 @@ void run(const SegmentGrapeOptions& o) {
     if (l >= 0 && l < 6) ++counts[std::size_t(l)];
   if (o.common.json) {
     nlohmann::json j = {{"input", o.input},       {"out", o.out}, {"points", cloud.size()},
-                        {"label_counts", counts}, {"ms", ms},     {"mode", o.mode.name()}};
-    o.mode.describe(j);
+                        {"label_counts", counts}, {"ms", ms},     {"mode", segmenter.mode()}};
+    GrapeSegmenterOptions::describe(cfg, j);
     print_json(j);
   } else {
     std::printf("%zu points labelled in %.1f ms -> %s\n", cloud.size(), ms, o.out.c_str());
@@ -53,7 +57,6 @@ void run(const SegmentGrapeOptions& o) {
 void add_segment_grape(CLI::App& segment) {
   auto o = std::make_shared<SegmentGrapeOptions>();
   auto* cmd = segment.add_subcommand("grape", "Label every point of a grape text cloud");
-  cmd->add_option("--model", o->model, "Model file (gbdt .json or network .pt)")->required();
   cmd->add_option(
          "--input", o->input,
          "Text cloud in the dataset's format: x y z nx ny nz r g b label (10 numbers a line; the label is read but "
@@ -61,7 +64,7 @@ void add_segment_grape(CLI::App& segment) {
       ->required();
   cmd->add_option("--out", o->out, "Labelled text cloud to write")->required();
   cmd->add_option("--threads", o->threads, "Threads, 1.." + std::to_string(kMaxThreads) + " (default 2)");
-  o->mode.add_options(cmd);
+  o->segmenter.add_options(cmd, "grape-best");
   add_json_flag(cmd, o->common);
   cmd->callback([o] { run(*o); });
 }

@@ -21,10 +21,9 @@
 #include "cropsight/core/threads.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/nn/point_segmenter.hpp"
-#include "cropsight/pipeline/grape_eval.hpp"
-#include "cropsight/pipeline/grape_gbdt.hpp"
-#include "cropsight/pipeline/grape_model.hpp"
-#include "grape_network_mode.hpp"
+#include "cropsight/pipeline/grape/grape_eval.hpp"
+#include "cropsight/pipeline/grape/grape_gbdt.hpp"
+#include "cropsight/pipeline/grape/grape_model.hpp"
 
 namespace cropsight::cli {
 namespace {

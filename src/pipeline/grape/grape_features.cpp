@@ -1,6 +1,6 @@
 // Per-point features for the grape GBDT. Neighbourhood statistics use our nanoflann index
 // (geometry::PointIndex); FPFH uses PCL's FPFHEstimationOMP on the same k neighbourhoods.
-#include "cropsight/pipeline/grape_features.hpp"
+#include "cropsight/pipeline/grape/grape_features.hpp"
 #include "cropsight/core/threads.hpp"
 
 #include <pcl/features/fpfh_omp.h>
@@ -19,7 +19,7 @@
 #include "cropsight/geometry/knn_normals.hpp"
 #include "cropsight/learning/gbdt.hpp"
 #include "geometry/point_kdtree.hpp"
-#include "parallel_rows.hpp"
+#include "pipeline/parallel_rows.hpp"
 
 namespace cropsight::pipeline {
 
@@ -45,23 +45,7 @@ void hsv(const Eigen::Vector3f& c, float& h, float& s, float& v) {
 }  // namespace
 
 void GrapeFeatureConfig::validate(const std::string& where, const std::string& prefix) const {
-  auto fail = [&](const char* key, const std::string& rule, const std::string& got) {
-    throw Error(where, "'" + prefix + key + "' " + rule + ", got " + got);
-  };
-  auto at_least = [&](const char* key, int value, int min, const char* why) {
-    if (value < min) fail(key, "must be at least " + std::to_string(min) + why, std::to_string(value));
-  };
-  at_least("k_small", k_small, 3, " (a neighbourhood's covariance needs three points)");
-  at_least("k_large", k_large, 3, " (a neighbourhood's covariance needs three points)");
-  at_least("threads", threads, 1, "");
-  if (threads > kMaxThreads) fail("threads", "must be at most " + std::to_string(kMaxThreads), std::to_string(threads));
-  at_least("sample", sample, 0, " (0 = every point)");
-  at_least("carry_k", carry_k, 1, "");
-  if (!(carry_colour >= 0 && std::isfinite(carry_colour))) {
-    std::ostringstream o;
-    o << carry_colour;
-    fail("carry_colour", "must be >= 0", o.str());
-  }
+  check_config(*this, where, prefix);
 }
 
 std::string GrapeFeatureConfig::recipe() const {
@@ -78,34 +62,30 @@ std::string GrapeFeatureConfig::recipe() const {
 }
 
 GrapeFeatureConfig GrapeFeatureConfig::from_recipe(const std::string& text, const std::string& where) {
-  GrapeFeatureConfig c;
+  // The recipe is "key=value;..." of this struct's own fields: split it, then let visit()'s
+  // parsers and ranges judge the values, so that a corrupt model file is named with its key
+  // (std::stoi used to escape as an internal error, and "fpfh=true" read as false).
+  const std::string what = "feature recipe '" + text + "'";
+  ConfigMap values;
   std::istringstream in(text);
   std::string item;
-  int seen = 0;
   while (std::getline(in, item, ';')) {
     const auto eq = item.find('=');
-    if (eq == std::string::npos) throw Error(where, "bad feature recipe '" + text + "'");
-    const std::string k = item.substr(0, eq), v = item.substr(eq + 1);
-    if (k == "k_small")
-      c.k_small = std::stoi(v), ++seen;
-    else if (k == "k_large")
-      c.k_large = std::stoi(v), ++seen;
-    else if (k == "fpfh")
-      c.fpfh = v == "1", ++seen;
-    else if (k == "sample")
-      c.sample = std::stoi(v);
-    else if (k == "sample_seed")
-      c.sample_seed = std::stoull(v);
-    else if (k == "carry_k")
-      c.carry_k = std::stoi(v);
-    else if (k == "carry_colour")
-      c.carry_colour = std::stod(v);
-    else if (k == "carry_soft")
-      c.carry_soft = v == "1";
-    else
-      throw Error(where, "unknown feature recipe key '" + k + "'");
+    if (eq == std::string::npos || eq == 0) throw Error(where, what + ": item '" + item + "' is not key=value");
+    const std::string key = item.substr(0, eq);
+    // threads is how a model is run, not how it was trained: never part of a recipe.
+    if (key == "threads") throw Error(where, what + ": unknown key 'threads'");
+    if (!values.emplace(key, item.substr(eq + 1)).second) throw Error(where, what + ": key '" + key + "' repeated");
   }
-  if (seen != 3) throw Error(where, "incomplete feature recipe '" + text + "'");
+  for (const char* key : {"k_small", "k_large", "fpfh"})
+    if (!values.count(key)) throw Error(where, what + ": key '" + std::string(key) + "' missing");
+  GrapeFeatureConfig c;
+  try {
+    apply_config(c, values, where);
+    c.validate(where);
+  } catch (const Error& e) {
+    throw Error(where, "feature recipe: " + e.problem());
+  }
   return c;
 }
 

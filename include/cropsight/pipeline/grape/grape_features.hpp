@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "cropsight/core/cloud.hpp"
+#include "cropsight/core/config_range.hpp"
+#include "cropsight/core/threads.hpp"
 
 namespace cropsight::pipeline {
 
@@ -33,25 +35,34 @@ struct GrapeFeatureConfig {
 
   template <class V>
   void visit(V& v) {
-    v("k_small", k_small, "points; fine neighbourhood size (ours)");
-    v("k_large", k_large, "points; coarse neighbourhood size (ours)");
+    // Ranges by the field (core/config_range.hpp): checked by validate(), so by every preset,
+    // --set and model recipe that fills this struct.
+    const char* covariance = "a neighbourhood's covariance needs three points";
+    config_field(v, "k_small", k_small, "points; fine neighbourhood size (ours)", Range::at_least(3, covariance));
+    config_field(v, "k_large", k_large, "points; coarse neighbourhood size (ours)", Range::at_least(3, covariance));
     v("fpfh", fpfh, "bool; add FPFH histograms at both radii");
-    v("threads", threads, "count; threads of the FPFH computation");
-    v("sample", sample, "points; points per pass, 0 = every point (ours)");
+    config_field(v, "threads", threads, "count; threads of the FPFH computation", Range::within(1, kMaxThreads));
+    config_field(v, "sample", sample, "points; points per pass, 0 = every point (ours)",
+                 Range::at_least(0, "0 = every point"));
     v("sample_seed", sample_seed, "1; seed of the segment-time sample (ours)");
-    v("carry_k", carry_k, "count; sample points voting for each other point, 1 = nearest only (ours)");
-    v("carry_colour", carry_colour, "1/rgb^2; colour weight of the carry-back vote (ours)");
+    config_field(v, "carry_k", carry_k, "count; sample points voting for each other point, 1 = nearest only (ours)",
+                 Range::at_least(1));
+    config_field(v, "carry_colour", carry_colour, "1/rgb^2; colour weight of the carry-back vote (ours)",
+                 Range::at_least(0));
     v("carry_soft", carry_soft, "bool; carry-back votes with class probabilities (ours)");
   }
-  /// "k_small=16;k_large=64;fpfh=1" (+ ";sample=N;sample_seed=S;carry_k=K;carry_colour=C"
-  /// when sample > 0): stored
-  /// inside model files, so a model is applied the way it was trained. Recipes without the
-  /// sample keys (every model written before them) mean sample = 0.
+  /// "k_small=16;k_large=64;fpfh=1" (+ ";sample=N;sample_seed=S;carry_k=K;carry_colour=C;carry_soft=B"
+  /// when sample > 0): stored inside model files, so a model is applied the way it was trained.
+  /// Recipes without the sample keys (every model written before them) mean sample = 0.
   std::string recipe() const;
+  /// Parses recipe() text with the fields' own parsers and ranges (visit()): a malformed or
+  /// out-of-range value, an item that is not key=value, a repeated, unknown or missing key
+  /// (k_small, k_large and fpfh are required) throws Error(where, "feature recipe: 'KEY' ...").
+  /// `where` names the model file.
   static GrapeFeatureConfig from_recipe(const std::string& text, const std::string& where);
-  /// Throws Error(where, "'PREFIXk_small' must be at least 3, got 1") for the first field out of
-  /// range: k_small, k_large >= 3, threads in 1..kMaxThreads (core/threads.hpp), sample >= 0,
-  /// carry_k >= 1, carry_colour >= 0. `prefix` is the fields' key path ("features.").
+  /// Throws Error(where, "'PREFIXk_small' must be at least 3 (...), got 1") for the first field
+  /// out of its range declared in visit() (check_config). `prefix` is the fields' key path
+  /// ("features.").
   void validate(const std::string& where, const std::string& prefix = "") const;
 };
 

@@ -1,4 +1,4 @@
-#include "cropsight/pipeline/grape_gbdt.hpp"
+#include "cropsight/pipeline/grape/grape_gbdt.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "cropsight/core/class_scores.hpp"
 #include "cropsight/core/error.hpp"
 #include "geometry/point_kdtree.hpp"
-#include "parallel_rows.hpp"
+#include "pipeline/parallel_rows.hpp"
 
 namespace cropsight::pipeline {
 
@@ -36,16 +36,11 @@ std::vector<int> training_rows(const Cloud& c, const GrapeGbdtConfig& cfg, std::
 }  // namespace
 
 void GrapeGbdtConfig::validate(const std::string& where) const {
+  // In the order of visit(): the features, XGBoost's parameters, then this struct's own fields
+  // (check_config walks the features again: they hold).
   features.validate(where, "features.");
   gbdt.validate(where, "gbdt.");
-  auto fail = [&](const char* key, const std::string& rule, const std::string& got) {
-    throw Error(where, std::string("'") + key + "' " + rule + ", got " + got);
-  };
-  if (points_per_cloud < 1) fail("points_per_cloud", "must be at least 1", std::to_string(points_per_cloud));
-  if (rare_class_max < 0) fail("rare_class_max", "must be >= 0", std::to_string(rare_class_max));
-  if (!(class_weight_power >= 0 && std::isfinite(class_weight_power)))
-    fail("class_weight_power", "must be >= 0", std::to_string(class_weight_power));
-  if (sample_draws < 1) fail("sample_draws", "must be at least 1", std::to_string(sample_draws));
+  check_config(*this, where);
 }
 
 learning::Gbdt train_grape_gbdt(const std::vector<Cloud>& clouds, const GrapeGbdtConfig& cfg,

@@ -1,9 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/pipeline/grape_roi.hpp"
+#include "cropsight/pipeline/grape/grape_roi.hpp"
 #include "testing/testing.hpp"
 
 namespace {
@@ -63,6 +64,45 @@ TEST(GrapeRoi, DeprojectionHandComputed) {
   EXPECT_FLOAT_EQ(c.colors[1].z(), 0.f);
   cam.width = 5;
   EXPECT_THROW(roi_cloud(depth, color, cam, {0, 0, 1, 1}), Error);
+}
+
+TEST(GrapeRoi, FrameStagesGiveNormalisedCloudsWithNormals) {
+  // A 40x30 frame: a tilted plane (depth rising to the right) under one bunch box with its
+  // peduncle above it, one box wholly outside the image and one of another category.
+  CameraIntrinsics cam;
+  cam.width = 40, cam.height = 30;
+  cam.fx = cam.fy = 50, cam.cx = 20, cam.cy = 15;
+  DepthImage depth(40, 30, 0);
+  ColorImage color(40, 30, Rgb8{20, 200, 40});
+  for (int v = 0; v < 30; ++v)
+    for (int u = 0; u < 40; ++u) depth.at(u, v) = std::uint16_t(1000 + 10 * u);
+  const std::vector<GrapeDetection> dets = {{{10, 10, 10, 10}, 1, 0.9f, 0},
+                                            {{14, 5, 2, 5}, 2, 0.9f, 1},
+                                            {{100, 100, 5, 5}, 1, 0.9f, 2},
+                                            {{0, 0, 5, 5}, 7, 0.9f, 3}};
+  const GrapeRoiFrame f = grape_roi_clouds(depth, color, cam, dets);
+  ASSERT_EQ(f.rois.size(), 1u);
+  ASSERT_EQ(f.outside.size(), 1u);
+  EXPECT_EQ(f.outside[0].annotation, 2);
+  const GrapeRoiCloud& r = f.rois[0];
+  EXPECT_EQ(r.box, (Box2D{10, 5, 10, 15}));  // Eq. 1
+  ASSERT_EQ(r.cloud.size(), 150u);           // every pixel of the ROI has a kept depth
+  ASSERT_EQ(r.cloud.normals.size(), r.cloud.size());
+  ASSERT_EQ(r.cloud.labels, std::vector<int>(r.cloud.size(), 0));
+  float radius = 0;
+  for (std::size_t i = 0; i < r.cloud.size(); ++i) {
+    radius = std::max(radius, r.cloud.points[i].norm());
+    EXPECT_NEAR(r.cloud.normals[i].norm(), 1.f, 1e-4f);
+    // Towards the camera: the camera sits at -centroid/scale in the normalised frame.
+    const Eigen::Vector3f to_camera = -r.centroid / r.scale - r.cloud.points[i];
+    EXPECT_GT(r.cloud.normals[i].dot(to_camera), 0.f) << i;
+  }
+  EXPECT_NEAR(radius, 1.f, 1e-5f);
+  // Mapping back: p * scale + centroid is the deprojected pixel (u = 10, v = 5 is the first).
+  const Eigen::Vector3f first = r.cloud.points[0] * r.scale + r.centroid;
+  EXPECT_NEAR((first - cam.deproject(10, 5, 1.1f)).norm(), 0.f, 1e-5f);
+  cam.width = 41;
+  EXPECT_THROW(grape_roi_clouds(depth, color, cam, dets), Error);
 }
 
 TEST(GrapeRoi, ReadsCocoDetections) {

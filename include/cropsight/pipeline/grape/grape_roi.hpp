@@ -1,7 +1,9 @@
 #pragma once
-// Grape pipeline, stages 1-2 (Luo et al.): the region of interest of a bunch from its 2D
-// detection and its peduncle's (Eq. 1), and the coloured point cloud of that region
-// (Algorithm 1). Pixels: x = column, y = row, origin top-left. Points: camera frame, metres.
+// Grape pipeline, stages 1-3 (Luo et al.): the region of interest of a bunch from its 2D
+// detection and its peduncle's (Eq. 1), the coloured point cloud of that region (Algorithm 1),
+// its normals and its unit-sphere normalisation (grape_roi_clouds: the whole of stages 1-3 on
+// one frame). Pixels: x = column, y = row, origin top-left. Points: camera frame, metres.
+#include <Eigen/Core>
 #include <filesystem>
 #include <vector>
 
@@ -66,6 +68,31 @@ std::vector<Box2D> merge_overlapping(std::vector<Box2D> boxes);
 /// Throws Error("roi cloud", ...) on size mismatch.
 Cloud roi_cloud(const DepthImage& depth, const ColorImage& color, const CameraIntrinsics& cam, const Box2D& roi,
                 const GrapeRoiConfig& cfg = {});
+
+/// One ROI's cloud, ready for a grape segmentation model: coloured, KNN-PCA normals oriented to
+/// the camera centre, normalised to the unit sphere, labels 0. p_m = p * scale + centroid maps a
+/// point back to metres in the camera frame.
+struct GrapeRoiCloud {
+  Box2D box;
+  Cloud cloud;
+  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();  ///< m, camera frame
+  float scale = 1.f;                                   ///< m per unit
+};
+
+/// Stages 1-3 of one RGB-D frame.
+struct GrapeRoiFrame {
+  std::vector<GrapeRoiCloud> rois;      ///< in grape_rois() order; ROIs with fewer than 3 points dropped
+  std::vector<GrapeDetection> outside;  ///< bunch / peduncle detections wholly outside the image (skipped)
+};
+
+/// Stages 1-3 on one frame: ROIs from `detections` (Eq. 1, overlapping ones merged), each ROI's
+/// coloured cloud (Algorithm 1), its normals (cfg.normal_k neighbours, at most the cloud size,
+/// oriented to the camera centre) and its unit-sphere normalisation. Detections of other
+/// categories are ignored; those wholly outside the image are listed in `outside` (a box of
+/// another image or size would otherwise vanish without a word). Throws Error on a size mismatch
+/// of depth, colour and camera, and for a config out of range (cfg.validate).
+GrapeRoiFrame grape_roi_clouds(const DepthImage& depth, const ColorImage& color, const CameraIntrinsics& cam,
+                               const std::vector<GrapeDetection>& detections, const GrapeRoiConfig& cfg = {});
 
 /// Detections from a COCO-style JSON file: either a full COCO file ("annotations" array) or a
 /// results array; each entry needs "bbox" [x, y, w, h] and "category_id" ("score" optional).

@@ -231,6 +231,42 @@ TEST_F(GrapeBadInput, BadCheckpointAndModelFiles) {
   EXPECT_FALSE(fs::exists(t / "o.txt"));
 }
 
+// Bug: a GBDT model whose feature recipe (attribute cropsight.features) held a malformed value
+// ended with "internal error" from std::stoi (exit 1), and "fpfh=true" read as false. Now: exit 2,
+// one line naming the model file and the key; "fpfh=true" means the same as "fpfh=1".
+TEST_F(GrapeBadInput, CorruptModelRecipeNamesTheFileAndKey) {
+  gbdt_model();
+  const std::string text = io::read_file(t / "m.json"), recipe = "k_small=16;k_large=64;fpfh=1";
+  ASSERT_NE(text.find(recipe), std::string::npos) << "the default recipe is stored in the model";
+  auto with_recipe = [&](const std::string& name, const std::string& replacement) {
+    std::string edited = text;
+    edited.replace(edited.find(recipe), recipe.size(), replacement);
+    std::ofstream(t / name, std::ios::binary) << edited;
+    return shell_quoted(t / name);
+  };
+  const std::string cloud = shell_quoted(t / "data" / "points" / "c0.txt");
+  for (const auto& [name, replacement, key] : std::vector<std::tuple<std::string, std::string, std::string>>{
+           {"abc.json", "k_small=abc;k_large=64;fpfh=1", "'k_small'"},
+           {"maybe.json", "k_small=16;k_large=64;fpfh=maybe", "'fpfh'"},
+       }) {
+    const std::string model = with_recipe(name, replacement);
+    expect_one_line_error(
+        run_cli("segment grape --model " + model + " --input " + cloud + " --out " + shell_quoted(t / "o.txt")),
+        {(t / name).string(), key}, "segment " + name);
+    expect_one_line_error(run_cli("eval grape --data " + data + " --model " + model), {(t / name).string(), key},
+                          "eval " + name);
+  }
+  EXPECT_FALSE(fs::exists(t / "o.txt"));
+  // "fpfh=true" labels exactly as the "fpfh=1" the model was written with.
+  const std::string as_true = with_recipe("true.json", "k_small=16;k_large=64;fpfh=true");
+  auto r =
+      run_cli("segment grape --model " + gbdt_model() + " --input " + cloud + " --out " + shell_quoted(t / "a.txt"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_cli("segment grape --model " + as_true + " --input " + cloud + " --out " + shell_quoted(t / "b.txt"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(io::read_file(t / "a.txt"), io::read_file(t / "b.txt"));
+}
+
 // Bug: label 9 surfaced as "confusion matrix: label out of range" without a file; colour 300
 // was accepted (the format's colours are in [0, 1]).
 TEST_F(GrapeBadInput, LabelAndColourOutOfRange) {

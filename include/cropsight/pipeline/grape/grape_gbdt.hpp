@@ -9,7 +9,7 @@
 
 #include "cropsight/core/cloud.hpp"
 #include "cropsight/learning/gbdt.hpp"
-#include "cropsight/pipeline/grape_features.hpp"
+#include "cropsight/pipeline/grape/grape_features.hpp"
 
 namespace cropsight::pipeline {
 
@@ -26,16 +26,20 @@ struct GrapeGbdtConfig {
   void visit(V& v) {
     v("features", features, "per-point feature recipe");
     v("gbdt", gbdt, "XGBoost parameters");
-    v("points_per_cloud", points_per_cloud, "count; training rows sampled per cloud (ours)");
-    v("rare_class_max", rare_class_max, "count; classes smaller than this in a cloud are kept whole (ours)");
-    v("class_weight_power", class_weight_power, "1; inverse-frequency class weight exponent (ours)");
-    v("sample_draws", sample_draws,
-      "count; fast recipe only: pass samples per training cloud, each featurised as at segment time (ours)");
+    config_field(v, "points_per_cloud", points_per_cloud, "count; training rows sampled per cloud (ours)",
+                 Range::at_least(1));
+    config_field(v, "rare_class_max", rare_class_max,
+                 "count; classes smaller than this in a cloud are kept whole (ours)", Range::at_least(0));
+    config_field(v, "class_weight_power", class_weight_power, "1; inverse-frequency class weight exponent (ours)",
+                 Range::at_least(0));
+    config_field(v, "sample_draws", sample_draws,
+                 "count; fast recipe only: pass samples per training cloud, each featurised as at segment time (ours)",
+                 Range::at_least(1));
     v("seed", seed, "1; sampling seed");
   }
 
   /// Throws Error(where, "'gbdt.rounds' must be at least 1, got 0") for the first field out of
-  /// range, the nested features and gbdt fields included (GrapeFeatureConfig::validate,
+  /// range, the nested features and gbdt fields included (the ranges declared in visit(), and
   /// learning::GbdtParams::validate): checked before any work, so that a bad value is named as
   /// the user wrote it rather than failing deep in XGBoost.
   void validate(const std::string& where) const;

@@ -1,4 +1,4 @@
-#include "cropsight/pipeline/grape_model.hpp"
+#include "cropsight/pipeline/grape/grape_model.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/learning/gbdt.hpp"
 #include "cropsight/nn/point_segmenter.hpp"
-#include "cropsight/pipeline/grape_gbdt.hpp"
+#include "cropsight/pipeline/grape/grape_gbdt.hpp"
 
 namespace cropsight::pipeline {
 
@@ -82,7 +82,8 @@ std::vector<float> GrapeModel::scores(const Cloud& cloud) const {
 }
 
 void GrapeModel::set_ensemble(std::shared_ptr<const GrapeModel> partner, double weight) {
-  if (!(weight >= 0.0 && weight <= 1.0)) throw Error("--ensemble-weight", "must be within [0, 1]");
+  if (!(weight >= 0.0 && weight <= 1.0))
+    throw Error("grape model", "'ensemble_weight' must be within [0, 1], got " + std::to_string(weight));
   impl_->partner = std::move(partner);
   impl_->partner_weight = weight;
 }
@@ -114,17 +115,17 @@ std::vector<int> GrapeModel::segment(const Cloud& cloud) const {
 }
 
 void GrapeModel::set_sampled(bool sampled, bool farthest, int carry_k) {
-  if (carry_k < 1) throw Error("--carry-k", "must be at least 1");
+  if (carry_k < 1) throw Error("grape model", "'carry_k' must be at least 1, got " + std::to_string(carry_k));
   if (sampled && impl_->gbdt)
-    throw Error("--sampled", "only for network models (a GBDT recipe fixes its own sampling)");
+    throw Error("grape model", "'sampled' is only for network models (a GBDT recipe fixes its own sampling)");
   impl_->sampled = sampled;
   impl_->farthest = farthest;
   impl_->carry_k = carry_k;
 }
 
 void GrapeModel::set_votes(int votes) {
-  if (votes < 1) throw Error("--votes", "must be at least 1");
-  if (votes > 1 && impl_->gbdt) throw Error("--votes", "only for network models");
+  if (votes < 1) throw Error("grape model", "'votes' must be at least 1, got " + std::to_string(votes));
+  if (votes > 1 && impl_->gbdt) throw Error("grape model", "'votes' above 1 is only for network models");
   impl_->votes = votes;
 }
 

@@ -1,4 +1,4 @@
-#include "cropsight/pipeline/grape_roi.hpp"
+#include "cropsight/pipeline/grape/grape_roi.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,10 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <tuple>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/geometry/knn_normals.hpp"
 
 namespace cropsight::pipeline {
 
@@ -123,6 +125,34 @@ Cloud roi_cloud(const DepthImage& depth, const ColorImage& color, const CameraIn
       }
     }
   return c;
+}
+
+GrapeRoiFrame grape_roi_clouds(const DepthImage& depth, const ColorImage& color, const CameraIntrinsics& cam,
+                               const std::vector<GrapeDetection>& detections, const GrapeRoiConfig& cfg) {
+  cfg.validate("grape roi config");
+  if (cam.width != depth.width || cam.height != depth.height)
+    throw Error("roi cloud", "camera size differs from the depth image");
+  GrapeRoiFrame frame;
+  for (const auto& d : detections) {
+    if (d.category != cfg.bunch_category && d.category != cfg.peduncle_category) continue;
+    const Box2D& b = d.box;
+    if (b.x >= depth.width || b.y >= depth.height || b.x + b.width <= 0 || b.y + b.height <= 0)
+      frame.outside.push_back(d);
+  }
+  for (const auto& box : grape_rois(detections, depth.width, depth.height, cfg)) {
+    GrapeRoiCloud r;
+    r.box = box;
+    r.cloud = roi_cloud(depth, color, cam, box, cfg);
+    if (r.cloud.size() < 3) continue;  // nothing measurable in this ROI
+    geometry::KnnNormalsConfig ncfg;
+    ncfg.k = std::min(cfg.normal_k, int(r.cloud.size()));  // no more neighbours than points
+    ncfg.viewpoint = Eigen::Vector3f::Zero();              // the camera centre, in the camera frame
+    r.cloud.normals = geometry::knn_normals(r.cloud.points, ncfg);
+    std::tie(r.centroid, r.scale) = geometry::normalize_unit_sphere(r.cloud.points);
+    r.cloud.labels.assign(r.cloud.size(), 0);
+    frame.rois.push_back(std::move(r));
+  }
+  return frame;
 }
 
 std::vector<GrapeDetection> read_coco_detections(const std::filesystem::path& path, long image_id) {

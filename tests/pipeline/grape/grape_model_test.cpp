@@ -6,7 +6,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/nn/point_segmenter.hpp"
-#include "cropsight/pipeline/grape_model.hpp"
+#include "cropsight/pipeline/grape/grape_model.hpp"
 #include "testing/testing.hpp"
 
 namespace {

@@ -1,0 +1,55 @@
+#include "grape_segmenter_options.hpp"
+
+#include "cropsight/io/config_yaml.hpp"
+
+namespace cropsight::cli {
+
+void GrapeSegmenterOptions::add_options(CLI::App* cmd, const std::string& default_preset) {
+  default_preset_ = default_preset;
+  cmd->add_option("--config", preset_,
+                  "Segmenter preset (configs/<name>.yaml or a YAML file), e.g. grape-best: model, sampled, votes, "
+                  "ensemble; the flags below override its keys" +
+                      (default_preset.empty() ? std::string() : " (default without --model: " + default_preset + ")"));
+  // Each flag fills one key of pipeline::GrapeSegmenterConfig; only the flags given override.
+  auto option = [&](const std::string& flag, const std::string& key, const std::string& help) {
+    cmd->add_option_function<std::string>(
+        flag, [this, key](const std::string& v) { flags_[key] = v; }, help);
+  };
+  option("--model", "model", "Model file (gbdt .json or network .pt)");
+  cmd->add_flag_function(
+      "--sampled", [this](std::int64_t) { flags_["sampled"] = "true"; },
+      "Networks: the paper's mode, one pass on num_points samples, labels carried back to the other points "
+      "(--carry-k; default: a prediction for every point)");
+  option("--sampling", "sampling", "With --sampled: random (as in training, default) or fps");
+  option("--carry-k", "carry_k",
+         "With --sampled: samples voting for each other point, weighted by distance and colour (default 4; 1 = "
+         "nearest, the paper)");
+  option("--votes", "votes",
+         "Networks: N passes rotated about the vertical axis by 360/N degrees each, as test-time augmentation "
+         "(every-point mode: N covers, class probabilities averaged; --sampled: N samples, probabilities carried "
+         "back and summed); N times the time (default 1)");
+  option("--ensemble", "ensemble",
+         "A second model (network or GBDT, default settings) whose per-point class probabilities are mixed with "
+         "this model's; the label is the argmax of the mix");
+  option("--ensemble-weight", "ensemble_weight", "With --ensemble: the second model's share (default 0.5)");
+}
+
+pipeline::GrapeSegmenterConfig GrapeSegmenterOptions::config() const {
+  const std::string preset = !preset_.empty() ? preset_ : flags_.count("model") ? "" : default_preset_;
+  if (preset.empty()) {
+    pipeline::GrapeSegmenterConfig cfg;
+    apply_config(cfg, flags_, "command line");
+    return cfg;
+  }
+  return pipeline::load_grape_segmenter_config(io::find_preset(preset), flags_, "command line");
+}
+
+void GrapeSegmenterOptions::describe(const pipeline::GrapeSegmenterConfig& cfg, nlohmann::json& j) {
+  j["votes"] = cfg.votes;
+  if (!cfg.ensemble.empty()) {
+    j["ensemble"] = cfg.ensemble;
+    j["ensemble_weight"] = cfg.ensemble_weight;
+  }
+}
+
+}  // namespace cropsight::cli

@@ -1,0 +1,28 @@
+#pragma once
+// The options that `eval grape` and `segment grape` share: a preset of the segmenter
+// (--config, pipeline::GrapeSegmenterConfig) and flags that override its keys one by one
+// (--model → model, --sampled → sampled, --carry-k → carry_k, ...). Errors name the keys.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "cropsight/pipeline/grape/grape_segmenter.hpp"
+
+namespace cropsight::cli {
+
+class GrapeSegmenterOptions {
+ public:
+  /// `default_preset`: the preset used when neither --config nor --model is given ("" = none).
+  void add_options(CLI::App* cmd, const std::string& default_preset = "");
+  /// The preset (if any) with the given flags applied; Error names the preset file or
+  /// "command line" and the key. --threads stays the command's own option (set cfg.threads).
+  pipeline::GrapeSegmenterConfig config() const;
+  /// Adds "votes" and, with an ensemble, "ensemble" and "ensemble_weight" to a JSON report.
+  static void describe(const pipeline::GrapeSegmenterConfig& cfg, nlohmann::json& j);
+
+ private:
+  std::string preset_, default_preset_;
+  ConfigMap flags_;  // key → value text of the flags given
+};
+
+}  // namespace cropsight::cli

@@ -1,0 +1,144 @@
+#include "cropsight/pipeline/grape/grape_eval.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cropsight/core/error.hpp"
+
+namespace cropsight::pipeline {
+
+namespace {
+nlohmann::json num(double v) { return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v); }
+
+void check_classes(const eval::ConfusionMatrix& m, const std::vector<int>& classes) {
+  for (int c : classes)
+    if (c < 0 || c >= m.num_classes())
+      throw Error("grape evaluation", "class " + std::to_string(c) + " is not a label of a " +
+                                          std::to_string(m.num_classes()) + "-class confusion matrix");
+}
+}  // namespace
+
+double pooled_miou(const eval::ConfusionMatrix& confusion, const std::vector<int>& classes) {
+  check_classes(confusion, classes);
+  double sum = 0;
+  int defined = 0;
+  for (int c : classes) {
+    const double iou = confusion.class_iou(c);
+    if (std::isnan(iou)) continue;
+    sum += iou;
+    ++defined;
+  }
+  return defined ? sum / defined : std::nan("");
+}
+
+double per_cloud_miou(const std::vector<eval::ConfusionMatrix>& clouds, const std::vector<int>& classes) {
+  if (clouds.empty() || classes.empty()) return std::nan("");
+  double sum = 0;
+  for (const auto& m : clouds) {
+    check_classes(m, classes);
+    double cloud = 0;
+    for (int c : classes) {
+      const double iou = m.class_iou(c);
+      cloud += std::isnan(iou) ? 1.0 : iou;  // absent from truth and prediction: nothing to get wrong
+    }
+    sum += cloud / double(classes.size());
+  }
+  return sum / double(clouds.size());
+}
+
+std::vector<int> GrapeEvaluation::all_labels() const {
+  std::vector<int> out(std::size_t(confusion.num_classes()));
+  for (int c = 0; c < confusion.num_classes(); ++c) out[std::size_t(c)] = c;
+  return out;
+}
+
+std::vector<int> GrapeEvaluation::named_classes() const {
+  std::vector<int> out;
+  for (int c : grape_named_classes())
+    if (c < confusion.num_classes()) out.push_back(c);
+  return out;
+}
+
+void GrapeEvaluation::merge(const GrapeEvaluation& o) {
+  confusion.merge(o.confusion);
+  per_cloud.insert(per_cloud.end(), o.per_cloud.begin(), o.per_cloud.end());
+  clouds += o.clouds;
+  points += o.points;
+  seconds += o.seconds;
+}
+
+namespace {
+struct Protocol {
+  const char* name;
+  const char* label;  // for text()
+  std::vector<int> classes;
+  double miou;
+};
+
+std::vector<Protocol> protocols(const GrapeEvaluation& e) {
+  const std::vector<int> all = e.all_labels(), named = e.named_classes();
+  return {{"pooled_all_labels", "pooled, all labels", all, e.confusion.mean_iou()},
+          {"pooled_named_classes", "pooled, named classes", named, pooled_miou(e.confusion, named)},
+          {"per_cloud_named_classes", "per cloud, named classes", named, per_cloud_miou(e.per_cloud, named)},
+          {"per_cloud_all_labels", "per cloud, all labels", all, per_cloud_miou(e.per_cloud, all)}};
+}
+}  // namespace
+
+std::string GrapeEvaluation::json() const {
+  nlohmann::json j;
+  j["clouds"] = clouds;
+  j["points"] = points;
+  j["oacc"] = num(confusion.overall_accuracy());
+  j["macc"] = num(confusion.mean_accuracy());
+  j["miou"] = num(confusion.mean_iou());
+  j["per_class"] = nlohmann::json::array();
+  for (int c = 0; c < confusion.num_classes(); ++c)
+    j["per_class"].push_back({{"label", c},
+                              {"points", confusion.truth_count(c)},
+                              {"accuracy", num(confusion.class_accuracy(c))},
+                              {"iou", num(confusion.class_iou(c))}});
+  j["ms_per_cloud"] = ms_per_cloud();
+  for (const auto& p : protocols(*this)) j["protocols"][p.name] = {{"classes", p.classes}, {"miou", num(p.miou)}};
+  return j.dump();
+}
+
+std::string GrapeEvaluation::text() const {
+  std::ostringstream o;
+  o.precision(4);
+  o << "clouds " << clouds << ", points " << points << "\n";
+  o << "OAcc " << confusion.overall_accuracy() << "  mAcc " << confusion.mean_accuracy() << "  mIoU "
+    << confusion.mean_iou() << "\n";
+  for (int c = 0; c < confusion.num_classes(); ++c)
+    o << "  label " << c << ": points " << confusion.truth_count(c) << "  acc " << confusion.class_accuracy(c)
+      << "  IoU " << confusion.class_iou(c) << "\n";
+  o << "mIoU by protocol:\n";
+  for (const auto& p : protocols(*this)) {
+    o << "  " << p.label << " (";
+    for (std::size_t i = 0; i < p.classes.size(); ++i) o << (i ? " " : "") << p.classes[i];
+    o << "): " << p.miou << "\n";
+  }
+  o << "ms per cloud " << ms_per_cloud() << "\n";
+  return o.str();
+}
+
+GrapeEvaluation evaluate_grape(const GrapeModel& model, const std::vector<Cloud>& clouds, int num_classes) {
+  GrapeEvaluation e;
+  e.confusion = eval::ConfusionMatrix(num_classes);
+  for (const auto& c : clouds) {
+    if (!c.has_labels()) throw Error("eval grape", "cloud without labels");
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::vector<int> pred = model.segment(c);
+    e.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    eval::ConfusionMatrix one(num_classes);
+    one.add(c.labels, pred);
+    e.confusion.merge(one);
+    e.per_cloud.push_back(std::move(one));
+    e.clouds += 1;
+    e.points += c.size();
+  }
+  return e;
+}
+
+}  // namespace cropsight::pipeline

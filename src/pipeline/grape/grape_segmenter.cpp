@@ -1,0 +1,57 @@
+#include "cropsight/pipeline/grape/grape_segmenter.hpp"
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/io/config_yaml.hpp"
+
+namespace cropsight::pipeline {
+
+void GrapeSegmenterConfig::validate(const std::string& where) const {
+  check_config(*this, where);
+  if (sampling != "random" && sampling != "fps")
+    throw Error(where, "'sampling' expects random or fps, got '" + sampling + "'");
+  if (model.empty()) throw Error(where, "'model' is not set (a .pt network or a .json GBDT model file)");
+}
+
+GrapeSegmenterConfig load_grape_segmenter_config(const std::filesystem::path& preset, const ConfigMap& overrides,
+                                                 const std::string& overrides_where) {
+  GrapeSegmenterConfig cfg;
+  const std::string where = preset.string();
+  apply_config(cfg, io::load_config_map(preset), where);
+  // A preset names its models relative to itself, so that it works from any working directory.
+  for (std::string* path : {&cfg.model, &cfg.ensemble})
+    if (!path->empty() && std::filesystem::path(*path).is_relative())
+      *path = (preset.parent_path() / *path).lexically_normal().string();
+  check_config(cfg, where);
+  apply_config(cfg, overrides, overrides_where);
+  check_config(cfg, overrides_where);
+  return cfg;
+}
+
+namespace {
+// Checks `cfg` before any model is loaded (a bad value costs no model load), then loads it.
+GrapeModel load_model(const GrapeSegmenterConfig& cfg, const std::string& where) {
+  cfg.validate(where);
+  return GrapeModel::load(cfg.model, cfg.threads);
+}
+}  // namespace
+
+GrapeSegmenter::GrapeSegmenter(const GrapeSegmenterConfig& cfg, const std::string& where)
+    : cfg_(cfg), model_(load_model(cfg, where)) {
+  // GrapeModel's setters throw Error("grape model", ...); here the same rules name the key and
+  // the config they came from.
+  if (model_.kind() == "gbdt") {
+    if (cfg.sampled) throw Error(where, "'sampled' is only for network models (a GBDT recipe fixes its own sampling)");
+    if (cfg.votes > 1)
+      throw Error(where, "'votes' above 1 is only for network models, got " + std::to_string(cfg.votes));
+  } else {
+    model_.set_sampled(cfg.sampled, cfg.sampling == "fps", cfg.carry_k);
+    model_.set_votes(cfg.votes);
+  }
+  if (!cfg.ensemble.empty())
+    model_.set_ensemble(std::make_shared<const GrapeModel>(GrapeModel::load(cfg.ensemble, cfg.threads)),
+                        cfg.ensemble_weight);
+  else if (cfg.ensemble_weight != 0.5)
+    throw Error(where, "'ensemble_weight' needs 'ensemble' (a second model)");
+}
+
+}  // namespace cropsight::pipeline

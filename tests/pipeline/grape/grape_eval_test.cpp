@@ -1,0 +1,83 @@
+// The evaluation protocols of grape_eval.hpp on confusion matrices computed by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/pipeline/grape/grape_eval.hpp"
+
+namespace {
+using namespace cropsight;
+using namespace cropsight::pipeline;
+
+// Cloud A: (truth, pred) = (0,0) x4, (1,1) x3, (1,2) x1, (2,2) x2.
+//   IoU 0 = 4/4 = 1, IoU 1 = 3/(4+3-3) = 0.75, IoU 2 = 2/(2+3-2) = 2/3.
+// Cloud B: (0,0) x2, (0,1) x2, (1,1) x2; class 2 in neither truth nor prediction.
+//   IoU 0 = 2/(4+2-2) = 0.5, IoU 1 = 2/(2+4-2) = 0.5, IoU 2 undefined.
+eval::ConfusionMatrix cloud_a() {
+  eval::ConfusionMatrix m(3);
+  m.add(0, 0, 4), m.add(1, 1, 3), m.add(1, 2, 1), m.add(2, 2, 2);
+  return m;
+}
+eval::ConfusionMatrix cloud_b() {
+  eval::ConfusionMatrix m(3);
+  m.add(0, 0, 2), m.add(0, 1, 2), m.add(1, 1, 2);
+  return m;
+}
+
+TEST(GrapeEvalProtocols, PooledOverChosenClasses) {
+  eval::ConfusionMatrix pooled = cloud_a();
+  pooled.merge(cloud_b());
+  // Pooled: (0,0) 6, (0,1) 2, (1,1) 5, (1,2) 1, (2,2) 2.
+  //   IoU 0 = 6/(8+6-6) = 0.75, IoU 1 = 5/(6+7-5) = 0.625, IoU 2 = 2/(2+3-2) = 2/3.
+  EXPECT_NEAR(pooled_miou(pooled, {1, 2}), (0.625 + 2.0 / 3) / 2, 1e-12);
+  EXPECT_NEAR(pooled_miou(pooled, {0, 1, 2}), (0.75 + 0.625 + 2.0 / 3) / 3, 1e-12);
+  EXPECT_NEAR(pooled_miou(pooled, {0, 1, 2}), pooled.mean_iou(), 1e-12);
+  // An undefined class is skipped in the pooled mean (as mean_iou()), not counted as 1.
+  EXPECT_NEAR(pooled_miou(cloud_b(), {1, 2}), 0.5, 1e-12);
+  EXPECT_TRUE(std::isnan(pooled_miou(cloud_b(), {2})));
+  EXPECT_THROW(pooled_miou(pooled, {3}), Error);
+}
+
+TEST(GrapeEvalProtocols, PerCloudCountsAnAbsentClassAsOne) {
+  // {1, 2}: A (0.75 + 2/3) / 2, B (0.5 + 1) / 2 (class 2 absent from both: 1).
+  const double a = (0.75 + 2.0 / 3) / 2, b = (0.5 + 1.0) / 2;
+  EXPECT_NEAR(per_cloud_miou({cloud_a(), cloud_b()}, {1, 2}), (a + b) / 2, 1e-12);
+  // All labels: A (1 + 0.75 + 2/3) / 3, B (0.5 + 0.5 + 1) / 3.
+  EXPECT_NEAR(per_cloud_miou({cloud_a(), cloud_b()}, {0, 1, 2}), ((1 + 0.75 + 2.0 / 3) / 3 + (0.5 + 0.5 + 1.0) / 3) / 2,
+              1e-12);
+  // Not the pooled figure: per cloud weighs clouds equally, pooling weighs points.
+  eval::ConfusionMatrix pooled = cloud_a();
+  pooled.merge(cloud_b());
+  EXPECT_GT(std::abs(per_cloud_miou({cloud_a(), cloud_b()}, {1, 2}) - pooled_miou(pooled, {1, 2})), 0.05);
+  EXPECT_TRUE(std::isnan(per_cloud_miou({}, {1, 2})));
+  EXPECT_THROW(per_cloud_miou({cloud_a()}, {-1}), Error);
+}
+
+TEST(GrapeEvalProtocols, JsonKeepsTheOldKeysAndAddsTheProtocols) {
+  GrapeEvaluation a, b;
+  a.confusion = cloud_a(), a.per_cloud = {cloud_a()}, a.clouds = 1, a.points = 10;
+  b.confusion = cloud_b(), b.per_cloud = {cloud_b()}, b.clouds = 1, b.points = 6;
+  a.merge(b);
+  ASSERT_EQ(a.per_cloud.size(), 2u);
+  EXPECT_EQ(a.named_classes(), (std::vector<int>{1, 2}));  // the named classes below 3 labels
+  const auto j = nlohmann::json::parse(a.json());
+  for (const char* key : {"clouds", "points", "oacc", "macc", "miou", "per_class", "ms_per_cloud"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_NEAR(j["miou"].get<double>(), (0.75 + 0.625 + 2.0 / 3) / 3, 1e-12);
+  const auto& p = j["protocols"];
+  EXPECT_EQ(p["pooled_named_classes"]["classes"], (std::vector<int>{1, 2}));
+  EXPECT_NEAR(p["pooled_all_labels"]["miou"].get<double>(), j["miou"].get<double>(), 1e-12);
+  EXPECT_NEAR(p["pooled_named_classes"]["miou"].get<double>(), (0.625 + 2.0 / 3) / 2, 1e-12);
+  EXPECT_NEAR(p["per_cloud_named_classes"]["miou"].get<double>(), ((0.75 + 2.0 / 3) / 2 + 0.75) / 2, 1e-12);
+  EXPECT_NEAR(p["per_cloud_all_labels"]["miou"].get<double>(), ((1 + 0.75 + 2.0 / 3) / 3 + 2.0 / 3) / 2, 1e-12);
+  EXPECT_NE(a.text().find("per cloud, named classes (1 2): "), std::string::npos) << a.text();
+}
+
+TEST(GrapeEvalProtocols, SixLabelsNameTheFiveClassesOfThePaper) {
+  GrapeEvaluation e;  // the default: the dataset's six labels
+  EXPECT_EQ(e.named_classes(), (std::vector<int>{1, 2, 3, 4, 5}));
+  EXPECT_EQ(e.all_labels(), (std::vector<int>{0, 1, 2, 3, 4, 5}));
+}
+}  // namespace
