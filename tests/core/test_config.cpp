@@ -115,7 +115,7 @@ struct WithRanges {
   template <class V>
   void visit(V& v) {
     v("min_points", min_points, "points", Range::at_least(1));
-    v("fraction", fraction, "share", Range::in(0, 1).open_below());
+    v("fraction", fraction, "share", Range::within(0, 1).open_below());
     v("offset", offset, "mm", Range{});
   }
 };
@@ -134,20 +134,20 @@ TEST(Config, RangesDeclaredWithTheFieldAreCheckedOnApplyAndOnDemand) {
     }
     return std::string("no error");
   };
-  EXPECT_EQ(message({{"min_points", "0"}}), "p.yaml: 'min_points' must be >= 1, got 0");
-  EXPECT_EQ(message({{"fraction", "0"}}), "p.yaml: 'fraction' must be in (0, 1], got 0");
+  EXPECT_EQ(message({{"min_points", "0"}}), "p.yaml: 'min_points' must be at least 1, got 0");
+  EXPECT_EQ(message({{"fraction", "0"}}), "p.yaml: 'fraction' must be greater than 0, got 0");
   // check_config sees values set in code too, with a key prefix.
   c.fraction = 1.5;
   try {
     check_config(c, "sizing", "sizing.");
     FAIL() << "fraction 1.5 passed";
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "sizing: 'sizing.fraction' must be in (0, 1], got 1.5");
+    EXPECT_STREQ(e.what(), "sizing: 'sizing.fraction' must be at most 1, got 1.5");
   }
   c.fraction = 0.5;
   c.offset = std::numeric_limits<double>::infinity();
   EXPECT_THROW(check_config(c, "sizing"), Error);  // Range{}: finite
   // The documentation dump carries the rule.
   const auto dump = dump_config(range_test::WithRanges{});
-  EXPECT_EQ(std::get<2>(dump[0]), "points (must be >= 1)");
+  EXPECT_EQ(std::get<2>(dump[0]), "points (at least 1)");
 }

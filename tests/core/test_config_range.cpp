@@ -2,7 +2,7 @@
 
 #include <limits>
 
-#include "cropsight/core/config_range.hpp"
+#include "cropsight/core/config.hpp"
 
 using namespace cropsight;
 
@@ -11,7 +11,7 @@ struct Inner {
   double weight = 0.5;
   template <class V>
   void visit(V& v) {
-    config_field(v, "weight", weight, "share", Range::within(0, 1));
+    v("weight", weight, "share", Range::within(0, 1));
   }
 };
 struct Ranged {
@@ -20,7 +20,7 @@ struct Ranged {
   Inner inner;
   template <class V>
   void visit(V& v) {
-    config_field(v, "k", k, "count", Range::at_least(1, "one voter at least"));
+    v("k", k, "count", Range::at_least(1, "one voter at least"));
     v("flag", flag, "");
     v("inner", inner, "");
   }

@@ -21,7 +21,7 @@
 // A numeric field may declare its valid range where it is declared, as a fourth argument:
 //
 //   v("min_points", min_points, "points; ...", Range::at_least(1));
-//   v("subsample", subsample, "fraction; ...", Range::in(0.0, 1.0).open_below());
+//   v("subsample", subsample, "fraction; ...", Range::within(0.0, 1.0).open_below());
 //
 // apply_config checks the values it sets (the error names the preset or "--set" and the key) and
 // check_config checks every field (for values set in code), so a struct's validate() keeps only
@@ -43,32 +43,58 @@ namespace cropsight {
 /// Flat key → value text. Keys are dotted paths ("oes.depth_tolerance").
 using ConfigMap = std::map<std::string, std::string>;
 
-/// The valid range of a numeric config field (see above). Non-finite values are never valid
-/// (NaN is refused by the parser already; ±inf here).
+/// The valid range of a numeric config field (see above): [lo, hi], either end open or infinite;
+/// `why` (optional) is appended to the error in parentheses. Values must also be finite (NaN is
+/// refused by the parser already; ±inf here). Range{} = any finite value.
 struct Range {
   double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
   bool lo_open = false, hi_open = false;
+  const char* why = "";
 
-  static constexpr Range at_least(double v) { return {v}; }
-  static constexpr Range above(double v) { return {v, std::numeric_limits<double>::infinity(), true}; }
-  static constexpr Range in(double a, double b) { return {a, b}; }
-  constexpr Range open_below() const { return {lo, hi, true, hi_open}; }
-  constexpr Range open_above() const { return {lo, hi, lo_open, true}; }
+  static constexpr Range at_least(double v, const char* why = "") {
+    return {v, std::numeric_limits<double>::infinity(), false, false, why};
+  }
+  static constexpr Range above(double v, const char* why = "") {
+    return {v, std::numeric_limits<double>::infinity(), true, false, why};
+  }
+  static constexpr Range at_most(double v, const char* why = "") {
+    return {-std::numeric_limits<double>::infinity(), v, false, false, why};
+  }
+  static constexpr Range within(double a, double b, const char* why = "") { return {a, b, false, false, why}; }
+  constexpr Range open_below() const { return {lo, hi, true, hi_open, why}; }
+  constexpr Range open_above() const { return {lo, hi, lo_open, true, why}; }
+
   bool contains(double v) const {
     return std::isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
   }
-  /// "must be >= 1", "must be > 0", "must be in (0, 1]".
+  /// "" when `v` is inside; else the rule it breaks: "must be at least 3 (why)".
+  std::string violation(double v) const {
+    std::string rule;
+    if (!std::isfinite(v))
+      rule = "must be finite";
+    else if (lo_open ? !(v > lo) : !(v >= lo))
+      rule = std::string(lo_open ? "must be greater than " : "must be at least ") + number(lo);
+    else if (hi_open ? !(v < hi) : !(v <= hi))
+      rule = std::string(hi_open ? "must be less than " : "must be at most ") + number(hi);
+    if (!rule.empty() && why[0] != '\0') rule += std::string(" (") + why + ")";
+    return rule;
+  }
+  /// The whole rule, for documentation: "at least 1", "in (0, 1]", "finite".
   std::string rule() const {
-    auto num = [](double v) {
-      std::ostringstream o;
-      o.imbue(std::locale::classic());
-      o << v;
-      return o.str();
-    };
-    if (std::isinf(lo) && std::isinf(hi)) return "must be finite";
-    if (std::isinf(hi)) return std::string(lo_open ? "must be > " : "must be >= ") + num(lo);
-    if (std::isinf(lo)) return std::string(hi_open ? "must be < " : "must be <= ") + num(hi);
-    return std::string("must be in ") + (lo_open ? "(" : "[") + num(lo) + ", " + num(hi) + (hi_open ? ")" : "]");
+    const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
+    if (!has_lo && !has_hi) return "finite";
+    if (!has_hi) return std::string(lo_open ? "greater than " : "at least ") + number(lo);
+    if (!has_lo) return std::string(hi_open ? "less than " : "at most ") + number(hi);
+    return std::string("in ") + (lo_open ? "(" : "[") + number(lo) + ", " + number(hi) + (hi_open ? ")" : "]");
+  }
+
+ private:
+  static std::string number(double v) {
+    std::ostringstream o;
+    o.imbue(std::locale::classic());
+    o.precision(10);
+    o << v;
+    return o.str();
   }
 };
 
@@ -165,8 +191,8 @@ std::string format_value(const T& v) {
 template <typename T>
 void check_range(const std::string& where, const std::string& key, const T& value, const Range& range) {
   static_assert(std::is_arithmetic_v<T> && !std::is_same_v<T, bool>, "a Range needs a numeric field");
-  if (!range.contains(double(value)))
-    throw Error(where, "'" + key + "' " + range.rule() + ", got " + format_value(value));
+  if (const std::string rule = range.violation(double(value)); !rule.empty())
+    throw Error(where, "'" + key + "' " + rule + ", got " + format_value(value));
 }
 
 struct ApplyVisitor {
@@ -216,7 +242,7 @@ struct DumpVisitor {
   std::string prefix;
   template <typename T>
   void operator()(const char* name, T& field, const char* doc, const Range& range) {
-    out.emplace_back(prefix + name, format_value(field), std::string(doc) + " (" + range.rule() + ")");
+    out.emplace_back(prefix + name, format_value(field), std::string(doc) + " (" + range.rule() + ")");  // docs only
   }
   template <typename T>
   void operator()(const char* name, T& field, const char* doc) {

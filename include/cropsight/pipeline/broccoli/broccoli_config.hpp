@@ -65,7 +65,7 @@ struct BroccoliTruthRules {
     v("min_head_fraction", min_head_fraction,
       "fraction; a cluster is a true head when at least this share of its points lies on one labelled head "
       "(ours: 0.5, the majority rule)",
-      Range::in(0, 1).open_below());
+      Range::within(0, 1).open_below());
     v("min_truth_points", min_truth_points,
       "points; ground-truth heads with fewer visible (valid, in depth range) points are left out of AP "
       "(0 = every labelled head counts)",

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "cropsight/core/cloud.hpp"
-#include "cropsight/core/config_range.hpp"
+#include "cropsight/core/config.hpp"
 #include "cropsight/core/threads.hpp"
 
 namespace cropsight::pipeline {
@@ -35,20 +35,18 @@ struct GrapeFeatureConfig {
 
   template <class V>
   void visit(V& v) {
-    // Ranges by the field (core/config_range.hpp): checked by validate(), so by every preset,
+    // Ranges by the field (core/config.hpp, Range): checked by validate(), so by every preset,
     // --set and model recipe that fills this struct.
     const char* covariance = "a neighbourhood's covariance needs three points";
-    config_field(v, "k_small", k_small, "points; fine neighbourhood size (ours)", Range::at_least(3, covariance));
-    config_field(v, "k_large", k_large, "points; coarse neighbourhood size (ours)", Range::at_least(3, covariance));
+    v("k_small", k_small, "points; fine neighbourhood size (ours)", Range::at_least(3, covariance));
+    v("k_large", k_large, "points; coarse neighbourhood size (ours)", Range::at_least(3, covariance));
     v("fpfh", fpfh, "bool; add FPFH histograms at both radii");
-    config_field(v, "threads", threads, "count; threads of the FPFH computation", Range::within(1, kMaxThreads));
-    config_field(v, "sample", sample, "points; points per pass, 0 = every point (ours)",
-                 Range::at_least(0, "0 = every point"));
+    v("threads", threads, "count; threads of the FPFH computation", Range::within(1, kMaxThreads));
+    v("sample", sample, "points; points per pass, 0 = every point (ours)", Range::at_least(0, "0 = every point"));
     v("sample_seed", sample_seed, "1; seed of the segment-time sample (ours)");
-    config_field(v, "carry_k", carry_k, "count; sample points voting for each other point, 1 = nearest only (ours)",
-                 Range::at_least(1));
-    config_field(v, "carry_colour", carry_colour, "1/rgb^2; colour weight of the carry-back vote (ours)",
-                 Range::at_least(0));
+    v("carry_k", carry_k, "count; sample points voting for each other point, 1 = nearest only (ours)",
+      Range::at_least(1));
+    v("carry_colour", carry_colour, "1/rgb^2; colour weight of the carry-back vote (ours)", Range::at_least(0));
     v("carry_soft", carry_soft, "bool; carry-back votes with class probabilities (ours)");
   }
   /// "k_small=16;k_large=64;fpfh=1" (+ ";sample=N;sample_seed=S;carry_k=K;carry_colour=C;carry_soft=B"

@@ -26,15 +26,14 @@ struct GrapeGbdtConfig {
   void visit(V& v) {
     v("features", features, "per-point feature recipe");
     v("gbdt", gbdt, "XGBoost parameters");
-    config_field(v, "points_per_cloud", points_per_cloud, "count; training rows sampled per cloud (ours)",
-                 Range::at_least(1));
-    config_field(v, "rare_class_max", rare_class_max,
-                 "count; classes smaller than this in a cloud are kept whole (ours)", Range::at_least(0));
-    config_field(v, "class_weight_power", class_weight_power, "1; inverse-frequency class weight exponent (ours)",
-                 Range::at_least(0));
-    config_field(v, "sample_draws", sample_draws,
-                 "count; fast recipe only: pass samples per training cloud, each featurised as at segment time (ours)",
-                 Range::at_least(1));
+    v("points_per_cloud", points_per_cloud, "count; training rows sampled per cloud (ours)", Range::at_least(1));
+    v("rare_class_max", rare_class_max, "count; classes smaller than this in a cloud are kept whole (ours)",
+      Range::at_least(0));
+    v("class_weight_power", class_weight_power, "1; inverse-frequency class weight exponent (ours)",
+      Range::at_least(0));
+    v("sample_draws", sample_draws,
+      "count; fast recipe only: pass samples per training cloud, each featurised as at segment time (ours)",
+      Range::at_least(1));
     v("seed", seed, "1; sampling seed");
   }
 

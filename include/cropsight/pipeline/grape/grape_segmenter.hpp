@@ -10,7 +10,6 @@
 
 #include "cropsight/core/cloud.hpp"
 #include "cropsight/core/config.hpp"
-#include "cropsight/core/config_range.hpp"
 #include "cropsight/core/threads.hpp"
 #include "cropsight/pipeline/grape/grape_model.hpp"
 
@@ -31,14 +30,12 @@ struct GrapeSegmenterConfig {
     v("model", model, "path; network (.pt) or GBDT (.json) model; relative paths in a preset are relative to it");
     v("sampled", sampled, "bool; networks: one pass on num_points samples, labels carried back (paper: true)");
     v("sampling", sampling, "random | fps; the sampled pass's sample (random, as the networks are trained)");
-    config_field(v, "carry_k", carry_k, "count; sampled pass: samples voting per other point (paper: 1; ours 4)",
-                 Range::at_least(1));
-    config_field(v, "votes", votes, "count; networks: rotated test-time passes, probabilities averaged (paper: 1)",
-                 Range::within(1, 64, "each vote is one more pass"));
+    v("carry_k", carry_k, "count; sampled pass: samples voting per other point (paper: 1; ours 4)", Range::at_least(1));
+    v("votes", votes, "count; networks: rotated test-time passes, probabilities averaged (paper: 1)",
+      Range::within(1, 64, "each vote is one more pass"));
     v("ensemble", ensemble, "path; second model mixed in by its class probabilities, empty = none (ours)");
-    config_field(v, "ensemble_weight", ensemble_weight, "1; the second model's share of the mix (ours)",
-                 Range::within(0, 1));
-    config_field(v, "threads", threads, "count; threads of inference", Range::within(1, kMaxThreads));
+    v("ensemble_weight", ensemble_weight, "1; the second model's share of the mix (ours)", Range::within(0, 1));
+    v("threads", threads, "count; threads of inference", Range::within(1, kMaxThreads));
   }
   /// Throws Error(where, "'votes' must be at least 1, got 0") for the first field out of range,
   /// a `sampling` other than random / fps, and `model` empty.
