@@ -260,6 +260,8 @@ TEST(HeadSize, HullSubsampleForSpeed) {
   EXPECT_GE(sub.size(), 450u);
   EXPECT_EQ(stride_subsample(pts, 0).size(), pts.size());
   HeadSizeConfig cfg;
+  EXPECT_EQ(cfg.hull_max_points, 500);  // the fast setting is the default; 0 is the paper's hull of all points
+  cfg.hull_max_points = 0;
   const double exact = HeadSizer(cfg).measure(pts).hull_mm;
   cfg.hull_max_points = 500;
   const auto capped = HeadSizer(cfg).measure(pts);
