@@ -1,6 +1,6 @@
 // KNN-PCA normals on a nanoflann k-d tree. Written here (rather than pcl::NormalEstimation) so
 // that the eigenvalues, which the grape GBDT uses as shape features, come from the same pass;
-// tests/geometry/knn_normals_test.cpp checks the normals against PCL's on the same input.
+// tests/geometry/test_knn_normals.cpp checks the normals against PCL's on the same input.
 #include "cropsight/geometry/knn_normals.hpp"
 
 #include <Eigen/Eigenvalues>

@@ -86,7 +86,9 @@ TEST(TofSensor, DepthStepGivesUnlabelledFlyingPixelsBetweenSurfaces) {
     EXPECT_EQ(out.labels.at(20, v), 0) << "a mixed pixel is no head point";
     ++flying;
     const auto inside = out.labels.at(10, v);
-    if (out.depth.at(10, v)) EXPECT_EQ(inside, 7);
+    if (out.depth.at(10, v)) {
+      EXPECT_EQ(inside, 7);
+    }
   }
   EXPECT_GT(flying, cam.height / 2);
 }

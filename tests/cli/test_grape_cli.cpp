@@ -7,7 +7,7 @@
 
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/grape_text.hpp"
-#include "grape_test_clouds.hpp"
+#include "pipeline/grape/grape_test_clouds.hpp"
 #include "testing/testing.hpp"
 
 namespace {

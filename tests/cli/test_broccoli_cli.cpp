@@ -6,11 +6,11 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "broccoli_sim_frames.hpp"
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/learning/model.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_training.hpp"
+#include "pipeline/broccoli/broccoli_sim_frames.hpp"
 #include "testing/testing.hpp"
 
 namespace fs = std::filesystem;

@@ -14,7 +14,7 @@
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/sequence.hpp"
-#include "grape_test_clouds.hpp"
+#include "pipeline/grape/grape_test_clouds.hpp"
 #include "testing/testing.hpp"
 
 namespace {
@@ -133,7 +133,7 @@ TEST_F(GrapeBadInput, ThreadsOutOfRange) {
 // Bug: batch_size=0 crashed, batch_size=-1 trained; lr=-1, k1=0, dropout=2, width=0 gave
 // libtorch stack traces. Every field is named.
 TEST_F(GrapeBadInput, NetworkConfigFields) {
-  // (Each field's range is checked in tests/nn/point_segmenter_test.cpp; here, that the CLI names it.)
+  // (Each field's range is checked in tests/nn/test_point_segmenter.cpp; here, that the CLI names it.)
   for (const std::string kv : {"batch_size=0", "batch_size=-1", "lr=-1", "k1=0", "dropout=2", "width=0"}) {
     const std::string key = kv.substr(0, kv.find('='));
     expect_one_line_error(

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/files.hpp"
 #include "cropsight/learning/gbdt.hpp"
 #include "testing/testing.hpp"
 
@@ -48,6 +49,23 @@ TEST(Gbdt, LearnsHeldOutRuleAndRoundTrips) {
   EXPECT_EQ(h.attribute("note"), "hello");
   EXPECT_EQ(h.predict_proba(xt, 500, 4), g.predict_proba(xt, 500, 4));
   EXPECT_THROW(h.predict(xt, 250, 8), cropsight::Error);
+
+  // A corrupt class count is one line naming the file and the attribute, not a silent 6 or exit 1.
+  std::string text = cropsight::io::read_file(t / "m.json");
+  const std::string key = "\"cropsight.num_class\":\"3\"";
+  ASSERT_NE(text.find(key), std::string::npos) << "attribute layout of the saved model changed";
+  for (const char* bad : {"3abc", "", "1"}) {
+    std::string corrupt = text;
+    corrupt.replace(corrupt.find(key), key.size(), std::string("\"cropsight.num_class\":\"") + bad + "\"");
+    cropsight::io::write_file_atomic(t / "bad.json", corrupt);
+    try {
+      Gbdt::load(t / "bad.json");
+      ADD_FAILURE() << "num_class '" << bad << "' loaded";
+    } catch (const cropsight::Error& e) {
+      EXPECT_EQ(e.where(), (t / "bad.json").string());
+      EXPECT_NE(std::string(e.what()).find("cropsight.num_class"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(Gbdt, CompiledForestPredictsAsXgboost) {
