@@ -13,11 +13,9 @@
 // in, so a second run never leaves the first run's roi_NNN.txt next to a rois.json that does not
 // list them. To protect other files, an existing DIR must be empty or a previous run's output.
 // Detections whose box lies wholly outside the image are skipped with a warning line.
-#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
-#include <functional>
 #include <nlohmann/json.hpp>
 #include <regex>
 
@@ -66,36 +64,6 @@ fs::path output_folder(const std::string& out) {
   return dir;
 }
 
-// Writes the set into a temporary sibling of `dir`, then swaps it in: `dir` holds either the
-// previous run's files or all of this run's, never a mix; the temporary goes on any failure.
-void write_folder_atomic(const fs::path& dir, const std::string& out,
-                         const std::function<void(const fs::path&)>& write) {
-  const std::string stamp = std::to_string(::getpid());
-  const fs::path tmp = dir.parent_path() / ("." + dir.filename().string() + ".tmp-" + stamp);
-  const fs::path old = dir.parent_path() / ("." + dir.filename().string() + ".old-" + stamp);
-  std::error_code ec;
-  fs::remove_all(tmp, ec);
-  fs::create_directories(tmp, ec);
-  if (ec) throw Error(out, "cannot create folder: " + ec.message());
-  try {
-    write(tmp);
-    if (fs::exists(dir)) {
-      fs::rename(dir, old, ec);
-      if (ec) throw Error(out, "cannot replace the previous output: " + ec.message());
-    }
-    fs::rename(tmp, dir, ec);
-    if (ec) {
-      std::error_code back;
-      if (fs::exists(old)) fs::rename(old, dir, back);  // put the previous run back
-      throw Error(out, "cannot write: " + ec.message());
-    }
-  } catch (...) {
-    fs::remove_all(tmp, ec);
-    throw;
-  }
-  fs::remove_all(old, ec);
-}
-
 void run(const RoiCloudOptions& o) {
   pipeline::GrapeRoiConfig cfg;
   apply_config(cfg, o.common.config_map(o.common.config.empty() ? "grape-roi" : ""), "--config/--set");
@@ -132,11 +100,13 @@ void run(const RoiCloudOptions& o) {
                     {"scale_m", outs[i].scale}});
   }
   nlohmann::json j = {{"detections", dets.size()}, {"outside_image", frame.outside.size()}, {"rois", list}};
-  write_folder_atomic(out_dir, o.out, [&](const fs::path& dir) {
-    for (std::size_t i = 0; i < outs.size(); ++i)
-      io::write_grape_text(dir / list[i]["file"].get<std::string>(), outs[i].cloud);
-    io::write_file_atomic(dir / "rois.json", j.dump(2) + "\n");
-  });
+  // The set goes into a temporary sibling of the folder, then replaces it: the folder holds the
+  // previous run's files or all of this run's, never a mix; the temporary goes on any failure.
+  io::TempDirectory tmp(out_dir);
+  for (std::size_t i = 0; i < outs.size(); ++i)
+    io::write_grape_text(tmp.path() / list[i]["file"].get<std::string>(), outs[i].cloud);
+  io::write_file_atomic(tmp.path() / "rois.json", j.dump(2) + "\n");
+  tmp.commit("ROI clouds");
   if (o.common.json)
     print_json(j);
   else

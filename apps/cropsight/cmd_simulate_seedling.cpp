@@ -5,16 +5,14 @@
 // end (like simulate broccoli's sequence writer), so --out is either a complete data set or
 // untouched: an interrupted run leaves no half data set that looks real, and a rerun with fewer
 // pairs cannot leave the old run's pair_* folders next to the new rig.yaml.
-#include <unistd.h>
-
 #include <cstdio>
 #include <filesystem>
-#include <random>
 #include <system_error>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/files.hpp"
 #include "cropsight/sim/seedling/seedling_sim.hpp"
 #include "cropsight/stereo/calibration.hpp"
 
@@ -32,13 +30,6 @@ struct Options {
   bool quiet = false, force = false;
 };
 
-fs::path hidden_sibling(const fs::path& dir, const std::string& tag) {
-  std::random_device rd;
-  const fs::path parent = dir.parent_path().empty() ? fs::path(".") : dir.parent_path();
-  return parent / ("." + dir.filename().string() + "." + tag + "-" + std::to_string(::getpid()) + "-" +
-                   std::to_string(rd() % 1000000000u));
-}
-
 // An existing, non-empty --out is replaced only with --force, and only when it looks like a
 // seedling data set, so that a mistyped --out never deletes unrelated data.
 void check_replaceable(const fs::path& out, bool force) {
@@ -52,15 +43,6 @@ void check_replaceable(const fs::path& out, bool force) {
                 "exists and is not a seedling data set (no rig.yaml, pair_000 or calib); refusing to "
                 "replace it");
 }
-
-// Removes the temporary folder unless the finished data set was moved into place.
-struct TempDirGuard {
-  fs::path path;
-  ~TempDirGuard() {
-    std::error_code ec;
-    if (!path.empty()) fs::remove_all(path, ec);
-  }
-};
 
 void run(const Options& o) {
   if (o.pairs < 1 || o.pairs > sim::kMaxSeedlingPairs)
@@ -81,40 +63,21 @@ void run(const Options& o) {
     fs::create_directories(out.parent_path(), ec);
     if (ec) throw Error(out.string(), "cannot create parent folder: " + ec.message());
   }
-  TempDirGuard tmp{hidden_sibling(out, "tmp")};
-  fs::create_directory(tmp.path, ec);
-  if (ec) {
-    tmp.path.clear();
-    throw Error(out.string(), "cannot create temporary folder: " + ec.message());
-  }
+  io::TempDirectory tmp(out);  // removed on any failure; replaces --out whole at the end
   Progress progress("simulate seedling", o.pairs, o.quiet || o.common.json);
   try {
     sim::write_seedling_dataset(
-        tmp.path, cfg, o.pairs, o.seed, o.calib_pairs,
+        tmp.path(), cfg, o.pairs, o.seed, o.calib_pairs,
         [](int done, void* p) { static_cast<Progress*>(p)->update(done); }, &progress);
-    stereo::save_calibration(tmp.path / "rig.yaml", sim::ideal_calibration(cfg.rig()));
+    stereo::save_calibration(tmp.path() / "rig.yaml", sim::ideal_calibration(cfg.rig()));
   } catch (const Error& e) {
     throw Error(out.string(), e.problem());  // name --out, not the hidden temporary
   }
   progress.finish();
 
-  // Move into place; an old data set is moved aside first (rename cannot replace a non-empty
-  // folder) and put back if the final rename fails.
+  // Into place; an old data set is moved aside first and put back if the final rename fails.
   check_replaceable(out, o.force);
-  fs::path old;
-  if (fs::exists(out) && !fs::is_empty(out)) {
-    old = hidden_sibling(out, "old");
-    fs::rename(out, old, ec);
-    if (ec) throw Error(out.string(), "cannot replace the existing data set: " + ec.message());
-  }
-  fs::rename(tmp.path, out, ec);
-  if (ec) {
-    std::error_code ec2;
-    if (!old.empty()) fs::rename(old, out, ec2);
-    throw Error(out.string(), "cannot move the finished data set into place: " + ec.message());
-  }
-  tmp.path.clear();
-  if (!old.empty()) fs::remove_all(old, ec);
+  tmp.commit("seedling data set");
 
   if (o.common.json)
     print_json({{"out", o.out}, {"pairs", o.pairs}, {"calib_pairs", o.calib_pairs}, {"seed", o.seed}});

@@ -77,7 +77,7 @@ TempDirectory::TempDirectory(const fs::path& dir) : dir_(dir), path_(temp_siblin
   std::error_code ec;
   fs::remove_all(path_, ec);
   fs::create_directories(path_, ec);
-  if (ec) throw Error(dir.string(), "cannot create a temporary directory beside it: " + ec.message());
+  if (ec) throw Error(dir.string(), "cannot create folder (a temporary beside it): " + ec.message());
 }
 
 TempDirectory::~TempDirectory() {

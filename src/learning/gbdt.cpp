@@ -17,6 +17,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "cropsight/core/config.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 
@@ -373,12 +374,11 @@ Gbdt Gbdt::load(const std::filesystem::path& path, int nthread) {
     throw Error(where, "not an XGBoost model: " + xgb_reason());
   check(XGBoosterSetParam(g.booster_, "nthread", std::to_string(nthread).c_str()), where);
   g.nthread_ = std::max(1, nthread);
-  try {
-    g.num_class_ = std::stoi(g.attribute("cropsight.num_class"));
-    g.cols_ = std::stoul(g.attribute("cropsight.num_features"));
-  } catch (const std::exception&) {
-    throw Error(where, "model lacks cropsight.num_class / cropsight.num_features attributes");
-  }
+  // The whole attribute must be a number ("6abc" is a corrupt file, not 6 classes).
+  detail::parse_value(where, "cropsight.num_class", g.attribute("cropsight.num_class"), g.num_class_);
+  detail::parse_value(where, "cropsight.num_features", g.attribute("cropsight.num_features"), g.cols_);
+  detail::check_range(where, "cropsight.num_class", g.num_class_, Range::at_least(2));
+  detail::check_range(where, "cropsight.num_features", g.cols_, Range::at_least(1));
   return g;
 }
 

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "cropsight/core/class_scores.hpp"
+#include "cropsight/core/config.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/learning/gbdt.hpp"
@@ -147,11 +148,13 @@ std::vector<int> grape_folds(std::size_t n, int k, std::uint64_t seed) {
 std::pair<int, int> parse_fold(const std::string& text, const std::string& option) {
   const auto slash = text.find('/');
   try {
-    if (slash == std::string::npos) throw std::invalid_argument("");
-    const int k = std::stoi(text.substr(0, slash)), K = std::stoi(text.substr(slash + 1));
-    if (K < 2 || k < 1 || k > K) throw std::invalid_argument("");
+    if (slash == std::string::npos) throw Error(option, "no '/'");
+    int k = 0, K = 0;  // each side a whole number ("1x/4" is a typo, not fold 1)
+    detail::parse_value(option, "k", text.substr(0, slash), k);
+    detail::parse_value(option, "K", text.substr(slash + 1), K);
+    if (K < 2 || k < 1 || k > K) throw Error(option, "out of range");
     return {k - 1, K};
-  } catch (const std::exception&) {
+  } catch (const Error&) {
     throw Error(option, "expected k/K with 1 <= k <= K and K >= 2, got '" + text + "'");
   }
 }
