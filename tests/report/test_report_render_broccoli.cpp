@@ -1,6 +1,6 @@
 // The broccoli report: precision–recall curves against eval::DetectionApAccumulator, the charts,
 // and the page rendered by headless Chromium (skipped with a message when chromium is absent).
-// `cropsight report --model` itself is tested in tests/tracking/test_tracking_cli.cpp.
+// `cropsight report --model` itself is tested in tests/cli/test_tracking_cli.cpp.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
