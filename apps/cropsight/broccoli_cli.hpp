@@ -12,6 +12,7 @@
 #include "cropsight/core/timer.hpp"
 #include "cropsight/learning/model.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_timing.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_tracking_eval.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_training.hpp"
 
@@ -53,6 +54,12 @@ nlohmann::json detection_json(const Detection& d, int id);
 /// field}], "predicted" [{track_id, points, centroid}] and "camera_estimate" to a frame's line.
 void add_tracking_json(const pipeline::BroccoliFrameResult& r, const tracking::HeadMapper& mapper,
                        nlohmann::json& line);
+
+/// bench broccoli: one timed pipeline (with its speedup over `pcl` when given) and the tracking
+/// timing against the OES detector of the same run.
+nlohmann::json pipeline_json(const pipeline::PipelineTiming& t, const pipeline::PipelineTiming* pcl);
+nlohmann::json tracking_timing_json(const pipeline::PipelineTiming& t, const pipeline::PipelineTiming& oes,
+                                    const tracking::HeadMapperConfig& cfg);
 
 /// Human-readable lines of the tracking figures.
 void print_tracking_summary(const pipeline::BroccoliTrackingFigures& f);
