@@ -1,5 +1,4 @@
 #include "cropsight/learning/gbdt.hpp"
-#include "cropsight/core/threads.hpp"
 
 #include <xgboost/c_api.h>
 
@@ -37,12 +36,6 @@ std::string xgb_reason() {
 }
 void check(int rc, const std::string& where) {
   if (rc != 0) throw Error(where, "XGBoost: " + xgb_reason());
-}
-std::string shortest(double v) {
-  std::ostringstream o;
-  o.imbue(std::locale::classic());
-  o << v;
-  return o.str();
 }
 struct DMatrix {
   DMatrixHandle h = nullptr;
@@ -103,29 +96,8 @@ Gbdt& Gbdt::operator=(Gbdt&& o) noexcept {
 bool Gbdt::trained() const { return booster_ != nullptr; }
 
 void GbdtParams::validate(const std::string& where, const std::string& prefix) const {
-  auto fail = [&](const char* key, const std::string& rule, const std::string& got) {
-    throw Error(where, "'" + prefix + key + "' " + rule + ", got " + got);
-  };
-  auto at_least = [&](const char* key, int value, int min) {
-    if (value < min) fail(key, "must be at least " + std::to_string(min), std::to_string(value));
-  };
-  auto fraction = [&](const char* key, double value) {
-    if (!(value > 0 && value <= 1)) fail(key, "must be in (0, 1]", shortest(value));
-  };
-  auto non_negative = [&](const char* key, double value) {
-    if (!(value >= 0 && std::isfinite(value))) fail(key, "must be >= 0", shortest(value));
-  };
-  at_least("num_class", num_class, 2);
-  at_least("rounds", rounds, 1);
-  at_least("max_depth", max_depth, 1);
-  if (!(eta > 0 && std::isfinite(eta))) fail("eta", "must be > 0", shortest(eta));
-  fraction("subsample", subsample);
-  fraction("colsample", colsample);
-  non_negative("min_child_weight", min_child_weight);
-  non_negative("lambda", lambda);
-  at_least("max_bin", max_bin, 2);
-  at_least("nthread", nthread, 1);
-  if (nthread > kMaxThreads) fail("nthread", "must be at most " + std::to_string(kMaxThreads), std::to_string(nthread));
+  cropsight::detail::check_range(where, prefix + "num_class", num_class, Range::at_least(2));
+  check_config(*this, where, prefix);
 }
 
 void Gbdt::train(const std::vector<float>& x, std::size_t rows, std::size_t cols, const std::vector<float>& labels,
@@ -377,8 +349,8 @@ Gbdt Gbdt::load(const std::filesystem::path& path, int nthread) {
   // The whole attribute must be a number ("6abc" is a corrupt file, not 6 classes).
   detail::parse_value(where, "cropsight.num_class", g.attribute("cropsight.num_class"), g.num_class_);
   detail::parse_value(where, "cropsight.num_features", g.attribute("cropsight.num_features"), g.cols_);
-  detail::check_range(where, "cropsight.num_class", g.num_class_, Range::at_least(2));
-  detail::check_range(where, "cropsight.num_features", g.cols_, Range::at_least(1));
+  cropsight::detail::check_range(where, "cropsight.num_class", g.num_class_, Range::at_least(2));
+  cropsight::detail::check_range(where, "cropsight.num_features", g.cols_, Range::at_least(1));
   return g;
 }
 

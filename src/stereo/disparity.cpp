@@ -217,50 +217,22 @@ DisparityImage match(const cv::Mat& left, const cv::Mat& right, const DisparityC
 }  // namespace
 
 void validate_disparity_config(const DisparityConfig& c, const std::string& where, const std::string& prefix) {
-  auto fail = [&](const char* key, const std::string& problem) {
+  auto fail = [&](const char* key, const std::string& problem) {  // the rules between fields
     throw Error(where, "'" + prefix + key + "' " + problem);
-  };
-  auto in_range = [&](const char* key, int v, int lo, int hi) {
-    if (v < lo || v > hi)
-      fail(key, "must be in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " + std::to_string(v));
-  };
-  auto odd_in_range = [&](const char* key, int v, int lo, int hi) {
-    if (v < lo || v > hi || v % 2 == 0)
-      fail(key, "must be odd, " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " + std::to_string(v));
   };
   if (c.engine != "census" && c.engine != "opencv") fail("engine", "must be census or opencv, got '" + c.engine + "'");
   if (c.mode != "sgbm" && c.mode != "hh" && c.mode != "hh4" && c.mode != "3way")
     fail("mode", "must be sgbm, hh, hh4 or 3way, got '" + c.mode + "'");
-  if (c.num_disparities <= 0 || c.num_disparities % 16 != 0 || c.num_disparities > kMaxDisparities)
-    fail("num_disparities", "must be a multiple of 16 in 16.." + std::to_string(kMaxDisparities) + ", got " +
-                                std::to_string(c.num_disparities));
-  in_range("min_disparity", c.min_disparity, -kMaxDisparities, kMaxDisparities);
+  check_config(c, where, prefix);
   if (c.engine == "census" && c.min_disparity != 0)
     fail("min_disparity", "must be 0 with the census engine (it searches from disparity 0)");
-  odd_in_range("census_width", c.census_width, 1, 65);
-  odd_in_range("census_height", c.census_height, 1, 65);
   if (c.census_width * c.census_height > 65)
     fail("census_width", "x census_height must be at most 65 pixels (one 64-bit census word)");
-  // The census engine's penalties are 16-bit Hamming sums (census_sgm: 0 <= p1 <= p2 <= 1000).
-  in_range("census_p1", c.census_p1, 0, 1000);
-  in_range("census_p2", c.census_p2, c.census_p1, 1000);
-  in_range("census_p2_step", c.census_p2_step, 0, 255);
-  if (c.census_blur != 0) odd_in_range("census_blur", c.census_blur, 3, 31);
-  odd_in_range("census_box", c.census_box, 1, 9);
-  odd_in_range("block_size", c.block_size, 1, 31);
-  // OpenCV silently replaces P1 <= 0 and P2 <= P1 by its own defaults; say so instead. The cap
-  // keeps p * channels * block_size^2 within int.
-  if (!(c.p1 > 0 && c.p1 <= 1e4)) fail("p1", "must be in (0, 10000], got " + cropsight::detail::format_value(c.p1));
-  if (!(c.p2 > c.p1 && c.p2 <= 1e4))
-    fail("p2", "must be greater than p1 and at most 10000, got " + cropsight::detail::format_value(c.p2));
-  in_range("uniqueness_ratio", c.uniqueness_ratio, 0, 100);
-  in_range("speckle_window", c.speckle_window, 0, 1 << 20);
-  in_range("speckle_range", c.speckle_range, 0, kMaxDisparities);
-  in_range("disp12_max_diff", c.disp12_max_diff, -1, kMaxDisparities);
-  in_range("pre_filter_cap", c.pre_filter_cap, 1, 63);
-  in_range("lr_check", c.lr_check, -1, kMaxDisparities);
-  in_range("median", c.median, 0, 5);
-  in_range("rank_radius", c.rank_radius, 0, kMaxRankRadius);
+  cropsight::detail::check_range(where, prefix + "census_p2", c.census_p2, Range::at_least(c.census_p1, "census_p1"));
+  if (c.census_blur != 0)
+    cropsight::detail::check_range(where, prefix + "census_blur", c.census_blur,
+                                   Range::within(3, 31, "0 = none").odd());
+  cropsight::detail::check_range(where, prefix + "p2", c.p2, Range::above(c.p1, "p1"));
 }
 
 void fill_disparity_holes(DisparityImage& disp, int median) {

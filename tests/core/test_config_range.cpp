@@ -26,6 +26,14 @@ struct Ranged {
   }
 };
 
+struct Window {
+  int side = 5;
+  template <class V>
+  void visit(V& v) {
+    v("side", side, "px", Range::within(1, 31).odd());
+  }
+};
+
 std::string check_error(const Ranged& r) {
   try {
     check_config(r, "preset.yaml");
@@ -61,4 +69,26 @@ TEST(ConfigRange, RangedFieldsStillApplyAndDump) {
   EXPECT_EQ(std::get<0>(d[2]), "inner.weight");
   EXPECT_EQ(std::get<1>(d[0]), "7");
   EXPECT_THROW(apply_config(r, {{"k", "seven"}}, "test"), Error);
+}
+
+TEST(ConfigRange, OddAndMultipleOfRulesForIntegerFields) {
+  const Range odd = Range::within(1, 9).odd();
+  EXPECT_EQ(odd.violation(5), "");
+  EXPECT_EQ(odd.violation(4), "must be odd");
+  EXPECT_EQ(odd.violation(11), "must be at most 9");  // the bounds are checked first
+  EXPECT_EQ(odd.rule(), "odd, in [1, 9]");
+  const Range sixteen = Range::within(16, 1024).multiple_of(16);
+  EXPECT_EQ(sixteen.violation(64), "");
+  EXPECT_EQ(sixteen.violation(20), "must be a multiple of 16");
+  EXPECT_EQ(sixteen.violation(0), "must be at least 16");
+  // The step rule survives the open-end modifiers, in either order.
+  EXPECT_EQ(Range::within(0, 9).odd().open_below().violation(2), "must be odd");
+  EXPECT_EQ(Range::within(0, 9).open_below().odd().violation(0), "must be greater than 0");
+  Window w;
+  try {
+    apply_config(w, {{"side", "6"}}, "p.yaml");
+    ADD_FAILURE() << "an even side was accepted";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "p.yaml: 'side' must be odd, got 6");
+  }
 }

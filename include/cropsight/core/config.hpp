@@ -30,6 +30,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <locale>
 #include <map>
 #include <sstream>
 #include <string>
@@ -43,6 +44,18 @@ namespace cropsight {
 /// Flat key → value text. Keys are dotted paths ("oes.depth_tolerance").
 using ConfigMap = std::map<std::string, std::string>;
 
+namespace detail {
+/// A number as configs and their errors print it: classic locale, 10 significant digits.
+template <typename T>
+std::string format_number(T v) {
+  std::ostringstream o;
+  o.imbue(std::locale::classic());
+  o.precision(10);
+  o << v;
+  return o.str();
+}
+}  // namespace detail
+
 /// The valid range of a numeric config field (see above): [lo, hi], either end open or infinite;
 /// `why` (optional) is appended to the error in parentheses. Values must also be finite (NaN is
 /// refused by the parser already; ±inf here). Range{} = any finite value.
@@ -50,6 +63,9 @@ struct Range {
   double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
   bool lo_open = false, hi_open = false;
   const char* why = "";
+  /// Integer fields: the value must be `remainder` modulo `step` (step 0 = no such rule), e.g.
+  /// odd window sides, or disparity ranges in multiples of 16.
+  int step = 0, remainder = 0;
 
   static constexpr Range at_least(double v, const char* why = "") {
     return {v, std::numeric_limits<double>::infinity(), false, false, why};
@@ -61,12 +77,13 @@ struct Range {
     return {-std::numeric_limits<double>::infinity(), v, false, false, why};
   }
   static constexpr Range within(double a, double b, const char* why = "") { return {a, b, false, false, why}; }
-  constexpr Range open_below() const { return {lo, hi, true, hi_open, why}; }
-  constexpr Range open_above() const { return {lo, hi, lo_open, true, why}; }
+  constexpr Range open_below() const { return with_ends(true, hi_open); }
+  constexpr Range open_above() const { return with_ends(lo_open, true); }
+  /// Integer fields only: the value must also be odd / a multiple of k.
+  constexpr Range odd() const { return with_step(2, 1); }
+  constexpr Range multiple_of(int k) const { return with_step(k, 0); }
 
-  bool contains(double v) const {
-    return std::isfinite(v) && (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
-  }
+  bool contains(double v) const { return violation(v).empty(); }
   /// "" when `v` is inside; else the rule it breaks: "must be at least 3 (why)".
   std::string violation(double v) const {
     std::string rule;
@@ -76,26 +93,29 @@ struct Range {
       rule = std::string(lo_open ? "must be greater than " : "must be at least ") + number(lo);
     else if (hi_open ? !(v < hi) : !(v <= hi))
       rule = std::string(hi_open ? "must be less than " : "must be at most ") + number(hi);
+    else if (step > 0 && (v != std::floor(v) || ((long long)v % step + step) % step != remainder))
+      rule = "must be " + step_rule();
     if (!rule.empty() && why[0] != '\0') rule += std::string(" (") + why + ")";
     return rule;
   }
-  /// The whole rule, for documentation: "at least 1", "in (0, 1]", "finite".
+  /// The whole rule, for documentation: "at least 1", "in (0, 1]", "finite", "odd, in [1, 9]".
   std::string rule() const {
     const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
-    if (!has_lo && !has_hi) return "finite";
-    if (!has_hi) return std::string(lo_open ? "greater than " : "at least ") + number(lo);
-    if (!has_lo) return std::string(hi_open ? "less than " : "at most ") + number(hi);
-    return std::string("in ") + (lo_open ? "(" : "[") + number(lo) + ", " + number(hi) + (hi_open ? ")" : "]");
+    const std::string prefix = step > 0 ? step_rule() + ", " : "";
+    if (!has_lo && !has_hi) return step > 0 ? step_rule() : "finite";
+    if (!has_hi) return prefix + (lo_open ? "greater than " : "at least ") + number(lo);
+    if (!has_lo) return prefix + (hi_open ? "less than " : "at most ") + number(hi);
+    return prefix + "in " + (lo_open ? "(" : "[") + number(lo) + ", " + number(hi) + (hi_open ? ")" : "]");
   }
 
  private:
-  static std::string number(double v) {
-    std::ostringstream o;
-    o.imbue(std::locale::classic());
-    o.precision(10);
-    o << v;
-    return o.str();
+  constexpr Range with_ends(bool lo_o, bool hi_o) const { return {lo, hi, lo_o, hi_o, why, step, remainder}; }
+  constexpr Range with_step(int k, int r) const { return {lo, hi, lo_open, hi_open, why, k, r}; }
+  std::string step_rule() const {
+    if (step == 2) return remainder == 1 ? "odd" : "even";
+    return "a multiple of " + std::to_string(step) + (remainder ? " plus " + std::to_string(remainder) : "");
   }
+  static std::string number(double v) { return detail::format_number(v); }
 };
 
 /// An enum field: its spellings come from config_names(T{}) (see above).
@@ -180,11 +200,7 @@ std::string format_value(const T& v) {
     o << ']';
     return o.str();
   } else {
-    std::ostringstream o;
-    o.imbue(std::locale::classic());
-    o.precision(10);
-    o << v;
-    return o.str();
+    return format_number(v);
   }
 }
 

@@ -8,7 +8,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "cropsight/core/config.hpp"
+
 namespace cropsight::geometry {
+
+/// Largest target_points accepted (the paper uses 4096).
+inline constexpr int kMaxGridTargetPoints = 1 << 20;
 
 struct GridSamplingConfig {
   int target_points = 4096;    ///< points after sampling (paper: 4096)
@@ -18,9 +23,11 @@ struct GridSamplingConfig {
 
   template <class V>
   void visit(V& v) {
-    v("target_points", target_points, "points kept after down-sampling (paper: 4096)");
-    v("max_points_per_box", max_points_per_box, "boxes with more points are split; 0 = N / target_points");
-    v("min_box_size", min_box_size, "m; smallest box side that is still split");
+    v("target_points", target_points, "points kept after down-sampling (paper: 4096)",
+      Range::within(1, kMaxGridTargetPoints));
+    v("max_points_per_box", max_points_per_box, "boxes with more points are split; 0 = N / target_points",
+      Range::within(0, 1 << 30));
+    v("min_box_size", min_box_size, "m; smallest box side that is still split", Range::within(1e-9, 1e3));
     v("seed", seed, "random seed of the final draw");
   }
 };

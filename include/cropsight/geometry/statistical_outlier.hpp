@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "cropsight/core/config.hpp"
 #include "cropsight/core/organized_cloud.hpp"
 
 namespace cropsight::geometry {
@@ -17,8 +18,10 @@ struct StatisticalOutlierConfig {
 
   template <class V>
   void visit(V& v) {
-    v("mean_k", mean_k, "neighbours used for the mean distance (paper: 100, Kusumam et al. 2017 §4.1)");
-    v("std_mul", std_mul, "outlier threshold: mean + std_mul * stddev (paper: 1.0, Kusumam et al. 2017 §4.1)");
+    v("mean_k", mean_k, "neighbours used for the mean distance (paper: 100, Kusumam et al. 2017 §4.1)",
+      Range::within(1, 10000));
+    v("std_mul", std_mul, "outlier threshold: mean + std_mul * stddev (paper: 1.0, Kusumam et al. 2017 §4.1)",
+      Range::within(0, 1e3));
   }
 };
 

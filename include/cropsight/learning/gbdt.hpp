@@ -7,6 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "cropsight/core/config.hpp"
+#include "cropsight/core/threads.hpp"
+
 namespace cropsight::learning {
 
 struct GbdtParams {
@@ -24,21 +27,20 @@ struct GbdtParams {
 
   template <class V>
   void visit(V& v) {
-    v("rounds", rounds, "count; boosting rounds");
-    v("max_depth", max_depth, "count; maximum tree depth");
-    v("eta", eta, "1; learning rate");
-    v("subsample", subsample, "fraction; rows sampled per tree");
-    v("colsample", colsample, "fraction; features sampled per tree");
-    v("min_child_weight", min_child_weight, "1; minimum hessian sum in a leaf");
-    v("lambda", lambda, "1; L2 regularisation of leaf weights");
-    v("max_bin", max_bin, "count; histogram bins of tree_method=hist");
-    v("nthread", nthread, "count; XGBoost threads");
+    v("rounds", rounds, "count; boosting rounds", Range::at_least(1));
+    v("max_depth", max_depth, "count; maximum tree depth", Range::at_least(1));
+    v("eta", eta, "1; learning rate", Range::above(0));
+    v("subsample", subsample, "fraction; rows sampled per tree", Range::within(0, 1).open_below());
+    v("colsample", colsample, "fraction; features sampled per tree", Range::within(0, 1).open_below());
+    v("min_child_weight", min_child_weight, "1; minimum hessian sum in a leaf", Range::at_least(0));
+    v("lambda", lambda, "1; L2 regularisation of leaf weights", Range::at_least(0));
+    v("max_bin", max_bin, "count; histogram bins of tree_method=hist", Range::at_least(2));
+    v("nthread", nthread, "count; XGBoost threads", Range::within(1, kMaxThreads));
     v("seed", seed, "1; random seed");
   }
 
   /// Throws Error(where, "'PREFIXrounds' must be at least 1, got 0") for the first field out of
-  /// range: rounds, max_depth >= 1, eta > 0, subsample and colsample in (0, 1],
-  /// min_child_weight and lambda >= 0, max_bin >= 2, nthread in 1..kMaxThreads, num_class >= 2.
+  /// the Range declared in visit(), or num_class below 2 (set by the caller, not a preset key).
   /// `prefix` is the fields' key path in a larger config ("gbdt.").
   void validate(const std::string& where, const std::string& prefix = "") const;
 };

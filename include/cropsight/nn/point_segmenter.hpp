@@ -17,6 +17,8 @@
 #include <vector>
 
 #include "cropsight/core/cloud.hpp"
+#include "cropsight/core/config.hpp"
+#include "cropsight/core/threads.hpp"
 
 namespace cropsight::nn {
 
@@ -51,34 +53,37 @@ struct PointNetConfig {
   void visit(V& v) {
     v("arch", arch, "pointresnet | pointnet2 (paper: PointResNet, Luo et al.)");
     v("features", features, "xyz | xyzn | xyzrgb | xyzrgbn (paper: 9 features, Table 3)");
-    v("num_points", num_points, "count; points per network pass (ours: 2048 for CPU)");
-    v("sa1_points", sa1_points, "count; SA1 centroids");
-    v("sa2_points", sa2_points, "count; SA2 centroids");
-    v("sa3_points", sa3_points, "count; SA3 centroids");
-    v("k1", k1, "count; SA1 neighbours");
-    v("k2", k2, "count; SA2 neighbours");
-    v("k3", k3, "count; SA3 neighbours");
-    v("width", width, "count; base channel width");
-    v("dropout", dropout, "probability; dropout before the classifier");
-    v("epochs", epochs, "count; training epochs");
-    v("batch_size", batch_size, "count; clouds per step");
-    v("lr", lr, "1; Adam learning rate (PointNet++: 1e-3)");
-    v("lr_decay", lr_decay, "1; learning-rate factor every lr_step epochs (PointNet++: 0.7)");
-    v("lr_step", lr_step, "epochs; learning-rate decay period");
-    v("weight_decay", weight_decay, "1; Adam L2");
-    v("class_weight_power", class_weight_power, "1; inverse-frequency CE weight exponent");
-    v("lovasz_weight", lovasz_weight,
-      "1; weight of the Lovasz-softmax term added to CE (ours; 0 = CE only, the paper)");
+    v("num_points", num_points, "count; points per network pass (ours: 2048 for CPU)",
+      Range::at_least(8, "the set abstractions need a few points to group"));
+    v("sa1_points", sa1_points, "count; SA1 centroids", Range::at_least(4));
+    v("sa2_points", sa2_points, "count; SA2 centroids", Range::at_least(2));
+    v("sa3_points", sa3_points, "count; SA3 centroids", Range::at_least(1));
+    v("k1", k1, "count; SA1 neighbours", Range::at_least(1));
+    v("k2", k2, "count; SA2 neighbours", Range::at_least(1));
+    v("k3", k3, "count; SA3 neighbours", Range::at_least(1));
+    v("width", width, "count; base channel width", Range::at_least(1));
+    v("dropout", dropout, "probability; dropout before the classifier", Range::within(0, 1).open_above());
+    v("epochs", epochs, "count; training epochs", Range::at_least(1));
+    v("batch_size", batch_size, "count; clouds per step", Range::at_least(2, "BatchNorm needs two clouds per step"));
+    v("lr", lr, "1; Adam learning rate (PointNet++: 1e-3)", Range::above(0));
+    v("lr_decay", lr_decay, "1; learning-rate factor every lr_step epochs (PointNet++: 0.7)",
+      Range::within(0, 1).open_below());
+    v("lr_step", lr_step, "epochs; learning-rate decay period", Range::at_least(1));
+    v("weight_decay", weight_decay, "1; Adam L2", Range::at_least(0));
+    v("class_weight_power", class_weight_power, "1; inverse-frequency CE weight exponent", Range::at_least(0));
+    v("lovasz_weight", lovasz_weight, "1; weight of the Lovasz-softmax term added to CE (ours; 0 = CE only, the paper)",
+      Range::at_least(0));
     v("augment", augment, "bool; rotation/scale/jitter/colour augmentation");
-    v("val_every", val_every, "epochs; validation period");
-    v("threads", threads, "count; libtorch intra-op threads");
+    v("val_every", val_every, "epochs; validation period (0 = never)", Range::at_least(0));
+    v("threads", threads, "count; libtorch intra-op threads", Range::within(1, kMaxThreads));
     v("seed", seed, "1; random seed");
   }
 
-  /// Throws Error(where, "'FIELD' must be ..., got VALUE") for the first field out of range
-  /// (counts below their minimum, lr not finite and positive, dropout outside [0, 1), threads
-  /// outside 1..kMaxThreads, an unknown arch or feature set ...): such values crashed or hung
-  /// libtorch, or trained nothing without a word.
+  /// Throws Error(where, "'FIELD' must be ..., got VALUE") for the first field out of range: the
+  /// Ranges declared in visit() (counts below their minimum, lr not finite and positive, dropout
+  /// outside [0, 1), threads outside 1..kMaxThreads ...), then the rules visit() cannot declare
+  /// (an unknown arch or feature set, num_classes >= 2, the augmentation ranges): such values
+  /// crashed or hung libtorch, or trained nothing without a word.
   void validate(const std::string& where) const;
 };
 

@@ -13,7 +13,12 @@
 #include <string>
 #include <vector>
 
+#include "cropsight/core/config.hpp"
+
 namespace cropsight::segmentation {
+
+/// Largest K accepted: EM costs K x points per iteration, so K beyond a few hundred means nothing.
+inline constexpr int kMaxGmmComponents = 256;
 
 struct GmmConfig {
   int components = 10;         ///< K
@@ -24,10 +29,12 @@ struct GmmConfig {
 
   template <class V>
   void visit(V& v) {
-    v("components", components, "number of Gaussian components K (paper: 10, seedling GMM)");
-    v("max_iterations", max_iterations, "EM iterations at most (cv::ml::EM default: 100)");
-    v("tolerance", tolerance, "relative change of the summed log-likelihood that ends EM (paper: not given)");
-    v("min_variance", min_variance, "m^2; ridge added to each covariance diagonal");
+    v("components", components, "number of Gaussian components K (paper: 10, seedling GMM)",
+      Range::within(1, kMaxGmmComponents));
+    v("max_iterations", max_iterations, "EM iterations at most (cv::ml::EM default: 100)", Range::within(1, 100000));
+    v("tolerance", tolerance, "relative change of the summed log-likelihood that ends EM (paper: not given)",
+      Range::within(0, 1));
+    v("min_variance", min_variance, "m^2; ridge added to each covariance diagonal", Range::within(0, 1));
     v("seed", seed, "random seed of the k-means++ initialisation");
   }
 };

@@ -23,11 +23,19 @@
 // Disparity images: pixels, float, x_left - x_right >= 0; NaN = no estimate.
 #include <string>
 
+#include "cropsight/core/config.hpp"
 #include "cropsight/core/image.hpp"
 
 namespace cropsight::stereo {
 
 using DisparityImage = Image<float>;
+
+/// Largest disparity search range accepted (num_disparities, --max-disp): the census engine keeps
+/// width x num_disparities 16-bit costs per row buffer, so an unbounded range (say 2^20) tries to
+/// allocate gigabytes and appears to hang. 1024 covers full-size Middlebury pairs.
+inline constexpr int kMaxDisparities = 1024;
+/// Largest rank_radius: the rank count of a (2r+1)^2 window is kept in 8 bits (r = 7: 224 < 256).
+inline constexpr int kMaxRankRadius = 7;
 
 struct DisparityConfig {
   std::string engine = "census";  ///< "census" (ours, see below) or "opencv" (StereoSGBM)
@@ -62,48 +70,61 @@ struct DisparityConfig {
     v("engine", engine,
       "census = our census-cost SGM (5 paths, one sweep, LR check from the same costs) | opencv = StereoSGBM");
     v("census_width", census_width,
-      "px; census window width, odd (census engine; 5x5 measured best on Middlebury among 5x5..9x7)");
-    v("census_height", census_height, "px; census window height, odd (census engine)");
-    v("census_p1", census_p1, "Hamming bits; SGM penalty for +-1 px disparity changes (census engine)");
-    v("census_p2", census_p2, "Hamming bits; SGM penalty for larger disparity jumps (census engine)");
+      "px; census window width, odd (census engine; 5x5 measured best on Middlebury among 5x5..9x7)",
+      Range::within(1, 65).odd());
+    v("census_height", census_height, "px; census window height, odd (census engine)", Range::within(1, 65).odd());
+    // The census engine's penalties are 16-bit Hamming sums (census_sgm: 0 <= p1 <= p2 <= 1000).
+    v("census_p1", census_p1, "Hamming bits; SGM penalty for +-1 px disparity changes (census engine)",
+      Range::within(0, 1000));
+    v("census_p2", census_p2, "Hamming bits; SGM penalty for larger disparity jumps (census engine)",
+      Range::within(0, 1000));
     v("census_p2_step", census_p2_step,
       "grey levels; P2 falls as P2 / (1 + |dI| / census_p2_step) across intensity edges (Hirschmueller 2008 "
-      "divides by |dI|; 0 = constant P2)");
-    v("census_blur", census_blur, "px; odd Gaussian kernel smoothing the grey images before the census (0 = none)");
-    v("census_box", census_box, "columns; horizontal box sum of the census costs before SGM (odd, 1 = none)");
+      "divides by |dI|; 0 = constant P2)",
+      Range::within(0, 255));
+    v("census_blur", census_blur, "px; odd Gaussian kernel smoothing the grey images before the census (0 = none)",
+      Range::within(0, 31));
+    v("census_box", census_box, "columns; horizontal box sum of the census costs before SGM (odd, 1 = none)",
+      Range::within(1, 9).odd());
     v("allow_avx2", allow_avx2, "census engine: run the AVX2 kernel when the CPU has it (false = portable SSE2)");
-    v("num_disparities", num_disparities, "px; disparity search range, multiple of 16 (paper: 128 at 640x480)");
-    v("min_disparity", min_disparity, "px; smallest disparity searched");
-    v("block_size", block_size, "px; SGBM matching window side, odd");
-    v("p1", p1, "SGM penalty for +-1 px disparity changes, per channel and window pixel (OpenCV sample: 8)");
-    v("p2", p2, "SGM penalty for larger disparity jumps, per channel and window pixel (OpenCV sample: 32)");
+    v("num_disparities", num_disparities, "px; disparity search range, multiple of 16 (paper: 128 at 640x480)",
+      Range::within(16, kMaxDisparities).multiple_of(16));
+    v("min_disparity", min_disparity, "px; smallest disparity searched",
+      Range::within(-kMaxDisparities, kMaxDisparities));
+    v("block_size", block_size, "px; SGBM matching window side, odd", Range::within(1, 31).odd());
+    // OpenCV silently replaces P1 <= 0 and P2 <= P1 by its own defaults (validate_disparity_config
+    // says so instead); the cap keeps p * channels * block_size^2 within int.
+    v("p1", p1, "SGM penalty for +-1 px disparity changes, per channel and window pixel (OpenCV sample: 8)",
+      Range::within(0, 1e4).open_below());
+    v("p2", p2, "SGM penalty for larger disparity jumps, per channel and window pixel (OpenCV sample: 32)",
+      Range::within(0, 1e4).open_below());
     v("uniqueness_ratio", uniqueness_ratio,
-      "percent; best cost must beat the second best by this margin (OpenCV sample: 10; 15 measured best here)");
-    v("speckle_window", speckle_window, "px; disparity regions smaller than this are removed");
-    v("speckle_range", speckle_range, "px; disparity variation allowed inside a region");
-    v("disp12_max_diff", disp12_max_diff, "px; left-right consistency tolerance (-1 disables)");
-    v("pre_filter_cap", pre_filter_cap, "clip value of the x-derivative prefilter");
-    v("lr_check", lr_check, "px; explicit left-right check tolerance against the mirrored match (-1 disables)");
+      "percent; best cost must beat the second best by this margin (OpenCV sample: 10; 15 measured best here)",
+      Range::within(0, 100));
+    v("speckle_window", speckle_window, "px; disparity regions smaller than this are removed",
+      Range::within(0, 1 << 20));
+    v("speckle_range", speckle_range, "px; disparity variation allowed inside a region",
+      Range::within(0, kMaxDisparities));
+    v("disp12_max_diff", disp12_max_diff, "px; left-right consistency tolerance (-1 disables)",
+      Range::within(-1, kMaxDisparities));
+    v("pre_filter_cap", pre_filter_cap, "clip value of the x-derivative prefilter", Range::within(1, 63));
+    v("lr_check", lr_check, "px; explicit left-right check tolerance against the mirrored match (-1 disables)",
+      Range::within(-1, kMaxDisparities));
     v("mode", mode, "SGM variant: sgbm | hh | hh4 | 3way");
     v("pad_left", pad_left, "pad the images on the left so the left-most columns get disparities");
     v("fill_holes", fill_holes, "fill pixels without a disparity from their scan-line neighbours");
-    v("median", median, "px; median window applied after hole filling (0 = none)");
+    v("median", median, "px; median window applied after hole filling (0 = none)", Range::within(0, 5));
     v("use_color", use_color, "match on colour images when available (raw-image matching only)");
     v("rank_radius", rank_radius,
-      "px; match on (rank transform, grey, rank transform) features, window radius (0 = raw)");
+      "px; match on (rank transform, grey, rank transform) features, window radius (0 = raw)",
+      Range::within(0, kMaxRankRadius));
   }
 };
 
-/// Largest disparity search range accepted (num_disparities, --max-disp): the census engine keeps
-/// width x num_disparities 16-bit costs per row buffer, so an unbounded range (say 2^20) tries to
-/// allocate gigabytes and appears to hang. 1024 covers full-size Middlebury pairs.
-inline constexpr int kMaxDisparities = 1024;
-/// Largest rank_radius: the rank count of a (2r+1)^2 window is kept in 8 bits (r = 7: 224 < 256).
-inline constexpr int kMaxRankRadius = 7;
-
-/// Throws Error(where, "'<prefix><key>' ...") when a field of `cfg` is out of range (unknown
-/// engine or mode, num_disparities not a multiple of 16 in 16..kMaxDisparities, non-positive or
-/// non-finite penalties, uniqueness_ratio outside 0..100, ...). `prefix` is prepended to the key
+/// Throws Error(where, "'<prefix><key>' ...") when a field of `cfg` is out of the Range declared
+/// in visit() (num_disparities not a multiple of 16 in 16..kMaxDisparities, non-positive or
+/// non-finite penalties, uniqueness_ratio outside 0..100, ...) or breaks a rule between fields
+/// (unknown engine or mode, p2 <= p1, census window over 65 pixels, ...). `prefix` is prepended to the key
 /// names ("disparity." inside SeedlingConfig). compute_disparity() runs it too (where = the image).
 void validate_disparity_config(const DisparityConfig& cfg, const std::string& where, const std::string& prefix = "");
 

@@ -14,27 +14,11 @@
 namespace cropsight::pipeline {
 
 void GrapeRoiConfig::validate(const std::string& where) const {
-  auto num = [](double v) {
-    std::ostringstream o;
-    o.imbue(std::locale::classic());
-    o << v;
-    return o.str();
-  };
-  auto fail = [&](const char* key, const std::string& rule, const std::string& got) {
-    throw Error(where, std::string("'") + key + "' " + rule + ", got " + got);
-  };
-  // COCO category ids are non-negative; one id for both kinds would pair every box with itself.
-  if (bunch_category < 0) fail("bunch_category", "must be a COCO category id >= 0", std::to_string(bunch_category));
-  if (peduncle_category < 0)
-    fail("peduncle_category", "must be a COCO category id >= 0", std::to_string(peduncle_category));
+  check_config(*this, where);
+  // One id for both kinds would pair every box with itself.
   if (peduncle_category == bunch_category)
-    fail("peduncle_category", "must differ from bunch_category", std::to_string(peduncle_category));
-  if (!(min_score >= 0.f && min_score <= 1.f)) fail("min_score", "must be in [0, 1]", num(min_score));
-  if (!(z_min >= 0 && std::isfinite(z_min))) fail("z_min", "must be >= 0 m", num(z_min));
-  if (!(z_max > z_min && std::isfinite(z_max))) fail("z_max", "must be > z_min = " + num(z_min) + " m", num(z_max));
-  if (normal_k < 3 || normal_k > kMaxNormalK)
-    fail("normal_k", "must be in 3.." + std::to_string(kMaxNormalK) + " (a normal needs three points)",
-         std::to_string(normal_k));
+    throw Error(where, "'peduncle_category' must differ from bunch_category, got " + std::to_string(peduncle_category));
+  cropsight::detail::check_range(where, "z_max", z_max, Range::above(z_min, "z_min"));
 }
 
 Box2D roi_from_boxes(const Box2D& g, const Box2D& p) {

@@ -9,6 +9,7 @@
 
 #include "cropsight/core/camera.hpp"
 #include "cropsight/core/cloud.hpp"
+#include "cropsight/core/config.hpp"
 #include "cropsight/core/geometry_types.hpp"
 #include "cropsight/core/image.hpp"
 
@@ -32,20 +33,21 @@ struct GrapeRoiConfig {
 
   template <class V>
   void visit(V& v) {
-    v("bunch_category", bunch_category, "id; COCO category of grape bunches (dataset: 1)");
-    v("peduncle_category", peduncle_category, "id; COCO category of peduncles (dataset: 2)");
-    v("min_score", min_score, "1; detections with a lower score are ignored");
-    v("z_min", z_min, "m; nearest depth kept (paper: 0.001 m, Luo et al. Algorithm 1)");
-    v("z_max", z_max, "m; farthest depth kept (paper: 3.0 m, Luo et al. Algorithm 1)");
-    v("normal_k", normal_k, "count; KNN-PCA normal neighbours (paper: 30, Luo et al. 2.3)");
+    v("bunch_category", bunch_category, "id; COCO category of grape bunches (dataset: 1)", Range::at_least(0));
+    v("peduncle_category", peduncle_category, "id; COCO category of peduncles (dataset: 2)", Range::at_least(0));
+    v("min_score", min_score, "1; detections with a lower score are ignored", Range::within(0, 1));
+    v("z_min", z_min, "m; nearest depth kept (paper: 0.001 m, Luo et al. Algorithm 1)", Range::at_least(0));
+    v("z_max", z_max, "m; farthest depth kept (paper: 3.0 m, Luo et al. Algorithm 1)", Range::above(0));
+    v("normal_k", normal_k, "count; KNN-PCA normal neighbours (paper: 30, Luo et al. 2.3)",
+      Range::within(3, kMaxNormalK, "a normal needs three points; a larger k makes KNN-PCA quadratic"));
   }
 
   /// Most normal neighbours accepted: a normal needs a local patch, and a k near the cloud size
   /// makes the KNN-PCA quadratic (normal_k = 10^8 ran for hours).
   static constexpr int kMaxNormalK = 1000;
-  /// Throws Error(where, "'z_max' must be > z_min = 5, got 1") for the first field out of range:
-  /// categories >= 0 and different, min_score in [0, 1], 0 <= z_min < z_max (finite),
-  /// normal_k in 3..kMaxNormalK.
+  /// Throws Error(where, "'z_max' must be greater than 5 (z_min), got 1") for the first field out
+  /// of the Range declared in visit(), or for the rules between fields: the two categories
+  /// differ, z_min < z_max.
   void validate(const std::string& where) const;
 };
 

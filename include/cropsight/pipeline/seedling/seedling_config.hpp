@@ -54,41 +54,44 @@ struct SeedlingConfig {
   template <class V>
   void visit(V& v) {
     v("disparity", disparity, "SGM disparity settings");
-    v("min_depth", min_depth, "m; nearest reconstructed point kept");
-    v("max_depth", max_depth, "m; farthest reconstructed point kept (paper: working distance 0.5-2 m)");
-    v("ransac_iterations", ransac_iterations, "RANSAC iterations of the soil plane");
-    v("ransac_threshold", ransac_threshold, "m; soil plane inlier distance");
-    v("ransac_sample", ransac_sample, "points drawn for the plane fit");
-    v("min_height", min_height, "m; points at most this high above the soil are soil or low weeds");
-    v("max_height", max_height, "m; points higher than this are ignored");
+    v("min_depth", min_depth, "m; nearest reconstructed point kept", Range::within(1e-3, 1e3));
+    v("max_depth", max_depth, "m; farthest reconstructed point kept (paper: working distance 0.5-2 m)",
+      Range::within(1e-3, 1e3));
+    v("ransac_iterations", ransac_iterations, "RANSAC iterations of the soil plane", Range::within(1, 1000000));
+    v("ransac_threshold", ransac_threshold, "m; soil plane inlier distance", Range::within(1e-6, 10));
+    v("ransac_sample", ransac_sample, "points drawn for the plane fit", Range::within(3, 10000000));
+    v("min_height", min_height, "m; points at most this high above the soil are soil or low weeds",
+      Range::within(0, 10));
+    v("max_height", max_height, "m; points higher than this are ignored", Range::within(0, 10));
     v("candidate_open", candidate_open,
       "px; morphological opening (ellipse of this radius) of the left-image mask of candidate pixels: isolated "
-      "soil pixels raised by disparity errors leave the candidates (0 = none; ours)");
+      "soil pixels raised by disparity errors leave the candidates (0 = none; ours)",
+      Range::within(0, 50));
     v("candidate_min_exg", candidate_min_exg,
       "smallest excess-green index (2G-R-B)/(R+G+B) of a candidate's left-image pixel: soil pixels that took a "
-      "leaf's disparity (window fattening at leaf borders) leave the candidates (-1 = off; ours)");
+      "leaf's disparity (window fattening at leaf borders) leave the candidates (-1 = off; ours)",
+      Range::within(-1, 2, "the index lies in [-1, 2]"));
     v("sampling", sampling, "non-uniform grid down-sampling (paper: 4096 points)");
     v("gmm", gmm, "Gaussian mixture (paper: K = 10, EM)");
-    v("min_component_points", min_component_points, "smallest GMM component that can be the seedling's top");
-    v("height_ratio", height_ratio, "components joined must reach this share of the top component's mean height");
-    v("join_distance", join_distance, "m; a joined component has a point this close to the chosen ones");
+    v("min_component_points", min_component_points, "smallest GMM component that can be the seedling's top",
+      Range::within(1, geometry::kMaxGridTargetPoints));
+    v("height_ratio", height_ratio, "components joined must reach this share of the top component's mean height",
+      Range::within(0, 1));
+    v("join_distance", join_distance, "m; a joined component has a point this close to the chosen ones",
+      Range::within(1e-6, 10));
     v("outlier", outlier, "KNN outlier filter: k neighbours, alpha (paper: values not given)");
-    v("topview_cell", topview_cell, "m; top-view mask cell");
-    v("topview_dilate", topview_dilate, "cells; dense points within this many cells of kept samples join");
+    // The top-view raster spans the seedling's extent in cells: a tiny cell makes it huge.
+    v("topview_cell", topview_cell, "m; top-view mask cell", Range::within(1e-4, 1));
+    v("topview_dilate", topview_dilate, "cells; dense points within this many cells of kept samples join",
+      Range::within(0, 100));
   }
 };
 
-/// Largest GMM K accepted: EM costs K x points per iteration and the recognition rule needs
-/// components of at least min_component_points points, so K beyond a few hundred means nothing.
-inline constexpr int kMaxGmmComponents = 256;
-/// Largest sampling.target_points accepted (the paper uses 4096).
-inline constexpr int kMaxSampledPoints = 1 << 20;
-
-/// Throws Error(where, "'<key>' ...") naming the key of the first out-of-range field: depths
-/// (0 < min_depth < max_depth, finite), heights, RANSAC settings, the disparity block
-/// (validate_disparity_config with prefix "disparity."), sampling, gmm (1 <= components <=
-/// min(kMaxGmmComponents, sampling.target_points), tolerance >= 0), outlier filter and top-view
-/// raster. The SeedlingPipeline constructor runs it too (where = "seedling config").
+/// Throws Error(where, "'<key>' ...") naming the key of the first field out of the Range declared
+/// in visit() (and in the nested sampling, gmm, outlier and disparity blocks), or of a rule
+/// between fields: min_depth < max_depth, min_height < max_height, gmm.components <=
+/// sampling.target_points, the disparity block's (validate_disparity_config, prefix "disparity."). The SeedlingPipeline
+/// constructor runs it too (where = "seedling config").
 void validate_seedling_config(const SeedlingConfig& cfg, const std::string& where);
 
 /// The configuration of `preset` (a name under configs/, e.g. "seedling-fast", or a YAML path)
