@@ -1,8 +1,9 @@
 #include "cropsight/features/geometric.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+
+#include "cropsight/geometry/pca.hpp"
 
 namespace cropsight::features {
 
@@ -25,7 +26,6 @@ void compute_geometric_features(const OrganizedCloud& cloud, std::span<const int
   double angle_sum = 0.0;
   long angle_pairs = 0;
   double convex = 0.0;
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (int i : indices) {
     const int u = i % w, v = i / w;
     const bool right = u + 1 < w && M[i + 1];
@@ -33,7 +33,6 @@ void compute_geometric_features(const OrganizedCloud& cloud, std::span<const int
     // Boundary sides of the mask (outside the grid counts as outside the mask).
     sides += (u == 0 || !M[i - 1]) + !right + (v == 0 || !M[i - w]) + !down;
     const Eigen::Vector3d p = P(i);
-    mean += p;
     if (right && down && M[i + w + 1]) {
       const Eigen::Vector3d p10 = P(i + 1), p01 = P(i + w), p11 = P(i + w + 1);
       area += 0.5 * ((p10 - p).cross(p11 - p)).norm() + 0.5 * ((p11 - p).cross(p01 - p)).norm();
@@ -50,7 +49,6 @@ void compute_geometric_features(const OrganizedCloud& cloud, std::span<const int
     }
   }
   const double count = double(indices.size());
-  mean /= count;
   const double perimeter = double(sides) * M_PI / 4.0;
   out[0] = float(area);
   out[1] = perimeter > 0 ? float(4.0 * M_PI * count / (perimeter * perimeter)) : 0.0f;
@@ -58,21 +56,15 @@ void compute_geometric_features(const OrganizedCloud& cloud, std::span<const int
   out[3] = angle_pairs ? float(convex / double(angle_pairs)) : 0.0f;
 
   // Symmetry: skewness along the two major principal axes.
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (int i : indices) {
-    const Eigen::Vector3d d = P(i) - mean;
-    cov += d * d.transpose();
-  }
-  cov /= count;
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);  // eigenvalues ascending
+  const auto pc = geometry::pca(indices.size(), [&](std::size_t q) { return P(indices[q]); });
   double skew_sum = 0.0;
   for (int axis = 1; axis <= 2; ++axis) {
-    const Eigen::Vector3d e = es.eigenvectors().col(axis);
-    const double var = es.eigenvalues()(axis);
+    const Eigen::Vector3d e = pc.axes.col(axis);
+    const double var = pc.eigenvalues(axis);
     if (!(var > 0.0)) continue;
     double m3 = 0.0;
     for (int i : indices) {
-      const double t = (P(i) - mean).dot(e);
+      const double t = (P(i) - pc.mean).dot(e);
       m3 += t * t * t;
     }
     m3 /= count;

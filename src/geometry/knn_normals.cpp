@@ -3,10 +3,10 @@
 // tests/geometry/test_knn_normals.cpp checks the normals against PCL's on the same input.
 #include "cropsight/geometry/knn_normals.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <nanoflann.hpp>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/geometry/pca.hpp"
 
 namespace cropsight::geometry {
 
@@ -80,22 +80,13 @@ KnnPcaResult knn_pca(const std::vector<Eigen::Vector3f>& points, const KnnNormal
       continue;
     }
     // Covariance in double around the neighbourhood mean (float loses precision for clouds far
-    // from the origin, e.g. metres at 1-3 m depth with millimetre spacing).
-    Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-    for (int j : nb) mean += points[std::size_t(j)].cast<double>();
-    mean /= double(nb.size());
-    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-    for (int j : nb) {
-      const Eigen::Vector3d d = points[std::size_t(j)].cast<double>() - mean;
-      cov.noalias() += d * d.transpose();
-    }
-    cov /= double(nb.size());
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
-    es.computeDirect(cov);
-    Eigen::Vector3f nrm = es.eigenvectors().col(0).cast<float>().normalized();
+    // from the origin, e.g. metres at 1-3 m depth with millimetre spacing); closed-form solve.
+    const auto pc = pca(
+        nb.size(), [&](std::size_t q) { return points[std::size_t(nb[q])].cast<double>(); }, EigenMethod::closed_form);
+    Eigen::Vector3f nrm = pc.normal().cast<float>().normalized();
     if (nrm.dot(to_view) < 0) nrm = -nrm;
     r.normals[i] = nrm;
-    r.eigenvalues[i] = es.eigenvalues().cwiseMax(0.0).cast<float>();
+    r.eigenvalues[i] = pc.eigenvalues.cwiseMax(0.0).cast<float>();
   }
   return r;
 }
@@ -106,9 +97,7 @@ std::vector<Eigen::Vector3f> knn_normals(const std::vector<Eigen::Vector3f>& poi
 
 std::pair<Eigen::Vector3f, float> normalize_unit_sphere(std::vector<Eigen::Vector3f>& points) {
   if (points.empty()) return {Eigen::Vector3f::Zero(), 1.f};
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const auto& p : points) c += p.cast<double>();
-  const Eigen::Vector3f centroid = (c / double(points.size())).cast<float>();
+  const Eigen::Vector3f centroid = point_mean(points).cast<float>();
   float m = 0;
   for (auto& p : points) {
     p -= centroid;

@@ -7,12 +7,12 @@
 #include <pcl/point_types.h>
 #include <pcl/surface/convex_hull.h>
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/organized_cloud.hpp"
+#include "cropsight/geometry/pca.hpp"
 #include "measure/hull_candidates.hpp"
 #include "measure/quickhull.hpp"
 
@@ -44,12 +44,6 @@ double bounding_box_width(const std::vector<Eigen::Vector3f>& points) {
 
 namespace {
 
-Eigen::Vector3d mean_of(const std::vector<Eigen::Vector3f>& pts) {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const auto& p : pts) c += p.cast<double>();
-  return c / double(pts.size());
-}
-
 double mean_distance(const std::vector<Eigen::Vector3f>& pts, const Eigen::Vector3d& c) {
   double s = 0.0;
   for (const auto& p : pts) s += (p.cast<double>() - c).norm();
@@ -60,14 +54,8 @@ double mean_distance(const std::vector<Eigen::Vector3f>& pts, const Eigen::Vecto
 // not negligible against the largest. qhull reports flat input as an error (and PCL prints it), so
 // flat sets are caught here and measured by the fallback instead.
 bool spans_volume(const std::vector<Eigen::Vector3f>& pts) {
-  const Eigen::Vector3d c = mean_of(pts);
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (const auto& p : pts) {
-    const Eigen::Vector3d d = p.cast<double>() - c;
-    cov += d * d.transpose();
-  }
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov, Eigen::EigenvaluesOnly);
-  const auto ev = es.eigenvalues();  // ascending
+  // Of the scatter (the ratio needs no division by the count); ascending.
+  const Eigen::Vector3d ev = geometry::principal_values(geometry::point_moments(pts).scatter);
   return ev(2) > 0.0 && ev(0) > 1e-10 * ev(2);
 }
 
@@ -90,7 +78,7 @@ double hull_diameter(const std::vector<Eigen::Vector3f>& all, const std::vector<
       v.reserve(q.vertices.size());
       for (int i : q.vertices) v.push_back(hull_input[std::size_t(i)]);
       if (vertices) *vertices = int(v.size());
-      return 2.0 * mean_distance(v, mean_of(v));
+      return 2.0 * mean_distance(v, geometry::point_mean(v));
     }
     // qhull: asked for, or our Quickhull could not build a consistent hull
     pcl::PointCloud<pcl::PointXYZ>::Ptr in(new pcl::PointCloud<pcl::PointXYZ>);
@@ -109,11 +97,11 @@ double hull_diameter(const std::vector<Eigen::Vector3f>& all, const std::vector<
       v.reserve(out.size());
       for (const auto& p : out.points) v.emplace_back(p.x, p.y, p.z);
       if (vertices) *vertices = int(v.size());
-      return 2.0 * mean_distance(v, mean_of(v));
+      return 2.0 * mean_distance(v, geometry::point_mean(v));
     }
   }
   // Fallback for degenerate sets: all points stand in for the hull vertices.
-  return 2.0 * mean_distance(all, mean_of(all));
+  return 2.0 * mean_distance(all, geometry::point_mean(all));
 }
 
 }  // namespace

@@ -1,14 +1,16 @@
 #pragma once
 // The seedling paper's envelope box of a plant's points, defined once for the seedling pipeline and the
-// simulator's ground truth (header-only so that both use the very same definition).
+// simulator's ground truth (inline here so that both use the very same definition; its PCA is
+// geometry/pca, which the simulator links).
 //   height: largest distance of a point above the soil plane n . x + d = 0 (n unit, pointing up);
 //   length, width: extents of the points projected on the plane along their two principal axes
 //   (length >= width); volume = length * width * height.
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <vector>
+
+#include "cropsight/geometry/pca.hpp"
 
 namespace cropsight::measure {
 
@@ -21,19 +23,14 @@ inline EnvelopeBox envelope_box(const std::vector<Eigen::Vector3d>& points, cons
   EnvelopeBox box;
   if (points.size() < 2) return box;
   const Eigen::Vector3d e1 = n.unitOrthogonal(), e2 = n.cross(e1);
-  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
   std::vector<Eigen::Vector2d> q;
   q.reserve(points.size());
   for (const auto& p : points) {
     box.height = std::max(box.height, n.dot(p) + d);
     q.emplace_back(e1.dot(p), e2.dot(p));
-    mean += q.back();
   }
-  mean /= double(q.size());
-  Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();
-  for (const auto& v : q) cov += (v - mean) * (v - mean).transpose();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(cov);
-  const Eigen::Vector2d a = es.eigenvectors().col(1), b = es.eigenvectors().col(0);
+  const auto pc = geometry::principal_axes(geometry::point_moments(q).scatter);
+  const Eigen::Vector2d a = pc.major(), b = pc.normal();  // major and minor axis
   double amin = 1e300, amax = -1e300, bmin = 1e300, bmax = -1e300;
   for (const auto& v : q) {
     amin = std::min(amin, a.dot(v)), amax = std::max(amax, a.dot(v));

@@ -7,7 +7,6 @@
 #include <pcl/point_types.h>
 #include <pcl/search/kdtree.h>
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -17,6 +16,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/geometry/knn_normals.hpp"
+#include "cropsight/geometry/pca.hpp"
 #include "cropsight/learning/gbdt.hpp"
 #include "geometry/point_kdtree.hpp"
 #include "pipeline/parallel_rows.hpp"
@@ -119,31 +119,27 @@ void neighbourhood_features(const Cloud& cloud, std::size_t i, const int* nb, co
   const double k = double(count);
   g[0] = count == 0 ? 0.f : float(std::log(std::sqrt(double(d2[count - 1])) + 1e-6));  // log radius: density
   if (count < 3) return;  // isolated point: leave neighbourhood features at 0
+  // One pass sums the positions and the colours (per point, ~100k times a cloud); the covariance
+  // and its closed-form eigenvectors come from geometry/pca.
+  const auto point = [&](std::size_t q) { return cloud.points[std::size_t(nb[q])].cast<double>(); };
   Eigen::Vector3d m = Eigen::Vector3d::Zero(), mc = Eigen::Vector3d::Zero(), mc2 = Eigen::Vector3d::Zero();
   for (std::size_t q = 0; q < count; ++q) {
-    const std::size_t j = std::size_t(nb[q]);
-    m += cloud.points[j].cast<double>();
-    const Eigen::Vector3d cj = cloud.colors[j].cast<double>();
+    m += point(q);
+    const Eigen::Vector3d cj = cloud.colors[std::size_t(nb[q])].cast<double>();
     mc += cj;
     mc2 += cj.cwiseProduct(cj);
   }
   m /= k, mc /= k, mc2 /= k;
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (std::size_t q = 0; q < count; ++q) {
-    const Eigen::Vector3d d = cloud.points[std::size_t(nb[q])].cast<double>() - m;
-    cov.noalias() += d * d.transpose();
-  }
-  cov /= k;
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
-  es.computeDirect(cov);
-  const Eigen::Vector3d l = es.eigenvalues().cwiseMax(1e-12);  // ascending
+  const Eigen::Matrix3d cov = geometry::scatter_about(count, point, m) / k;
+  const auto pc = geometry::principal_axes(cov, geometry::EigenMethod::closed_form);
+  const Eigen::Vector3d l = pc.eigenvalues.cwiseMax(1e-12);  // ascending
   const double sum = l.sum();
   g[1] = float((l[2] - l[1]) / l[2]);
   g[2] = float((l[1] - l[0]) / l[2]);
   g[3] = float(l[0] / l[2]);
   g[4] = float(l[0] / sum);
   g[5] = float(std::cbrt(l[0] * l[1] * l[2]) / sum);
-  g[6] = float(std::abs(es.eigenvectors().col(0).dot(nrm.cast<double>())));
+  g[6] = float(std::abs(pc.normal().dot(nrm.cast<double>())));
   const Eigen::Vector3d var = (mc2 - mc.cwiseProduct(mc)).cwiseMax(0.0);
   g[7] = float(mc.x()), g[8] = float(mc.y()), g[9] = float(mc.z());
   g[10] = c.x() - g[7], g[11] = c.y() - g[8], g[12] = c.z() - g[9];
@@ -163,9 +159,7 @@ std::vector<float> compute_features(const Cloud& cloud, const GrapeFeatureConfig
   const std::size_t rows = subset.size(), F = grape_feature_count(cfg);
   std::vector<float> X(rows * F, 0.f);
 
-  Eigen::Vector3d cen = Eigen::Vector3d::Zero();
-  for (const auto& p : cloud.points) cen += p.cast<double>();
-  cen /= double(std::max<std::size_t>(n, 1));
+  const Eigen::Vector3d cen = geometry::point_mean(cloud.points);  // zero for an empty cloud
 
   // The original recipe's index (kept as it was, bit for bit), or for the fast recipe a plain
   // nanoflann tree queried without allocations.

@@ -1,6 +1,5 @@
 #include "cropsight/pipeline/seedling/seedling_steps.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -9,23 +8,19 @@
 #include <random>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/geometry/pca.hpp"
 #include "cropsight/geometry/statistical_outlier.hpp"
 #include "stereo/cv_convert.hpp"
 
 namespace cropsight::pipeline::seedling {
 namespace {
 
-// Least-squares plane of `pts` (normal = smallest principal axis).
+// Least-squares plane of `pts` (normal = smallest principal axis of the scatter matrix).
 SoilPlane fit_plane(const std::vector<Eigen::Vector3d>& pts) {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const auto& p : pts) c += p;
-  c /= double(pts.size());
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (const auto& p : pts) cov += (p - c) * (p - c).transpose();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
+  const auto m = geometry::point_moments(pts);
   SoilPlane pl;
-  pl.n = es.eigenvectors().col(0).normalized();
-  pl.d = -pl.n.dot(c);
+  pl.n = geometry::principal_axes(m.scatter).normal().normalized();
+  pl.d = -pl.n.dot(m.mean);
   return pl;
 }
 
