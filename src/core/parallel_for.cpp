@@ -1,0 +1,28 @@
+#include "core/parallel_for.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+
+namespace cropsight::detail {
+
+void parallel_for_ranges(std::size_t n, int threads, std::size_t grain, RangeBody body, const void* ctx) {
+  grain = std::max<std::size_t>(grain, 1);
+  // As many threads as there are whole grains, and no more than asked for.
+  const std::size_t t = std::min<std::size_t>(std::size_t(std::max(threads, 1)), n / grain);
+  if (t <= 1) {
+    body(ctx, 0, n);
+    return;
+  }
+  // The arena caps the concurrency at t (the calling thread joins it); TBB's own pool supplies
+  // the workers, so no thread is started per call and nested loops do not oversubscribe.
+  tbb::task_arena arena(static_cast<int>(t));
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, grain),
+                      [&](const tbb::blocked_range<std::size_t>& r) { body(ctx, r.begin(), r.end()); });
+  });
+}
+
+}  // namespace cropsight::detail
