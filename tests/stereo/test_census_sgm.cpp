@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "core/cpu_dispatch.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/stereo/disparity.hpp"
 #include "cropsight/stereo/middlebury.hpp"
@@ -93,9 +94,9 @@ Agreement agree(const DisparityImage& a, const DisparityImage& b) {
 
 TEST(CensusSgm, AgreesWithOpenCvSgbmOnTexturedTwoPlaneScene) {
   const Scene s = two_planes(320, 240);
-  detail::CensusSgmParams p;
+  stereo::detail::CensusSgmParams p;
   p.num_disparities = 48;
-  const DisparityImage ours = detail::census_sgm(s.left, s.right, p);
+  const DisparityImage ours = stereo::detail::census_sgm(s.left, s.right, p);
   const DisparityImage cv = plain_sgbm(s.left, s.right, 48);
   const Agreement g = agree(ours, cv);
   EXPECT_GT(g.both, 320L * 240 / 2);  // both produce estimates on most of the image
@@ -115,9 +116,9 @@ TEST(CensusSgm, AgreesWithOpenCvSgbmOnTexturedTwoPlaneScene) {
 
 TEST(CensusSgm, LeftRightCheckRejectsOcclusion) {
   const Scene s = two_planes(320, 240);
-  detail::CensusSgmParams p;
+  stereo::detail::CensusSgmParams p;
   p.num_disparities = 48;
-  const DisparityImage ours = detail::census_sgm(s.left, s.right, p);
+  const DisparityImage ours = stereo::detail::census_sgm(s.left, s.right, p);
   // The background strip just left of the square (14 px wide) is visible only in the left view.
   long occluded = 0, rejected = 0;
   for (int y = 70; y < 170; ++y)
@@ -132,19 +133,19 @@ TEST(CensusSgm, LeftRightCheckRejectsOcclusion) {
 }
 
 TEST(CensusSgm, Avx2KernelEqualsPortableKernel) {
-  if (!detail::census_sgm_uses_avx2()) GTEST_SKIP() << "CPU without AVX2";
+  if (!cropsight::detail::cpu_has_avx2_fma()) GTEST_SKIP() << "CPU without AVX2";
   const Scene s = two_planes(200, 120);
   // 9x7 (64-bit census, scalar popcount) and 5x5 (32-bit census, vectorised popcount).
   for (int cw : {9, 5}) {
-    detail::CensusSgmParams p;
+    stereo::detail::CensusSgmParams p;
     p.num_disparities = 32;
     p.census_width = cw;
     p.census_height = cw == 9 ? 7 : 5;
     p.p2_step = 4;
     p.cost_box = cw == 9 ? 3 : 1;  // and the horizontal cost box
-    const DisparityImage a = detail::census_sgm(s.left, s.right, p);
+    const DisparityImage a = stereo::detail::census_sgm(s.left, s.right, p);
     p.allow_avx2 = false;
-    const DisparityImage b = detail::census_sgm(s.left, s.right, p);
+    const DisparityImage b = stereo::detail::census_sgm(s.left, s.right, p);
     ASSERT_EQ(a.size(), b.size());
     long valid = 0;
     for (std::size_t i = 0; i < a.size(); ++i) {
@@ -160,14 +161,14 @@ TEST(CensusSgm, Avx2KernelEqualsPortableKernel) {
 
 TEST(CensusSgm, RejectsBadInput) {
   const cv::Mat a = texture(64, 48, 1), b = texture(60, 48, 2);
-  detail::CensusSgmParams p;
+  stereo::detail::CensusSgmParams p;
   p.num_disparities = 16;
-  EXPECT_THROW(detail::census_sgm(a, b, p), Error);
+  EXPECT_THROW(stereo::detail::census_sgm(a, b, p), Error);
   p.num_disparities = 24;
-  EXPECT_THROW(detail::census_sgm(a, a, p), Error);
+  EXPECT_THROW(stereo::detail::census_sgm(a, a, p), Error);
   p.num_disparities = 16;
   p.census_width = 11;  // 11 x 7 > 64 bits
-  EXPECT_THROW(detail::census_sgm(a, a, p), Error);
+  EXPECT_THROW(stereo::detail::census_sgm(a, a, p), Error);
 }
 
 TEST(CensusSgm, AgreesWithOpenCvSgbmOnMiddleburyCones) {
@@ -176,11 +177,11 @@ TEST(CensusSgm, AgreesWithOpenCvSgbmOnMiddleburyCones) {
   for (const auto& pair : load_middlebury(dir)) {
     if (pair.name != "cones") continue;
     cv::Mat l, r;
-    cv::cvtColor(detail::view(pair.left), l, cv::COLOR_RGB2GRAY);
-    cv::cvtColor(detail::view(pair.right), r, cv::COLOR_RGB2GRAY);
-    detail::CensusSgmParams p;
+    cv::cvtColor(stereo::detail::view(pair.left), l, cv::COLOR_RGB2GRAY);
+    cv::cvtColor(stereo::detail::view(pair.right), r, cv::COLOR_RGB2GRAY);
+    stereo::detail::CensusSgmParams p;
     p.num_disparities = 64;
-    const DisparityImage ours = detail::census_sgm(l, r, p);
+    const DisparityImage ours = stereo::detail::census_sgm(l, r, p);
     const DisparityImage cv = plain_sgbm(l, r, 64);
     const Agreement g = agree(ours, cv);
     EXPECT_GT(g.both, long(pair.left.size()) / 2);
