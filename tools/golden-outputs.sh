@@ -29,7 +29,8 @@ run report report --data "$P" --model models/broccoli-oes-spain.json --out "$out
 run train train broccoli --data "$P" --config broccoli-oes-spain --out "$out/train-model.json" --json --quiet
 # Grape: the shipped GBDT and the fast recipe on four clouds of fold 1, one cloud segmented.
 if grape="$(scripts/unpack-grape.sh 2>/dev/null)"; then
-  cloud="$(ls "$grape"/points/*.txt | head -1)"
+  clouds=("$grape"/points/*.txt)  # the first by name; not `ls | head -1`: under pipefail, head's
+  cloud="${clouds[0]}"              # early exit kills ls with SIGPIPE and the script with it (141)
   run segment-grape segment grape --model models/grape-gbdt.json --input "$cloud" --out "$out/segment-grape.txt" --json
   run eval-grape eval grape --data "$grape" --model models/grape-gbdt-fast4096-fold1.json --fold 1/4 --limit 8 --json
 fi

@@ -16,6 +16,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/cpu_dispatch.hpp"
+
 namespace cropsight::features {
 
 namespace {
@@ -69,7 +71,7 @@ inline float atan2_poly(float y, float x) {
 
 // Bins of one block (n ≤ kBlock points). The float expressions are those of the scalar
 // computePairFeatures port, in the same order.
-__attribute__((target_clones("avx2", "default"))) void block_bins(int n, Block& b, const Frame& f, double d_pi) {
+CROPSIGHT_AVX2_CLONES void block_bins(int n, Block& b, const Frame& f, double d_pi) {
   for (int k = 0; k < n; ++k) {
     const float px = b.x[k], py = b.y[k], pz = b.z[k];
     const float n2x = b.nx[k], n2y = b.ny[k], n2z = b.nz[k];

@@ -19,6 +19,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/cpu_dispatch.hpp"
 #include "cropsight/core/error.hpp"
 
 namespace cropsight::geometry {
@@ -34,9 +35,8 @@ typedef long long v4di __attribute__((vector_size(32)));
 // One integral row: out[u + 1] = up[u + 1] + (sums over columns <= u of image row (xr, yr, zr)),
 // out[0] = 0. Three 4-lane vectors per cell (AVX2 clone at run time; SSE pairs otherwise): each
 // lane does the same double operations, in the same order, as a scalar loop over the 10 sums.
-__attribute__((target_clones("avx2", "default"))) void build_row(int w, const float* __restrict xr,
-                                                                 const float* __restrict yr, const float* __restrict zr,
-                                                                 const double* __restrict up, double* __restrict out) {
+CROPSIGHT_AVX2_CLONES void build_row(int w, const float* __restrict xr, const float* __restrict yr,
+                                     const float* __restrict zr, const double* __restrict up, double* __restrict out) {
   v4d a0 = {0, 0, 0, 0}, a1 = {0, 0, 0, 0}, a2 = {0, 0, 0, 0};
   for (int q = 0; q < kCell; ++q) out[q] = 0.0;
   for (int u = 0; u < w; ++u) {
@@ -61,11 +61,9 @@ __attribute__((target_clones("avx2", "default"))) void build_row(int w, const fl
 // bottoms[s]; writes xx, xy, xz, yy, yz, zz to m[j * stride + k] (float). The double operations
 // of the scalar form, (c1 + a0 - a1 - c0) per sum and q - (p·p')·(1/n) per entry, each done
 // lane by lane in 4-lane vectors (AVX2 clone at run time; no FMA), so the values are the same.
-__attribute__((target_clones("avx2", "default"))) void scatter_row(int count, const int* __restrict cols,
-                                                                   const int* __restrict sizes,
-                                                                   const double* const* tops,
-                                                                   const double* const* bottoms, float* __restrict m,
-                                                                   std::size_t stride) {
+CROPSIGHT_AVX2_CLONES void scatter_row(int count, const int* __restrict cols, const int* __restrict sizes,
+                                       const double* const* tops, const double* const* bottoms, float* __restrict m,
+                                       std::size_t stride) {
   for (int k = 0; k < count; ++k) {
     const int s = sizes[k], left = cols[k] - s / 2;
     const double* a0 = tops[s] + std::size_t(left) * kCell;
@@ -100,11 +98,9 @@ __attribute__((target_clones("avx2", "default"))) void scatter_row(int count, co
 //    from 0 climbs monotonically to λ0 (quadratically for a simple root) — 6 steps reach float
 //    precision unless λ0 ≈ λ1, where the normal is ill-defined anyway;
 //  - eigenvector: the longest cross product of two rows of (A - λ0·I) (PCL's eigen33 does the same).
-__attribute__((target_clones("avx2", "default"))) void solve_row(int n, const float* __restrict m, std::size_t stride,
-                                                                 const float* __restrict px, const float* __restrict py,
-                                                                 const float* __restrict pz, float* __restrict nx,
-                                                                 float* __restrict ny, float* __restrict nz,
-                                                                 float* __restrict cv) {
+CROPSIGHT_AVX2_CLONES void solve_row(int n, const float* __restrict m, std::size_t stride, const float* __restrict px,
+                                     const float* __restrict py, const float* __restrict pz, float* __restrict nx,
+                                     float* __restrict ny, float* __restrict nz, float* __restrict cv) {
   const float* M0 = m;
   const float* M1 = m + stride;
   const float* M2 = m + 2 * stride;
@@ -188,8 +184,7 @@ inline void sweep_stage_generic(int w, int k, bool forward, float* __restrict c,
     c[i] = std::min(c[i], v);
   }
 }
-__attribute__((target_clones("avx2", "default"))) void sweep(int w, float* __restrict c, int reach, bool forward,
-                                                             float* __restrict a) {
+CROPSIGHT_AVX2_CLONES void sweep(int w, float* __restrict c, int reach, bool forward, float* __restrict a) {
   // After the stages with shifts 1..K, j = 0..2K-1 is covered; stop once that reaches reach - 1.
   if (reach <= 0) return;
   if (forward) {
@@ -210,8 +205,7 @@ __attribute__((target_clones("avx2", "default"))) void sweep(int w, float* __res
 // 1.4, a[i] + 1, a[i+1] + 1.4, c[i]) with `a` the neighbouring row (its reads may run one element
 // past either end, into c[0] or c[w-1], which this call does not write, as PCL's flat-array
 // passes do; so restrict holds). Vectorised (AVX2 clone at run time).
-__attribute__((target_clones("avx2", "default"))) void vertical_pass(int lo, int hi, const float* __restrict a,
-                                                                     float* __restrict c) {
+CROPSIGHT_AVX2_CLONES void vertical_pass(int lo, int hi, const float* __restrict a, float* __restrict c) {
   for (int i = lo; i < hi; ++i)
     c[i] = std::min(std::min(a[i - 1] + 1.4f, a[i] + 1.0f), std::min(a[i + 1] + 1.4f, c[i]));
 }

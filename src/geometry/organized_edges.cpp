@@ -8,6 +8,7 @@
 #include <limits>
 #include <utility>
 
+#include "core/cpu_dispatch.hpp"
 #include "cropsight/core/error.hpp"
 
 namespace cropsight::geometry {
@@ -25,10 +26,8 @@ inline int floor_int(float f) {
 
 // One image row (pixels 1..w-2 of `z`, neighbours at z ± stride): PCL's all-neighbours-valid
 // rule, branch-free. dmin/dmax over the 8 differences |z_p| - |z_q|; the dominant one decides.
-__attribute__((target_clones("avx2", "default"))) void row_fast_path(int w, const float* __restrict z, int stride,
-                                                                     float th, std::uint8_t occluded,
-                                                                     std::uint8_t occluding,
-                                                                     std::uint8_t* __restrict out) {
+CROPSIGHT_AVX2_CLONES void row_fast_path(int w, const float* __restrict z, int stride, float th, std::uint8_t occluded,
+                                         std::uint8_t occluding, std::uint8_t* __restrict out) {
   const float* up = z - stride;
   const float* dn = z + stride;
   out[0] = out[w - 1] = kEdgeNone;
@@ -54,8 +53,7 @@ __attribute__((target_clones("avx2", "default"))) void row_fast_path(int w, cons
 
 // The same row when neither depth label is wanted (only NaN boundaries): marks the pixels with a
 // NaN neighbour for the walk, leaves the others unlabelled, without the eight depth differences.
-__attribute__((target_clones("avx2", "default"))) void row_nan_only(int w, const float* __restrict z, int stride,
-                                                                    std::uint8_t* __restrict out) {
+CROPSIGHT_AVX2_CLONES void row_nan_only(int w, const float* __restrict z, int stride, std::uint8_t* __restrict out) {
   const float* up = z - stride;
   const float* dn = z + stride;
   out[0] = out[w - 1] = kEdgeNone;

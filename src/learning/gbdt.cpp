@@ -8,7 +8,6 @@
 #include <deque>
 #include <limits>
 #include <nlohmann/json.hpp>
-#include <thread>
 #include <tuple>
 #include <utility>
 
@@ -16,6 +15,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/parallel_for.hpp"
 #include "cropsight/core/config.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
@@ -270,19 +270,10 @@ void Gbdt::predict_flat(const std::vector<float>& x, std::size_t rows, std::size
   if (cols != cols_)
     throw Error("gbdt", "model expects " + std::to_string(cols_) + " features, got " + std::to_string(cols));
   if (x.size() != rows * cols) throw Error("gbdt", "feature matrix size differs from rows x cols");
-  // A thread per nthread share of the rows; small inputs stay on the calling thread.
-  const std::size_t threads = std::min<std::size_t>(std::size_t(std::max(1, nthread_)), (rows + 255) / 256);
-  if (threads <= 1) {
-    predict_rows(*flat_, x.data(), cols, num_class_, 0, rows, labels, proba);
-    return;
-  }
-  std::vector<std::thread> pool;
-  const std::size_t chunk = (rows + threads - 1) / threads;
-  for (std::size_t t = 1; t < threads; ++t)
-    pool.emplace_back(predict_rows<Flat>, std::cref(*flat_), x.data(), cols, num_class_, std::min(rows, t * chunk),
-                      std::min(rows, (t + 1) * chunk), labels, proba);
-  predict_rows(*flat_, x.data(), cols, num_class_, 0, std::min(rows, chunk), labels, proba);
-  for (auto& th : pool) th.join();
+  // Rows are independent: split over nthread threads; small inputs stay on the calling thread.
+  cropsight::detail::parallel_for(rows, nthread_, 256, [&](std::size_t b, std::size_t e) {
+    predict_rows(*flat_, x.data(), cols, num_class_, b, e, labels, proba);
+  });
 }
 
 std::vector<int> Gbdt::predict(const std::vector<float>& x, std::size_t rows, std::size_t cols) const {

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/cpu_dispatch.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #include "learning/temp_file.hpp"
@@ -47,10 +48,10 @@ __attribute__((always_inline)) inline float rbf_sum_impl(int n, int stride, cons
   }
   return s;
 }
-// AVX2 build of the kernel (8 lanes), used when the CPU has AVX2 (checked once per classifier);
+// AVX2 build of the kernel (8 lanes), used when cpu_has_avx2_fma() (read once per classifier);
 // the baseline one uses 4 lanes (GCC lowers 8-lane vectors to spills without AVX).
-__attribute__((target("avx2"))) float rbf_sum_avx2(int n, int stride, const float* sv, const float* norm2,
-                                                   const float* coef, const float* z, float z2, float g) {
+CROPSIGHT_TARGET_AVX2 float rbf_sum_avx2(int n, int stride, const float* sv, const float* norm2, const float* coef,
+                                         const float* z, float z2, float g) {
   return rbf_sum_impl<v8f, 8>(n, stride, sv, norm2, coef, z, z2, g);
 }
 float rbf_sum_base(int n, int stride, const float* sv, const float* norm2, const float* coef, const float* z, float z2,
@@ -209,7 +210,7 @@ void SvmClassifier::load_text(const std::string& text, const std::string& where)
   for (int i = 0; i < l; ++i)
     for (std::size_t k = 0; k < active_.size(); ++k)
       svp_[std::size_t(i) * std::size_t(svp_stride_) + k] = sv(i, active_[k]);
-  avx2_ = __builtin_cpu_supports("avx2");
+  avx2_ = cropsight::detail::cpu_has_avx2_fma();
 } catch (...) {
   if (model_) svm_free_and_destroy_model(&model_);
   throw;

@@ -53,7 +53,7 @@ class SvmClassifier final : public Classifier {
   std::vector<int> active_;   ///< columns where some support vector is non-zero (RBF dot products)
   std::vector<float> svp_;    ///< support vectors × active_ columns, rows zero-padded to svp_stride_ floats
   int svp_stride_ = 0;
-  bool avx2_ = false;           ///< the CPU has AVX2: score() runs the 8-lane kernel
+  bool avx2_ = false;           ///< cpu_has_avx2_fma(): score() runs the 8-lane kernel
   Eigen::VectorXf w_;           ///< Σ coef_i sv_i (linear kernel: the decision is w·x − ρ)
   std::string text_;            ///< libsvm model file text
   svm_model* model_ = nullptr;  ///< loaded from text_ (owns its memory); for libsvm_score()

@@ -1,24 +1,22 @@
 // The GMM's EM compiled for AVX2 + FMA (8 float lanes, fused multiply-adds): ~2x the baseline
-// SSE2 build's speed on the E- and M-step loops. Chosen at run time by fit_gmm() when the CPU
-// has both; the x86-64 baseline build stays portable. See gmm_em.hpp and gmm_em_deps.hpp for
-// why the includes come before the pragma.
+// SSE2 build's speed on the E- and M-step loops. Chosen at run time by fit_gmm() when
+// cpu_has_avx2_fma(); the x86-64 baseline build stays portable. This is form 3 of
+// core/cpu_dispatch.hpp (a whole translation unit under CROPSIGHT_AVX2_FMA_BEGIN / _END); see
+// there, gmm_em.hpp and gmm_em_deps.hpp for why the includes come before the region.
+#include "core/cpu_dispatch.hpp"
 #include "gmm_kernels.hpp"
 
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#if CROPSIGHT_HAVE_AVX2_TU
 #include "gmm_em_deps.hpp"
 
-#pragma GCC push_options
-#pragma GCC target("avx2,fma")
+CROPSIGHT_AVX2_FMA_BEGIN
 #define CROPSIGHT_SIMD_LANES 8
 #define CROPSIGHT_EM_NS em_avx2
 #include "gmm_em.hpp"
-#pragma GCC pop_options
+CROPSIGHT_AVX2_FMA_END
 
 namespace cropsight::segmentation::em_avx2 {
-bool available() {
-  static const bool ok = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  return ok;
-}
+bool available() { return cropsight::detail::cpu_has_avx2_fma(); }
 }  // namespace cropsight::segmentation::em_avx2
 
 #else

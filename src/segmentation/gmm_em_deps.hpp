@@ -1,6 +1,6 @@
 #pragma once
 // Internal: every header gmm_em.hpp needs. gmm_avx2.cpp includes this *before* its
-// `#pragma GCC target("avx2,fma")`, so that Eigen and the standard library are compiled for the
+// CROPSIGHT_AVX2_FMA_BEGIN (core/cpu_dispatch.hpp, form 3), so that Eigen and the standard library are compiled for the
 // baseline there as everywhere else (a template instantiated inside the AVX2 region and merged
 // by the linker into baseline code would be SIGILL on a CPU without AVX2).
 #include <Eigen/Cholesky>

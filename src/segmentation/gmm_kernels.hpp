@@ -13,7 +13,7 @@ GmmResult fit(const std::vector<Eigen::Vector3f>& points, const GmmConfig& cfg);
 GmmModel initial(const std::vector<Eigen::Vector3f>& points, const GmmConfig& cfg);
 }  // namespace em_portable
 namespace em_avx2 {
-/// True when this build has the AVX2 + FMA variant and the CPU runs it.
+/// True when this build has the AVX2 + FMA variant and the CPU runs it (cpu_has_avx2_fma()).
 bool available();
 GmmResult fit(const std::vector<Eigen::Vector3f>& points, const GmmConfig& cfg);  // call only when available()
 }  // namespace em_avx2

@@ -8,8 +8,8 @@
 
 namespace cropsight::segmentation::simd {
 
-// 8 lanes where AVX is enabled (-march=native builds, or a region under #pragma GCC target
-// ("avx2") that defines CROPSIGHT_SIMD_LANES 8 first), else 4 (SSE2, the x86-64 baseline): wider
+// 8 lanes where AVX is enabled (-march=native builds, or a CROPSIGHT_AVX2_FMA_BEGIN region of
+// core/cpu_dispatch.hpp that defines CROPSIGHT_SIMD_LANES 8 first), else 4 (SSE2, the x86-64 baseline): wider
 // vectors without AVX would only be split again. Everything here has internal linkage (anonymous
 // namespace), so a translation unit compiled for AVX2 and one for SSE2 can both include this
 // header without the linker merging one's helpers into the other (an AVX2 instruction reached

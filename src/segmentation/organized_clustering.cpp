@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/cpu_dispatch.hpp"
 #include "cropsight/core/error.hpp"
 
 namespace cropsight::segmentation {
@@ -27,10 +28,11 @@ inline void row_links(int w, const float* __restrict x, const float* __restrict 
 }
 
 template <bool kOrg>
-__attribute__((target_clones("avx2", "default"))) void compute_links_impl(
-    int w, int h, const float* x, const float* y, const float* z, const float* nx, const float* ny, const float* nz,
-    const std::uint8_t* edges, std::uint8_t barrier, float tol2, float cos_angle, std::uint8_t* right,
-    std::uint8_t* down, std::uint8_t* links) {
+CROPSIGHT_AVX2_CLONES void compute_links_impl(int w, int h, const float* x, const float* y, const float* z,
+                                              const float* nx, const float* ny, const float* nz,
+                                              const std::uint8_t* edges, std::uint8_t barrier, float tol2,
+                                              float cos_angle, std::uint8_t* right, std::uint8_t* down,
+                                              std::uint8_t* links) {
   const std::size_t n = std::size_t(w) * std::size_t(h);
   // right[i]: pixel i and i + 1 (same row) join; down[i]: i and i + w join.
   for (int v = 0; v < h; ++v) {

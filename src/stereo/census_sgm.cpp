@@ -1,7 +1,5 @@
 #include "census_sgm.hpp"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -10,6 +8,8 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "core/cpu_dispatch.hpp"
+#include "core/parallel_for.hpp"
 #include "cropsight/core/error.hpp"
 
 // 32-byte vectors are passed between always-inlined helpers only; the ABI note GCC emits for
@@ -324,15 +324,10 @@ CS_INLINE void sweep_band_impl(const BandJob& job) {
   }
 }
 
-__attribute__((target("avx2,popcnt"))) void sweep_band_avx2(const BandJob& job) { sweep_band_impl<true>(job); }
+CROPSIGHT_TARGET_AVX2 void sweep_band_avx2(const BandJob& job) { sweep_band_impl<true>(job); }
 void sweep_band_portable(const BandJob& job) { sweep_band_impl<false>(job); }
 
 }  // namespace
-
-bool census_sgm_uses_avx2() {
-  static const bool ok = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
-  return ok;
-}
 
 DisparityImage census_sgm(const cv::Mat& left, const cv::Mat& right, const CensusSgmParams& p) {
   const std::string where = "census SGM";
@@ -369,12 +364,10 @@ DisparityImage census_sgm(const cv::Mat& left, const cv::Mat& right, const Censu
     jobs.push_back({&pl, &pr, g, p.p1, p.p2, p.uniqueness_ratio, p.lr_check, outside, p.cost_box, lut.data(), g.H - 1,
                     g.H - top, -1, &out});
   }
-  const bool avx2 = p.allow_avx2 && census_sgm_uses_avx2();
-  tbb::parallel_for(0, int(jobs.size()), [&](int i) {
-    if (avx2)
-      sweep_band_avx2(jobs[std::size_t(i)]);
-    else
-      sweep_band_portable(jobs[std::size_t(i)]);
+  const bool avx2 = p.allow_avx2 && cropsight::detail::cpu_has_avx2_fma();
+  // One thread per band (the bands write disjoint rows).
+  cropsight::detail::parallel_for(jobs.size(), int(jobs.size()), 1, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) (avx2 ? sweep_band_avx2 : sweep_band_portable)(jobs[i]);
   });
   return out;
 }

@@ -37,7 +37,4 @@ struct CensusSgmParams {
 /// [0, num_disparities - 1] pixels with sub-pixel fraction.
 DisparityImage census_sgm(const cv::Mat& left, const cv::Mat& right, const CensusSgmParams& p);
 
-/// True when census_sgm() runs the AVX2 kernel on this CPU (allow_avx2 = true).
-bool census_sgm_uses_avx2();
-
 }  // namespace cropsight::stereo::detail

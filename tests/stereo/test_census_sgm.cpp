@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 #include <random>
 
+#include "core/cpu_dispatch.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/stereo/disparity.hpp"
 #include "cropsight/stereo/middlebury.hpp"
@@ -132,7 +133,7 @@ TEST(CensusSgm, LeftRightCheckRejectsOcclusion) {
 }
 
 TEST(CensusSgm, Avx2KernelEqualsPortableKernel) {
-  if (!stereo::detail::census_sgm_uses_avx2()) GTEST_SKIP() << "CPU without AVX2";
+  if (!cropsight::detail::cpu_has_avx2_fma()) GTEST_SKIP() << "CPU without AVX2";
   const Scene s = two_planes(200, 120);
   // 9x7 (64-bit census, scalar popcount) and 5x5 (32-bit census, vectorised popcount).
   for (int cw : {9, 5}) {

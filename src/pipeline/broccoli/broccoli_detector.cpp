@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/cpu_dispatch.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/geometry/depth_filter.hpp"  // valid_indices
 #include "cropsight/geometry/integral_normals.hpp"
@@ -23,11 +24,9 @@ bool same_camera(const CameraIntrinsics& a, const CameraIntrinsics& b) {
 // [lo, hi]; x = rx·z, y = ry·z. Branch-free with restrict pointers so that it vectorises (AVX2
 // clone at run time); every lane does the scalar loop's float operations (no FMA), so the values
 // are bit-identical to it (tests/pipeline checks the cloud against that loop).
-__attribute__((target_clones("avx2", "default"))) void deproject_depth(std::size_t n, const std::uint16_t* __restrict d,
-                                                                       const float* __restrict rx,
-                                                                       const float* __restrict ry, float scale,
-                                                                       float lo, float hi, float* __restrict X,
-                                                                       float* __restrict Y, float* __restrict Z) {
+CROPSIGHT_AVX2_CLONES void deproject_depth(std::size_t n, const std::uint16_t* __restrict d, const float* __restrict rx,
+                                           const float* __restrict ry, float scale, float lo, float hi,
+                                           float* __restrict X, float* __restrict Y, float* __restrict Z) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   for (std::size_t i = 0; i < n; ++i) {
     const float zd = float(d[i]) * scale;

@@ -14,12 +14,12 @@
 #include <random>
 #include <sstream>
 
+#include "core/parallel_for.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/geometry/knn_normals.hpp"
 #include "cropsight/geometry/pca.hpp"
 #include "cropsight/learning/gbdt.hpp"
 #include "geometry/point_kdtree.hpp"
-#include "pipeline/parallel_rows.hpp"
 
 namespace cropsight::pipeline {
 
@@ -208,7 +208,7 @@ std::vector<float> compute_features(const Cloud& cloud, const GrapeFeatureConfig
   };
   // Rows are independent (read-only index): the fast recipe splits them over cfg.threads; the
   // original recipe keeps its single thread (FPFH, its main cost, has its own threads).
-  detail::parallel_rows(rows, shared_query ? cfg.threads : 1, 256, rows_range);
+  cropsight::detail::parallel_for(rows, shared_query ? cfg.threads : 1, 256, rows_range);
   return X;
 }
 

@@ -6,10 +6,10 @@
 #include <numeric>
 #include <random>
 
+#include "core/parallel_for.hpp"
 #include "cropsight/core/class_scores.hpp"
 #include "cropsight/core/error.hpp"
 #include "geometry/point_kdtree.hpp"
-#include "pipeline/parallel_rows.hpp"
 
 namespace cropsight::pipeline {
 
@@ -131,7 +131,7 @@ std::vector<int> grape_carry_back(const Cloud& cloud, const std::vector<int>& sa
   const std::size_t k = std::min<std::size_t>(std::size_t(fc.carry_k), sample.size());
   const float wc = float(fc.carry_colour);
   const bool colour = k > 1 && cloud.has_colors();
-  detail::parallel_rows(cloud.size(), threads, 2048, [&](std::size_t b, std::size_t e) {
+  cropsight::detail::parallel_for(cloud.size(), threads, 2048, [&](std::size_t b, std::size_t e) {
     std::vector<std::uint32_t> nb(k);
     std::vector<float> d2(k), vote(static_cast<std::size_t>(num_class));
     for (std::size_t i = b; i < e; ++i) {
