@@ -113,6 +113,7 @@ __attribute__((target_clones("avx2", "default"))) void block_bins(int n, Block& 
 }
 }  // namespace
 
+// Long on purpose: PCL's VFH as its numbered steps in one hot pass per cluster.
 void compute_vfh(const OrganizedCloud& cloud, std::span<const int> indices, const VfhConfig& cfg, float* out) {
   std::fill(out, out + kVfhBins, 0.0f);
   if (!cloud.has_normals()) return;

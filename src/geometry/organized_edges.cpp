@@ -69,6 +69,7 @@ __attribute__((target_clones("avx2", "default"))) void row_nan_only(int w, const
 
 }  // namespace
 
+// Long on purpose: a hot loop over the image with PCL's neighbour tests inlined per pixel.
 void detect_organized_edges(const OrganizedCloud& cloud, const OrganizedEdgeConfig& cfg,
                             std::vector<std::uint8_t>& labels) {
   if (!(cfg.depth_discontinuity >= 0.0f)) throw Error("organized edges", "depth_discontinuity must be >= 0");
