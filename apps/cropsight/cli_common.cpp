@@ -2,7 +2,6 @@
 
 #include <unistd.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -10,10 +9,6 @@
 #include "cropsight/io/config_yaml.hpp"
 
 namespace cropsight::cli {
-
-namespace {
-double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-}  // namespace
 
 ConfigMap CommonOptions::config_map(const std::string& default_preset) const {
   ConfigMap m;
@@ -40,20 +35,14 @@ nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(
 void print_json(const nlohmann::json& j) { std::cout << j.dump() << std::endl; }
 
 Progress::Progress(std::string what, long total, bool quiet, double min_interval_s)
-    : what_(std::move(what)),
-      total_(total),
-      quiet_(quiet),
-      tty_(::isatty(2) != 0),
-      min_interval_s_(min_interval_s),
-      start_(now_s()) {}
+    : what_(std::move(what)), total_(total), quiet_(quiet), tty_(::isatty(2) != 0), min_interval_s_(min_interval_s) {}
 
 void Progress::update(long done) {
   if (quiet_ || done == shown_) return;  // finish() after the last update() prints nothing twice
-  const double t = now_s();
-  if (t - last_ < min_interval_s_ && done < total_) return;
-  last_ = t;
+  const double elapsed = clock_.seconds();
+  if (elapsed - last_ < min_interval_s_ && done < total_) return;
+  last_ = elapsed;
   shown_ = done;
-  const double elapsed = t - start_;
   const double eta = done > 0 ? elapsed * double(total_ - done) / double(done) : 0.0;
   std::fprintf(stderr, "%s%s %ld/%ld (%.0f%%, %.1f s, eta %.1f s)%s", tty_ ? "\r" : "", what_.c_str(), done, total_,
                total_ ? 100.0 * double(done) / double(total_) : 100.0, elapsed, eta, tty_ ? "" : "\n");

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cropsight/core/config.hpp"
+#include "cropsight/core/timer.hpp"
 
 namespace cropsight::cli {
 
@@ -43,9 +44,9 @@ class Progress {
   long total_;
   bool quiet_, tty_;
   double min_interval_s_;
-  double last_ = -1e9;
-  long shown_ = -1;  // the last count printed
-  double start_;
+  double last_ = -1e9;  // seconds since the start at the last line printed
+  long shown_ = -1;     // the last count printed
+  Stopwatch clock_;
 };
 
 }  // namespace cropsight::cli

@@ -18,6 +18,7 @@
 #include "cropsight/pipeline/grape/grape_eval.hpp"
 #include "cropsight/pipeline/grape/grape_model.hpp"
 #include "cropsight/pipeline/grape/grape_segmenter.hpp"
+#include "grape_cli.hpp"
 #include "grape_segmenter_options.hpp"
 
 namespace cropsight::cli {
@@ -55,7 +56,7 @@ void run(const EvalGrapeOptions& o) {
   const auto clouds = pipeline::load_grape_clouds(files);
   const auto ev = pipeline::evaluate_grape(model, clouds);
   if (o.common.json) {
-    auto j = nlohmann::json::parse(ev.json());
+    auto j = grape_evaluation_json(ev);
     j["model"] = model.kind();
     if (model.kind() != "gbdt") j["mode"] = segmenter.mode();
     GrapeSegmenterOptions::describe(cfg, j);

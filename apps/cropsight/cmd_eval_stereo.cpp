@@ -25,13 +25,13 @@ struct Options {
 nlohmann::json to_json(const stereo::MiddleburyEvaluation& e) {
   nlohmann::json j = {{"pairs", nlohmann::json::object()}};
   for (const auto& p : e.pairs)
-    j["pairs"][p.name] = {{"bad1", p.stats.bad1},
-                          {"bad2", p.stats.bad2},
-                          {"invalid", p.stats.invalid},
-                          {"ms", p.ms},
+    j["pairs"][p.name] = {{"bad1", json_number(p.stats.bad1)},
+                          {"bad2", json_number(p.stats.bad2)},
+                          {"invalid", json_number(p.stats.invalid)},
+                          {"ms", json_number(p.ms)},
                           {"num_disparities", p.num_disparities}};
-  j["mean_bad1"] = e.mean_bad1;
-  j["mean_bad2"] = e.mean_bad2;
+  j["mean_bad1"] = json_number(e.mean_bad1);
+  j["mean_bad2"] = json_number(e.mean_bad2);
   return j;
 }
 
@@ -42,14 +42,16 @@ void run(const Options& o) {
     stereo::validate_disparity_config(c, where);
   });
   const auto pairs = stereo::load_middlebury(o.middlebury);
-  nlohmann::json j = to_json(stereo::evaluate_middlebury(pairs, [&](const stereo::MiddleburyPair& p, int nd) {
+  const auto ours = stereo::evaluate_middlebury(pairs, [&](const stereo::MiddleburyPair& p, int nd) {
     stereo::DisparityConfig c = cfg;
     c.num_disparities = nd;
     return stereo::compute_disparity(p.left, p.right, c, p.name);
-  }));
-  j["opencv_sgbm"] = to_json(stereo::evaluate_middlebury(pairs, [&](const stereo::MiddleburyPair& p, int nd) {
+  });
+  const auto sgbm = stereo::evaluate_middlebury(pairs, [&](const stereo::MiddleburyPair& p, int nd) {
     return stereo::opencv_sgbm_disparity(p.left, p.right, nd, 3, p.name);
-  }));
+  });
+  nlohmann::json j = to_json(ours);
+  j["opencv_sgbm"] = to_json(sgbm);
   if (o.baselines) {
     for (auto cost : {stereo::BlockCost::kSad, stereo::BlockCost::kSsd})
       j[cost == stereo::BlockCost::kSad ? "sad55" : "ssd55"] =
@@ -64,15 +66,13 @@ void run(const Options& o) {
     return;
   }
   std::printf("%-10s %10s %10s %10s | %12s %12s\n", "pair", "bad1 %", "bad2 %", "ms", "sgbm bad1 %", "sgbm bad2 %");
-  for (const auto& p : pairs) {
-    const auto& a = j["pairs"][p.name];
-    const auto& b = j["opencv_sgbm"]["pairs"][p.name];
-    std::printf("%-10s %10.2f %10.2f %10.1f | %12.2f %12.2f\n", p.name.c_str(), a["bad1"].get<double>(),
-                a["bad2"].get<double>(), a["ms"].get<double>(), b["bad1"].get<double>(), b["bad2"].get<double>());
+  for (std::size_t i = 0; i < ours.pairs.size(); ++i) {
+    const auto &a = ours.pairs[i], &b = sgbm.pairs[i];
+    std::printf("%-10s %10.2f %10.2f %10.1f | %12.2f %12.2f\n", a.name.c_str(), a.stats.bad1, a.stats.bad2, a.ms,
+                b.stats.bad1, b.stats.bad2);
   }
-  std::printf("%-10s %10.2f %10.2f %10s | %12.2f %12.2f\n", "mean", j["mean_bad1"].get<double>(),
-              j["mean_bad2"].get<double>(), "", j["opencv_sgbm"]["mean_bad1"].get<double>(),
-              j["opencv_sgbm"]["mean_bad2"].get<double>());
+  std::printf("%-10s %10.2f %10.2f %10s | %12.2f %12.2f\n", "mean", ours.mean_bad1, ours.mean_bad2, "", sgbm.mean_bad1,
+              sgbm.mean_bad2);
 }
 
 }  // namespace

@@ -7,7 +7,6 @@
 //                           [--ensemble MODEL2 [--ensemble-weight W]] [--json]
 //
 // Without --config and --model the shipped best recipe runs (configs/grape-best.yaml).
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -16,6 +15,7 @@
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/threads.hpp"
+#include "cropsight/core/timer.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/pipeline/grape/grape_segmenter.hpp"
 #include "grape_segmenter_options.hpp"
@@ -36,16 +36,16 @@ void run(const SegmentGrapeOptions& o) {
   cfg.threads = o.threads;
   const pipeline::GrapeSegmenter segmenter(cfg, "command line");
   Cloud cloud = io::read_grape_text(o.input);
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   cloud.labels = segmenter.segment(cloud);
-  const double ms = 1000.0 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double ms = clock.ms();
   io::write_grape_text(o.out, cloud);
   std::vector<long> counts(6, 0);
   for (int l : cloud.labels)
     if (l >= 0 && l < 6) ++counts[std::size_t(l)];
   if (o.common.json) {
-    nlohmann::json j = {{"input", o.input},       {"out", o.out}, {"points", cloud.size()},
-                        {"label_counts", counts}, {"ms", ms},     {"mode", segmenter.mode()}};
+    nlohmann::json j = {{"input", o.input},       {"out", o.out},          {"points", cloud.size()},
+                        {"label_counts", counts}, {"ms", json_number(ms)}, {"mode", segmenter.mode()}};
     GrapeSegmenterOptions::describe(cfg, j);
     print_json(j);
   } else {

@@ -57,10 +57,10 @@ void run_calibrate(const CalibrateOptions& o) {
   if (o.common.json) {
     print_json({{"out", o.out},
                 {"views", calib.views},
-                {"rms_px", calib.rms},
-                {"baseline_m", calib.baseline()},
-                {"fx_left", calib.K1(0, 0)},
-                {"fx_right", calib.K2(0, 0)}});
+                {"rms_px", json_number(calib.rms)},
+                {"baseline_m", json_number(calib.baseline())},
+                {"fx_left", json_number(calib.K1(0, 0))},
+                {"fx_right", json_number(calib.K2(0, 0))}});
   } else {
     std::printf("calibrated from %d views: rms %.3f px, baseline %.2f mm, fx %.1f / %.1f px -> %s\n", calib.views,
                 calib.rms, calib.baseline() * 1000, calib.K1(0, 0), calib.K2(0, 0), o.out.c_str());

@@ -70,7 +70,11 @@ void run_disparity(const DisparityOptions& o) {
   stereo::write_disparity_png(o.out, d, 256.0);
   const double valid_pct = stereo::valid_percent(d);
   if (o.common.json) {
-    print_json({{"out", o.out}, {"method", o.method}, {"ms", ms}, {"valid_percent", valid_pct}, {"scale", 256}});
+    print_json({{"out", o.out},
+                {"method", o.method},
+                {"ms", json_number(ms)},
+                {"valid_percent", json_number(valid_pct)},
+                {"scale", 256}});
   } else {
     std::printf("%s disparity in %.1f ms, %.1f%% of pixels valid -> %s (16-bit, disparity x 256)\n", o.method.c_str(),
                 ms, valid_pct, o.out.c_str());

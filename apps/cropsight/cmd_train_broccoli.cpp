@@ -22,11 +22,11 @@ struct TrainOptions {
   bool quiet = false;
 };
 
-void run(const TrainOptions& o) {
-  // defaults ← preset ← --set ← explicit flags; keys "grid.*" configure the grid search.
+// defaults ← preset ← --set ← explicit flags; keys "grid.*" configure the grid search. The whole
+// preset is one BroccoliPipelineConfig: sizing.* / tracking.* configure detect/eval --track, not
+// training, and are checked all the same.
+std::pair<pipeline::BroccoliPipelineConfig, learning::GridSearchConfig> train_configs(const TrainOptions& o) {
   ConfigMap all = o.common.config_map();
-  // The whole preset is one BroccoliPipelineConfig: sizing.* / tracking.* configure detect/eval
-  // --track, not training, and are checked all the same.
   ConfigMap grid_keys, pipeline_keys;
   for (const auto& [k, v] : all) (k.rfind("grid.", 0) == 0 ? grid_keys : pipeline_keys)[k] = v;
   pipeline::BroccoliPipelineConfig full;
@@ -37,13 +37,14 @@ void run(const TrainOptions& o) {
   if (!o.features.empty()) full.detector.features = o.features;
   if (!o.classifier.empty()) full.detector.classifier.type = o.classifier;
   full.validate("--pipeline/--features/--classifier");
-  pipeline::BroccoliDetectorConfig& cfg = full.detector;
+  return {full, grid};
+}
 
-  const auto sequences = split_list(o.data, "--data");
-  pipeline::BroccoliDatasetBuilder builder(cfg, full.truth);
+// Adds every frame of the --data sequences to `builder`; returns the provenance the model file
+// records (data, seeds, varieties, frames).
+std::map<std::string, std::string> add_sequences(const TrainOptions& o, pipeline::BroccoliDatasetBuilder& builder) {
   std::string seeds, varieties;
-  const Stopwatch clock;
-  for (const auto& dir : sequences) {
+  for (const auto& dir : split_list(o.data, "--data")) {
     io::SequenceReader reader(dir);
     if (!reader.info().has_labels) throw Error(dir, "sequence has no labels/ (training needs ground truth)");
     const auto& attrs = reader.groundtruth().attributes;
@@ -57,29 +58,41 @@ void run(const TrainOptions& o) {
     }
     progress.finish();
   }
+  return {{"data", o.data}, {"seeds", seeds}, {"varieties", varieties}, {"frames", std::to_string(builder.frames())}};
+}
+
+// The cross-validated grid search: sets cfg.classifier to the best point, returns its figures.
+nlohmann::json grid_search(const TrainOptions& o, const learning::Dataset& data, const learning::GridSearchConfig& grid,
+                           pipeline::BroccoliDetectorConfig& cfg) {
+  // One line per grid point at most once a second: a full grid is ~100 × folds SVM trainings.
+  std::optional<Progress> progress;
+  const auto r =
+      learning::grid_search(data, cfg.classifier, grid, "grid search", [&](std::size_t done, std::size_t total) {
+        if (!progress)
+          progress.emplace("grid search (" + std::to_string(grid.folds) + "-fold CV per point)", long(total),
+                           o.quiet || o.common.json);
+        progress->update(long(done));
+        if (done == total) progress->finish();
+      });
+  cfg.classifier = r.params;
+  return {{"best_c", r.best.c},       {"best_gamma", r.best.gamma}, {"cv_accuracy", r.best.accuracy},
+          {"cv_kappa", r.best.kappa}, {"points", r.points.size()},  {"folds", grid.folds},
+          {"metric", grid.metric}};
+}
+
+void run(const TrainOptions& o) {
+  auto [full, grid] = train_configs(o);
+  pipeline::BroccoliDetectorConfig& cfg = full.detector;
+  pipeline::BroccoliDatasetBuilder builder(cfg, full.truth);
+  const Stopwatch clock;
+  std::map<std::string, std::string> provenance = add_sequences(o, builder);
   const auto& data = builder.dataset();
   if (data.positives() == 0 || data.negatives() == 0)
     throw Error(o.data, "the clusters of these sequences are all of one class (" + std::to_string(data.positives()) +
                             " heads, " + std::to_string(data.negatives()) + " others); cannot train");
-
-  std::map<std::string, std::string> provenance{
-      {"data", o.data}, {"seeds", seeds}, {"varieties", varieties}, {"frames", std::to_string(builder.frames())}};
   nlohmann::json grid_json;
   if (o.grid_search) {
-    // One line per grid point at most once a second: a full grid is ~100 × folds SVM trainings.
-    std::optional<Progress> progress;
-    const auto r =
-        learning::grid_search(data, cfg.classifier, grid, "grid search", [&](std::size_t done, std::size_t total) {
-          if (!progress)
-            progress.emplace("grid search (" + std::to_string(grid.folds) + "-fold CV per point)", long(total),
-                             o.quiet || o.common.json);
-          progress->update(long(done));
-          if (done == total) progress->finish();
-        });
-    cfg.classifier = r.params;
-    grid_json = {{"best_c", r.best.c},       {"best_gamma", r.best.gamma}, {"cv_accuracy", r.best.accuracy},
-                 {"cv_kappa", r.best.kappa}, {"points", r.points.size()},  {"folds", grid.folds},
-                 {"metric", grid.metric}};
+    grid_json = grid_search(o, data, grid, cfg);
     provenance["grid_search"] = grid_json.dump();
   }
   const learning::Model model = pipeline::train_broccoli_model(data, cfg, full.truth, provenance);
@@ -95,7 +108,7 @@ void run(const TrainOptions& o) {
                    {"samples", data.size()},
                    {"positives", data.positives()},
                    {"model_size", model.classifier->model_size()},
-                   {"seconds", secs}};
+                   {"seconds", json_number(secs)}};
   if (o.grid_search) j["grid_search"] = grid_json;
   if (o.common.json) {
     print_json(j);

@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 
+// Long on purpose: the command tree as one table, then the error-to-exit-code mapping.
 int main(int argc, char** argv) {
   spdlog::set_pattern("%v");
   spdlog::set_level(spdlog::level::warn);

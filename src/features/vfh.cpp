@@ -115,6 +115,7 @@ CROPSIGHT_AVX2_CLONES void block_bins(int n, Block& b, const Frame& f, double d_
 }
 }  // namespace
 
+// Long on purpose: PCL's VFH as its numbered steps in one hot pass per cluster.
 void compute_vfh(const OrganizedCloud& cloud, std::span<const int> indices, const VfhConfig& cfg, float* out) {
   std::fill(out, out + kVfhBins, 0.0f);
   if (!cloud.has_normals()) return;

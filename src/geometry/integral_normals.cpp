@@ -210,55 +210,36 @@ CROPSIGHT_AVX2_CLONES void vertical_pass(int lo, int hi, const float* __restrict
     c[i] = std::min(std::min(a[i - 1] + 1.4f, a[i] + 1.0f), std::min(a[i + 1] + 1.4f, c[i]));
 }
 
-}  // namespace
-
-IntegralNormalEstimator::IntegralNormalEstimator(IntegralNormalConfig cfg) : cfg_(cfg) {}
-
-void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int> select) {
-  if (!(cfg_.normal_smoothing_size >= 1.0f) || !std::isfinite(cfg_.normal_smoothing_size))
+// Throws Error("normals", ...) for a configuration or selection compute() cannot use.
+void check_inputs(const IntegralNormalConfig& cfg, std::span<const int> select, std::size_t n) {
+  if (!(cfg.normal_smoothing_size >= 1.0f) || !std::isfinite(cfg.normal_smoothing_size))
     throw Error("normals", "normal_smoothing_size must be at least 1 pixel");
-  if (!(cfg_.max_depth_change_factor >= 0.0f)) throw Error("normals", "max_depth_change_factor must be >= 0");
-  if (!select.empty() && select.size() != cloud.size())
-    throw Error("normals", "selection size differs from the cloud size");
-  constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-  const int w = cloud.width, h = cloud.height;
-  const std::size_t n = cloud.size();
-  // Every pixel of the four outputs is written below: NaN row by row just before the row's
-  // results (the row is then still in cache when they are scattered into it), the border rows
-  // and the early return at once.
-  cloud.nx.resize(n);
-  cloud.ny.resize(n);
-  cloud.nz.resize(n);
-  cloud.curvature.resize(n);
-  auto nan_rows = [&cloud, w, kNaN](int v0, int v1) {
-    const std::size_t a = std::size_t(v0) * w, b = std::size_t(v1) * w;
-    std::fill(cloud.nx.begin() + a, cloud.nx.begin() + b, kNaN);
-    std::fill(cloud.ny.begin() + a, cloud.ny.begin() + b, kNaN);
-    std::fill(cloud.nz.begin() + a, cloud.nz.begin() + b, kNaN);
-    std::fill(cloud.curvature.begin() + a, cloud.curvature.begin() + b, kNaN);
-  };
-  const int S = int(cfg_.normal_smoothing_size);
-  if (w < 2 || h < 2 || 2 * S >= w || 2 * S >= h) {  // nothing outside the ignored border
-    nan_rows(0, h);
-    return;
-  }
-  nan_rows(0, S);
-  nan_rows(h - S, h);
-  const float* X = cloud.x.data();
-  const float* Y = cloud.y.data();
-  const float* Z = cloud.z.data();
+  if (!(cfg.max_depth_change_factor >= 0.0f)) throw Error("normals", "max_depth_change_factor must be >= 0");
+  if (!select.empty() && select.size() != n) throw Error("normals", "selection size differs from the cloud size");
+}
 
-  // 1. Depth-change map, PCL's rule: for ri < h-1, ci < w-1 the pixel is compared with its
-  // right (H) and lower (V) neighbour, and a failed test marks both pixels. So the last column is
-  // only compared with its left neighbour and the last row with the row above. Computed per row
-  // as flags (branch-free, vectorised), then combined.
-  change_.assign(n, 1);  // 1 = no depth change
-  flags_.assign(3 * std::size_t(w), 0);
-  std::uint8_t* H = flags_.data();  // this row: pixel vs right neighbour failed
-  std::uint8_t* V = H + w;          // this row: pixel vs lower neighbour failed
-  std::uint8_t* Vprev = V + w;      // previous row's V
-  std::uint8_t* ch = change_.data();
-  const float factor = cfg_.max_depth_change_factor;
+// NaN in rows [v0, v1) of the four outputs.
+void nan_rows(OrganizedCloud& cloud, int v0, int v1) {
+  constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+  const std::size_t a = std::size_t(v0) * cloud.width, b = std::size_t(v1) * cloud.width;
+  std::fill(cloud.nx.begin() + a, cloud.nx.begin() + b, kNaN);
+  std::fill(cloud.ny.begin() + a, cloud.ny.begin() + b, kNaN);
+  std::fill(cloud.nz.begin() + a, cloud.nz.begin() + b, kNaN);
+  std::fill(cloud.curvature.begin() + a, cloud.curvature.begin() + b, kNaN);
+}
+
+// Step 1. Depth-change map, PCL's rule: for ri < h-1, ci < w-1 the pixel is compared with its
+// right (H) and lower (V) neighbour, and a failed test marks both pixels. So the last column is
+// only compared with its left neighbour and the last row with the row above. Computed per row
+// as flags (branch-free, vectorised), then combined. change[i] = 1: no depth change at pixel i.
+void depth_change_map(const float* Z, int w, int h, float factor, std::vector<std::uint8_t>& change,
+                      std::vector<std::uint8_t>& flags) {
+  change.assign(std::size_t(w) * std::size_t(h), 1);
+  flags.assign(3 * std::size_t(w), 0);
+  std::uint8_t* H = flags.data();  // this row: pixel vs right neighbour failed
+  std::uint8_t* V = H + w;         // this row: pixel vs lower neighbour failed
+  std::uint8_t* Vprev = V + w;     // previous row's V
+  std::uint8_t* ch = change.data();
   for (int ri = 0; ri < h; ++ri) {
     const float* z0 = Z + std::size_t(ri) * w;
     if (ri < h - 1) {
@@ -281,20 +262,22 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int
     for (int ci = 1; ci < w; ++ci) c[ci] = std::uint8_t(!(H[ci] | H[ci - 1] | V[ci] | Vprev[ci]));
     std::copy(V, V + w, Vprev);
   }
+}
 
-  // 2. Chamfer distance map (1, 1.4), PCL's two passes on the flat array (including its row-end
-  // reads that wrap into the neighbouring row). Values are capped at `cap` (= smoothing size):
-  // the passes are a min-plus recursion, so capping the start values gives min(PCL's value, cap),
-  // and only min(distance, smoothing) is used. Each row is split into a vectorised part (the
-  // three neighbours in the previous row) and the sweep along the row (sweep_forward/backward:
-  // vectorised too, same float sums as PCL's sequential loop).
-  // cap = the smoothing size: min(min(PCL, cap), smoothing) = min(PCL, smoothing).
-  const float cap = cfg_.normal_smoothing_size;
+// Step 2. Chamfer distance map (1, 1.4), PCL's two passes on the flat array (including its row-end
+// reads that wrap into the neighbouring row). Values are capped at `cap` (= smoothing size):
+// the passes are a min-plus recursion, so capping the start values gives min(PCL's value, cap),
+// and only min(distance, smoothing) is used, and min(min(PCL, cap), smoothing) = min(PCL,
+// smoothing). Each row is split into a vectorised part (the three neighbours in the previous row)
+// and the sweep along the row (vectorised too, same float sums as PCL's sequential loop).
+void chamfer_distance(const std::uint8_t* ch, int w, int h, float cap, std::vector<float>& distance,
+                      std::vector<float>& scratch) {
+  const std::size_t n = std::size_t(w) * std::size_t(h);
   const int reach = int(cap) + 1;  // g^j(x) >= j - tiny > cap for j >= reach
-  distance_.resize(n);
-  scratch_.resize(std::size_t(w));
-  float* dist = distance_.data();
-  float* sa = scratch_.data();  // the sweep's scratch row
+  distance.resize(n);
+  scratch.resize(std::size_t(w));
+  float* dist = distance.data();
+  float* sa = scratch.data();  // the sweep's scratch row
   for (std::size_t i = 0; i < n; ++i) dist[i] = ch[i] ? cap : 0.0f;
   for (int ri = 1; ri < h; ++ri) {
     const float* prev = dist + std::size_t(ri - 1) * w;
@@ -308,85 +291,144 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int
     vertical_pass(0, w - 1, next, cur);  // next[-1] is cur[w-1] (not written here), as in PCL
     sweep(w, cur, reach, false, sa);
   }
+}
 
-  // 3. Ring of integral rows I(r), r = 0..h: I(r)[u] = sums over rows < r and columns < u, each
-  // cell kCell consecutive doubles (the kSums sums + padding; contiguous corner reads).
-  // Pixel row v reads rows v - S/2 .. v + S - S/2 (S + 1 rows), so S + 2 slots suffice.
-  const int ring = S + 2;
-  const std::size_t row_len = std::size_t(w + 1) * kCell;
-  integral_.assign(row_len * ring, 0.0);
-  auto irow = [&](int r) { return integral_.data() + std::size_t(r % ring) * row_len; };
-  int built = 1;  // I(0) (zeros) is in slot 0
-  auto build_until = [&](int r_last) {
-    for (; built <= r_last; ++built) {
-      const int r = built - 1;  // image row added by I(built)
-      build_row(w, X + std::size_t(r) * w, Y + std::size_t(r) * w, Z + std::size_t(r) * w, irow(r), irow(built));
+// Step 3's integral images: a ring of integral rows I(r), r = 0..h: I(r)[u] = sums over rows < r
+// and columns < u, each cell kCell consecutive doubles (the kSums sums + padding; contiguous
+// corner reads). Pixel row v reads rows v - S/2 .. v + S - S/2 (S + 1 rows), so S + 2 slots
+// suffice. Rows are built on demand, in order.
+class IntegralRing {
+ public:
+  IntegralRing(std::vector<double>& storage, int w, int S, const float* X, const float* Y, const float* Z)
+      : w_(w), ring_(S + 2), row_len_(std::size_t(w + 1) * kCell), X_(X), Y_(Y), Z_(Z) {
+    storage.assign(row_len_ * ring_, 0.0);
+    data_ = storage.data();
+  }
+  const double* row(int r) const { return data_ + std::size_t(r % ring_) * row_len_; }
+  // Builds I(built) .. I(r_last).
+  void build_until(int r_last) {
+    for (; built_ <= r_last; ++built_) {
+      const int r = built_ - 1;  // image row added by I(built)
+      const std::size_t o = std::size_t(r) * w_;
+      build_row(w_, X_ + o, Y_ + o, Z_ + o, row(r), slot(built_));
     }
-  };
+  }
 
-  const float smoothing = cfg_.normal_smoothing_size;
+ private:
+  double* slot(int r) { return data_ + std::size_t(r % ring_) * row_len_; }
+  int w_, ring_;
+  std::size_t row_len_;
+  const float *X_, *Y_, *Z_;
+  double* data_ = nullptr;
+  int built_ = 1;  // I(0) (zeros) is in slot 0
+};
+
+// Step 3's per-row work space, structure of arrays over the pixels of one row that get a normal:
+// 6 scatter planes, 3 positions, 4 results, their columns and window sizes.
+struct RowLists {
+  std::size_t stride;
+  float *M, *PX, *PY, *PZ, *RX, *RY, *RZ, *RC;
+  int *cols, *sizes;
+  RowLists(std::vector<float>& row, std::vector<int>& cols_v, std::vector<int>& sizes_v, int run)
+      : stride(std::size_t(run)) {
+    row.resize(13 * stride);
+    cols_v.resize(stride);
+    sizes_v.resize(stride);
+    M = row.data();
+    PX = M + 6 * stride, PY = PX + stride, PZ = PY + stride;
+    RX = PZ + stride, RY = RX + stride, RZ = RY + stride, RC = RZ + stride;
+    cols = cols_v.data(), sizes = sizes_v.data();
+  }
+};
+
+// The pixels of row v (o = v·w) that get a normal: valid, window larger than 2, selected (when
+// `sel`); writes their columns and window sizes int(min(distance, smoothing)), returns how many.
+// Branch-free (& instead of &&: the tests are cheap and their outcome changes often along a
+// row); NaN points have distance 0, so the window test also skips them.
+int list_row(const float* Z, const float* dist, const int* sel, std::size_t o, int w, int S, float smoothing, int* cols,
+             int* sizes) {
+  int count = 0;
+  if (sel) {
+    for (int u = S; u < w - S; ++u) {
+      const std::size_t i = o + u;
+      const float sm = std::min(dist[i], smoothing);
+      const bool window = std::isfinite(Z[i]) & (sm > 2.0f) & (sel[i] >= 0);
+      cols[count] = u, sizes[count] = int(sm);
+      count += window ? 1 : 0;
+    }
+  } else {
+    for (int u = S; u < w - S; ++u) {
+      const std::size_t i = o + u;
+      const float sm = std::min(dist[i], smoothing);
+      const bool window = std::isfinite(Z[i]) & (sm > 2.0f);
+      cols[count] = u, sizes[count] = int(sm);
+      count += window ? 1 : 0;
+    }
+  }
+  return count;
+}
+
+}  // namespace
+
+IntegralNormalEstimator::IntegralNormalEstimator(IntegralNormalConfig cfg) : cfg_(cfg) {}
+
+void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int> select) {
+  check_inputs(cfg_, select, cloud.size());
+  const int w = cloud.width, h = cloud.height;
+  const std::size_t n = cloud.size();
+  // Every pixel of the four outputs is written below: NaN row by row just before the row's
+  // results (the row is then still in cache when they are scattered into it), the border rows
+  // and the early return at once.
+  cloud.nx.resize(n);
+  cloud.ny.resize(n);
+  cloud.nz.resize(n);
+  cloud.curvature.resize(n);
+  const int S = int(cfg_.normal_smoothing_size);
+  if (w < 2 || h < 2 || 2 * S >= w || 2 * S >= h) {  // nothing outside the ignored border
+    nan_rows(cloud, 0, h);
+    return;
+  }
+  nan_rows(cloud, 0, S);
+  nan_rows(cloud, h - S, h);
+  const float* X = cloud.x.data();
+  const float* Y = cloud.y.data();
+  const float* Z = cloud.z.data();
+
+  depth_change_map(Z, w, h, cfg_.max_depth_change_factor, change_, flags_);
+  chamfer_distance(change_.data(), w, h, cfg_.normal_smoothing_size, distance_, scratch_);
+  const float* dist = distance_.data();
+
+  // Step 3. Per row: the list of pixels that get a normal, their window sums and scatter
+  // matrices (one scalar pass: the window size varies near depth changes), then solve_row() on
+  // the compacted list (vectorised) and a scatter of the results. Invalid and unselected pixels
+  // cost one test each.
+  IntegralRing integral(integral_, w, S, X, Y, Z);
+  const RowLists L(row_, cols_, sizes_, w - 2 * S);
   float* NX = cloud.nx.data();
   float* NY = cloud.ny.data();
   float* NZ = cloud.nz.data();
   float* CV = cloud.curvature.data();
-  // Per row: the list of pixels that get a normal (valid, window larger than 2, selected), their
-  // window sums and scatter matrices (one scalar pass: the window size varies near depth
-  // changes), then solve_row() on the compacted list (vectorised) and a scatter of the results.
-  // Invalid and unselected pixels cost one test each.
-  const int run = w - 2 * S;
-  const std::size_t stride = std::size_t(run);
-  row_.resize(13 * stride);  // 6 scatter planes, 3 positions, 4 results
-  cols_.resize(stride);
-  sizes_.resize(stride);
-  float* M = row_.data();
-  float* PX = M + 6 * stride;
-  float* PY = PX + stride;
-  float* PZ = PY + stride;
-  float* RX = PZ + stride;
-  float* RY = RX + stride;
-  float* RZ = RY + stride;
-  float* RC = RZ + stride;
-  int* cols = cols_.data();
-  int* sizes = sizes_.data();
   const int* sel = select.empty() ? nullptr : select.data();
   // Integral rows of each window size s = 2..S for the current pixel row (sm > 2 gives s >= 2).
   std::vector<const double*> tops(std::size_t(S) + 1, nullptr), bottoms(std::size_t(S) + 1, nullptr);
   for (int v = S; v < h - S; ++v) {
     const std::size_t o = std::size_t(v) * w;
-    nan_rows(v, v + 1);
-    int count = 0;
-    // Branch-free (& instead of &&: the tests are cheap and their outcome changes often along a
-    // row); NaN points have distance 0, so the window test also skips them.
-    if (sel) {
-      for (int u = S; u < w - S; ++u) {
-        const std::size_t i = o + u;
-        const float sm = std::min(dist[i], smoothing);
-        const bool window = std::isfinite(Z[i]) & (sm > 2.0f) & (sel[i] >= 0);
-        cols[count] = u, sizes[count] = int(sm);
-        count += window ? 1 : 0;
-      }
-    } else {
-      for (int u = S; u < w - S; ++u) {
-        const std::size_t i = o + u;
-        const float sm = std::min(dist[i], smoothing);
-        const bool window = std::isfinite(Z[i]) & (sm > 2.0f);
-        cols[count] = u, sizes[count] = int(sm);
-        count += window ? 1 : 0;
-      }
-    }
+    nan_rows(cloud, v, v + 1);
+    const int count = list_row(Z, dist, sel, o, w, S, cfg_.normal_smoothing_size, L.cols, L.sizes);
     if (count == 0) continue;
-    build_until(v + S - S / 2);
+    integral.build_until(v + S - S / 2);
     // Window rows per size: top v - s/2, bottom v - s/2 + s.
-    for (int s = 2; s <= S; ++s) tops[std::size_t(s)] = irow(v - s / 2), bottoms[std::size_t(s)] = irow(v - s / 2 + s);
-    scatter_row(count, cols, sizes, tops.data(), bottoms.data(), M, stride);
+    for (int s = 2; s <= S; ++s)
+      tops[std::size_t(s)] = integral.row(v - s / 2), bottoms[std::size_t(s)] = integral.row(v - s / 2 + s);
+    scatter_row(count, L.cols, L.sizes, tops.data(), bottoms.data(), L.M, L.stride);
     for (int k = 0; k < count; ++k) {
-      const int u = cols[k];
-      PX[k] = X[o + u], PY[k] = Y[o + u], PZ[k] = Z[o + u];
+      const int u = L.cols[k];
+      L.PX[k] = X[o + u], L.PY[k] = Y[o + u], L.PZ[k] = Z[o + u];
     }
-    solve_row(count, M, stride, PX, PY, PZ, RX, RY, RZ, RC);
+    solve_row(count, L.M, L.stride, L.PX, L.PY, L.PZ, L.RX, L.RY, L.RZ, L.RC);
     for (int k = 0; k < count; ++k) {
-      const std::size_t i = o + cols[k];
-      NX[i] = RX[k], NY[i] = RY[k], NZ[i] = RZ[k], CV[i] = RC[k];
+      const std::size_t i = o + L.cols[k];
+      NX[i] = L.RX[k], NY[i] = L.RY[k], NZ[i] = L.RZ[k], CV[i] = L.RC[k];
     }
   }
 }

@@ -67,6 +67,7 @@ CROPSIGHT_AVX2_CLONES void row_nan_only(int w, const float* __restrict z, int st
 
 }  // namespace
 
+// Long on purpose: a hot loop over the image with PCL's neighbour tests inlined per pixel.
 void detect_organized_edges(const OrganizedCloud& cloud, const OrganizedEdgeConfig& cfg,
                             std::vector<std::uint8_t>& labels) {
   if (!(cfg.depth_discontinuity >= 0.0f)) throw Error("organized edges", "depth_discontinuity must be >= 0");

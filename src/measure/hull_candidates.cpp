@@ -73,6 +73,7 @@ void mark_chain_vertices(int m, const int* t, const double* w, double slack_t, s
 
 }  // namespace
 
+// Long on purpose: a hot path of branch-free passes over the same pixel grids (occupancy, 1/z, marks).
 std::optional<std::vector<int>> hull_vertex_candidates(const OrganizedCloud& cloud, const std::vector<int>& indices) {
   const std::size_t n = indices.size();
   const int width = cloud.width;

@@ -17,15 +17,19 @@ std::vector<double> coco_thresholds() {
   return t;
 }
 
-std::vector<PrCurve> pr_curves(const std::vector<PrFrame>& frames, const std::vector<double>& thresholds) {
-  // IoU of every (detection, truth) pair that overlaps, once.
-  struct Det {
-    float score;
-    std::size_t frame, index;
-    std::vector<std::pair<int, double>> ious;  // truth index, IoU (descending IoU)
-  };
+namespace {
+
+// A detection with the IoU of every truth it overlaps.
+struct Det {
+  float score;
+  std::size_t frame, index;
+  std::vector<std::pair<int, double>> ious;  // truth index, IoU (descending IoU)
+};
+
+// IoU of every (detection, truth) pair that overlaps, once; each frame's detections in score
+// order (stable). Adds the number of truths to `num_truth`.
+std::vector<std::vector<Det>> overlaps(const std::vector<PrFrame>& frames, std::int64_t& num_truth) {
   std::vector<std::vector<Det>> per_frame(frames.size());
-  std::int64_t num_truth = 0;
   for (std::size_t f = 0; f < frames.size(); ++f) {
     const auto& fr = frames[f];
     num_truth += std::int64_t(fr.truth.size());
@@ -51,7 +55,11 @@ std::vector<PrCurve> pr_curves(const std::vector<PrFrame>& frames, const std::ve
     std::stable_sort(per_frame[f].begin(), per_frame[f].end(),
                      [](const Det& a, const Det& b) { return a.score > b.score; });
   }
-  // Global ranking (score descending; ties by frame then input order).
+  return per_frame;
+}
+
+// Global ranking (score descending; ties by frame then input order).
+std::vector<const Det*> ranking(const std::vector<std::vector<Det>>& per_frame) {
   std::vector<const Det*> ranked;
   for (const auto& v : per_frame)
     for (const auto& d : v) ranked.push_back(&d);
@@ -60,47 +68,68 @@ std::vector<PrCurve> pr_curves(const std::vector<PrFrame>& frames, const std::ve
     if (a->frame != b->frame) return a->frame < b->frame;
     return a->index < b->index;
   });
+  return ranked;
+}
 
+// Whether each detection is correct at IoU threshold t: per frame in score order, its best truth
+// not yet matched decides.
+std::unordered_map<const Det*, bool> correct_at(const std::vector<std::vector<Det>>& per_frame, double t) {
+  std::unordered_map<const Det*, bool> correct;
+  for (const auto& v : per_frame) {
+    std::vector<char> used(64, 0);
+    for (const auto& d : v) {
+      bool ok = false;
+      for (const auto& [truth, iou] : d.ious) {
+        if (std::size_t(truth) >= used.size()) used.resize(std::size_t(truth) + 1, 0);
+        if (used[std::size_t(truth)]) continue;
+        if (iou >= t) {
+          used[std::size_t(truth)] = 1;
+          ok = true;
+        }
+        break;  // the best unmatched truth decides
+      }
+      correct[&d] = ok;
+    }
+  }
+  return correct;
+}
+
+// Precision and recall down the ranking, and AP as the area under the precision envelope.
+PrCurve pr_curve(double t, const std::vector<const Det*>& ranked, std::unordered_map<const Det*, bool>& correct,
+                 std::int64_t num_truth) {
+  PrCurve c;
+  c.iou = t;
+  std::int64_t tp = 0;
+  for (std::size_t i = 0; i < ranked.size(); ++i) {
+    tp += correct[ranked[i]] ? 1 : 0;
+    c.recall.push_back(num_truth ? double(tp) / double(num_truth) : NAN);
+    c.precision.push_back(double(tp) / double(i + 1));
+  }
+  if (num_truth == 0) {
+    c.ap = NAN;
+  } else {
+    double ap = 0, prev_r = 0, pmax = 0;
+    std::vector<double> env(c.precision.size());
+    for (std::size_t i = c.precision.size(); i-- > 0;) env[i] = pmax = std::max(pmax, c.precision[i]);
+    for (std::size_t i = 0; i < c.recall.size(); ++i) {
+      ap += (c.recall[i] - prev_r) * env[i];
+      prev_r = c.recall[i];
+    }
+    c.ap = ap;
+  }
+  return c;
+}
+
+}  // namespace
+
+std::vector<PrCurve> pr_curves(const std::vector<PrFrame>& frames, const std::vector<double>& thresholds) {
+  std::int64_t num_truth = 0;
+  const std::vector<std::vector<Det>> per_frame = overlaps(frames, num_truth);
+  const std::vector<const Det*> ranked = ranking(per_frame);
   std::vector<PrCurve> curves;
   for (double t : thresholds) {
-    std::unordered_map<const Det*, bool> correct;
-    for (const auto& v : per_frame) {
-      std::vector<char> used(64, 0);
-      for (const auto& d : v) {
-        bool ok = false;
-        for (const auto& [truth, iou] : d.ious) {
-          if (std::size_t(truth) >= used.size()) used.resize(std::size_t(truth) + 1, 0);
-          if (used[std::size_t(truth)]) continue;
-          if (iou >= t) {
-            used[std::size_t(truth)] = 1;
-            ok = true;
-          }
-          break;  // the best unmatched truth decides
-        }
-        correct[&d] = ok;
-      }
-    }
-    PrCurve c;
-    c.iou = t;
-    std::int64_t tp = 0;
-    for (std::size_t i = 0; i < ranked.size(); ++i) {
-      tp += correct[ranked[i]] ? 1 : 0;
-      c.recall.push_back(num_truth ? double(tp) / double(num_truth) : NAN);
-      c.precision.push_back(double(tp) / double(i + 1));
-    }
-    if (num_truth == 0) {
-      c.ap = NAN;
-    } else {
-      double ap = 0, prev_r = 0, pmax = 0;
-      std::vector<double> env(c.precision.size());
-      for (std::size_t i = c.precision.size(); i-- > 0;) env[i] = pmax = std::max(pmax, c.precision[i]);
-      for (std::size_t i = 0; i < c.recall.size(); ++i) {
-        ap += (c.recall[i] - prev_r) * env[i];
-        prev_r = c.recall[i];
-      }
-      c.ap = ap;
-    }
-    curves.push_back(std::move(c));
+    auto correct = correct_at(per_frame, t);
+    curves.push_back(pr_curve(t, ranked, correct, num_truth));
   }
   return curves;
 }
@@ -141,6 +170,94 @@ std::string pr_plot(const std::vector<PrCurve>& curves, const std::string& title
   return svg_line_plot(series, o);
 }
 
+// True heads, the temporal filter's map and the camera path, in the field frame.
+void field_map_section(HtmlPage& page, const BroccoliReportData& d) {
+  page.section("Field map");
+  ScatterSeries truth{"true heads", {}, {}, {}, "#777", true};
+  for (const auto& h : d.true_heads) {
+    truth.x.push_back(h.x);
+    truth.y.push_back(h.y);
+    truth.r.push_back(h.diameter_mm / 2000.0);
+  }
+  ScatterSeries hit{"mapped (matched)", {}, {}, {}, "#2a7", false};
+  ScatterSeries miss{"mapped (no true head within 5 cm)", {}, {}, {}, "#d33", false};
+  for (const auto& h : d.map_heads) {
+    auto& s = h.matched ? hit : miss;
+    s.x.push_back(h.x);
+    s.y.push_back(h.y);
+    s.r.push_back(h.diameter_mm / 2000.0);
+  }
+  ScatterSeries cam{"camera", {}, {}, {}, "#36c", false};
+  for (const auto& [x, y] : d.camera_path) {
+    cam.x.push_back(x);
+    cam.y.push_back(y);
+    cam.r.push_back(0.004);
+  }
+  ScatterOptions o;
+  o.title = "field map (circle = head diameter)";
+  o.x_label = "field x (m, along the row)";
+  o.y_label = "field y (m)";
+  o.equal_aspect = true;
+  o.width = 900;
+  o.height = 420;
+  page.svg(svg_scatter_plot({truth, cam, hit, miss}, o),
+           "True heads (grey outlines, visible in at least one frame) and the map of the temporal filter");
+}
+
+// Estimated against true diameters, and the raw estimators' errors against distance from the axis.
+void size_section(HtmlPage& page, const BroccoliReportData& d) {
+  page.section("Size");
+  ScatterSeries s{"heads", {}, {}, {}, "#2a7", false};
+  for (const auto& p : d.head_sizes) {
+    s.x.push_back(p.truth_mm);
+    s.y.push_back(p.estimate_mm);
+  }
+  ScatterOptions o;
+  o.title = "estimated against true diameter, per mapped head";
+  o.x_label = "true diameter (mm)";
+  o.y_label = "estimated diameter (mm)";
+  o.diagonal = true;
+  o.width = 420;
+  o.height = 420;
+  page.svg(svg_scatter_plot({s}, o), "Dashed: estimate = truth");
+  ScatterSeries b{"bounding box", {}, {}, {}, "#2a7", false}, h{"convex hull", {}, {}, {}, "#a3c", true};
+  for (const auto& e : d.frame_errors) {
+    b.x.push_back(e.distance_m);
+    b.y.push_back(e.bbox_error_mm);
+    h.x.push_back(e.distance_m);
+    h.y.push_back(e.hull_error_mm);
+  }
+  ScatterOptions q;
+  q.title = "per-frame size error against distance from the optical axis";
+  q.x_label = "distance of the head centroid from the optical axis (m)";
+  q.y_label = "raw estimate − truth (mm)";
+  page.svg(svg_scatter_plot({b, h}, q), "Raw estimators, before bias correction");
+}
+
+// Mean time per frame of each detector stage and of sizing + tracking.
+void timing_section(HtmlPage& page, const BroccoliReportData& d) {
+  page.section("Timing");
+  std::vector<Bar> bars;
+  const double n = d.frames > 0 ? double(d.frames) : 1.0;
+  for (const auto& s : d.stages) bars.push_back({s.name, s.total_ms / n});
+  bars.push_back({"sizing + tracking", d.tracking_ms / n});
+  page.svg(svg_bar_chart(bars, "mean milliseconds per frame", "ms"), "Detector stages and the sizing + tracking step");
+}
+
+// PR curves of single-frame and tracked detections, and their AP per IoU threshold.
+void pr_section(HtmlPage& page, const BroccoliReportData& d) {
+  page.section("Precision–recall (IoU 0.50 … 0.95)");
+  if (!d.pr_single.empty()) page.svg(pr_plot(d.pr_single, "single-frame detection"), "Every cluster ranked by score");
+  if (!d.pr_tracked.empty())
+    page.svg(pr_plot(d.pr_tracked, "with the temporal filter (offline, after the pass)"),
+             "Detections of heads confirmed by the temporal filter ranked first");
+  std::vector<std::vector<std::string>> rows;
+  for (std::size_t i = 0; i < d.pr_single.size(); ++i)
+    rows.push_back({fmt(d.pr_single[i].iou, "%.2f"), fmt(d.pr_single[i].ap),
+                    i < d.pr_tracked.size() ? fmt(d.pr_tracked[i].ap) : "n/a"});
+  page.table({"IoU", "AP single frame", "AP temporal filter (offline, after the pass)"}, rows);
+}
+
 }  // namespace
 
 void add_broccoli_sections(HtmlPage& page, const BroccoliReportData& d) {
@@ -157,92 +274,12 @@ void add_broccoli_sections(HtmlPage& page, const BroccoliReportData& d) {
         "ground-truth heads.");
     page.figures(d.overlays);
   }
-
-  page.section("Field map");
-  {
-    ScatterSeries truth{"true heads", {}, {}, {}, "#777", true};
-    for (const auto& h : d.true_heads) {
-      truth.x.push_back(h.x);
-      truth.y.push_back(h.y);
-      truth.r.push_back(h.diameter_mm / 2000.0);
-    }
-    ScatterSeries hit{"mapped (matched)", {}, {}, {}, "#2a7", false};
-    ScatterSeries miss{"mapped (no true head within 5 cm)", {}, {}, {}, "#d33", false};
-    for (const auto& h : d.map_heads) {
-      auto& s = h.matched ? hit : miss;
-      s.x.push_back(h.x);
-      s.y.push_back(h.y);
-      s.r.push_back(h.diameter_mm / 2000.0);
-    }
-    ScatterSeries cam{"camera", {}, {}, {}, "#36c", false};
-    for (const auto& [x, y] : d.camera_path) {
-      cam.x.push_back(x);
-      cam.y.push_back(y);
-      cam.r.push_back(0.004);
-    }
-    ScatterOptions o;
-    o.title = "field map (circle = head diameter)";
-    o.x_label = "field x (m, along the row)";
-    o.y_label = "field y (m)";
-    o.equal_aspect = true;
-    o.width = 900;
-    o.height = 420;
-    page.svg(svg_scatter_plot({truth, cam, hit, miss}, o),
-             "True heads (grey outlines, visible in at least one frame) and the map of the temporal filter");
-  }
-
-  page.section("Size");
-  {
-    ScatterSeries s{"heads", {}, {}, {}, "#2a7", false};
-    for (const auto& p : d.head_sizes) {
-      s.x.push_back(p.truth_mm);
-      s.y.push_back(p.estimate_mm);
-    }
-    ScatterOptions o;
-    o.title = "estimated against true diameter, per mapped head";
-    o.x_label = "true diameter (mm)";
-    o.y_label = "estimated diameter (mm)";
-    o.diagonal = true;
-    o.width = 420;
-    o.height = 420;
-    page.svg(svg_scatter_plot({s}, o), "Dashed: estimate = truth");
-    ScatterSeries b{"bounding box", {}, {}, {}, "#2a7", false}, h{"convex hull", {}, {}, {}, "#a3c", true};
-    for (const auto& e : d.frame_errors) {
-      b.x.push_back(e.distance_m);
-      b.y.push_back(e.bbox_error_mm);
-      h.x.push_back(e.distance_m);
-      h.y.push_back(e.hull_error_mm);
-    }
-    ScatterOptions q;
-    q.title = "per-frame size error against distance from the optical axis";
-    q.x_label = "distance of the head centroid from the optical axis (m)";
-    q.y_label = "raw estimate − truth (mm)";
-    page.svg(svg_scatter_plot({b, h}, q), "Raw estimators, before bias correction");
-  }
-
-  page.section("Timing");
-  {
-    std::vector<Bar> bars;
-    const double n = d.frames > 0 ? double(d.frames) : 1.0;
-    for (const auto& s : d.stages) bars.push_back({s.name, s.total_ms / n});
-    bars.push_back({"sizing + tracking", d.tracking_ms / n});
-    page.svg(svg_bar_chart(bars, "mean milliseconds per frame", "ms"),
-             "Detector stages and the sizing + tracking step");
-  }
-
+  field_map_section(page, d);
+  size_section(page, d);
+  timing_section(page, d);
   page.section("Key figures");
   page.key_values(d.metrics, "Map and size metrics per head; ap50 per frame and point set");
-
-  page.section("Precision–recall (IoU 0.50 … 0.95)");
-  if (!d.pr_single.empty()) page.svg(pr_plot(d.pr_single, "single-frame detection"), "Every cluster ranked by score");
-  if (!d.pr_tracked.empty())
-    page.svg(pr_plot(d.pr_tracked, "with the temporal filter (offline, after the pass)"),
-             "Detections of heads confirmed by the temporal filter ranked first");
-  std::vector<std::vector<std::string>> rows;
-  for (std::size_t i = 0; i < d.pr_single.size(); ++i)
-    rows.push_back({fmt(d.pr_single[i].iou, "%.2f"), fmt(d.pr_single[i].ap),
-                    i < d.pr_tracked.size() ? fmt(d.pr_tracked[i].ap) : "n/a"});
-  page.table({"IoU", "AP single frame", "AP temporal filter (offline, after the pass)"}, rows);
+  pr_section(page, d);
 }
 
 }  // namespace cropsight::report

@@ -27,8 +27,10 @@ std::vector<int> evenly_spaced_frames(int frames, int count) {
   return out;
 }
 
-void add_sequence_sections(HtmlPage& page, const io::SequenceReader& reader, const SequenceSummary& s,
-                           const SequencePageOptions& o) {
+namespace {
+
+// The sequence's files and the figures it adds up to, with the truth's attributes.
+void summary_section(HtmlPage& page, const io::SequenceReader& reader, const SequenceSummary& s) {
   const CameraIntrinsics& cam = s.info.camera;
   page.section("Sequence summary", HtmlPage::Part::Data);
   std::vector<std::pair<std::string, std::string>> rows = {
@@ -45,7 +47,11 @@ void add_sequence_sections(HtmlPage& page, const io::SequenceReader& reader, con
   if (s.info.has_labels) rows.push_back({"labelled pixel fraction (mean)", fmt(s.labelled_fraction, "%.4f")});
   for (const auto& [k, v] : reader.groundtruth().attributes) rows.push_back({"truth: " + k, v});
   page.key_values(rows);
+}
 
+// The intrinsics, and per frame the valid depth fraction (and visible instances).
+void camera_section(HtmlPage& page, const SequenceSummary& s) {
+  const CameraIntrinsics& cam = s.info.camera;
   page.section("Camera", HtmlPage::Part::Data);
   std::string distortion;
   for (double d : cam.distortion) distortion += (distortion.empty() ? "" : ", ") + fmt(d, "%.6g");
@@ -66,7 +72,12 @@ void add_sequence_sections(HtmlPage& page, const io::SequenceReader& reader, con
   } else {
     page.svg(svg_line_plot(series, {"Valid depth fraction per frame", "frame", "fraction", 560, 260, true}));
   }
+}
 
+// Evenly spaced frames: depth (one colour range for all), colour and labels.
+void frames_section(HtmlPage& page, const io::SequenceReader& reader, const SequenceSummary& s,
+                    const SequencePageOptions& o) {
+  const CameraIntrinsics& cam = s.info.camera;
   page.section("Frames", HtmlPage::Part::Data);
   const std::vector<int> shown = evenly_spaced_frames(s.info.frames, o.frames_shown);
   const int factor = std::max(1, (o.min_display_width + cam.width - 1) / cam.width);
@@ -96,7 +107,10 @@ void add_sequence_sections(HtmlPage& page, const io::SequenceReader& reader, con
                  (f.camera_position ? " (camera at x = " + fmt(f.camera_position->x(), "%.3f") + " m)" : ""));
     page.figures(row);
   }
+}
 
+// The first o.max_instances_listed ground-truth instances, in the field frame.
+void truth_section(HtmlPage& page, const io::SequenceReader& reader, const SequencePageOptions& o) {
   const auto& inst = reader.groundtruth().instances;
   if (!inst.empty()) {
     page.section("Ground truth", HtmlPage::Part::Data);
@@ -113,6 +127,16 @@ void add_sequence_sections(HtmlPage& page, const io::SequenceReader& reader, con
                                                 std::to_string(inst.size()) + " instances (field frame)"
                                           : "field frame positions");
   }
+}
+
+}  // namespace
+
+void add_sequence_sections(HtmlPage& page, const io::SequenceReader& reader, const SequenceSummary& s,
+                           const SequencePageOptions& o) {
+  summary_section(page, reader, s);
+  camera_section(page, s);
+  frames_section(page, reader, s, o);
+  truth_section(page, reader, o);
 }
 
 }  // namespace cropsight::report

@@ -198,7 +198,8 @@ GmmModel initial(const std::vector<Eigen::Vector3f>& points, const GmmConfig& cf
   return uncentre(initial_centred(b, cfg), b.centre);
 }
 
-/// The EM fit; `points` finite and at least cfg.components of them.
+/// The EM fit; `points` finite and at least cfg.components of them. Long on purpose: the E and
+/// M steps are the hot loops over the same blocked responsibilities.
 GmmResult fit(const std::vector<Eigen::Vector3f>& points, const GmmConfig& cfg) {
   const FlushSubnormals flush;
   const Blocks b = make_blocks(points);

@@ -83,6 +83,7 @@ struct OrgLinks {
 // index, i.e. the one holding the component's first pixel. Kept components are numbered in the
 // order of their roots (= the fill's attempt order); each segment's indices are written run by
 // run in raster order (ascending), and ws.labels gets the segment id or -1, as flood_fill does.
+// Long on purpose: the clustering's hot path; its run, union and numbering passes share the run arrays.
 std::vector<Segment> oes_components(int width, int height, const std::uint8_t* bits, int min_size, int max_size,
                                     int min_size_border, OrganizedClusteringWorkspace& ws) {
   if (width <= 0 || height <= 0) return {};

@@ -60,6 +60,7 @@ constexpr int kBand = 16;  // rows per parallel task
 
 }  // namespace
 
+// Long on purpose: the simulator's hot path; its numbered steps share the projected vertex buffers.
 void render(const std::vector<const Mesh*>& meshes, const Eigen::Vector3d& C, const CameraIntrinsics& cam,
             const RenderOptions& opt, SampleBuffers& out) {
   out.reset(cam.width, cam.height);

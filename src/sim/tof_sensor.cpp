@@ -22,6 +22,7 @@ double tof_noise_sigma(const SimSensorConfig& cfg, double z, double nir) {
   return cfg.noise_at_1m_m * std::sqrt((A + background(cfg)) / (1.0 + cfg.background)) / A;
 }
 
+// Long on purpose: the sensor model's per-pixel hot loop, one fixed draw order per pixel.
 SensorStats apply_tof_sensor(const SampleBuffers& S, int f, const CameraIntrinsics& cam, const SimSensorConfig& cfg,
                              double min_range, double max_range, std::uint64_t frame_seed, RgbdFrame& frame) {
   const int W = cam.width, H = cam.height;

@@ -122,6 +122,8 @@ struct BandJob {
 // One sweep over a band of rows: 5 SGM paths (left->right, right->left, and the vertical and two
 // diagonal ones coming from the previous row of the sweep), then winner-take-all, right-view
 // winner along the diagonals, left-right check and sub-pixel fit per row.
+// Long on purpose: the matcher's hot loop; the five paths and the per-row steps share the band's
+// cost and path buffers row by row, which one body keeps in registers and cache.
 template <bool kPopcnt>
 CS_INLINE void sweep_band_impl(const BandJob& job) {
   const Geometry& g = job.g;

@@ -26,6 +26,103 @@ struct PclReferencePipeline::Impl {
   std::vector<float> scores, feature, scratch;
 };
 
+namespace {
+using PclCloud = pcl::PointCloud<pcl::PointXYZ>;
+using PclNormals = pcl::PointCloud<pcl::Normal>;
+
+// Organised cloud with the depth-range filter applied in place (NaN = filtered / no return);
+// returns the indices of the points kept.
+pcl::Indices organised_cloud(const RgbdFrame& frame, const geometry::DepthRangeConfig& depth, PclCloud& cloud) {
+  const int w = frame.depth.width, h = frame.depth.height;
+  pcl::Indices valid;
+  cloud.width = std::uint32_t(w);
+  cloud.height = std::uint32_t(h);
+  cloud.is_dense = false;
+  cloud.points.resize(std::size_t(w) * std::size_t(h));
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const auto& cam = frame.camera;
+  for (int v = 0; v < h; ++v)
+    for (int u = 0; u < w; ++u) {
+      const std::size_t i = std::size_t(v) * std::size_t(w) + std::size_t(u);
+      const float z = float(frame.depth.data[i]) * float(cam.depth_scale);
+      pcl::PointXYZ& p = cloud[i];
+      if (frame.depth.data[i] == 0 || z < depth.min_depth || z > depth.max_depth) {
+        p.x = p.y = p.z = nan;
+      } else {
+        p.x = float((u - cam.cx) / cam.fx) * z;
+        p.y = float((v - cam.cy) / cam.fy) * z;
+        p.z = z;
+        valid.push_back(int(i));
+      }
+    }
+  return valid;
+}
+
+void integral_normals(const BroccoliDetectorConfig& cfg, const PclCloud::Ptr& cloud, PclNormals& normals) {
+  pcl::IntegralImageNormalEstimation<pcl::PointXYZ, pcl::Normal> ne;
+  ne.setNormalEstimationMethod(ne.COVARIANCE_MATRIX);
+  ne.setMaxDepthChangeFactor(cfg.normals.max_depth_change_factor);
+  ne.setNormalSmoothingSize(cfg.normals.normal_smoothing_size);
+  ne.setInputCloud(cloud);
+  ne.compute(normals);
+}
+
+// The points of `valid` that survive the statistical outlier filter.
+pcl::IndicesPtr remove_outliers(const BroccoliDetectorConfig& cfg, const PclCloud::Ptr& cloud, pcl::Indices valid) {
+  pcl::IndicesPtr kept(new pcl::Indices);
+  pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
+  sor.setInputCloud(cloud);
+  sor.setIndices(pcl::IndicesPtr(new pcl::Indices(std::move(valid))));
+  sor.setMeanK(cfg.outliers.sor.mean_k);
+  sor.setStddevMulThresh(cfg.outliers.sor.std_mul);
+  sor.filter(*kept);
+  return kept;
+}
+
+std::vector<pcl::PointIndices> euclidean_clusters(const BroccoliDetectorConfig& cfg, const PclCloud::Ptr& cloud,
+                                                  const pcl::IndicesPtr& kept) {
+  std::vector<pcl::PointIndices> found;
+  pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
+  tree->setInputCloud(cloud, kept);
+  pcl::EuclideanClusterExtraction<pcl::PointXYZ> ec;
+  ec.setClusterTolerance(cfg.fec.tolerance);
+  ec.setMinClusterSize(cfg.fec.min_size);
+  ec.setMaxClusterSize(cfg.fec.max_size);
+  ec.setSearchMethod(tree);
+  ec.setInputCloud(cloud);
+  ec.setIndices(kept);
+  ec.extract(found);
+  return found;
+}
+
+// VFH of each cluster (308 zeros for a cluster with fewer than two defined normals); `clusters`
+// receives each cluster's sorted indices.
+std::vector<std::vector<float>> vfh_histograms(const PclCloud::Ptr& cloud, const PclNormals::Ptr& normals,
+                                               const std::vector<pcl::PointIndices>& found,
+                                               std::vector<std::vector<int>>& clusters) {
+  std::vector<std::vector<float>> hists(found.size());
+  pcl::VFHEstimation<pcl::PointXYZ, pcl::Normal, pcl::VFHSignature308> vfh;
+  vfh.setInputCloud(cloud);
+  vfh.setInputNormals(normals);
+  vfh.setSearchMethod(pcl::search::KdTree<pcl::PointXYZ>::Ptr(new pcl::search::KdTree<pcl::PointXYZ>));
+  pcl::PointCloud<pcl::VFHSignature308> sig;
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    // Points whose normal is undefined (next to depth changes) would put NaN into VFH's bins.
+    pcl::IndicesPtr idx(new pcl::Indices);
+    for (int i : found[k].indices)
+      if (std::isfinite((*normals)[std::size_t(i)].normal_x)) idx->push_back(i);
+    clusters[k].assign(found[k].indices.begin(), found[k].indices.end());
+    std::sort(clusters[k].begin(), clusters[k].end());
+    hists[k].assign(308, 0.0f);
+    if (idx->size() < 2) continue;
+    vfh.setIndices(idx);
+    vfh.compute(sig);
+    std::copy(sig[0].histogram, sig[0].histogram + 308, hists[k].begin());
+  }
+  return hists;
+}
+}  // namespace
+
 PclReferencePipeline::PclReferencePipeline(const BroccoliDetectorConfig& cfg,
                                            std::shared_ptr<const learning::Model> model, const std::string& where)
     : impl_(std::make_unique<Impl>()) {
@@ -46,90 +143,33 @@ StageTimer& PclReferencePipeline::timer() { return impl_->timer; }
 std::size_t PclReferencePipeline::process(const RgbdFrame& frame) {
   Impl& m = *impl_;
   const BroccoliDetectorConfig& cfg = m.cfg;
-  const int w = frame.depth.width, h = frame.depth.height;
   pcl::Indices valid;
   {
     auto t = m.timer.scope("cloud");
-    // Organised cloud with the depth-range filter applied in place (NaN = filtered / no return).
-    m.cloud->width = std::uint32_t(w);
-    m.cloud->height = std::uint32_t(h);
-    m.cloud->is_dense = false;
-    m.cloud->points.resize(std::size_t(w) * std::size_t(h));
-    const float nan = std::numeric_limits<float>::quiet_NaN();
-    const auto& cam = frame.camera;
-    for (int v = 0; v < h; ++v)
-      for (int u = 0; u < w; ++u) {
-        const std::size_t i = std::size_t(v) * std::size_t(w) + std::size_t(u);
-        const float z = float(frame.depth.data[i]) * float(cam.depth_scale);
-        pcl::PointXYZ& p = (*m.cloud)[i];
-        if (frame.depth.data[i] == 0 || z < cfg.depth.min_depth || z > cfg.depth.max_depth) {
-          p.x = p.y = p.z = nan;
-        } else {
-          p.x = float((u - cam.cx) / cam.fx) * z;
-          p.y = float((v - cam.cy) / cam.fy) * z;
-          p.z = z;
-          valid.push_back(int(i));
-        }
-      }
+    valid = organised_cloud(frame, cfg.depth, *m.cloud);
   }
   {
     auto t = m.timer.scope("normals");
-    pcl::IntegralImageNormalEstimation<pcl::PointXYZ, pcl::Normal> ne;
-    ne.setNormalEstimationMethod(ne.COVARIANCE_MATRIX);
-    ne.setMaxDepthChangeFactor(cfg.normals.max_depth_change_factor);
-    ne.setNormalSmoothingSize(cfg.normals.normal_smoothing_size);
-    ne.setInputCloud(m.cloud);
-    ne.compute(*m.normals);
+    integral_normals(cfg, m.cloud, *m.normals);
   }
-  pcl::IndicesPtr kept(new pcl::Indices);
+  pcl::IndicesPtr kept;
   if (cfg.outliers.enabled) {
     auto t = m.timer.scope("outliers");
-    pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
-    sor.setInputCloud(m.cloud);
-    sor.setIndices(pcl::IndicesPtr(new pcl::Indices(valid)));
-    sor.setMeanK(cfg.outliers.sor.mean_k);
-    sor.setStddevMulThresh(cfg.outliers.sor.std_mul);
-    sor.filter(*kept);
+    kept = remove_outliers(cfg, m.cloud, std::move(valid));
   } else {
-    *kept = std::move(valid);
+    kept.reset(new pcl::Indices(std::move(valid)));
   }
   std::vector<pcl::PointIndices> found;
-  pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
   {
     auto t = m.timer.scope("clustering");
-    tree->setInputCloud(m.cloud, kept);
-    pcl::EuclideanClusterExtraction<pcl::PointXYZ> ec;
-    ec.setClusterTolerance(cfg.fec.tolerance);
-    ec.setMinClusterSize(cfg.fec.min_size);
-    ec.setMaxClusterSize(cfg.fec.max_size);
-    ec.setSearchMethod(tree);
-    ec.setInputCloud(m.cloud);
-    ec.setIndices(kept);
-    ec.extract(found);
+    found = euclidean_clusters(cfg, m.cloud, kept);
   }
   m.clusters.resize(found.size());
   m.scores.resize(found.size());
-  std::vector<std::vector<float>> hists(found.size());
+  std::vector<std::vector<float>> hists;
   {
     auto t = m.timer.scope("features");
-    pcl::VFHEstimation<pcl::PointXYZ, pcl::Normal, pcl::VFHSignature308> vfh;
-    vfh.setInputCloud(m.cloud);
-    vfh.setInputNormals(m.normals);
-    vfh.setSearchMethod(pcl::search::KdTree<pcl::PointXYZ>::Ptr(new pcl::search::KdTree<pcl::PointXYZ>));
-    pcl::PointCloud<pcl::VFHSignature308> sig;
-    for (std::size_t k = 0; k < found.size(); ++k) {
-      // Points whose normal is undefined (next to depth changes) would put NaN into VFH's bins.
-      pcl::IndicesPtr idx(new pcl::Indices);
-      for (int i : found[k].indices)
-        if (std::isfinite((*m.normals)[std::size_t(i)].normal_x)) idx->push_back(i);
-      m.clusters[k].assign(found[k].indices.begin(), found[k].indices.end());
-      std::sort(m.clusters[k].begin(), m.clusters[k].end());
-      hists[k].assign(308, 0.0f);
-      if (idx->size() < 2) continue;
-      vfh.setIndices(idx);
-      vfh.compute(sig);
-      std::copy(sig[0].histogram, sig[0].histogram + 308, hists[k].begin());
-    }
+    hists = vfh_histograms(m.cloud, m.normals, found, m.clusters);
   }
   {
     auto t = m.timer.scope("classify");

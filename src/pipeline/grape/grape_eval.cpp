@@ -1,17 +1,14 @@
 #include "cropsight/pipeline/grape/grape_eval.hpp"
 
-#include <chrono>
 #include <cmath>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/core/timer.hpp"
 
 namespace cropsight::pipeline {
 
 namespace {
-nlohmann::json num(double v) { return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(v); }
-
 void check_classes(const eval::ConfusionMatrix& m, const std::vector<int>& classes) {
   for (int c : classes)
     if (c < 0 || c >= m.num_classes())
@@ -69,39 +66,12 @@ void GrapeEvaluation::merge(const GrapeEvaluation& o) {
   seconds += o.seconds;
 }
 
-namespace {
-struct Protocol {
-  const char* name;
-  const char* label;  // for text()
-  std::vector<int> classes;
-  double miou;
-};
-
-std::vector<Protocol> protocols(const GrapeEvaluation& e) {
+std::vector<GrapeProtocol> grape_protocols(const GrapeEvaluation& e) {
   const std::vector<int> all = e.all_labels(), named = e.named_classes();
   return {{"pooled_all_labels", "pooled, all labels", all, e.confusion.mean_iou()},
           {"pooled_named_classes", "pooled, named classes", named, pooled_miou(e.confusion, named)},
           {"per_cloud_named_classes", "per cloud, named classes", named, per_cloud_miou(e.per_cloud, named)},
           {"per_cloud_all_labels", "per cloud, all labels", all, per_cloud_miou(e.per_cloud, all)}};
-}
-}  // namespace
-
-std::string GrapeEvaluation::json() const {
-  nlohmann::json j;
-  j["clouds"] = clouds;
-  j["points"] = points;
-  j["oacc"] = num(confusion.overall_accuracy());
-  j["macc"] = num(confusion.mean_accuracy());
-  j["miou"] = num(confusion.mean_iou());
-  j["per_class"] = nlohmann::json::array();
-  for (int c = 0; c < confusion.num_classes(); ++c)
-    j["per_class"].push_back({{"label", c},
-                              {"points", confusion.truth_count(c)},
-                              {"accuracy", num(confusion.class_accuracy(c))},
-                              {"iou", num(confusion.class_iou(c))}});
-  j["ms_per_cloud"] = ms_per_cloud();
-  for (const auto& p : protocols(*this)) j["protocols"][p.name] = {{"classes", p.classes}, {"miou", num(p.miou)}};
-  return j.dump();
 }
 
 std::string GrapeEvaluation::text() const {
@@ -114,7 +84,7 @@ std::string GrapeEvaluation::text() const {
     o << "  label " << c << ": points " << confusion.truth_count(c) << "  acc " << confusion.class_accuracy(c)
       << "  IoU " << confusion.class_iou(c) << "\n";
   o << "mIoU by protocol:\n";
-  for (const auto& p : protocols(*this)) {
+  for (const auto& p : grape_protocols(*this)) {
     o << "  " << p.label << " (";
     for (std::size_t i = 0; i < p.classes.size(); ++i) o << (i ? " " : "") << p.classes[i];
     o << "): " << p.miou << "\n";
@@ -128,9 +98,9 @@ GrapeEvaluation evaluate_grape(const GrapeModel& model, const std::vector<Cloud>
   e.confusion = eval::ConfusionMatrix(num_classes);
   for (const auto& c : clouds) {
     if (!c.has_labels()) throw Error("eval grape", "cloud without labels");
-    const auto t0 = std::chrono::steady_clock::now();
+    const Stopwatch clock;
     const std::vector<int> pred = model.segment(c);
-    e.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    e.seconds += clock.seconds();
     eval::ConfusionMatrix one(num_classes);
     one.add(c.labels, pred);
     e.confusion.merge(one);

@@ -3,7 +3,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <locale>
@@ -11,6 +10,7 @@
 #include <sstream>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/core/timer.hpp"
 #include "cropsight/sim/random.hpp"
 #include "cropsight/sim/renderer.hpp"
 
@@ -228,7 +228,7 @@ io::GroundTruth BroccoliSimulator::groundtruth() const {
 SimulationSummary simulate_broccoli_sequence(const BroccoliSimConfig& config, std::uint64_t seed, int frames,
                                              const std::filesystem::path& out, bool overwrite,
                                              const std::function<void(int, int)>& progress) {
-  const auto t0 = std::chrono::steady_clock::now();
+  const Stopwatch clock;
   if (std::filesystem::exists(out) && !overwrite)
     throw Error(out.string(), "already exists (use --force to overwrite)");
   BroccoliSimulator sim(config, seed, frames);
@@ -252,7 +252,7 @@ SimulationSummary simulate_broccoli_sequence(const BroccoliSimConfig& config, st
   s.valid_fraction = valid / frames;
   writer.set_groundtruth(std::move(gt));
   writer.finish();
-  s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  s.seconds = clock.seconds();
   return s;
 }
 

@@ -62,28 +62,31 @@ struct Floret {
   double radius;
 };
 
-/// Builds the head in its own frame (origin = rim centre, z = axis), sizes it so that the mean
-/// of the two caliper widths equals the drawn diameter, then places it on the plant.
-void add_head(Mesh& m, HeadSpec& h, const SimHeadConfig& cfg, Rng& rng) {
-  const double a = h.semi_a, b = h.semi_b, H = h.dome_height;
-  const double rf = h.floret_radius, hf = h.floret_height * rf;
-  // Florets on Vogel's spiral (the phyllotactic packing of real florets), on the dome surface.
-  const double R = 0.5 * (a + b);
-  const int n_florets = std::max(7, int(std::lround(1.3 * (R / rf) * (R / rf))));
-  auto dome = [&](double rho, double psi) {
+/// A head's dome in its own frame (origin = rim centre, z = axis): a half ellipsoid with semi-axes
+/// a, b and height H, covered with florets on Vogel's spiral (the phyllotactic packing of real
+/// florets) and fine beads (the buds).
+struct HeadDome {
+  double a, b, H, rf, hf, R;
+  std::vector<Floret> florets;
+  std::uint64_t bead_seed = 0;
+
+  HeadDome(const HeadSpec& h, Rng& rng)
+      : a(h.semi_a), b(h.semi_b), H(h.dome_height), rf(h.floret_radius), hf(h.floret_height * rf), R(0.5 * (a + b)) {
+    const int n_florets = std::max(7, int(std::lround(1.3 * (R / rf) * (R / rf))));
+    const double psi0 = rng.uniform(0.0, 2 * kPi);
+    for (int k = 0; k < n_florets; ++k) {
+      const double rho = std::sqrt((k + 0.5) / n_florets) * 1.02;
+      florets.push_back({dome(rho, psi0 + k * kGoldenAngle), rf * rng.uniform(0.85, 1.2)});
+    }
+    bead_seed = rng.next();
+  }
+  Eigen::Vector3d dome(double rho, double psi) const {
     rho = std::min(rho, 1.0);
     return Eigen::Vector3d(a * rho * std::cos(psi), b * rho * std::sin(psi),
                            H * std::sqrt(std::max(0.0, 1 - rho * rho)));
-  };
-  std::vector<Floret> florets;
-  const double psi0 = rng.uniform(0.0, 2 * kPi);
-  for (int k = 0; k < n_florets; ++k) {
-    const double rho = std::sqrt((k + 0.5) / n_florets) * 1.02;
-    florets.push_back({dome(rho, psi0 + k * kGoldenAngle), rf * rng.uniform(0.85, 1.2)});
   }
-  const std::uint64_t bead_seed = rng.next();
   // Bump height at a dome point: the highest floret cap over it, plus fine beads (the buds).
-  auto bump = [&](const Eigen::Vector3d& p) {
+  double bump(const Eigen::Vector3d& p) const {
     double best = 0;
     for (const auto& f : florets) {
       const double d2 = (p - f.center).squaredNorm();
@@ -91,19 +94,31 @@ void add_head(Mesh& m, HeadSpec& h, const SimHeadConfig& cfg, Rng& rng) {
     }
     const double beads = 0.5 + 0.5 * detail::value_noise(bead_seed, p.x() / (0.22 * rf), p.y() / (0.22 * rf));
     return hf * best + 0.12 * hf * beads * best;
-  };
-  auto ellipsoid_normal = [&](const Eigen::Vector3d& p) {
+  }
+  Eigen::Vector3d ellipsoid_normal(const Eigen::Vector3d& p) const {
     return Eigen::Vector3d(p.x() / (a * a), p.y() / (b * b), p.z() / (H * H)).normalized();
-  };
+  }
+};
 
-  // Vertices on rings of constant elevation beta (uniform spacing along the dome's profile).
-  const double spacing = rf / 4.0;
-  const int sectors = std::max(24, int(std::ceil(2 * kPi * std::max(a, b) / spacing)));
-  const int rings = std::max(6, int(std::ceil(0.5 * kPi * 0.5 * (R + H) / spacing)));
-  const int skirt = 4;
+/// The head's vertices in its own frame: the apex, then rings of constant elevation beta
+/// (uniform spacing along the dome's profile, `sectors` vertices each), then `skirt` rings of
+/// the underside; `bump_frac` receives each vertex's bump height as a fraction of a floret's.
+struct HeadVertices {
   std::vector<Eigen::Vector3d> local;
   std::vector<double> bump_frac;
-  local.push_back({0, 0, H + bump({0, 0, H})});
+  int sectors, rings, skirt = 4;
+};
+
+HeadVertices head_vertices(const HeadDome& d) {
+  const double a = d.a, b = d.b, H = d.H, R = d.R, hf = d.hf;
+  HeadVertices v;
+  const double spacing = d.rf / 4.0;
+  v.sectors = std::max(24, int(std::ceil(2 * kPi * std::max(a, b) / spacing)));
+  v.rings = std::max(6, int(std::ceil(0.5 * kPi * 0.5 * (R + H) / spacing)));
+  const int sectors = v.sectors, rings = v.rings, skirt = v.skirt;
+  auto& local = v.local;
+  auto& bump_frac = v.bump_frac;
+  local.push_back({0, 0, H + d.bump({0, 0, H})});
   bump_frac.push_back((local[0].z() - H) / hf);
   for (int i = 1; i <= rings + skirt; ++i) {
     for (int k = 0; k < sectors; ++k) {
@@ -112,8 +127,8 @@ void add_head(Mesh& m, HeadSpec& h, const SimHeadConfig& cfg, Rng& rng) {
         const double beta = 0.5 * kPi * (1.0 - double(i) / rings);
         const Eigen::Vector3d p(a * std::cos(beta) * std::cos(psi), b * std::cos(beta) * std::sin(psi),
                                 H * std::sin(beta));
-        const double bh = bump(p);
-        local.push_back(p + ellipsoid_normal(p) * bh);
+        const double bh = d.bump(p);
+        local.push_back(p + d.ellipsoid_normal(p) * bh);
         bump_frac.push_back(bh / hf);
       } else {
         // Underside: from the rim inward and down to the stalk.
@@ -121,12 +136,18 @@ void add_head(Mesh& m, HeadSpec& h, const SimHeadConfig& cfg, Rng& rng) {
         const Eigen::Vector3d rim(a * std::cos(psi), b * std::sin(psi), 0.0);
         const double shrink = 1.0 - 0.55 * tau;
         local.push_back(Eigen::Vector3d(rim.x() * shrink, rim.y() * shrink, -0.45 * R * tau) +
-                        Eigen::Vector3d(rim.x(), rim.y(), 0).normalized() * (bump(rim) * (1 - tau)));
+                        Eigen::Vector3d(rim.x(), rim.y(), 0).normalized() * (d.bump(rim) * (1 - tau)));
         bump_frac.push_back(0.2);
       }
     }
   }
-  // Size: the grower's diameter (mean of two perpendicular calipers) must equal the drawn one.
+  return v;
+}
+
+/// Scales the head so that the grower's diameter (mean of two perpendicular calipers) equals the
+/// drawn one, places it (the apex of the smooth dome where plants() wanted it) and fills the
+/// measured fields of `h`; returns the vertices in the field frame.
+std::vector<Eigen::Vector3f> size_and_place(HeadSpec& h, std::vector<Eigen::Vector3d>& local) {
   std::vector<Eigen::Vector3f> lf(local.size());
   for (std::size_t i = 0; i < local.size(); ++i) lf[i] = local[i].cast<float>();
   auto [major, minor] = caliper_widths(lf, Eigen::Vector3f::Zero(), Eigen::Matrix3f::Identity());
@@ -136,7 +157,6 @@ void add_head(Mesh& m, HeadSpec& h, const SimHeadConfig& cfg, Rng& rng) {
   h.semi_b *= scale;
   h.dome_height *= scale;
   h.floret_radius *= scale;
-  // Place it: the apex of the smooth dome where plants() wanted it.
   const Eigen::Vector3d axis = h.orientation.col(2);
   h.base = h.apex - axis * h.dome_height;
   std::vector<Eigen::Vector3f> field(local.size());
@@ -145,12 +165,22 @@ void add_head(Mesh& m, HeadSpec& h, const SimHeadConfig& cfg, Rng& rng) {
   h.caliper_major_mm = 1e3 * major;
   h.caliper_minor_mm = 1e3 * minor;
   h.diameter_mm = 0.5 * (h.caliper_major_mm + h.caliper_minor_mm);
+  return field;
+}
+
+/// Builds the head in its own frame (origin = rim centre, z = axis), sizes it so that the mean
+/// of the two caliper widths equals the drawn diameter, then places it on the plant.
+void add_head(Mesh& m, HeadSpec& h, const SimHeadConfig& cfg, Rng& rng) {
+  const HeadDome dome(h, rng);
+  HeadVertices v = head_vertices(dome);
+  const std::vector<Eigen::Vector3f> field = size_and_place(h, v.local);
+  const int sectors = v.sectors, rings = v.rings, skirt = v.skirt;
 
   const auto first = std::uint32_t(m.position.size());
   const Eigen::Vector3f underside(125, 145, 95);
   for (std::size_t i = 0; i < field.size(); ++i) {
     const bool under = i >= std::size_t(1 + rings * sectors);
-    const float f = float(std::clamp(bump_frac[i], 0.0, 1.0));
+    const float f = float(std::clamp(v.bump_frac[i], 0.0, 1.0));
     // Crevices between florets are darker (self-shadowing), floret tops lighter.
     Eigen::Vector3f c = (under ? underside : h.color) * (0.55f + 0.6f * f) * float(rng.uniform(0.9, 1.1));
     m.add_vertex(field[i], c, 0.45f);
@@ -198,6 +228,59 @@ Eigen::Vector3f leaf_color(Rng& rng) {
   return c;
 }
 
+// Outer leaf i of n (rank 0 = oldest): older ones low on the stem, long and spreading; younger
+// higher and steeper. Draws from `rng` in a fixed order.
+detail::LeafShape outer_leaf(const SimPlantConfig& P, Rng& rng, int i, int n, double az0, const Eigen::Vector3d& foot,
+                             double attach_top) {
+  const double rank = n > 1 ? double(i) / (n - 1) : 0.5;  // 0 = oldest
+  detail::LeafShape L;
+  L.azimuth = az0 + i * kGoldenAngle + rng.normal(0.0, 10 * kDeg);
+  L.yaw_bend = rng.normal(0.0, 12 * kDeg);
+  const double z = 0.05 + (attach_top - 0.05) * std::clamp(rank + rng.normal(0.0, 0.08), 0.0, 1.0);
+  L.start = foot + Eigen::Vector3d(std::cos(L.azimuth), std::sin(L.azimuth), 0) * P.stem_radius_m +
+            Eigen::Vector3d(0, 0, z - foot.z());
+  L.length = rng.uniform(P.leaf_length_min_m, P.leaf_length_max_m) * (1.05 - 0.2 * rank);
+  L.width = L.length * P.leaf_width_ratio * rng.uniform(0.85, 1.15);
+  L.petiole = rng.uniform(0.15, 0.28);
+  L.elevation0 = (rng.uniform(P.leaf_elevation_min_deg, P.leaf_elevation_max_deg) + 10 * rank) * kDeg;
+  L.elevation1 = L.elevation0 - rng.uniform(P.leaf_droop_min_deg, P.leaf_droop_max_deg) * kDeg;
+  L.bend_power = rng.uniform(1.2, 2.2);
+  L.cup = P.leaf_cup * rng.uniform(0.5, 1.5);
+  L.ruffle = P.leaf_ruffle_m * rng.uniform(0.5, 1.5);
+  L.twist = rng.normal(0.0, 15 * kDeg);
+  L.color = leaf_color(rng);
+  L.reflectivity = float(rng.uniform(0.5, 0.6));
+  return L;
+}
+
+// An inner leaf: young, hugging the head (outside its outline at `out` from the stem axis),
+// rising past it and curling back over its rim. Draws from `rng` in a fixed order.
+detail::LeafShape inner_leaf(const SimPlantConfig& P, Rng& rng, const PlantSpec& spec, double stem_top, double head_r,
+                             double rim_radius) {
+  detail::LeafShape L;
+  L.azimuth = rng.uniform(0.0, 2 * kPi);
+  L.yaw_bend = rng.normal(0.0, 15 * kDeg);
+  // Outside the head's outline (widest semi-axis plus floret bumps): a leaf cannot grow through
+  // the head, and one that did would join the head's surface without any depth step.
+  const double gap = rng.uniform(0.003, std::max(0.003, P.inner_leaf_gap_max_m));
+  const double out = spec.has_head ? rim_radius + spec.head.floret_height * spec.head.floret_radius + gap
+                                   : head_r * rng.uniform(0.9, 1.2) + 0.01;
+  L.start = Eigen::Vector3d(spec.xy.x(), spec.xy.y(), stem_top - rng.uniform(0.0, 0.06)) +
+            Eigen::Vector3d(std::cos(L.azimuth), std::sin(L.azimuth), 0) * out;
+  L.length = rng.uniform(P.inner_leaf_length_min_m, P.inner_leaf_length_max_m);
+  L.width = L.length * rng.uniform(0.45, 0.6);
+  L.petiole = 0.08;
+  L.elevation0 = rng.uniform(72, 88) * kDeg;
+  L.elevation1 = rng.uniform(P.inner_leaf_curl_min_deg, P.inner_leaf_curl_max_deg) * kDeg;
+  L.bend_power = rng.uniform(1.3, 2.0);
+  L.cup = P.leaf_cup * rng.uniform(0.8, 1.8);
+  L.ruffle = P.leaf_ruffle_m * rng.uniform(0.3, 1.0);
+  L.twist = rng.normal(0.0, 20 * kDeg);
+  L.color = leaf_color(rng) * 1.05f;
+  L.reflectivity = float(rng.uniform(0.5, 0.6));
+  return L;
+}
+
 }  // namespace
 
 std::shared_ptr<const Mesh> BroccoliField::build_plant(PlantSpec& spec) const {
@@ -231,24 +314,7 @@ std::shared_ptr<const Mesh> BroccoliField::build_plant(PlantSpec& spec) const {
     rim_low = h.base.z() - rim_radius * std::sin(h.tilt_deg * kDeg);
   }
   for (int i = 0; i < n; ++i) {
-    const double rank = n > 1 ? double(i) / (n - 1) : 0.5;  // 0 = oldest
-    detail::LeafShape L;
-    L.azimuth = az0 + i * kGoldenAngle + rng.normal(0.0, 10 * kDeg);
-    L.yaw_bend = rng.normal(0.0, 12 * kDeg);
-    const double z = 0.05 + (attach_top - 0.05) * std::clamp(rank + rng.normal(0.0, 0.08), 0.0, 1.0);
-    L.start = foot + Eigen::Vector3d(std::cos(L.azimuth), std::sin(L.azimuth), 0) * P.stem_radius_m +
-              Eigen::Vector3d(0, 0, z - foot.z());
-    L.length = rng.uniform(P.leaf_length_min_m, P.leaf_length_max_m) * (1.05 - 0.2 * rank);
-    L.width = L.length * P.leaf_width_ratio * rng.uniform(0.85, 1.15);
-    L.petiole = rng.uniform(0.15, 0.28);
-    L.elevation0 = (rng.uniform(P.leaf_elevation_min_deg, P.leaf_elevation_max_deg) + 10 * rank) * kDeg;
-    L.elevation1 = L.elevation0 - rng.uniform(P.leaf_droop_min_deg, P.leaf_droop_max_deg) * kDeg;
-    L.bend_power = rng.uniform(1.2, 2.2);
-    L.cup = P.leaf_cup * rng.uniform(0.5, 1.5);
-    L.ruffle = P.leaf_ruffle_m * rng.uniform(0.5, 1.5);
-    L.twist = rng.normal(0.0, 15 * kDeg);
-    L.color = leaf_color(rng);
-    L.reflectivity = float(rng.uniform(0.5, 0.6));
+    detail::LeafShape L = outer_leaf(P, rng, i, n, az0, foot, attach_top);
     const bool touches = rng.bernoulli(P.leaf_rim_touch_prob);
     const double step = touches ? 0.0 : rng.uniform(P.leaf_rim_step_min_m, P.leaf_rim_step_max_m);
     if (spec.has_head) keep_below_rim(L, spec.xy, rim_radius + P.leaf_rim_clearance_m, rim_low - step);
@@ -259,27 +325,7 @@ std::shared_ptr<const Mesh> BroccoliField::build_plant(PlantSpec& spec) const {
   // their tips are often the highest points of the plant (issue 2: "some leaf tips above the head").
   const int n_inner = rng.uniform_int(P.inner_leaves_min, P.inner_leaves_max) / (spec.has_head ? 1 : 2);
   for (int i = 0; i < n_inner; ++i) {
-    detail::LeafShape L;
-    L.azimuth = rng.uniform(0.0, 2 * kPi);
-    L.yaw_bend = rng.normal(0.0, 15 * kDeg);
-    // Outside the head's outline (widest semi-axis plus floret bumps): a leaf cannot grow through
-    // the head, and one that did would join the head's surface without any depth step.
-    const double gap = rng.uniform(0.003, std::max(0.003, P.inner_leaf_gap_max_m));
-    const double out = spec.has_head ? rim_radius + spec.head.floret_height * spec.head.floret_radius + gap
-                                     : head_r * rng.uniform(0.9, 1.2) + 0.01;
-    L.start = Eigen::Vector3d(spec.xy.x(), spec.xy.y(), stem_top - rng.uniform(0.0, 0.06)) +
-              Eigen::Vector3d(std::cos(L.azimuth), std::sin(L.azimuth), 0) * out;
-    L.length = rng.uniform(P.inner_leaf_length_min_m, P.inner_leaf_length_max_m);
-    L.width = L.length * rng.uniform(0.45, 0.6);
-    L.petiole = 0.08;
-    L.elevation0 = rng.uniform(72, 88) * kDeg;
-    L.elevation1 = rng.uniform(P.inner_leaf_curl_min_deg, P.inner_leaf_curl_max_deg) * kDeg;
-    L.bend_power = rng.uniform(1.3, 2.0);
-    L.cup = P.leaf_cup * rng.uniform(0.8, 1.8);
-    L.ruffle = P.leaf_ruffle_m * rng.uniform(0.3, 1.0);
-    L.twist = rng.normal(0.0, 20 * kDeg);
-    L.color = leaf_color(rng) * 1.05f;
-    L.reflectivity = float(rng.uniform(0.5, 0.6));
+    const detail::LeafShape L = inner_leaf(P, rng, spec, stem_top, head_r, rim_radius);
     detail::add_leaf(m, L, SurfaceKind::leaf, rng);
   }
 

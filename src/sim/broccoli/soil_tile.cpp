@@ -23,31 +23,30 @@ double smoothstep(double e0, double e1, double x) {
   const double t = std::clamp((x - e0) / (e1 - e0), 0.0, 1.0);
   return t * t * (3 - 2 * t);
 }
-}  // namespace
 
-std::shared_ptr<const Mesh> BroccoliField::build_tile(int tile, double half_width) const {
-  const auto& S = cfg_.soil;
-  auto mesh = std::make_shared<Mesh>();
-  Mesh& m = *mesh;
-  // Grid vertices are indexed globally (gx, gy) so that neighbouring tiles compute identical
-  // positions on their shared edge (no cracks).
-  const int per_tile = std::max(1, int(std::lround(tile_length() / S.grid_m)));
-  const double g = tile_length() / per_tile;
-  const int gx0 = tile * per_tile, gx1 = gx0 + per_tile;
-  const int gy1 = int(std::ceil(half_width / g)), gy0 = -gy1;
-  const int nx = gx1 - gx0 + 1, ny = gy1 - gy0 + 1;
-  std::vector<double> height(std::size_t(nx) * ny), clod(std::size_t(nx) * ny, 0.0);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) height[std::size_t(j) * nx + i] = soil_base_height((gx0 + i) * g, (gy0 + j) * g);
+// The tile's height-field grid: vertex (i, j) at ((gx0 + i)·g, (gy0 + j)·g). Grid vertices are
+// indexed globally (gx, gy) so that neighbouring tiles compute identical positions on their
+// shared edge (no cracks).
+struct TileGrid {
+  double g;
+  int gx0, gx1, gy0, gy1, nx, ny;
+  std::size_t at(int i, int j) const { return std::size_t(j) * nx + i; }
+};
 
-  // Clods: drawn per global cell; every tile stamps those that can reach it.
-  const double x_lo = gx0 * g, x_hi = gx1 * g;
+// Height of the clods at every grid vertex. Clods are drawn per global cell (a seed of its own);
+// every tile stamps those that can reach it.
+std::vector<double> clod_heights(const SimSoilConfig& S, std::uint64_t seed, const TileGrid& t) {
+  const double g = t.g;
+  const int gx0 = t.gx0, gy0 = t.gy0, nx = t.nx, ny = t.ny;
+  std::vector<double> clod(std::size_t(nx) * ny, 0.0);
+  const double x_lo = gx0 * g, x_hi = t.gx1 * g;
   const double reach = S.clod_size_max_m * 1.3;
   const int cx0 = int(std::floor((x_lo - reach) / kClodCell)), cx1 = int(std::floor((x_hi + reach) / kClodCell));
-  const int cy0 = int(std::floor((gy0 * g - reach) / kClodCell)), cy1 = int(std::floor((gy1 * g + reach) / kClodCell));
+  const int cy0 = int(std::floor((gy0 * g - reach) / kClodCell)),
+            cy1 = int(std::floor((t.gy1 * g + reach) / kClodCell));
   for (int cy = cy0; cy <= cy1; ++cy)
     for (int cx = cx0; cx <= cx1; ++cx) {
-      Rng rng(derive_seed(seed_, {kClodTag, cx, cy}));
+      Rng rng(derive_seed(seed, {kClodTag, cx, cy}));
       const int count = rng.poisson(S.clod_density_m2 * kClodCell * kClodCell);
       for (int k = 0; k < count; ++k) {
         Clod c;
@@ -72,22 +71,28 @@ std::shared_ptr<const Mesh> BroccoliField::build_tile(int tile, double half_widt
             const double u = (c.c * dx + c.s * dy) / c.rx, v = (-c.s * dx + c.c * dy) / c.ry;
             const double q = u * u + v * v;
             if (q < 1) {
-              double& cl = clod[std::size_t(j) * nx + i];
+              double& cl = clod[t.at(i, j)];
               cl = std::max(cl, c.height * std::sqrt(1 - q));
             }
           }
       }
     }
+  return clod;
+}
 
-  // Colour and NIR reflectivity: brown soil, darker moist patches (weak ToF returns), dry clods.
-  const std::uint64_t color_seed = derive_seed(seed_, {kSoilColorTag}), moist_seed = derive_seed(seed_, {kMoistTag});
+// The soil surface: one vertex per grid vertex at base height + clod, two triangles per cell.
+// Colour and NIR reflectivity: brown soil, darker moist patches (weak ToF returns), dry clods.
+void add_soil(Mesh& m, const SimSoilConfig& S, std::uint64_t seed, const TileGrid& t, const std::vector<double>& height,
+              const std::vector<double>& clod) {
+  const std::uint64_t color_seed = derive_seed(seed, {kSoilColorTag}), moist_seed = derive_seed(seed, {kMoistTag});
   // fbm is roughly symmetric in about [-0.45, 0.45]: map the wanted moist fraction to a threshold.
   const double threshold = 0.45 - 0.9 * S.moist_fraction;
+  const int nx = t.nx, ny = t.ny;
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
-      const double x = (gx0 + i) * g, y = (gy0 + j) * g;
-      const double cl = clod[std::size_t(j) * nx + i];
-      const double z = height[std::size_t(j) * nx + i] + cl;
+      const double x = (t.gx0 + i) * t.g, y = (t.gy0 + j) * t.g;
+      const double cl = clod[t.at(i, j)];
+      const double z = height[t.at(i, j)] + cl;
       double wet = smoothstep(threshold - 0.04, threshold + 0.04, detail::fbm(moist_seed, x / 0.4, y / 0.4, 3));
       if (cl > 0.002) wet *= 0.3;
       const double tone = 0.85 + 0.3 * (0.5 + 0.5 * detail::fbm(color_seed, x / 0.03, y / 0.03, 2));
@@ -101,11 +106,13 @@ std::shared_ptr<const Mesh> BroccoliField::build_tile(int tile, double half_widt
       m.add_triangle(a, b, c, 0, SurfaceKind::soil);
       m.add_triangle(a, c, d, 0, SurfaceKind::soil);
     }
+}
 
-  // Weeds: small rosettes of bright green leaves lying on the soil.
-  Rng rng(derive_seed(seed_, {kWeedTag, tile}));
-  const int weeds = rng.poisson(cfg_.field.weed_density_m2 * tile_length() * 2 * half_width);
-  const auto& W = cfg_.weed;
+// Weeds of tile `tile` (x in [x_lo, x_hi]): small rosettes of bright green leaves lying on the soil.
+void add_weeds(Mesh& m, const BroccoliField& field, int tile, double x_lo, double x_hi, double half_width) {
+  Rng rng(derive_seed(field.seed(), {kWeedTag, tile}));
+  const int weeds = rng.poisson(field.config().field.weed_density_m2 * field.tile_length() * 2 * half_width);
+  const auto& W = field.config().weed;
   for (int w = 0; w < weeds; ++w) {
     const double x = rng.uniform(x_lo, x_hi), y = rng.uniform(-half_width, half_width);
     const double radius = rng.uniform(W.size_min_m, W.size_max_m);
@@ -116,7 +123,7 @@ std::shared_ptr<const Mesh> BroccoliField::build_tile(int tile, double half_widt
                                      float(rng.uniform(40, 65)));
     for (int k = 0; k < leaves; ++k) {
       detail::LeafShape L;
-      L.start = {x, y, soil_base_height(x, y) + 0.003};
+      L.start = {x, y, field.soil_base_height(x, y) + 0.003};
       L.azimuth = az0 + k * 2 * kPi / leaves + rng.normal(0.0, 0.2);
       L.length = radius * rng.uniform(0.7, 1.0);
       L.width = L.length * rng.uniform(0.3, 0.55);
@@ -134,6 +141,24 @@ std::shared_ptr<const Mesh> BroccoliField::build_tile(int tile, double half_widt
       detail::add_leaf(m, L, SurfaceKind::weed, rng);
     }
   }
+}
+
+}  // namespace
+
+std::shared_ptr<const Mesh> BroccoliField::build_tile(int tile, double half_width) const {
+  auto mesh = std::make_shared<Mesh>();
+  Mesh& m = *mesh;
+  const int per_tile = std::max(1, int(std::lround(tile_length() / cfg_.soil.grid_m)));
+  TileGrid t;
+  t.g = tile_length() / per_tile;
+  t.gx0 = tile * per_tile, t.gx1 = t.gx0 + per_tile;
+  t.gy1 = int(std::ceil(half_width / t.g)), t.gy0 = -t.gy1;
+  t.nx = t.gx1 - t.gx0 + 1, t.ny = t.gy1 - t.gy0 + 1;
+  std::vector<double> height(std::size_t(t.nx) * t.ny);
+  for (int j = 0; j < t.ny; ++j)
+    for (int i = 0; i < t.nx; ++i) height[t.at(i, j)] = soil_base_height((t.gx0 + i) * t.g, (t.gy0 + j) * t.g);
+  add_soil(m, cfg_.soil, seed_, t, height, clod_heights(cfg_.soil, seed_, t));
+  add_weeds(m, *this, tile, t.gx0 * t.g, t.gx1 * t.g, half_width);
   m.compute_normals();
   const double el = cfg_.light.sun_elevation_deg * kDeg, az = cfg_.light.sun_azimuth_deg * kDeg;
   m.shade(Eigen::Vector3f(float(std::cos(el) * std::cos(az)), float(std::cos(el) * std::sin(az)), float(std::sin(el))),

@@ -2,7 +2,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <nlohmann/json.hpp>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/pipeline/grape/grape_eval.hpp"
@@ -55,23 +54,25 @@ TEST(GrapeEvalProtocols, PerCloudCountsAnAbsentClassAsOne) {
   EXPECT_THROW(per_cloud_miou({cloud_a()}, {-1}), Error);
 }
 
-TEST(GrapeEvalProtocols, JsonKeepsTheOldKeysAndAddsTheProtocols) {
+TEST(GrapeEvalProtocols, MergedEvaluationsGiveEveryProtocol) {
   GrapeEvaluation a, b;
   a.confusion = cloud_a(), a.per_cloud = {cloud_a()}, a.clouds = 1, a.points = 10;
   b.confusion = cloud_b(), b.per_cloud = {cloud_b()}, b.clouds = 1, b.points = 6;
   a.merge(b);
   ASSERT_EQ(a.per_cloud.size(), 2u);
   EXPECT_EQ(a.named_classes(), (std::vector<int>{1, 2}));  // the named classes below 3 labels
-  const auto j = nlohmann::json::parse(a.json());
-  for (const char* key : {"clouds", "points", "oacc", "macc", "miou", "per_class", "ms_per_cloud"})
-    EXPECT_TRUE(j.contains(key)) << key;
-  EXPECT_NEAR(j["miou"].get<double>(), (0.75 + 0.625 + 2.0 / 3) / 3, 1e-12);
-  const auto& p = j["protocols"];
-  EXPECT_EQ(p["pooled_named_classes"]["classes"], (std::vector<int>{1, 2}));
-  EXPECT_NEAR(p["pooled_all_labels"]["miou"].get<double>(), j["miou"].get<double>(), 1e-12);
-  EXPECT_NEAR(p["pooled_named_classes"]["miou"].get<double>(), (0.625 + 2.0 / 3) / 2, 1e-12);
-  EXPECT_NEAR(p["per_cloud_named_classes"]["miou"].get<double>(), ((0.75 + 2.0 / 3) / 2 + 0.75) / 2, 1e-12);
-  EXPECT_NEAR(p["per_cloud_all_labels"]["miou"].get<double>(), ((1 + 0.75 + 2.0 / 3) / 3 + 2.0 / 3) / 2, 1e-12);
+  EXPECT_NEAR(a.confusion.mean_iou(), (0.75 + 0.625 + 2.0 / 3) / 3, 1e-12);
+  const auto p = grape_protocols(a);
+  ASSERT_EQ(p.size(), 4u);
+  EXPECT_EQ(p[0].name, "pooled_all_labels");
+  EXPECT_NEAR(p[0].miou, a.confusion.mean_iou(), 1e-12);
+  EXPECT_EQ(p[1].name, "pooled_named_classes");
+  EXPECT_EQ(p[1].classes, (std::vector<int>{1, 2}));
+  EXPECT_NEAR(p[1].miou, (0.625 + 2.0 / 3) / 2, 1e-12);
+  EXPECT_EQ(p[2].name, "per_cloud_named_classes");
+  EXPECT_NEAR(p[2].miou, ((0.75 + 2.0 / 3) / 2 + 0.75) / 2, 1e-12);
+  EXPECT_EQ(p[3].name, "per_cloud_all_labels");
+  EXPECT_NEAR(p[3].miou, ((1 + 0.75 + 2.0 / 3) / 3 + 2.0 / 3) / 2, 1e-12);
   EXPECT_NE(a.text().find("per cloud, named classes (1 2): "), std::string::npos) << a.text();
 }
 

@@ -56,14 +56,21 @@ struct GrapeEvaluation {
   /// The named classes that exist in this evaluation's label range.
   std::vector<int> named_classes() const;
   void merge(const GrapeEvaluation& o);
-  /// {"clouds", "points", "oacc", "macc", "miou", "per_class": [{"label", "points", "accuracy",
-  /// "iou"}], "ms_per_cloud", "protocols": {"pooled_all_labels", "pooled_named_classes",
-  /// "per_cloud_named_classes", "per_cloud_all_labels": {"classes": [...], "miou"}}} as JSON
-  /// text; undefined values are null.
-  std::string json() const;
-  /// Human-readable summary (several lines).
+  /// Human-readable summary (several lines). The CLI's JSON form is apps/cropsight/grape_cli.hpp.
   std::string text() const;
 };
+
+/// One of the mIoU protocols above, as measured on an evaluation.
+struct GrapeProtocol {
+  std::string name;          ///< key: "pooled_all_labels", "pooled_named_classes", ...
+  std::string label;         ///< in words: "pooled, all labels", ...
+  std::vector<int> classes;  ///< the label ids averaged over
+  double miou = 0;           ///< NaN when undefined
+};
+
+/// The four protocols, in the order above: pooled all labels (= confusion.mean_iou()), pooled
+/// named classes, per cloud named classes, per cloud all labels.
+std::vector<GrapeProtocol> grape_protocols(const GrapeEvaluation& e);
 
 /// Segments each cloud with `model` (timed) and accumulates the confusion matrix against the
 /// clouds' labels, pooled and per cloud. Labels >= num_classes throw Error.

@@ -1,0 +1,18 @@
+// The plugin ABI (src/nn/segmenter_backend.hpp): libcropsight_nn_torch.so exports one symbol,
+// the table through which nn::PointSegmenter creates and loads TorchSegmenters.
+#include "nn/torch/torch_segmenter.hpp"
+
+namespace cropsight::nn {
+
+namespace {
+std::unique_ptr<detail::SegmenterBackend> create(const PointNetConfig& cfg) {
+  return std::make_unique<TorchSegmenter>(cfg);
+}
+constexpr detail::BackendApi kApi{detail::kBackendApiVersion, &create, &TorchSegmenter::load};
+}  // namespace
+
+}  // namespace cropsight::nn
+
+extern "C" __attribute__((visibility("default"))) const cropsight::nn::detail::BackendApi* cropsight_nn_backend() {
+  return &cropsight::nn::kApi;
+}
