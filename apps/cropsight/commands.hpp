@@ -32,4 +32,7 @@ void add_eval_seedling(CLI::App& eval);
 void add_eval_stereo(CLI::App& eval);
 void add_simulate_seedling(CLI::App& simulate);
 
+// Potatoes (issue 22)
+void add_eval_potato_orientation(CLI::App& eval);
+
 }  // namespace cropsight::cli

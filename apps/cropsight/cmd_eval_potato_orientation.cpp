@@ -1,0 +1,84 @@
+// cropsight eval potato-orientation (issue 22, paper Table 4.3): the orientation error (modulo
+// 180°) of one segmentation + axis + input combination on the paper's folder layout. The
+// evaluation is pipeline::potato::evaluate_orientation(); this file parses and formats.
+// The boxes come from BoardBlobDetector (one colour blob on the white board) until the potato
+// detector lands.
+#include <cstdio>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "cropsight/pipeline/potato/orientation_dataset.hpp"
+
+namespace cropsight::cli {
+
+namespace {
+
+struct Options {
+  CommonOptions common;
+  std::string rgb, depth, segmentation = "ours", axis = "pca", input = "depth";
+};
+
+nlohmann::json to_json(const eval::OrientationStats& s) {
+  return {{"count", s.count},
+          {"failures", s.failures},
+          {"mae_deg", json_number(s.mae_deg)},
+          {"std_deg", json_number(s.std_deg)},
+          {"max_deg", json_number(s.max_deg)}};
+}
+
+nlohmann::json groups(const std::vector<eval::OrientationStats>& g) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& s : g) j[s.key] = to_json(s);
+  return j;
+}
+
+void run(const Options& o) {
+  ConfigMap m = o.common.config_map();
+  m["segmentation"] = o.segmentation;
+  m["axis"] = o.axis;
+  m["input"] = o.input;
+  measure::OrientationConfig cfg;
+  apply_config(cfg, m, "--set");
+  measure::validate(cfg, "--set");
+  pipeline::potato::BoardBlobDetector detector;
+  const auto e =
+      pipeline::potato::evaluate_orientation(pipeline::potato::list_orientation_shots(o.rgb, o.depth), detector, cfg);
+  nlohmann::json j = to_json(e.all);
+  j["segmentation"] = o.segmentation;
+  j["axis"] = o.axis;
+  j["input"] = o.input;
+  j["ms_per_potato"] = json_number(e.ms_per_potato);
+  j["per_light"] = groups(e.per_light);
+  j["per_angle"] = groups(e.per_angle);
+  j["per_potato"] = groups(e.per_potato);
+  j["boxes"] = "BoardBlobDetector on the RGB image";
+  j["rule"] = "absolute error modulo 180 deg; a shot without box or mask counts 90 deg";
+  if (o.common.json) {
+    print_json(j);
+    return;
+  }
+  std::printf("%s + %s on %s: MAE %.2f deg, std %.2f deg, max %.2f deg, %d/%d failed, %.2f ms per potato\n",
+              o.segmentation.c_str(), o.axis.c_str(), o.input.c_str(), e.all.mae_deg, e.all.std_deg, e.all.max_deg,
+              e.all.failures, e.all.count, e.ms_per_potato);
+  for (const auto* g : {&e.per_light, &e.per_angle, &e.per_potato})
+    for (const auto& s : *g)
+      std::printf("  %-8s n=%d MAE %.2f std %.2f\n", s.key.c_str(), s.count, s.mae_deg, s.std_deg);
+}
+
+}  // namespace
+
+void add_eval_potato_orientation(CLI::App& eval) {
+  auto o = std::make_shared<Options>();
+  auto* cmd =
+      eval.add_subcommand("potato-orientation", "Potato orientation error on <angle>_<light>_rgb folders (issue 22)");
+  cmd->add_option("--rgb", o->rgb, "Folder with <angle>_<light>_rgb/imageN.png")->required();
+  cmd->add_option("--depth", o->depth, "Folder with <angle>_<light>_depth/imageN.png (colourised depth)")->required();
+  cmd->add_option("--segmentation", o->segmentation, "canny | kmeans | ours")->capture_default_str();
+  cmd->add_option("--axis", o->axis, "pca | ellipse")->capture_default_str();
+  cmd->add_option("--input", o->input, "rgb | depth")->capture_default_str();
+  add_json_flag(cmd, o->common);
+  add_config_options(cmd, o->common);
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace cropsight::cli

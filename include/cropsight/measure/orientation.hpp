@@ -1,0 +1,148 @@
+#pragma once
+// The length axis of a potato seen from above (issue 22, paper §3.5.2 and Table 4.3): inside a
+// detector's box, widened by a margin, the potato is segmented and the angle of its long axis is
+// measured, so that the gripper can close across it.
+//
+// Segmentation (OrientationSegmentation):
+//   canny:  the paper's fast pipeline: grey, bilateral filter, Canny, then the largest closed
+//           edge contour filled;
+//   kmeans: the paper's accurate pipeline: cv::kmeans with 2 clusters on the pixels' colour; the
+//           potato is the cluster that holds fewer of the widened box's border pixels (the
+//           margin puts background on the border);
+//   ours:   one scalar per pixel that separates potato from background by a stated rule, Otsu's
+//           threshold on it, a morphological opening that removes strings and roots (thinner than
+//           the opening), and the connected component nearest the box centre with its holes
+//           filled. The scalar: on colourised depth, nearness decoded from the colour map's hue
+//           (red = near ... blue = far; black = no depth = background), because the potato hangs
+//           in front of everything else in its box; on RGB, the chroma distance (Lab a*, b*) from
+//           the median colour of the box border, because the board is white or grey whatever the
+//           light and shadows change lightness, not chroma.
+// Axis (OrientationAxis):
+//   pca:     principal axis of the mask's pixel centres;
+//   ellipse: cv::fitEllipse on the mask's largest outer contour.
+//
+// Frames and units: image pixels, x right, y down, continuous coordinates (pixel (u, v) spans
+// [u, u + 1) x [v, v + 1), as Detection2D). The angle is trigonometric: counter-clockwise from the
+// image x axis as the image is viewed (so y up), in radians, in [0, π) — the axis has no head or
+// tail.
+#include <array>
+#include <cstddef>
+#include <string>
+
+#include "cropsight/core/config.hpp"
+#include "cropsight/core/detection2d.hpp"
+#include "cropsight/core/image.hpp"
+
+namespace cropsight::measure {
+
+enum class OrientationSegmentation { canny, kmeans, ours };
+constexpr std::array<const char*, 3> config_names(OrientationSegmentation) { return {"canny", "kmeans", "ours"}; }
+enum class OrientationAxis { pca, ellipse };
+constexpr std::array<const char*, 2> config_names(OrientationAxis) { return {"pca", "ellipse"}; }
+/// What the image is: a camera RGB image, or the RealSense colourised depth PNG used as an image
+/// (near = red, far = blue, black = no depth), as the paper does.
+enum class OrientationInput { rgb, depth };
+constexpr std::array<const char*, 2> config_names(OrientationInput) { return {"rgb", "depth"}; }
+
+/// Every parameter of the three segmentations and two axis fits. The paper (§3.5.2) names the
+/// steps (bilateral filter, Canny, threshold; k-means with 2 clusters; PCA) but not their values,
+/// so the defaults are documented choices, each saying why.
+struct OrientationConfig {
+  OrientationSegmentation segmentation = OrientationSegmentation::ours;
+  OrientationAxis axis = OrientationAxis::pca;
+  OrientationInput input = OrientationInput::depth;
+  double box_margin = 0.15;  ///< fraction of the box's width (height) added left and right (top and bottom)
+  // canny
+  int bilateral_diameter = 9;
+  double bilateral_sigma_color = 75, bilateral_sigma_space = 75;
+  double canny_low = 50, canny_high = 150;
+  int canny_close_iterations = 2;
+  // kmeans
+  int kmeans_attempts = 3;
+  int kmeans_max_iterations = 10;
+  double kmeans_epsilon = 1.0;
+  int kmeans_seed = 22;
+  // ours
+  double ours_opening_fraction = 0.12;
+  int ours_black_value = 40;
+  // all
+  int border_px = 2;
+  int min_mask_pixels = 30;
+
+  template <class V>
+  void visit(V& v) {
+    v("segmentation", segmentation,
+      "canny | kmeans | ours (see measure/orientation.hpp); paper Table 4.3: canny, kmeans");
+    v("axis", axis, "pca | ellipse; paper: PCA; ellipse = cv::fitEllipse (issue 22)");
+    v("input", input, "rgb | depth (the RealSense colourised depth PNG as an image); paper Table 4.3: both");
+    v("box_margin", box_margin,
+      "fraction of the box side added on each side before segmenting (paper: 'widened box', value not given; 0.15 "
+      "keeps a background border around a detector box that cuts the potato)",
+      Range::within(0.0, 2.0));
+    v("bilateral_diameter", bilateral_diameter,
+      "px; canny: cv::bilateralFilter neighbourhood (paper: bilateral filter, value not given; 9 = OpenCV's "
+      "documented offline choice)",
+      Range::within(1, 31));
+    v("bilateral_sigma_color", bilateral_sigma_color, "grey levels; canny: bilateral filter range sigma (our choice)",
+      Range::above(0));
+    v("bilateral_sigma_space", bilateral_sigma_space, "px; canny: bilateral filter space sigma (our choice)",
+      Range::above(0));
+    v("canny_low", canny_low, "grey-level gradient; canny: hysteresis low threshold (our choice, 1:3 ratio)",
+      Range::at_least(0));
+    v("canny_high", canny_high, "grey-level gradient; canny: hysteresis high threshold (our choice)", Range::above(0));
+    v("canny_close_iterations", canny_close_iterations,
+      "canny: 3x3 dilations that close gaps in the edge contour before it is filled (our choice)",
+      Range::within(0, 10));
+    v("kmeans_attempts", kmeans_attempts, "kmeans: cv::kmeans restarts, best compactness kept (our choice)",
+      Range::within(1, 20));
+    v("kmeans_max_iterations", kmeans_max_iterations, "kmeans: iterations per attempt (our choice)",
+      Range::within(1, 1000));
+    v("kmeans_epsilon", kmeans_epsilon, "colour levels; kmeans: stop when centres move less (our choice)",
+      Range::above(0));
+    v("kmeans_seed", kmeans_seed, "kmeans: seed of OpenCV's RNG before each run, for repeatable masks",
+      Range::at_least(0));
+    v("ours_opening_fraction", ours_opening_fraction,
+      "fraction of the box's smaller side; ours: side of the elliptic opening that removes strings and roots "
+      "(strings are ~4 px wide where potatoes are ~100 px; tuned on potato 1)",
+      Range::within(0.0, 0.5));
+    v("ours_black_value", ours_black_value,
+      "grey level; ours, input=depth: pixels whose brightest channel is below this are 'no depth' (background)",
+      Range::within(0, 255));
+    v("border_px", border_px,
+      "px; width of the widened box's border that stands for background (kmeans cluster rule, ours on RGB)",
+      Range::within(1, 50));
+    v("min_mask_pixels", min_mask_pixels, "px; fewer mask pixels = no estimate (ok = false)", Range::at_least(5));
+  }
+};
+
+/// The long axis of a mask.
+struct AxisEstimate {
+  bool ok = false;         ///< false: too few pixels, or no contour to fit
+  double angle_rad = 0;    ///< trigonometric, [0, π)
+  double major_px = 0;     ///< full length of the long axis, px (pca: 4 sqrt(λ1), exact for a filled ellipse)
+  double minor_px = 0;     ///< full length of the short axis, px
+  std::size_t pixels = 0;  ///< mask pixels used
+};
+
+/// One potato's orientation.
+struct OrientationResult : AxisEstimate {
+  GrayImage mask;            ///< the widened, clipped box; 255 = potato, 0 = not
+  int roi_x = 0, roi_y = 0;  ///< image pixel of mask pixel (0, 0)
+};
+
+/// Segments the potato in `box` (widened by cfg.box_margin, clipped to the image) and measures its
+/// long axis. Throws Error(where, ...) for an empty image, an empty or non-finite box, a box
+/// outside the image, or (input = depth) an image that is grey, not a colourised depth map.
+OrientationResult estimate_orientation(const ColorImage& image, const Detection2D& box, const OrientationConfig& cfg,
+                                       const std::string& where = "image");
+
+/// The potato mask of an already cropped region (255 = potato) by cfg.segmentation on cfg.input.
+GrayImage segment_potato(const ColorImage& roi, const OrientationConfig& cfg);
+
+/// The long axis of `mask` (non-zero = inside) by `axis`; pixel centres at (u + 0.5, v + 0.5).
+AxisEstimate mask_axis(const GrayImage& mask, OrientationAxis axis, int min_pixels = 5);
+
+/// Errors of the config's fields (Range) and between them (canny_low ≤ canny_high).
+void validate(const OrientationConfig& cfg, const std::string& where = "config");
+
+}  // namespace cropsight::measure

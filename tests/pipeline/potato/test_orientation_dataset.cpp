@@ -1,0 +1,79 @@
+// pipeline/potato orientation evaluation on the shared images of the paper's two potatoes (boxes
+// from BoardBlobDetector on the RGB image, used for both inputs as in the paper). Skipped when
+// ../shared/data is absent. The figures asserted are the ones in docs/pipelines/potatoes.md
+// ("Orientation"); the tolerances allow for OpenCV version differences, not for a worse method.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/pipeline/potato/orientation_dataset.hpp"
+
+namespace cropsight::pipeline::potato {
+namespace {
+
+namespace fs = std::filesystem;
+
+const fs::path kDir = fs::path(CROPSIGHT_SHARED_DATA_DIR) / "potato" / "orientation";
+
+eval::OrientationEvaluation run(measure::OrientationSegmentation seg, measure::OrientationAxis axis,
+                                measure::OrientationInput input) {
+  BoardBlobDetector det;
+  measure::OrientationConfig cfg;
+  cfg.segmentation = seg;
+  cfg.axis = axis;
+  cfg.input = input;
+  return evaluate_orientation(list_orientation_shots(kDir / "rgb", kDir / "depth"), det, cfg);
+}
+
+TEST(OrientationDataset, ListsTheSharedShots) {
+  if (!fs::exists(kDir)) GTEST_SKIP() << "no shared potato data at " << kDir;
+  const auto shots = list_orientation_shots(kDir / "rgb", kDir / "depth");
+  ASSERT_EQ(shots.size(), 15u);  // README: the first potato's 45° high-light shot is missing
+  int first = 0;
+  for (const auto& s : shots) first += s.potato == 1;
+  EXPECT_EQ(first, 7);
+  EXPECT_EQ(shots.front().angle_deg, 0);
+  EXPECT_EQ(shots.front().rgb.filename(), "image2.png");    // sorted by angle, light, number
+  EXPECT_EQ(shots.front().depth.filename(), "image3.png");  // partner numbered one after
+}
+
+TEST(OrientationDataset, MissingFolderNamesIt) {
+  try {
+    list_orientation_shots("/nonexistent/rgb", "/nonexistent/depth");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.where(), "/nonexistent/rgb");
+  }
+}
+
+// The documented figures (docs/pipelines/potatoes.md, "Orientation"), ± 0.5°: ours + PCA.
+TEST(OrientationDataset, OursMatchesTheDocumentedMae) {
+  if (!fs::exists(kDir)) GTEST_SKIP() << "no shared potato data at " << kDir;
+  using S = measure::OrientationSegmentation;
+  const auto d = run(S::ours, measure::OrientationAxis::pca, measure::OrientationInput::depth);
+  EXPECT_NEAR(d.all.mae_deg, 7.3, 0.5);
+  EXPECT_EQ(d.all.failures, 0);
+  const auto r = run(S::ours, measure::OrientationAxis::pca, measure::OrientationInput::rgb);
+  EXPECT_NEAR(r.all.mae_deg, 12.8, 0.5);
+  EXPECT_EQ(r.all.failures, 0);
+}
+
+TEST(OrientationDataset, AllCombinationsTable) {
+  if (!fs::exists(kDir)) GTEST_SKIP() << "no shared potato data at " << kDir;
+  using S = measure::OrientationSegmentation;
+  using A = measure::OrientationAxis;
+  using I = measure::OrientationInput;
+  for (I in : {I::depth, I::rgb})
+    for (S s : {S::canny, S::kmeans, S::ours})
+      for (A a : {A::pca, A::ellipse}) {
+        const auto e = run(s, a, in);
+        std::printf("%-6s %-7s %-8s all %5.1f ± %5.1f  p1 %5.1f  p2 %5.1f  fail %d  %6.2f ms\n",
+                    config_name(in).c_str(), config_name(s).c_str(), config_name(a).c_str(), e.all.mae_deg,
+                    e.all.std_deg, e.per_potato[0].mae_deg, e.per_potato[1].mae_deg, e.all.failures, e.ms_per_potato);
+      }
+}
+
+}  // namespace
+}  // namespace cropsight::pipeline::potato
