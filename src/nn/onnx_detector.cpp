@@ -122,7 +122,9 @@ OnnxDetector::OnnxDetector(OnnxDetectorConfig cfg) : cfg_(std::move(cfg)), impl_
   } catch (const cv::Exception& e) {
     throw Error(path, "the network does not run on a 3 x " + std::to_string(cfg_.input_height) + " x " +
                           std::to_string(cfg_.input_width) +
-                          " input (detector.onnx.input_width/input_height must be its export size): " + one_line(e));
+                          " input (exported for another size than detector.onnx.input_width/input_height, or a "
+                          "layer OpenCV " CV_VERSION " cannot run): " +
+                          one_line(e));
   }
   Impl::table_of(out, cfg_, impl_->names.size());
 }

@@ -93,6 +93,79 @@ def channel_means():
     return model
 
 
+# YOLOv8 head rows: anchor (x, y) in grid cells, stride, DFL bin of each distance (l, t, r, b),
+# class logits. Box: centre = (anchor + ((r - l) / 2, (b - t) / 2)) x stride,
+# size = (l + r, t + b) x stride; scores = sigmoid(logits).
+YOLOV8_HEAD = [
+    [4.5, 4.5, 8, (2, 1, 2, 1), (2.0, -4.0)],  # centre (36, 36), size 32 x 16, potato 0.881
+    [1.5, 2.5, 16, (1, 1, 3, 1), (-4.0, 1.0)],  # centre (40, 40), size 64 x 32, sprout 0.731
+    [0.5, 0.5, 32, (0, 0, 1, 1), (-5.0, -5.0)],  # both scores 0.0067: below any useful threshold
+]
+REG_MAX = 16
+
+
+def yolov8_head(full_strides):
+    """The head of a YOLOv8 export with its anchors and strides folded to constants (what
+    onnx-simplifier or a static export leaves), opset 12 (Split sizes as an attribute): DFL
+    (Reshape, Transpose, Softmax, 1x1 Conv with weights 0..15), dist2bbox (Split, Sub, Add, Div,
+    Concat), Mul by strides, Sigmoid of the class logits, Concat → [1, 4 + C, N].
+    full_strides False: strides [1, N] as ultralytics exports them (`dbox * self.strides`,
+    broadcast over the 4 box channels); True: strides repeated to [1, 4, N]."""
+    n, c = len(YOLOV8_HEAD), len(YOLOV8_HEAD[0][4])
+    raw = np.zeros((4 * REG_MAX + c, n), dtype=np.float32)
+    anchors = np.zeros((1, 2, n), dtype=np.float32)
+    strides = np.zeros((1, n), dtype=np.float32)
+    for i, (ax, ay, stride, bins, logits) in enumerate(YOLOV8_HEAD):
+        for side, b in enumerate(bins):
+            raw[side * REG_MAX + b, i] = 30.0  # softmax puts all weight on bin b
+        raw[4 * REG_MAX:, i] = logits
+        anchors[0, :, i] = (ax, ay)
+        strides[0, i] = stride
+    k = raw.size
+    inits = [
+        numpy_helper.from_array(np.array([1, 3, H * W, 1], dtype=np.int64), "flat_shape"),
+        numpy_helper.from_array(np.zeros((k, 3, 1, 1), dtype=np.float32), "zero_w"),
+        numpy_helper.from_array(raw.reshape(-1), "raw"),
+        numpy_helper.from_array(np.array([1, 4 * REG_MAX + c, n], dtype=np.int64), "raw_shape"),
+        numpy_helper.from_array(np.array([1, 4, REG_MAX, n], dtype=np.int64), "dfl_shape"),
+        numpy_helper.from_array(np.arange(REG_MAX, dtype=np.float32).reshape(1, REG_MAX, 1, 1), "dfl_w"),
+        numpy_helper.from_array(np.array([1, 4, n], dtype=np.int64), "dist_shape"),
+        numpy_helper.from_array(anchors, "anchors"),
+        numpy_helper.from_array(np.array([2.0], dtype=np.float32), "two"),
+        numpy_helper.from_array(np.repeat(strides[:, None, :], 4, axis=1) if full_strides else strides, "strides"),
+    ]
+    nodes = [
+        helper.make_node("Reshape", ["images", "flat_shape"], ["flat"]),
+        helper.make_node("GlobalAveragePool", ["flat"], ["pooled"]),
+        helper.make_node("Conv", ["pooled", "zero_w", "raw"], ["conv"], kernel_shape=[1, 1]),
+        helper.make_node("Reshape", ["conv", "raw_shape"], ["head"]),
+        helper.make_node("Split", ["head"], ["box", "cls"], axis=1, split=[4 * REG_MAX, c]),
+        helper.make_node("Reshape", ["box", "dfl_shape"], ["box4"]),
+        helper.make_node("Transpose", ["box4"], ["box_t"], perm=[0, 2, 1, 3]),
+        helper.make_node("Softmax", ["box_t"], ["box_sm"], axis=1),
+        helper.make_node("Conv", ["box_sm", "dfl_w"], ["dfl"], kernel_shape=[1, 1]),
+        helper.make_node("Reshape", ["dfl", "dist_shape"], ["dist"]),
+        helper.make_node("Split", ["dist"], ["lt", "rb"], axis=1, split=[2, 2]),
+        helper.make_node("Sub", ["anchors", "lt"], ["x1y1"]),
+        helper.make_node("Add", ["anchors", "rb"], ["x2y2"]),
+        helper.make_node("Add", ["x1y1", "x2y2"], ["sum"]),
+        helper.make_node("Div", ["sum", "two"], ["c_xy"]),
+        helper.make_node("Sub", ["x2y2", "x1y1"], ["wh"]),
+        helper.make_node("Concat", ["c_xy", "wh"], ["dbox_cells"], axis=1),
+        helper.make_node("Mul", ["dbox_cells", "strides"], ["dbox"]),
+        helper.make_node("Sigmoid", ["cls"], ["scores"]),
+        helper.make_node("Concat", ["dbox", "scores"], ["output"], axis=1),
+    ]
+    graph = helper.make_graph(
+        nodes, "yolov8_head",
+        [helper.make_tensor_value_info("images", TensorProto.FLOAT, [1, 3, H, W])],
+        [helper.make_tensor_value_info("output", TensorProto.FLOAT, [1, 4 + c, n])], inits)
+    model = helper.make_model(graph, opset_imports=[helper.make_opsetid("", OPSET)], producer_name="cropsight-tests")
+    model.ir_version = 7
+    onnx.checker.check_model(model)
+    return model
+
+
 def yolov8_const_add():
     """The head of an ultralytics YOLOv8 export as OpenCV 4.6 users report it failing: anchor
     coordinates made by adding two constants of different shapes (arange + 0.5 offset)."""
@@ -126,6 +199,8 @@ def main():
     # Foreign: an output of three columns matches no layout.
     onnx.save(table_graph("foreign", np.zeros((4, 3), dtype=np.float32), [1, 4, 3]), f"{out}/foreign.onnx")
     onnx.save(channel_means(), f"{out}/channel_means.onnx")
+    onnx.save(yolov8_head(False), f"{out}/yolov8_head.onnx")
+    onnx.save(yolov8_head(True), f"{out}/yolov8_head_full_strides.onnx")
     onnx.save(yolov8_const_add(), f"{out}/yolov8_const_add.onnx")
 
 

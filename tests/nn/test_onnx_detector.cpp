@@ -4,6 +4,7 @@
 // boxes computed by hand; then the errors.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <memory>
@@ -147,6 +148,34 @@ TEST_F(OnnxDetectorTest, Yolov8ExportHeadFailsToLoadInOpenCv46) {
   if (msg.empty()) GTEST_SKIP() << "this OpenCV loads the constant Add";
   EXPECT_NE(msg.find(fixture("yolov8_const_add.onnx")), std::string::npos) << msg;
   EXPECT_NE(msg.find("parseBias"), std::string::npos) << msg;
+  EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+}
+
+TEST_F(OnnxDetectorTest, RunsAYolov8HeadWithStridesPerChannel) {
+  // YOLOV8_HEAD in make_onnx_fixtures.py: DFL, dist2bbox, strides, sigmoid, as a YOLOv8 export
+  // computes them, with the stride constant repeated over the 4 box channels.
+  OnnxDetector det(config("yolov8_head_full_strides.onnx", OnnxLayout::yolov8));
+  const ColorImage img = grey_image(128, 96);
+  const auto b = det.detect({&img, nullptr});
+  ASSERT_EQ(b.size(), 2u);  // the third row scores sigmoid(-5) = 0.0067
+  const auto near_box = [](const Detection2D& d, float x1, float y1, float x2, float y2, int cls, float score) {
+    EXPECT_NEAR(d.x1, x1, 1e-3);
+    EXPECT_NEAR(d.y1, y1, 1e-3);
+    EXPECT_NEAR(d.x2, x2, 1e-3);
+    EXPECT_NEAR(d.y2, y2, 1e-3);
+    EXPECT_EQ(d.class_id, cls);
+    EXPECT_NEAR(d.score, score, 1e-5);
+  };
+  near_box(b[0], 40, 40, 104, 72, 0, 1 / (1 + std::exp(-2.f)));  // centre (36, 36), 32 x 16 input pixels
+  near_box(b[1], 16, 32, 128, 96, 1, 1 / (1 + std::exp(-1.f)));  // centre (40, 40), 64 x 32; x2 144 clipped
+}
+
+TEST_F(OnnxDetectorTest, Yolov8ExportStrideBroadcastFailsInOpenCv46) {
+  // The same head with strides [1, N], as ultralytics exports `dbox * self.strides`: OpenCV 4.6
+  // cannot broadcast the constant over the box channels (shape_utils.hpp 'total' assertion).
+  const std::string msg = load_error(config("yolov8_head.onnx", OnnxLayout::yolov8));
+  if (msg.empty()) GTEST_SKIP() << "this OpenCV runs the broadcast stride Mul";
+  EXPECT_NE(msg.find("does not run on a 3 x 64 x 64 input"), std::string::npos) << msg;
   EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
 }
 

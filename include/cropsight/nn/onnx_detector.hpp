@@ -10,6 +10,11 @@
 //                          score = objectness × best class score (YOLOv5 export, opset 12)
 //   yolov8  [1, 4 + C, N]  cx, cy, w, h in input pixels, C class scores, no objectness;
 //                          score = best class score (what YOLOv8 exports output)
+//                          OpenCV 4.6 runs this layout and YOLOv8's head ops (DFL, Split,
+//                          dist2bbox, Sigmoid, Concat), but not a stock ultralytics export:
+//                          it refuses an Add of two constants of different shapes (anchor
+//                          grid; parseBias) and a Mul of the [1, 4, N] boxes by the [1, N]
+//                          stride constant; tests/nn/test_onnx_detector.cpp shows all three.
 //   ssd     [1, 1, N, 7]   DetectionOutput rows: image_id, label, confidence, x1, y1, x2, y2
 //                          normalised to the input (label - label_offset = class index)
 //
