@@ -39,6 +39,14 @@ SSD = [
 ]
 
 
+def finish(graph):
+    """The checked model of `graph`: opset 12, IR version 7 (what OpenCV 4.6 reads)."""
+    model = helper.make_model(graph, opset_imports=[helper.make_opsetid("", OPSET)], producer_name="cropsight-tests")
+    model.ir_version = 7
+    onnx.checker.check_model(model)
+    return model
+
+
 def table_graph(name, table, out_shape):
     """A graph returning `table` (reshaped to out_shape) for any [1, 3, H, W] input."""
     table = np.asarray(table, dtype=np.float32)
@@ -60,10 +68,7 @@ def table_graph(name, table, out_shape):
         [helper.make_tensor_value_info("images", TensorProto.FLOAT, [1, 3, H, W])],
         [helper.make_tensor_value_info("output", TensorProto.FLOAT, list(out_shape))],
         inits)
-    model = helper.make_model(graph, opset_imports=[helper.make_opsetid("", OPSET)], producer_name="cropsight-tests")
-    model.ir_version = 7
-    onnx.checker.check_model(model)
-    return model
+    return finish(graph)
 
 
 def channel_means():
@@ -87,10 +92,7 @@ def channel_means():
         nodes, "channel_means",
         [helper.make_tensor_value_info("images", TensorProto.FLOAT, [1, 3, H, W])],
         [helper.make_tensor_value_info("output", TensorProto.FLOAT, [1, 3, 7])], inits)
-    model = helper.make_model(graph, opset_imports=[helper.make_opsetid("", OPSET)], producer_name="cropsight-tests")
-    model.ir_version = 7
-    onnx.checker.check_model(model)
-    return model
+    return finish(graph)
 
 
 # YOLOv8 head rows: anchor (x, y) in grid cells, stride, DFL bin of each distance (l, t, r, b),
@@ -160,10 +162,7 @@ def yolov8_head(full_strides):
         nodes, "yolov8_head",
         [helper.make_tensor_value_info("images", TensorProto.FLOAT, [1, 3, H, W])],
         [helper.make_tensor_value_info("output", TensorProto.FLOAT, [1, 4 + c, n])], inits)
-    model = helper.make_model(graph, opset_imports=[helper.make_opsetid("", OPSET)], producer_name="cropsight-tests")
-    model.ir_version = 7
-    onnx.checker.check_model(model)
-    return model
+    return finish(graph)
 
 
 def yolov8_const_add():
@@ -183,9 +182,7 @@ def yolov8_const_add():
         nodes, "yolov8_const_add",
         [helper.make_tensor_value_info("images", TensorProto.FLOAT, [1, 3, H, W])],
         [helper.make_tensor_value_info("output", TensorProto.FLOAT, [1, 4])], inits)
-    model = helper.make_model(graph, opset_imports=[helper.make_opsetid("", OPSET)], producer_name="cropsight-tests")
-    model.ir_version = 7
-    return model
+    return finish(graph)
 
 
 def main():
