@@ -10,14 +10,14 @@ PACKAGES=(
   # toolchain
   build-essential cmake ccache pkg-config git lld
   # core libraries (ARCHITECTURE.md "Dependencies")
-  libeigen3-dev libopencv-dev libpcl-dev libnanoflann-dev libtbb-dev libsvm-dev
+  libeigen3-dev libopencv-dev libopencv-dnn-dev libpcl-dev libnanoflann-dev libtbb-dev libsvm-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
   # neural networks and gradient-boosted trees
   libtorch-dev libxgboost-dev
   # fast BLAS for libtorch/OpenCV (the generic libblas.so.3 is the slow reference one)
   libopenblas0-pthread
-  # tests and benchmarks
-  libgtest-dev libgmock-dev libbenchmark-dev
+  # tests and benchmarks (python3-onnx: the tiny ONNX graphs of tests/nn/test_onnx_detector.cpp)
+  libgtest-dev libgmock-dev libbenchmark-dev python3-onnx
   # report rendering test (headless browser)
   chromium
 )
