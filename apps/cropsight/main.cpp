@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   auto* simulate = app.add_subcommand("simulate", "Simulate sequences with exact ground truth");
   simulate->require_subcommand(1);
   add_simulate_broccoli(*simulate);
+  add_simulate_potato(*simulate);
   add_info(app);
   add_export(app);
   add_render(app);

@@ -1,0 +1,97 @@
+#pragma once
+// 3D position, metric size and ripeness of one 2D detection (the potato paper, §3.4 and §3.5.1).
+//
+// The paper deprojects the box centre with the camera intrinsics at the depth of the one centre
+// pixel. Here the depth is by default the median of the valid pixels in a central window of the
+// box (robust to the D415's holes and to a root crossing the centre); `sampling: centre_pixel`
+// keeps the paper's reading. Camera frame: x right, y down, z forward, metres.
+//
+// The depth read at the box centre is the potato's front surface. The gripper needs the centre:
+// `centre_offset: half_width` (default) moves the point along the viewing ray by half the box's
+// smaller metric side (a potato is about as thick as it is wide); `surface` keeps the paper's
+// surface point.
+#include <Eigen/Core>
+#include <array>
+#include <vector>
+
+#include "cropsight/core/camera.hpp"
+#include "cropsight/core/config.hpp"
+#include "cropsight/core/detection2d.hpp"
+#include "cropsight/core/image.hpp"
+
+namespace cropsight::measure {
+
+enum class DepthSampling { median_window, centre_pixel };
+constexpr std::array<const char*, 2> config_names(DepthSampling) { return {"median_window", "centre_pixel"}; }
+
+enum class CentreOffset { half_width, surface };
+constexpr std::array<const char*, 2> config_names(CentreOffset) { return {"half_width", "surface"}; }
+
+struct PositionConfig {
+  DepthSampling sampling = DepthSampling::median_window;
+  double window_fraction = 0.3;      ///< window side as a fraction of the box's width and height
+  int window_min_px = 3;             ///< smallest window side, pixels
+  double min_depth_m = 0.25;         ///< D415's minimum usable range
+  double max_depth_m = 3.0;          ///< farther depths are not trusted
+  double min_valid_fraction = 0.25;  ///< of the window's pixels that must have a depth
+  CentreOffset centre_offset = CentreOffset::half_width;
+
+  template <class V>
+  void visit(V& v) {
+    v("sampling", sampling,
+      "median_window | centre_pixel; depth of the box centre: median of the valid pixels of a central window "
+      "(ours) or the one centre pixel (paper §3.5.1)");
+    v("window_fraction", window_fraction, "fraction of the box's width/height; median window side (not in the paper)",
+      Range::within(0.0, 1.0).open_below());
+    v("window_min_px", window_min_px, "px; smallest median window side (not in the paper)", Range::at_least(1));
+    v("min_depth_m", min_depth_m, "m; depth_ok false nearer than this (D415 minimum range, about 0.25 m)",
+      Range::at_least(0.0));
+    v("max_depth_m", max_depth_m, "m; depth_ok false farther than this (not in the paper)", Range::above(0.0));
+    v("min_valid_fraction", min_valid_fraction,
+      "fraction; depth_ok false when fewer of the window's pixels have a depth (not in the paper)",
+      Range::within(0.0, 1.0));
+    v("centre_offset", centre_offset,
+      "half_width | surface; report the potato's centre (surface depth + half the box's smaller metric side, ours) "
+      "or the surface point (paper)");
+  }
+  /// Rules between fields; throws Error(where, ...).
+  void validate(const std::string& where) const;
+};
+
+/// Where one detection is.
+struct Position3D {
+  Eigen::Vector3f xyz = Eigen::Vector3f::Zero();  ///< camera frame, m (the centre or the surface point)
+  float surface_depth_m = 0;                      ///< depth read at the box centre, m (0 = none)
+  float width_m = 0, height_m = 0;                ///< box sides at the potato's depth, m
+  float area_m2 = 0;                              ///< width_m * height_m
+  int valid_pixels = 0, window_pixels = 0;        ///< depth samples used / window size
+  bool depth_ok = false;                          ///< depth inside [min, max] from enough valid pixels
+};
+
+/// Locates `box` in `depth_m` (metres, 0 = no depth, registered to the image the box is in).
+/// Without usable depth, depth_ok is false and xyz/size stay 0.
+Position3D locate(const Detection2D& box, const Image<float>& depth_m, const CameraIntrinsics& camera,
+                  const PositionConfig& cfg = {});
+
+/// Paper §3.4: a potato is ripe when its box area at its depth reaches the threshold.
+struct RipenessConfig {
+  double ripeness_threshold_m2 = 0.0;  ///< m²; paper RIPENESS_THRES
+
+  template <class V>
+  void visit(V& v) {
+    v("ripeness_threshold_m2", ripeness_threshold_m2,
+      "m^2; box area at the potato's depth a ripe potato reaches (paper RIPENESS_THRES = 0 in the authors' "
+      "run_vision.py: every potato is ripe; e.g. 0.0025 = a 5 x 5 cm box)",
+      Range::at_least(0.0));
+  }
+};
+
+/// True when the position has usable depth and its box area reaches the threshold.
+inline bool is_ripe(const Position3D& p, const RipenessConfig& cfg) {
+  return p.depth_ok && double(p.area_m2) >= cfg.ripeness_threshold_m2;
+}
+
+/// Metric depth (m) of a raw depth image: value * camera.depth_scale, 0 stays 0.
+Image<float> depth_in_metres(const DepthImage& depth, double depth_scale);
+
+}  // namespace cropsight::measure

@@ -1,0 +1,137 @@
+// Box-centre deprojection against hand-computed cases, the robust depth window on noisy and holey
+// depth, depth_ok at the D415's minimum range, and ripeness by metric box area.
+#include <gtest/gtest.h>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/measure/position.hpp"
+
+using namespace cropsight;
+using namespace cropsight::measure;
+
+namespace {
+
+CameraIntrinsics camera() {
+  CameraIntrinsics c;
+  c.width = 640;
+  c.height = 480;
+  c.fx = 600;
+  c.fy = 500;
+  c.cx = 320;
+  c.cy = 240;
+  return c;
+}
+
+Detection2D box(float x1, float y1, float x2, float y2) {
+  Detection2D d;
+  d.x1 = x1, d.y1 = y1, d.x2 = x2, d.y2 = y2;
+  return d;
+}
+
+PositionConfig surface_config() {
+  PositionConfig cfg;
+  cfg.centre_offset = CentreOffset::surface;
+  return cfg;
+}
+
+}  // namespace
+
+TEST(Position, DeprojectsTheBoxCentreByHand) {
+  // Box [400.5, 460.5) x [100.5, 160.5): continuous centre (430.5, 130.5) = pixel centre (430, 130).
+  // At z = 0.4 m: x = (430 - 320) / 600 * 0.4 = 0.0733.. m, y = (130 - 240) / 500 * 0.4 = -0.088 m.
+  // Width 60 px * 0.4 / 600 = 0.04 m, height 60 px * 0.4 / 500 = 0.048 m.
+  Image<float> depth(640, 480, 0.4f);
+  const Position3D p = locate(box(400.5f, 100.5f, 460.5f, 160.5f), depth, camera(), surface_config());
+  ASSERT_TRUE(p.depth_ok);
+  EXPECT_NEAR(p.xyz.x(), 110.0 / 600 * 0.4, 1e-6);
+  EXPECT_NEAR(p.xyz.y(), -110.0 / 500 * 0.4, 1e-6);
+  EXPECT_NEAR(p.xyz.z(), 0.4, 1e-6);
+  EXPECT_NEAR(p.width_m, 0.04, 1e-6);
+  EXPECT_NEAR(p.height_m, 0.048, 1e-6);
+  EXPECT_NEAR(p.area_m2, 0.04 * 0.048, 1e-8);
+}
+
+TEST(Position, HalfWidthOffsetFindsTheCentreOfASphere) {
+  // A sphere of radius r = 0.03 m centred at z = 0.43 m on the optical axis: surface depth 0.40 m,
+  // silhouette half-angle asin(r / zc); box half-width f * tan(asin(r / zc)).
+  const double r = 0.03, zc = 0.43, half = 600 * std::tan(std::asin(r / zc));
+  const double halfy = 500 * std::tan(std::asin(r / zc));
+  Image<float> depth(640, 480, float(zc - r));
+  const Position3D p = locate(box(float(320.5 - half), float(240.5 - halfy), float(320.5 + half), float(240.5 + halfy)),
+                              depth, camera());
+  ASSERT_TRUE(p.depth_ok);
+  EXPECT_NEAR(p.xyz.z(), zc, 0.001);  // perspective: the silhouette is a little in front of the centre
+  EXPECT_NEAR(p.xyz.x(), 0.0, 1e-6);
+  EXPECT_NEAR(p.width_m, 2 * r, 0.001);
+}
+
+TEST(Position, MedianWindowIgnoresHolesAndARootInFront) {
+  Image<float> depth(640, 480, 0.5f);
+  const Detection2D b = box(300, 200, 360, 260);  // 60 x 60 px: window 18 x 18
+  // Holes over a third of the window, and a root (0.45 m) over another 20 %.
+  for (int v = 200; v < 260; ++v)
+    for (int u = 300; u < 360; ++u) {
+      if ((u + v) % 3 == 0) depth.at(u, v) = 0;
+      if (u >= 328 && u < 332) depth.at(u, v) = 0.45f;
+    }
+  depth.at(330, 230) = 0.0f;  // the centre pixel itself is a hole
+  const Position3D robust = locate(b, depth, camera(), surface_config());
+  EXPECT_TRUE(robust.depth_ok);
+  EXPECT_FLOAT_EQ(robust.surface_depth_m, 0.5f);
+  EXPECT_EQ(robust.window_pixels, 18 * 18);
+  EXPECT_LT(robust.valid_pixels, robust.window_pixels);
+
+  PositionConfig paper = surface_config();
+  paper.sampling = DepthSampling::centre_pixel;
+  const Position3D centre = locate(b, depth, camera(), paper);
+  EXPECT_FALSE(centre.depth_ok);  // the paper's one pixel is a hole
+  depth.at(330, 230) = 0.45f;
+  EXPECT_FLOAT_EQ(locate(b, depth, camera(), paper).surface_depth_m, 0.45f);  // ... or the root
+}
+
+TEST(Position, MedianOfNoisyDepthIsCloseToTheTruth) {
+  Image<float> depth(640, 480, 0.f);
+  std::uint32_t s = 12345;
+  for (auto& d : depth.data) {
+    s = s * 1664525u + 1013904223u;
+    d = 0.4f + 0.004f * (float(s >> 8) / float(1u << 24) - 0.5f);  // +-2 mm uniform
+  }
+  const Position3D p = locate(box(280, 200, 360, 280), depth, camera(), surface_config());
+  EXPECT_NEAR(p.surface_depth_m, 0.4, 0.0005);
+}
+
+TEST(Position, DepthOkFalseBelowMinimumRangeOrTooFewPixels) {
+  Image<float> depth(640, 480, 0.2f);
+  EXPECT_FALSE(locate(box(300, 200, 340, 240), depth, camera()).depth_ok);  // 0.2 m < 0.25 m
+  Image<float> holes(640, 480, 0.f);
+  holes.at(320, 220) = 0.4f;  // one valid pixel of 144
+  const Position3D p = locate(box(300, 200, 340, 240), holes, camera());
+  EXPECT_FALSE(p.depth_ok);
+  EXPECT_EQ(p.valid_pixels, 1);
+  EXPECT_FALSE(locate(box(300, 200, 340, 240), Image<float>{}, camera()).depth_ok);
+  EXPECT_FALSE(locate(box(700, 200, 740, 240), depth, camera()).depth_ok);  // outside the image
+}
+
+TEST(Position, RipenessByAreaAtDepth) {
+  Image<float> depth(640, 480, 0.4f);
+  const Position3D p = locate(box(300, 200, 360, 260), depth, camera(), surface_config());  // 0.04 x 0.048 m
+  RipenessConfig cfg;
+  EXPECT_TRUE(is_ripe(p, cfg));  // paper: threshold 0, every potato with depth is ripe
+  cfg.ripeness_threshold_m2 = 0.0019;
+  EXPECT_TRUE(is_ripe(p, cfg));
+  cfg.ripeness_threshold_m2 = 0.0020;
+  EXPECT_FALSE(is_ripe(p, cfg));
+  Position3D no_depth = p;
+  no_depth.depth_ok = false;
+  EXPECT_FALSE(is_ripe(no_depth, RipenessConfig{}));
+}
+
+TEST(Position, ConfigRulesAndMetres) {
+  PositionConfig cfg;
+  cfg.max_depth_m = 0.1;
+  EXPECT_THROW(cfg.validate("test"), Error);
+  DepthImage raw(2, 1, 0);
+  raw.at(0, 0) = 400;
+  const Image<float> m = depth_in_metres(raw, 0.001);
+  EXPECT_FLOAT_EQ(m.at(0, 0), 0.4f);
+  EXPECT_FLOAT_EQ(m.at(1, 0), 0.f);
+}
