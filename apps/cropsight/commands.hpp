@@ -32,4 +32,8 @@ void add_eval_seedling(CLI::App& eval);
 void add_eval_stereo(CLI::App& eval);
 void add_simulate_seedling(CLI::App& simulate);
 
+// Potatoes (issue 22): detect potato, eval potato-detection
+void add_detect_potato(CLI::App& detect);
+void add_eval_potato_detection(CLI::App& eval);
+
 }  // namespace cropsight::cli

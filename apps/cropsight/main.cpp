@@ -56,6 +56,10 @@ int main(int argc, char** argv) {
   add_eval_stereo(*eval);
   add_simulate_seedling(*simulate);
 
+  // Potatoes (issue 22)
+  add_detect_potato(*detect);
+  add_eval_potato_detection(*eval);
+
   // CLI11 reports a mistyped command as "A subcommand is required"; name it instead. Same one
   // level down (cropsight detect brocoli).
   for (CLI::App* level = &app; level;) {

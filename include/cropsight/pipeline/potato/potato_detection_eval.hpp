@@ -36,7 +36,7 @@ std::vector<eval::VocBox> detection_boxes(const std::vector<Detection2D>& dets);
 
 struct DetectionEvalResult {
   eval::VocApSummary ap;
-  double ms_per_image = 0;  ///< detector time only (0 when scoring saved files)
+  double ms_per_image = 0;  ///< detector time only, after one untimed warm-up call (0 for saved files)
 };
 
 /// Scores detections_dir/<stem>.txt against the annotations (Error naming a missing or bad file).
