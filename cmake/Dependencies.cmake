@@ -8,6 +8,8 @@ find_package(fmt REQUIRED)
 find_package(TBB REQUIRED)
 find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs calib3d video ml dnn)
 find_package(Threads REQUIRED)
+# Pascal VOC XML annotations (potato detection, issue 22): used only inside src/io/voc.cpp.
+find_package(tinyxml2 REQUIRED)
 
 # PCL: only the component libraries we use, found directly. PCL's own CMake config pulls in
 # VTK (and through it MPI and Qt), which we never use and which slows configuration down.

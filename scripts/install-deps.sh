@@ -12,6 +12,8 @@ PACKAGES=(
   # core libraries (ARCHITECTURE.md "Dependencies")
   libeigen3-dev libopencv-dev libopencv-dnn-dev libpcl-dev libnanoflann-dev libtbb-dev libsvm-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
+  # Pascal VOC XML annotations (potato detection)
+  libtinyxml2-dev
   # neural networks and gradient-boosted trees
   libtorch-dev libxgboost-dev
   # fast BLAS for libtorch/OpenCV (the generic libblas.so.3 is the slow reference one)

@@ -33,7 +33,9 @@ void add_eval_seedling(CLI::App& eval);
 void add_eval_stereo(CLI::App& eval);
 void add_simulate_seedling(CLI::App& simulate);
 
-// Potatoes (issue 22)
+// Potatoes (issue 22): detect potato, eval potato-detection, eval potato-orientation
+void add_detect_potato(CLI::App& detect);
+void add_eval_potato_detection(CLI::App& eval);
 void add_eval_potato_orientation(CLI::App& eval);
 
 }  // namespace cropsight::cli

@@ -59,6 +59,8 @@ int main(int argc, char** argv) {
   add_simulate_seedling(*simulate);
 
   // Potatoes (issue 22)
+  add_detect_potato(*detect);
+  add_eval_potato_detection(*eval);
   add_eval_potato_orientation(*eval);
 
   // CLI11 reports a mistyped command as "A subcommand is required"; name it instead. Same one

@@ -1,0 +1,95 @@
+#pragma once
+// The classical potato detector (issue 22, "classical" backend): colour foreground, optional
+// range foreground, an opening that removes strings and roots, connected components, one box
+// and one score per blob. Written for speed (a few ms per 416x416 image on one core).
+//
+// Colour: a potato's skin is a narrow cluster in CIELAB chroma (a*, b*) — yellow-brown, well
+// away from the white sheets, grey window frames, dark clothes and blue objects that surround it,
+// all of which sit near the neutral axis or on the other side of it. The cluster is a 2D Gaussian
+// (mean and covariance of a*, b* in OpenCV's 8-bit Lab scale, 128 = neutral); a pixel is
+// foreground when its Mahalanobis distance is below `max_colour_distance`. Lightness only bounds
+// out black and blown-out pixels, because shading on a potato changes L far more than chroma.
+// Defaults: the Gaussian fitted to the inner ellipses (70 % of the box) of the 32 annotated
+// potatoes of the 11 shared images (tools: see docs; leave-one-image-out figures in the report).
+//
+// Geometry: sizes are fractions of the image's shorter side, so the same preset serves 416x416
+// crops and 640x480 frames at the same field of view.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cropsight/core/config.hpp"
+#include "cropsight/core/detection2d.hpp"
+
+namespace cropsight::pipeline::potato {
+
+struct PotatoBlobConfig {
+  // Colour model: OpenCV 8-bit Lab (a*, b* offset by 128).
+  double mean_a = 134.38;  ///< fitted on the shared images (see above)
+  double mean_b = 150.98;
+  double cov_aa = 6.48, cov_ab = 4.25, cov_bb = 32.04;
+  double max_colour_distance = 3.0;  ///< Mahalanobis; 3 keeps 99 % of the fitted potato pixels
+  int min_lightness = 20;            ///< 8-bit L; darker pixels (shadows, clothes) are background
+  int max_lightness = 235;           ///< brighter ones (specular highlights of the sheet) too
+  // Range foreground (used only when the input has metric depth).
+  double depth_min_m = 0.2;      ///< the D415 returns nothing nearer; nearer returns are noise
+  double depth_max_m = 1.2;      ///< beyond: the sheet / the room (harvest approach at 0.3-0.5 m)
+  bool keep_depth_holes = true;  ///< pixels without depth keep their colour decision
+  // Morphology and blob rules (fractions of the image's shorter side / of its area).
+  double opening_fraction = 0.015;    ///< opening kernel side / short side; strings are ~0.7 % wide
+  double closing_fraction = 0.01;     ///< closing kernel (fills eyes and dark spots), 0 = none
+  double min_area_fraction = 0.0008;  ///< blobs smaller than this fraction of the image are dropped
+  double max_aspect = 4.0;            ///< box long/short side above this = a bundle of roots
+  double min_solidity = 0.6;          ///< blob area / convex hull area
+  double min_score = 0.05;            ///< detections below this score are not reported
+  double split_core_fraction = 0.6;   ///< touching potatoes: cores deeper than this × the deepest; 0 = no split
+
+  template <class V>
+  void visit(V& v) {
+    v("mean_a", mean_a, "8-bit Lab a*; potato skin colour mean (fitted on the 11 shared images)",
+      Range::within(0, 255));
+    v("mean_b", mean_b, "8-bit Lab b*; potato skin colour mean (fitted on the 11 shared images)",
+      Range::within(0, 255));
+    v("cov_aa", cov_aa, "(8-bit Lab)^2; variance of a* of the skin colour", Range::above(0));
+    v("cov_ab", cov_ab, "(8-bit Lab)^2; covariance of a* and b* (the matrix must be positive definite)");
+    v("cov_bb", cov_bb, "(8-bit Lab)^2; variance of b* of the skin colour", Range::above(0));
+    v("max_colour_distance", max_colour_distance, "Mahalanobis distance; colour foreground threshold", Range::above(0));
+    v("min_lightness", min_lightness, "8-bit L; darker pixels are background", Range::within(0, 255));
+    v("max_lightness", max_lightness, "8-bit L; brighter pixels are background", Range::within(0, 255));
+    v("depth_min_m", depth_min_m, "m; nearer depth is background (D415 minimum range)", Range::at_least(0));
+    v("depth_max_m", depth_max_m, "m; farther depth is background (the sheet and the room behind)", Range::above(0));
+    v("keep_depth_holes", keep_depth_holes, "pixels without depth (0) keep their colour decision");
+    v("opening_fraction", opening_fraction, "fraction of the short image side; opening kernel that removes strings",
+      Range::within(0, 0.2));
+    v("closing_fraction", closing_fraction, "fraction of the short image side; closing kernel, 0 = none",
+      Range::within(0, 0.2));
+    v("min_area_fraction", min_area_fraction, "fraction of the image area; smallest blob kept", Range::within(0, 1));
+    v("max_aspect", max_aspect, "ratio; longest/shortest side of the blob's rotated box", Range::at_least(1));
+    v("min_solidity", min_solidity, "ratio; blob area / convex hull area", Range::within(0, 1));
+    v("split_core_fraction", split_core_fraction,
+      "ratio; a blob splits where its cores (distance to the boundary >= this x the largest) fall apart, 0 = never",
+      Range::within(0, 1).open_above());
+    v("min_score", min_score, "score in [0, 1]; lower-scoring blobs are not reported", Range::within(0, 1));
+  }
+  /// Rules between fields (ranges are checked by check_config). Throws Error(where, ...).
+  void validate(const std::string& where) const;
+};
+
+/// Implements Detector2D with one class, "potato". Score = mean colour likelihood of the blob's
+/// pixels (exp(-d²/2), d the Mahalanobis distance) × its solidity, in [0, 1].
+class PotatoBlobDetector final : public Detector2D {
+ public:
+  explicit PotatoBlobDetector(const PotatoBlobConfig& cfg = {});
+  ~PotatoBlobDetector() override;
+  std::vector<Detection2D> detect(const DetectorInput& in) override;
+  std::vector<std::string> class_names() const override { return {"potato"}; }
+  /// The foreground mask of the last detect() (255 = potato colour after morphology), for
+  /// figures and tests; width x height of the last image.
+  const GrayImage& last_mask() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace cropsight::pipeline::potato

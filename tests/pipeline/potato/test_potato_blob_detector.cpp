@@ -1,0 +1,158 @@
+// The classical potato detector: synthetic scenes with known answers (a potato on a sheet, a
+// string, a blue object, two touching potatoes, depth gating) and the shared images (AP50 with
+// the colour model refit leaving each image out).
+#include "cropsight/pipeline/potato/potato_blob_detector.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <opencv2/imgproc.hpp>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/io/image_io.hpp"
+#include "cropsight/pipeline/potato/potato_colour_fit.hpp"
+#include "cropsight/pipeline/potato/potato_detection_eval.hpp"
+#include "testing/testing.hpp"
+
+namespace {
+using namespace cropsight;
+using pipeline::potato::PotatoBlobConfig;
+using pipeline::potato::PotatoBlobDetector;
+
+// The default skin colour (Lab mean) in RGB, so the scene does not depend on a guessed colour.
+cv::Scalar skin_rgb() {
+  cv::Mat lab(1, 1, CV_8UC3, cv::Scalar(110, PotatoBlobConfig{}.mean_a, PotatoBlobConfig{}.mean_b)), rgb;
+  cv::cvtColor(lab, rgb, cv::COLOR_Lab2RGB);
+  const cv::Vec3b p = rgb.at<cv::Vec3b>(0, 0);
+  return {double(p[0]), double(p[1]), double(p[2])};
+}
+
+ColorImage to_image(const cv::Mat& rgb) {
+  ColorImage im(rgb.cols, rgb.rows);
+  std::memcpy(im.data.data(), rgb.data, im.data.size() * 3);
+  return im;
+}
+
+// A white sheet, one potato (ellipse 40 x 70 px at (150, 200)), a 3-px string of potato colour
+// from the top, and a blue object.
+cv::Mat scene() {
+  cv::Mat m(416, 416, CV_8UC3, cv::Scalar(235, 235, 240));
+  cv::ellipse(m, {150, 200}, {20, 35}, 10, 0, 360, skin_rgb(), cv::FILLED);
+  cv::line(m, {150, 0}, {150, 170}, skin_rgb(), 3);
+  cv::line(m, {300, 0}, {330, 416}, skin_rgb(), 3);
+  cv::circle(m, {320, 300}, 30, cv::Scalar(30, 60, 200), cv::FILLED);
+  return m;
+}
+
+TEST(PotatoBlobDetector, FindsThePotatoNotTheStringOrTheBlueObject) {
+  const ColorImage im = to_image(scene());
+  PotatoBlobDetector det;
+  const auto d = det.detect({&im, nullptr});
+  ASSERT_EQ(d.size(), 1u);
+  Detection2D truth;
+  // The ellipse's bounding box: half sides sqrt(a² cos² + b² sin²) and sqrt(a² sin² + b² cos²).
+  const double c = std::cos(10 * CV_PI / 180), s = std::sin(10 * CV_PI / 180);
+  const double hw = std::sqrt(20 * 20 * c * c + 35 * 35 * s * s), hh = std::sqrt(20 * 20 * s * s + 35 * 35 * c * c);
+  truth.x1 = float(150 - hw), truth.y1 = float(200 - hh), truth.x2 = float(150 + hw), truth.y2 = float(200 + hh);
+  EXPECT_GT(iou(d[0], truth), 0.8) << d[0].x1 << " " << d[0].y1 << " " << d[0].x2 << " " << d[0].y2;
+  EXPECT_GT(d[0].score, 0.5f);
+  EXPECT_LE(d[0].score, 1.f);
+  EXPECT_EQ(det.class_names(), std::vector<std::string>{"potato"});
+}
+
+TEST(PotatoBlobDetector, SplitsTwoTouchingPotatoes) {
+  cv::Mat m(416, 416, CV_8UC3, cv::Scalar(235, 235, 240));
+  cv::ellipse(m, {150, 200}, {22, 35}, 0, 0, 360, skin_rgb(), cv::FILLED);
+  // 2 px apart, bridged by the closing: the neck is about half the deepest distance (measured
+  // 11.4 of 23 px), below split_core_fraction = 0.6.
+  cv::ellipse(m, {196, 205}, {22, 35}, 0, 0, 360, skin_rgb(), cv::FILLED);
+  const ColorImage im = to_image(m);
+  PotatoBlobConfig cfg;
+  const auto two = PotatoBlobDetector(cfg).detect({&im, nullptr});
+  ASSERT_EQ(two.size(), 2u);
+  // Each box holds one potato: left one in x [128, 172], right one in [174, 218].
+  const float left_x2 = std::min(two[0].x2, two[1].x2), right_x1 = std::max(two[0].x1, two[1].x1);
+  EXPECT_NEAR(left_x2, 173, 3);
+  EXPECT_NEAR(right_x1, 173, 3);
+  cfg.split_core_fraction = 0;  // no split: one blob
+  EXPECT_EQ(PotatoBlobDetector(cfg).detect({&im, nullptr}).size(), 1u);
+}
+
+TEST(PotatoBlobDetector, DepthGatesTheForeground) {
+  const ColorImage im = to_image(scene());
+  Image<float> far(416, 416, 2.5f), near(416, 416, 0.4f), holes(416, 416, 0.f);
+  PotatoBlobDetector det;
+  EXPECT_TRUE(det.detect({&im, &far}).empty());  // the room behind the sheet
+  EXPECT_EQ(det.detect({&im, &near}).size(), 1u);
+  EXPECT_EQ(det.detect({&im, &holes}).size(), 1u);  // no depth: colour decides
+  PotatoBlobConfig cfg;
+  cfg.keep_depth_holes = false;
+  EXPECT_TRUE(PotatoBlobDetector(cfg).detect({&im, &holes}).empty());
+  Image<float> wrong(100, 100, 0.4f);
+  EXPECT_THROW(det.detect({&im, &wrong}), Error);
+}
+
+TEST(PotatoBlobDetector, ConfigIsChecked) {
+  PotatoBlobConfig cfg;
+  EXPECT_THROW(apply_config(cfg, {{"detector.colour_distance", "3"}}, "--set", "detector."), Error);
+  apply_config(cfg, {{"detector.max_colour_distance", "2.5"}}, "--set", "detector.");
+  EXPECT_EQ(cfg.max_colour_distance, 2.5);
+  EXPECT_THROW(apply_config(cfg, {{"detector.opening_fraction", "-1"}}, "--set", "detector."), Error);
+  cfg.cov_ab = 100;  // not positive definite
+  EXPECT_THROW(PotatoBlobDetector{cfg}, Error);
+}
+
+// AP50 on the 11 shared images. The colour model is refit on the other 10 images for each one
+// (leave-one-image-out); the morphology and shape thresholds were chosen on all 11 images, so
+// this is not a held-out figure for them (the judges' 20 images are).
+TEST(PotatoBlobDetector, SharedImagesLeaveOneOut) {
+  const auto dir = cropsight::testing::shared_data_dir() / "potato" / "detection";
+  CROPSIGHT_REQUIRE_DATA(dir);
+  const auto set = pipeline::potato::load_annotated_images(dir / "images", dir / "annotations_voc");
+  std::vector<ColorImage> images;
+  std::vector<std::vector<Detection2D>> boxes;
+  for (const auto& a : set) {
+    images.push_back(io::read_color(a.image));
+    boxes.emplace_back();
+    for (const auto& b : pipeline::potato::truth_boxes(a.truth)) {
+      Detection2D d;
+      d.x1 = float(b.x1), d.y1 = float(b.y1), d.x2 = float(b.x2), d.y2 = float(b.y2);
+      boxes.back().push_back(d);
+    }
+  }
+  std::vector<eval::VocImage> loo(set.size()), fixed(set.size());
+  PotatoBlobDetector shipped;
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    std::vector<const ColorImage*> train_images;
+    std::vector<std::vector<Detection2D>> train_boxes;
+    for (std::size_t j = 0; j < set.size(); ++j)
+      if (j != i) train_images.push_back(&images[j]), train_boxes.push_back(boxes[j]);
+    PotatoBlobConfig cfg;
+    pipeline::potato::fit_potato_colour(train_images, train_boxes).apply_to(cfg);
+    PotatoBlobDetector det(cfg);
+    loo[i].truth = fixed[i].truth = pipeline::potato::truth_boxes(set[i].truth);
+    loo[i].detections = pipeline::potato::detection_boxes(det.detect({&images[i], nullptr}));
+    fixed[i].detections = pipeline::potato::detection_boxes(shipped.detect({&images[i], nullptr}));
+  }
+  const auto s_loo = eval::voc_ap_summary(loo), s_fixed = eval::voc_ap_summary(fixed);
+  std::printf("[ classical ] 11 images, colour leave-one-out: AP50 %.4f AP75 %.4f mAP50:95 %.4f\n", s_loo.ap50,
+              s_loo.ap75, s_loo.map50_95);
+  std::printf("[ classical ] 11 images, shipped defaults (fit on all 11): AP50 %.4f AP75 %.4f mAP50:95 %.4f\n",
+              s_fixed.ap50, s_fixed.ap75, s_fixed.map50_95);
+  EXPECT_GT(s_loo.ap50, 0.75);    // measured 0.807 when written
+  EXPECT_GT(s_fixed.ap50, 0.75);  // measured 0.788
+
+  // The shipped colour model is the fit on all 11 images (to the printed digits).
+  std::vector<const ColorImage*> all;
+  for (const auto& im : images) all.push_back(&im);
+  const auto fit = pipeline::potato::fit_potato_colour(all, boxes);
+  const PotatoBlobConfig def;
+  EXPECT_NEAR(fit.mean_a, def.mean_a, 0.01);
+  EXPECT_NEAR(fit.mean_b, def.mean_b, 0.01);
+  EXPECT_NEAR(fit.cov_aa, def.cov_aa, 0.01);
+  EXPECT_NEAR(fit.cov_ab, def.cov_ab, 0.01);
+  EXPECT_NEAR(fit.cov_bb, def.cov_bb, 0.01);
+}
+
+}  // namespace
