@@ -37,5 +37,6 @@ void add_simulate_seedling(CLI::App& simulate);
 void add_detect_potato(CLI::App& detect);
 void add_eval_potato_detection(CLI::App& eval);
 void add_eval_potato_orientation(CLI::App& eval);
+void add_harvest_potato(CLI::App& harvest);
 
 }  // namespace cropsight::cli

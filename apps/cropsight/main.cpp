@@ -62,6 +62,9 @@ int main(int argc, char** argv) {
   add_detect_potato(*detect);
   add_eval_potato_detection(*eval);
   add_eval_potato_orientation(*eval);
+  auto* harvest = app.add_subcommand("harvest", "Run a harvest loop: one target message per frame");
+  harvest->require_subcommand(1);
+  add_harvest_potato(*harvest);
 
   // CLI11 reports a mistyped command as "A subcommand is required"; name it instead. Same one
   // level down (cropsight detect brocoli).

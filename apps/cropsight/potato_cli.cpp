@@ -1,22 +1,45 @@
 #include "potato_cli.hpp"
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/pipeline/potato/potato_blob_detector.hpp"
 
 namespace cropsight::cli {
 
-std::unique_ptr<Detector2D> potato_detector(const CommonOptions& common) {
-  ConfigMap m = common.config_map("potato");
-  const std::string where = common.sets.empty() ? (common.config.empty() ? "potato" : common.config) : "--config/--set";
-  std::string backend = "classical";
-  if (auto it = m.find("detector.backend"); it != m.end()) backend = it->second, m.erase(it);
-  if (backend != "classical") throw Error(where, "'detector.backend' is '" + backend + "'; this build has: classical");
-  for (const auto& [key, value] : m)
-    if (key.rfind("detector.classical.", 0) != 0) throw Error(where, "unknown configuration key '" + key + "'");
-  pipeline::potato::PotatoBlobConfig cfg;
-  apply_config(cfg, m, where, "detector.classical.");
+namespace {
+std::string config_where(const CommonOptions& common) {
+  return common.sets.empty() ? (common.config.empty() ? "potato" : common.config) : "--config/--set";
+}
+}  // namespace
+
+pipeline::potato::PotatoPipelineConfig potato_config(const CommonOptions& common) {
+  const std::string where = config_where(common);
+  pipeline::potato::PotatoPipelineConfig cfg;
+  apply_config(cfg, common.config_map("potato"), where);
   cfg.validate(where);
-  return std::make_unique<pipeline::potato::PotatoBlobDetector>(cfg);
+  return cfg;
+}
+
+std::unique_ptr<Detector2D> potato_detector(const CommonOptions& common) {
+  return pipeline::potato::make_potato_detector(potato_config(common).detector, config_where(common));
+}
+
+nlohmann::json harvest_json(const pipeline::potato::HarvestTarget& t) {
+  nlohmann::json j{{"frame", t.frame},
+                   {"timestamp", json_number(t.timestamp)},
+                   {"detection", t.detection},
+                   {"depth_ok", t.depth_ok},
+                   {"x", json_number(t.x)},
+                   {"y", json_number(t.y)},
+                   {"z", json_number(t.z)},
+                   {"height", json_number(t.height)},
+                   {"width", json_number(t.width)},
+                   {"angle", json_number(t.angle)},
+                   {"angle_ok", t.angle_ok},
+                   {"target_id", t.target_id},
+                   {"state", config_name(t.state)},
+                   {"score", json_number(t.score)}};
+  if (t.detection)
+    j["box"] = {json_number(t.box.x1), json_number(t.box.y1), json_number(t.box.x2), json_number(t.box.y2)};
+  return j;
 }
 
 }  // namespace cropsight::cli

@@ -1,15 +1,22 @@
 #pragma once
 // Shared by the potato commands (issue 22): the detector a preset and --set choose.
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
 #include "cropsight/core/detection2d.hpp"
+#include "cropsight/pipeline/potato/potato_pipeline.hpp"
 
 namespace cropsight::cli {
 
-/// The detector of the "potato" preset (or --config) overlaid with --set: `detector.backend`
-/// (only "classical" in this build) and `detector.classical.*` (PotatoBlobConfig). Any other key
-/// is an Error naming the preset or "--set".
+/// The pipeline configuration of the "potato" preset (or --config) overlaid with --set and
+/// validated; an unknown key or a bad value is an Error naming the preset or "--set".
+pipeline::potato::PotatoPipelineConfig potato_config(const CommonOptions& common);
+
+/// The detector that configuration names (detector.backend: classical | onnx).
 std::unique_ptr<Detector2D> potato_detector(const CommonOptions& common);
+
+/// One harvest message (paper Table 3.2 and the fields that follow it) as one JSON object.
+nlohmann::json harvest_json(const pipeline::potato::HarvestTarget& t);
 
 }  // namespace cropsight::cli

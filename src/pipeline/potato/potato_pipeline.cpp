@@ -1,0 +1,130 @@
+// The potato pipeline's composition (see potato_pipeline.hpp): one call per step of the paper.
+#include "cropsight/pipeline/potato/potato_pipeline.hpp"
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/core/timer.hpp"
+#include "cropsight/io/config_yaml.hpp"
+#include "cropsight/io/depth_colormap.hpp"
+
+namespace cropsight::pipeline::potato {
+
+void PotatoPipelineConfig::validate(const std::string& where) const {
+  check_config(*this, where);
+  detector.classical.validate(where);
+  if (detector.backend == DetectorBackend::onnx) detector.onnx.validate(where);
+  position.validate(where);
+  measure::validate(orientation, where);
+  cropsight::detail::check_range(where, "colormap_far_m", colormap_far_m,
+                                 Range::above(colormap_near_m, "colormap_near_m"));
+}
+
+std::unique_ptr<Detector2D> make_potato_detector(const PotatoDetectorConfig& cfg, const std::string& where) {
+  if (cfg.backend == DetectorBackend::onnx) {
+    if (cfg.onnx.model.empty())
+      throw Error(where, "'detector.onnx.model' must name an .onnx file for detector.backend onnx");
+    return nn::make_onnx_detector(cfg.onnx);
+  }
+  return std::make_unique<PotatoBlobDetector>(cfg.classical);
+}
+
+PotatoPipeline::PotatoPipeline(PotatoPipelineConfig cfg, const std::string& where)
+    : PotatoPipeline(cfg, nullptr, where) {}
+
+PotatoPipeline::PotatoPipeline(PotatoPipelineConfig cfg, std::unique_ptr<Detector2D> detector, const std::string& where)
+    : cfg_(std::move(cfg)), tracker_(cfg_.tracking) {
+  cfg_.validate(where);
+  detector_ = detector ? std::move(detector) : make_potato_detector(cfg_.detector, where);
+}
+
+PotatoPipeline::~PotatoPipeline() = default;
+
+void PotatoPipeline::reset() { tracker_.reset(); }
+
+std::vector<Detection2D> PotatoPipeline::detect(const ColorImage& image, const Image<float>* depth_m) {
+  return detector_->detect(DetectorInput{&image, depth_m && !depth_m->empty() ? depth_m : nullptr});
+}
+
+std::vector<tracking::TargetCandidate> PotatoPipeline::candidates(const PotatoFrameResult& r) const {
+  std::vector<tracking::TargetCandidate> c(r.detections.size());
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    c[i].box = r.detections[i];
+    c[i].distance_m = r.positions[i].surface_depth_m;
+    c[i].ripe = r.ripe[i];
+    c[i].depth_ok = r.positions[i].depth_ok;
+  }
+  return c;
+}
+
+// Step 5 on the target's box: the colourised depth (as the paper, from the frame's metric depth)
+// or the colour image, as the preset says.
+void PotatoPipeline::orient(const RgbdFrame& frame, const Image<float>& depth_m, PotatoFrameResult& r) {
+  HarvestTarget& t = r.target;
+  const bool use_depth = cfg_.orientation.input == measure::OrientationInput::depth && !depth_m.empty();
+  measure::OrientationConfig oc = cfg_.orientation;
+  if (!use_depth) oc.input = measure::OrientationInput::rgb;
+  const ColorImage image =
+      use_depth ? io::colorize_depth(depth_m, float(cfg_.colormap_near_m), float(cfg_.colormap_far_m)) : ColorImage{};
+  const measure::OrientationResult o = measure::estimate_orientation(use_depth ? image : frame.color, t.box, oc);
+  t.angle_ok = o.ok;
+  t.angle = o.ok ? float(o.angle_rad) : 0.f;
+}
+
+PotatoFrameResult PotatoPipeline::process(const RgbdFrame& frame) {
+  if (frame.color.empty()) throw Error("frame " + std::to_string(frame.index), "the potato pipeline needs colour");
+  PotatoFrameResult r;
+  Stopwatch watch;
+  const auto lap = [&watch] {
+    const double ms = watch.ms();
+    watch.restart();
+    return ms;
+  };
+  const Image<float> depth_m =
+      frame.depth.empty() ? Image<float>{} : measure::depth_in_metres(frame.depth, frame.camera.depth_scale);
+  // 1. detect
+  r.detections = detect(frame.color, &depth_m);
+  r.ms_detect = lap();
+  // 2. locate, 3. ripeness
+  for (const Detection2D& d : r.detections) {
+    r.positions.push_back(depth_m.empty() ? measure::Position3D{}
+                                          : measure::locate(d, depth_m, frame.camera, cfg_.position));
+    r.ripe.push_back(measure::is_ripe(r.positions.back(), cfg_.ripeness));
+  }
+  r.ms_locate = lap();
+  // 4. select / track
+  const tracking::TargetUpdate u = tracker_.update(&frame.color, candidates(r));
+  r.ms_track = lap();
+  HarvestTarget& t = r.target;
+  t.frame = frame.index;
+  t.timestamp = frame.timestamp;
+  t.state = u.state;
+  t.target_id = u.target_id;
+  if (u.box) {
+    t.detection = true;
+    t.box = *u.box;
+    // A detected target reuses its step-2 position; a tracked box is located anew.
+    const measure::Position3D p =
+        u.candidate >= 0
+            ? r.positions[std::size_t(u.candidate)]
+            : (depth_m.empty() ? measure::Position3D{} : measure::locate(t.box, depth_m, frame.camera, cfg_.position));
+    t.score = u.candidate >= 0 ? r.detections[std::size_t(u.candidate)].score : 0.f;
+    t.depth_ok = p.depth_ok;
+    t.x = p.xyz.x(), t.y = p.xyz.y(), t.z = p.xyz.z();
+    t.width = p.width_m, t.height = p.height_m;
+    // 5. orient
+    orient(frame, depth_m, r);
+  }
+  r.ms_orient = lap();
+  // 6. the message is r.target
+  return r;
+}
+
+PotatoPipelineConfig load_potato_config(const std::string& preset, const ConfigMap& overrides) {
+  const auto path = io::find_preset(preset);
+  PotatoPipelineConfig cfg;
+  apply_config(cfg, io::load_config_map(path), path.string());
+  apply_config(cfg, overrides, "--set");
+  cfg.validate(path.string());
+  return cfg;
+}
+
+}  // namespace cropsight::pipeline::potato
