@@ -1,25 +1,22 @@
 #include "potato_cli.hpp"
 
-#include "cropsight/core/error.hpp"
-
 namespace cropsight::cli {
 
 namespace {
-std::string config_where(const CommonOptions& common) {
-  return common.sets.empty() ? (common.config.empty() ? "potato" : common.config) : "--config/--set";
-}
+std::string preset_of(const CommonOptions& common) { return common.config.empty() ? "potato" : common.config; }
 }  // namespace
 
 pipeline::potato::PotatoPipelineConfig potato_config(const CommonOptions& common) {
-  const std::string where = config_where(common);
-  pipeline::potato::PotatoPipelineConfig cfg;
-  apply_config(cfg, common.config_map("potato"), where);
-  cfg.validate(where);
-  return cfg;
+  ConfigMap sets;
+  for (const std::string& s : common.sets) {
+    auto [key, value] = parse_assignment(s);
+    sets[key] = value;
+  }
+  return pipeline::potato::load_potato_config(preset_of(common), sets);
 }
 
 std::unique_ptr<Detector2D> potato_detector(const CommonOptions& common) {
-  return pipeline::potato::make_potato_detector(potato_config(common).detector, config_where(common));
+  return pipeline::potato::make_potato_detector(potato_config(common).detector, preset_of(common));
 }
 
 nlohmann::json harvest_json(const pipeline::potato::HarvestTarget& t) {

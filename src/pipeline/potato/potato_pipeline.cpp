@@ -83,10 +83,13 @@ PotatoFrameResult PotatoPipeline::process(const RgbdFrame& frame) {
   // 1. detect
   r.detections = detect(frame.color, &depth_m);
   r.ms_detect = lap();
+  // Without depth a box has no position (depth_ok false).
+  const auto locate = [&](const Detection2D& box) {
+    return depth_m.empty() ? measure::Position3D{} : measure::locate(box, depth_m, frame.camera, cfg_.position);
+  };
   // 2. locate, 3. ripeness
   for (const Detection2D& d : r.detections) {
-    r.positions.push_back(depth_m.empty() ? measure::Position3D{}
-                                          : measure::locate(d, depth_m, frame.camera, cfg_.position));
+    r.positions.push_back(locate(d));
     r.ripe.push_back(measure::is_ripe(r.positions.back(), cfg_.ripeness));
   }
   r.ms_locate = lap();
@@ -102,10 +105,7 @@ PotatoFrameResult PotatoPipeline::process(const RgbdFrame& frame) {
     t.detection = true;
     t.box = *u.box;
     // A detected target reuses its step-2 position; a tracked box is located anew.
-    const measure::Position3D p =
-        u.candidate >= 0
-            ? r.positions[std::size_t(u.candidate)]
-            : (depth_m.empty() ? measure::Position3D{} : measure::locate(t.box, depth_m, frame.camera, cfg_.position));
+    const measure::Position3D p = u.candidate >= 0 ? r.positions[std::size_t(u.candidate)] : locate(t.box);
     t.score = u.candidate >= 0 ? r.detections[std::size_t(u.candidate)].score : 0.f;
     t.depth_ok = p.depth_ok;
     t.x = p.xyz.x(), t.y = p.xyz.y(), t.z = p.xyz.z();

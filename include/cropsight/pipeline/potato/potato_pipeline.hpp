@@ -110,7 +110,7 @@ class PotatoPipeline {
 
   /// One frame: colour (required) registered to depth (optional; metres = value * depth_scale).
   PotatoFrameResult process(const RgbdFrame& frame);
-  /// Steps 1 and 5 alone, for single images (detect potato, eval potato-orientation).
+  /// Step 1 alone, for single images (detect potato). `depth_m` may be null or empty.
   std::vector<Detection2D> detect(const ColorImage& image, const Image<float>* depth_m = nullptr);
   /// Starts a new approach: drops the target.
   void reset();
