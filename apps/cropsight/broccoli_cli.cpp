@@ -8,17 +8,6 @@
 
 namespace cropsight::cli {
 
-std::vector<std::string> split_list(const std::string& text, const std::string& option) {
-  std::vector<std::string> out;
-  std::istringstream in(text);
-  for (std::string part; std::getline(in, part, ',');) {
-    if (part.empty()) throw Error(option, "empty entry in list '" + text + "'");
-    out.push_back(part);
-  }
-  if (out.empty()) throw Error(option, "expects at least one value");
-  return out;
-}
-
 LoadedBroccoli load_broccoli(const std::string& model_path, const CommonOptions& common, bool track) {
   LoadedBroccoli l;
   l.model = pipeline::load_broccoli_model(model_path);

@@ -18,9 +18,6 @@
 
 namespace cropsight::cli {
 
-/// "a,b,c" → {"a", "b", "c"}; throws Error(option, ...) when empty or a part is empty.
-std::vector<std::string> split_list(const std::string& text, const std::string& option);
-
 /// A model file and the config its pipeline runs with (defaults ← model ← preset ← --set).
 struct LoadedBroccoli {
   std::shared_ptr<const learning::Model> model;

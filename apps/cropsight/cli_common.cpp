@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <sstream>
 
+#include "cropsight/core/error.hpp"
 #include "cropsight/io/config_yaml.hpp"
 
 namespace cropsight::cli {
@@ -33,6 +35,17 @@ void add_config_options(CLI::App* cmd, CommonOptions& o) {
 nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 void print_json(const nlohmann::json& j) { std::cout << j.dump() << std::endl; }
+
+std::vector<std::string> split_list(const std::string& text, const std::string& option) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string part; std::getline(in, part, ',');) {
+    if (part.empty()) throw Error(option, "empty entry in list '" + text + "'");
+    out.push_back(part);
+  }
+  if (out.empty()) throw Error(option, "expects at least one value");
+  return out;
+}
 
 Progress::Progress(std::string what, long total, bool quiet, double min_interval_s)
     : what_(std::move(what)), total_(total), quiet_(quiet), tty_(::isatty(2) != 0), min_interval_s_(min_interval_s) {}

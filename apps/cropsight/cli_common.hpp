@@ -31,6 +31,9 @@ nlohmann::json json_number(double v);
 /// Prints `j` as one line of JSON on stdout.
 void print_json(const nlohmann::json& j);
 
+/// "a,b,c" → {"a", "b", "c"}; throws Error(option, ...) when empty or a part is empty.
+std::vector<std::string> split_list(const std::string& text, const std::string& option);
+
 /// Progress line on stderr ("\r" overwritten when stderr is a terminal, one line per update otherwise,
 /// at most every `min_interval_s`). Silent when `quiet`.
 class Progress {

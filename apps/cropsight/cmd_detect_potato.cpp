@@ -1,7 +1,9 @@
-// cropsight detect potato (issue 22): every image of a folder -> <stem>.txt in the paper's format
-// ("potato score x1 y1 x2 y2"), optional overlays with the boxes, one JSON line per image. The
-// detection is the library's Detector2D; this file parses options and writes the outputs, each
-// output folder whole or not at all (temporary folder, then rename).
+// cropsight detect potato (issue 22): every image of a folder (or one image file, or every colour
+// frame of an RGB-D sequence, whose depth then reaches the detector) -> <stem>.txt in the paper's
+// format ("potato score x1 y1 x2 y2"), optional overlays with the boxes and each box's length
+// axis, one JSON line per image. Detection and orientation are the library's PotatoPipeline steps
+// 1 and 5; this file parses options and writes the outputs, each output folder whole or not at all
+// (temporary folder, then rename).
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -11,7 +13,9 @@
 #include "cropsight/core/timer.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/image_io.hpp"
+#include "cropsight/io/sequence.hpp"
 #include "cropsight/io/voc.hpp"
+#include "cropsight/measure/position.hpp"
 #include "cropsight/pipeline/potato/potato_overlay.hpp"
 #include "potato_cli.hpp"
 
@@ -21,11 +25,13 @@ namespace fs = std::filesystem;
 
 struct Options {
   CommonOptions common;
-  std::string images, out, overlay;
+  std::string images, data, out, overlay, model;
 };
 
+// A folder's .jpg/.png images in name order, or the one image file named.
 std::vector<fs::path> list_images(const fs::path& dir) {
-  if (!fs::is_directory(dir)) throw Error(dir.string(), "not a folder of images");
+  if (fs::is_regular_file(dir)) return {dir};
+  if (!fs::is_directory(dir)) throw Error(dir.string(), "no such image or folder of images");
   std::vector<fs::path> out;
   for (const auto& e : fs::directory_iterator(dir)) {
     std::string ext = e.path().extension().string();
@@ -37,38 +43,97 @@ std::vector<fs::path> list_images(const fs::path& dir) {
   return out;
 }
 
+// One input image: its name for the outputs, its colour and (sequences) its metric depth.
+struct Input {
+  std::string stem, name;
+  ColorImage color;
+  Image<float> depth_m;
+};
+
+// The inputs in order, read one at a time (a sequence can be long).
+class Inputs {
+ public:
+  explicit Inputs(const Options& o) {
+    if (o.images.empty() == o.data.empty()) throw Error("detect potato", "give exactly one of --images and --data");
+    if (!o.images.empty()) files_ = list_images(o.images);
+    if (!o.data.empty()) seq_ = std::make_unique<io::SequenceReader>(o.data);
+    if (seq_ && seq_->size() == 0) throw Error(o.data, "sequence has no frames");
+  }
+  int size() const { return seq_ ? seq_->size() : int(files_.size()); }
+  Input read(int i) const {
+    Input in;
+    if (!seq_) {
+      in.stem = files_[std::size_t(i)].stem().string();
+      in.name = files_[std::size_t(i)].filename().string();
+      in.color = io::read_color(files_[std::size_t(i)]);
+      return in;
+    }
+    RgbdFrame f = seq_->read(i);
+    if (f.color.empty()) throw Error(seq_->color_path(i).string(), "the potato detector needs colour images");
+    in.stem = seq_->color_path(i).stem().string();
+    in.name = seq_->color_path(i).filename().string();
+    if (!f.depth.empty()) in.depth_m = measure::depth_in_metres(f.depth, f.camera.depth_scale);
+    in.color = std::move(f.color);
+    return in;
+  }
+
+ private:
+  std::vector<fs::path> files_;
+  std::unique_ptr<io::SequenceReader> seq_;
+};
+
+nlohmann::json detections_json(const std::vector<Detection2D>& dets, const std::vector<std::string>& names,
+                               const std::vector<std::optional<double>>& angles) {
+  nlohmann::json boxes = nlohmann::json::array();
+  for (std::size_t i = 0; i < dets.size(); ++i) {
+    const Detection2D& d = dets[i];
+    nlohmann::json b{{"class", names[std::size_t(d.class_id)]},
+                     {"score", d.score},
+                     {"x1", d.x1},
+                     {"y1", d.y1},
+                     {"x2", d.x2},
+                     {"y2", d.y2}};
+    if (i < angles.size()) b["angle"] = angles[i] ? nlohmann::json(*angles[i]) : nlohmann::json(nullptr);
+    boxes.push_back(b);
+  }
+  return boxes;
+}
+
 void run(const Options& o) {
-  auto detector = potato_detector(o.common);  // a bad key fails before any image is read
-  const std::vector<std::string> names = detector->class_names();
-  const auto files = list_images(o.images);
+  CommonOptions common = o.common;
+  if (!o.model.empty()) {  // --model: the ONNX backend with this file
+    common.sets.push_back("detector.backend=onnx");
+    common.sets.push_back("detector.onnx.model=" + o.model);
+  }
+  // A bad key or model fails before any image is read.
+  pipeline::potato::PotatoPipeline pipeline(potato_config(common), common.config.empty() ? "potato" : common.config);
+  const std::vector<std::string> names = pipeline.detector_class_names();
+  const Inputs inputs(o);
   io::TempDirectory out(o.out);
   std::unique_ptr<io::TempDirectory> overlay;
   if (!o.overlay.empty()) overlay = std::make_unique<io::TempDirectory>(o.overlay);
-  for (const fs::path& f : files) {
-    ColorImage img = io::read_color(f);
+  for (int i = 0; i < inputs.size(); ++i) {
+    Input in = inputs.read(i);
     Stopwatch sw;
-    const std::vector<Detection2D> dets = detector->detect({&img, nullptr});
+    const std::vector<Detection2D> dets = pipeline.detect(in.color, &in.depth_m);
     const double ms = sw.ms();
-    const std::string stem = f.stem().string();
-    io::write_detection_text(out.path() / (stem + ".txt"), dets, names);
+    io::write_detection_text(out.path() / (in.stem + ".txt"), dets, names);
+    // The axes are drawn on the overlays and printed in the JSON lines; without either, they are
+    // not estimated (the detection files hold boxes only).
+    std::vector<std::optional<double>> angles;
+    if (overlay || o.common.json)
+      for (const Detection2D& d : dets) {
+        const auto r = pipeline.orient(in.color, in.depth_m, d);
+        angles.push_back(r.ok ? std::optional<double>(r.angle_rad) : std::nullopt);
+      }
     if (overlay) {
-      pipeline::potato::draw_detections(img, dets);
-      io::write_color(overlay->path() / (stem + ".png"), img);
+      pipeline::potato::draw_detections(in.color, dets, angles);
+      io::write_color(overlay->path() / (in.stem + ".png"), in.color);
     }
-    if (o.common.json) {
-      nlohmann::json boxes = nlohmann::json::array();
-      for (const Detection2D& d : dets)
-        boxes.push_back({{"class", names[std::size_t(d.class_id)]},
-                         {"score", d.score},
-                         {"x1", d.x1},
-                         {"y1", d.y1},
-                         {"x2", d.x2},
-                         {"y2", d.y2}});
-      print_json({{"image", f.filename().string()}, {"detections", boxes}, {"ms", ms}});
-    } else {
-      std::printf("%s: %zu potato%s (%.2f ms)\n", f.filename().string().c_str(), dets.size(),
-                  dets.size() == 1 ? "" : "es", ms);
-    }
+    if (o.common.json)
+      print_json({{"image", in.name}, {"detections", detections_json(dets, names, angles)}, {"ms", ms}});
+    else
+      std::printf("%s: %zu potato%s (%.2f ms)\n", in.name.c_str(), dets.size(), dets.size() == 1 ? "" : "es", ms);
   }
   out.commit("detection folder");
   if (overlay) overlay->commit("overlay folder");
@@ -78,10 +143,12 @@ void run(const Options& o) {
 
 void add_detect_potato(CLI::App& detect) {
   auto o = std::make_shared<Options>();
-  auto* cmd = detect.add_subcommand("potato", "Detect potatoes in a folder of images (issue 22)");
-  cmd->add_option("--images", o->images, "Folder of .jpg/.png images")->required();
+  auto* cmd = detect.add_subcommand("potato", "Detect potatoes in images or an RGB-D sequence (issue 22)");
+  cmd->add_option("--images", o->images, "Folder of .jpg/.png images, or one image");
+  cmd->add_option("--data", o->data, "RGB-D sequence folder (docs/formats.md): its depth reaches the detector");
+  cmd->add_option("--model", o->model, "ONNX detector to run (sets detector.backend=onnx, detector.onnx.model)");
   cmd->add_option("--out", o->out, "Folder to write <stem>.txt detections into (replaced whole)")->required();
-  cmd->add_option("--overlay", o->overlay, "Folder to write <stem>.png images with the boxes into");
+  cmd->add_option("--overlay", o->overlay, "Folder to write <stem>.png images with the boxes and axes into");
   add_json_flag(cmd, o->common);
   add_config_options(cmd, o->common);
   cmd->callback([o] { run(*o); });

@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
   auto* harvest = app.add_subcommand("harvest", "Run a harvest loop: one target message per frame");
   harvest->require_subcommand(1);
   add_harvest_potato(*harvest);
+  add_bench_potato(*bench);
 
   // CLI11 reports a mistyped command as "A subcommand is required"; name it instead. Same one
   // level down (cropsight detect brocoli).

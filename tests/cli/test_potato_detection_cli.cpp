@@ -115,4 +115,50 @@ TEST(PotatoDetectionCli, BadInputsAreOneLineNamingTheFile) {
                "nowhere");
 }
 
+TEST(PotatoDetectionCli, DetectReadsOneImageOrASequenceAndDrawsAxes) {
+  TempDir t;
+  synthetic_set(t.path());
+  // One image file: its boxes, and in the JSON line each box's length axis (the ellipse is 100 px
+  // tall and 60 px wide, so the axis is vertical: pi / 2).
+  const auto one = run_cli("detect potato --images " + shell_quoted(t / "images" / "a.png") + " --out " +
+                           shell_quoted(t / "one") + " --overlay " + shell_quoted(t / "ov") + " --json");
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const auto j = nlohmann::json::parse(one.out);
+  ASSERT_EQ(j["detections"].size(), 1u) << one.out;
+  EXPECT_NEAR(j["detections"][0]["angle"].get<double>(), M_PI / 2, 0.05);
+  EXPECT_TRUE(fs::exists(t / "one" / "a.txt"));
+  // The overlay has the box (green) and the axis (red) drawn on it.
+  const cv::Mat ov = cv::imread((t / "ov" / "a.png").string());
+  ASSERT_FALSE(ov.empty());
+  const cv::Vec3b axis = ov.at<cv::Vec3b>(100, 100);  // BGR: the axis crosses the centre
+  EXPECT_GT(axis[2], 200);
+  EXPECT_LT(axis[1], 60);
+
+  // A simulated RGB-D sequence: one text file per colour frame, named after it, and depth reaches
+  // the detector.
+  const fs::path seq = t / "seq";
+  ASSERT_EQ(run_cli("simulate potato --frames 3 --seed 77 --out " + shell_quoted(seq)).exit_code, 0);
+  const auto r = run_cli("detect potato --data " + shell_quoted(seq) + " --out " + shell_quoted(t / "sd"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  int files = 0, boxes = 0;
+  for (const auto& e : fs::directory_iterator(t / "sd")) {
+    ++files;
+    std::ifstream in(e.path());
+    for (std::string line; std::getline(in, line);) boxes += line.rfind("potato ", 0) == 0 ? 1 : 0;
+  }
+  EXPECT_EQ(files, 3);
+  EXPECT_GE(boxes, 3) << "the simulated approach has a potato in view in every frame";
+
+  // Exactly one input; a foreign --model file is one line naming it.
+  expect_error(run_cli("detect potato --out " + shell_quoted(t / "n1")), "exactly one of --images and --data");
+  expect_error(run_cli("detect potato --images " + shell_quoted(t / "images") + " --data " + shell_quoted(seq) +
+                       " --out " + shell_quoted(t / "n2")),
+               "exactly one of --images and --data");
+  write(t / "fake.onnx", "not an onnx graph");
+  expect_error(run_cli("detect potato --images " + shell_quoted(t / "images") + " --model " +
+                       shell_quoted(t / "fake.onnx") + " --out " + shell_quoted(t / "n3")),
+               "fake.onnx");
+  for (const char* o : {"n1", "n2", "n3"}) EXPECT_FALSE(fs::exists(t / o)) << o;
+}
+
 }  // namespace

@@ -1,31 +1,10 @@
 #include "cropsight/pipeline/broccoli/broccoli_timing.hpp"
 
-#include <time.h>
-
 #include "cropsight/core/error.hpp"
 
 namespace cropsight::pipeline {
 
 namespace {
-// CPU time of this thread: on a shared machine it counts only the cycles the pipeline itself used
-// (single-threaded), so it is robust against other processes; wall clock is reported too.
-double thread_cpu_ms() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
-}
-
-/// Adds the wall and CPU time of `work()` to `t`; returns what work() returned.
-template <class Work>
-auto timed(PipelineTiming& t, Work&& work) {
-  const double c0 = thread_cpu_ms();
-  const Stopwatch clock;
-  auto out = work();
-  t.ms += clock.ms();
-  t.cpu_ms += thread_cpu_ms() - c0;
-  return out;
-}
-
 template <class Pipeline, class Count>
 PipelineTiming time_passes(Pipeline& p, const std::vector<RgbdFrame>& frames, int repeat, Count count) {
   if (frames.empty()) throw Error("bench", "no frames to time");

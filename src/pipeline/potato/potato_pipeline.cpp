@@ -44,6 +44,8 @@ std::vector<Detection2D> PotatoPipeline::detect(const ColorImage& image, const I
   return detector_->detect(DetectorInput{&image, depth_m && !depth_m->empty() ? depth_m : nullptr});
 }
 
+std::vector<std::string> PotatoPipeline::detector_class_names() const { return detector_->class_names(); }
+
 std::vector<tracking::TargetCandidate> PotatoPipeline::candidates(const PotatoFrameResult& r) const {
   std::vector<tracking::TargetCandidate> c(r.detections.size());
   for (std::size_t i = 0; i < c.size(); ++i) {
@@ -57,14 +59,19 @@ std::vector<tracking::TargetCandidate> PotatoPipeline::candidates(const PotatoFr
 
 // Step 5 on the target's box: the colourised depth (as the paper, from the frame's metric depth)
 // or the colour image, as the preset says.
-void PotatoPipeline::orient(const RgbdFrame& frame, const Image<float>& depth_m, PotatoFrameResult& r) {
-  HarvestTarget& t = r.target;
+measure::OrientationResult PotatoPipeline::orient(const ColorImage& color, const Image<float>& depth_m,
+                                                  const Detection2D& box) const {
   const bool use_depth = cfg_.orientation.input == measure::OrientationInput::depth && !depth_m.empty();
   measure::OrientationConfig oc = cfg_.orientation;
   if (!use_depth) oc.input = measure::OrientationInput::rgb;
   const ColorImage image =
       use_depth ? io::colorize_depth(depth_m, float(cfg_.colormap_near_m), float(cfg_.colormap_far_m)) : ColorImage{};
-  const measure::OrientationResult o = measure::estimate_orientation(use_depth ? image : frame.color, t.box, oc);
+  return measure::estimate_orientation(use_depth ? image : color, box, oc);
+}
+
+void PotatoPipeline::orient_target(const RgbdFrame& frame, const Image<float>& depth_m, PotatoFrameResult& r) {
+  HarvestTarget& t = r.target;
+  const measure::OrientationResult o = orient(frame.color, depth_m, t.box);
   t.angle_ok = o.ok;
   t.angle = o.ok ? float(o.angle_rad) : 0.f;
 }
@@ -111,7 +118,7 @@ PotatoFrameResult PotatoPipeline::process(const RgbdFrame& frame) {
     t.x = p.xyz.x(), t.y = p.xyz.y(), t.z = p.xyz.z();
     t.width = p.width_m, t.height = p.height_m;
     // 5. orient
-    orient(frame, depth_m, r);
+    orient_target(frame, depth_m, r);
   }
   r.ms_orient = lap();
   // 6. the message is r.target

@@ -10,26 +10,13 @@
 #include <vector>
 
 #include "cropsight/core/rgbd_frame.hpp"
-#include "cropsight/core/timer.hpp"
 #include "cropsight/learning/model.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_detector.hpp"
 #include "cropsight/pipeline/broccoli/pcl_reference.hpp"
+#include "cropsight/pipeline/pipeline_timing.hpp"
 #include "cropsight/tracking/head_mapper.hpp"
 
 namespace cropsight::pipeline {
-
-struct PipelineTiming {
-  double ms = 0;      ///< wall clock, total over the timed frames
-  double cpu_ms = 0;  ///< thread CPU time, total
-  long frames = 0;
-  long clusters = 0;  ///< clusters (detectors) or detections (tracking) over the timed frames
-  std::vector<StageTimer::Stage> stages;
-  double ms_per_frame() const { return frames ? ms / double(frames) : 0.0; }
-  double fps() const { return ms > 0 ? 1000.0 * double(frames) / ms : 0.0; }
-  double cpu_ms_per_frame() const { return frames ? cpu_ms / double(frames) : 0.0; }
-  double cpu_fps() const { return cpu_ms > 0 ? 1000.0 * double(frames) / cpu_ms : 0.0; }
-  double clusters_per_frame() const { return frames ? double(clusters) / double(frames) : 0.0; }
-};
 
 /// `repeat` passes of detector.process over `frames`, after one warm-up frame. Throws Error when
 /// `frames` is empty.

@@ -112,13 +112,18 @@ class PotatoPipeline {
   PotatoFrameResult process(const RgbdFrame& frame);
   /// Step 1 alone, for single images (detect potato). `depth_m` may be null or empty.
   std::vector<Detection2D> detect(const ColorImage& image, const Image<float>* depth_m = nullptr);
+  /// The detector's class names (Detection2D::class_id indexes them).
+  std::vector<std::string> detector_class_names() const;
+  /// Step 5 alone on one box: the colourised depth when orientation.input = depth and `depth_m`
+  /// (metres) is not empty, else the colour image (detect potato's overlays).
+  measure::OrientationResult orient(const ColorImage& color, const Image<float>& depth_m, const Detection2D& box) const;
   /// Starts a new approach: drops the target.
   void reset();
   const PotatoPipelineConfig& config() const { return cfg_; }
 
  private:
   std::vector<tracking::TargetCandidate> candidates(const PotatoFrameResult& r) const;
-  void orient(const RgbdFrame& frame, const Image<float>& depth_m, PotatoFrameResult& r);
+  void orient_target(const RgbdFrame& frame, const Image<float>& depth_m, PotatoFrameResult& r);
 
   PotatoPipelineConfig cfg_;
   std::unique_ptr<Detector2D> detector_;

@@ -1,0 +1,14 @@
+// Thread CPU clock for pipeline timing (see pipeline_timing.hpp).
+#include "cropsight/pipeline/pipeline_timing.hpp"
+
+#include <time.h>
+
+namespace cropsight::pipeline {
+
+double thread_cpu_ms() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
+}
+
+}  // namespace cropsight::pipeline
