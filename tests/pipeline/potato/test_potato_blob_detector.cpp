@@ -1,5 +1,5 @@
 // The classical potato detector: synthetic scenes with known answers (a potato on a sheet, a
-// string, a blue object, two touching potatoes, depth gating) and the shared images (AP50 with
+// string, a blue object, touching potatoes, a notch that must not split, contrast, depth gating) and the shared images (AP50 with
 // the colour model refit leaving each image out).
 #include "cropsight/pipeline/potato/potato_blob_detector.hpp"
 
@@ -61,22 +61,82 @@ TEST(PotatoBlobDetector, FindsThePotatoNotTheStringOrTheBlueObject) {
   EXPECT_EQ(det.class_names(), std::vector<std::string>{"potato"});
 }
 
-TEST(PotatoBlobDetector, SplitsTwoTouchingPotatoes) {
+// The box of an axis-aligned ellipse at (cx, cy) with half axes (a, b), as Detection2D.
+Detection2D ellipse_box(double cx, double cy, double a, double b) {
+  Detection2D d;
+  d.x1 = float(cx - a), d.y1 = float(cy - b), d.x2 = float(cx + a + 1), d.y2 = float(cy + b + 1);
+  return d;
+}
+
+// Each truth box is matched by one detection with IoU above `min_iou`.
+void expect_boxes(const std::vector<Detection2D>& dets, const std::vector<Detection2D>& truth, float min_iou) {
+  ASSERT_EQ(dets.size(), truth.size());
+  for (const Detection2D& t : truth) {
+    float best = 0;
+    for (const Detection2D& d : dets) best = std::max(best, iou(d, t));
+    EXPECT_GT(best, min_iou) << "truth " << t.x1 << " " << t.y1 << " " << t.x2 << " " << t.y2;
+  }
+}
+
+TEST(PotatoBlobDetector, SplitsTwoPotatoesJoinedByANeck) {
   cv::Mat m(416, 416, CV_8UC3, cv::Scalar(235, 235, 240));
+  // 2 px apart, bridged by the closing: one blob with a neck.
   cv::ellipse(m, {150, 200}, {22, 35}, 0, 0, 360, skin_rgb(), cv::FILLED);
-  // 2 px apart, bridged by the closing: the neck is about half the deepest distance (measured
-  // 11.4 of 23 px), below split_core_fraction = 0.6.
   cv::ellipse(m, {196, 205}, {22, 35}, 0, 0, 360, skin_rgb(), cv::FILLED);
   const ColorImage im = to_image(m);
   PotatoBlobConfig cfg;
-  const auto two = PotatoBlobDetector(cfg).detect({&im, nullptr});
-  ASSERT_EQ(two.size(), 2u);
-  // Each box holds one potato: left one in x [128, 172], right one in [174, 218].
-  const float left_x2 = std::min(two[0].x2, two[1].x2), right_x1 = std::max(two[0].x1, two[1].x1);
-  EXPECT_NEAR(left_x2, 173, 3);
-  EXPECT_NEAR(right_x1, 173, 3);
-  cfg.split_core_fraction = 0;  // no split: one blob
+  expect_boxes(PotatoBlobDetector(cfg).detect({&im, nullptr}),
+               {ellipse_box(150, 200, 22, 35), ellipse_box(196, 205, 22, 35)}, 0.85f);
+  cfg.split_concavity_depth = 0;  // no split: one blob
   EXPECT_EQ(PotatoBlobDetector(cfg).detect({&im, nullptr}).size(), 1u);
+}
+
+// Two potatoes side by side that overlap by 4 px along most of their length (as in the shared
+// image 2fea): no neck, the distance transform has one ridge, but the outline has a deep notch at
+// each end of the contact.
+TEST(PotatoBlobDetector, SplitsTwoPotatoesTouchingAlongAWideEdge) {
+  cv::Mat m(416, 416, CV_8UC3, cv::Scalar(235, 235, 240));
+  cv::ellipse(m, {200, 200}, {22, 55}, 0, 0, 360, skin_rgb(), cv::FILLED);
+  cv::ellipse(m, {236, 215}, {18, 38}, 0, 0, 360, skin_rgb(), cv::FILLED);
+  const ColorImage im = to_image(m);
+  PotatoBlobConfig cfg;
+  expect_boxes(PotatoBlobDetector(cfg).detect({&im, nullptr}),
+               {ellipse_box(200, 200, 22, 55), ellipse_box(236, 215, 18, 38)}, 0.8f);
+  cfg.split_max_depth = 0;
+  EXPECT_EQ(PotatoBlobDetector(cfg).detect({&im, nullptr}).size(), 1u);
+}
+
+// One potato with a shallow notch (a string's attachment, an eye) stays one detection.
+TEST(PotatoBlobDetector, DoesNotSplitOnePotatoWithANotch) {
+  cv::Mat m(416, 416, CV_8UC3, cv::Scalar(235, 235, 240));
+  cv::ellipse(m, {200, 200}, {25, 50}, 0, 0, 360, skin_rgb(), cv::FILLED);
+  cv::circle(m, {225, 200}, 7, cv::Scalar(235, 235, 240), cv::FILLED);  // notch 7 px deep, radius 25
+  const ColorImage im = to_image(m);
+  expect_boxes(PotatoBlobDetector().detect({&im, nullptr}), {ellipse_box(200, 200, 25, 50)}, 0.85f);
+}
+
+// The same potato scores lower among dark surroundings than on the light sheet, by the logistic
+// of the lightness difference; with contrast_scale = 0 both score alike.
+TEST(PotatoBlobDetector, ContrastWithTheSheetRanksTheScore) {
+  auto on = [](cv::Scalar background) {
+    cv::Mat m(416, 416, CV_8UC3, background);
+    cv::ellipse(m, {200, 200}, {25, 50}, 0, 0, 360, skin_rgb(), cv::FILLED);
+    return to_image(m);
+  };
+  const ColorImage sheet = on(cv::Scalar(235, 235, 240)), dark = on(cv::Scalar(20, 20, 20));
+  PotatoBlobConfig cfg;
+  cfg.min_score = 0;  // report the dark one too
+  const auto a = PotatoBlobDetector(cfg).detect({&sheet, nullptr}), b = PotatoBlobDetector(cfg).detect({&dark, nullptr});
+  ASSERT_EQ(a.size(), 1u);
+  ASSERT_EQ(b.size(), 1u);
+  // Skin L is 110 (8-bit): about 125 below the sheet (factor ~1) and ~95 above the black (~1e-8).
+  EXPECT_GT(a[0].score, 0.5f);
+  EXPECT_LT(b[0].score, 0.01f * a[0].score);
+  cfg.contrast_scale = 0;
+  const auto c = PotatoBlobDetector(cfg).detect({&sheet, nullptr}), d = PotatoBlobDetector(cfg).detect({&dark, nullptr});
+  ASSERT_EQ(c.size(), 1u);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_NEAR(c[0].score, d[0].score, 1e-3);
 }
 
 TEST(PotatoBlobDetector, DepthGatesTheForeground) {
