@@ -22,7 +22,7 @@ double solidity(const std::vector<cv::Point>& poly) {
 bool inside(const std::vector<cv::Point>& poly, cv::Point2f p) { return cv::pointPolygonTest(poly, p, false) >= 0; }
 
 // Splits polygon `poly` into `out` (one or more polygons).
-void split_polygon(const std::vector<cv::Point>& poly, double min_depth_px, double min_part_fraction, int depth_left,
+void split_polygon(const std::vector<cv::Point>& poly, const SplitRule& rule, double min_depth_px, int depth_left,
                    std::vector<std::vector<cv::Point>>& out) {
   const int n = int(poly.size());
   if (depth_left <= 0 || n < 8) return out.push_back(poly);
@@ -55,8 +55,12 @@ void split_polygon(const std::vector<cv::Point>& poly, double min_depth_px, doub
       std::vector<cv::Point> second(poly.begin() + b, poly.end());
       second.insert(second.end(), poly.begin(), poly.begin() + a + 1);
       const double area1 = cv::contourArea(first), area2 = cv::contourArea(second);
-      if (std::min(area1, area2) < min_part_fraction * total) continue;
-      const double s = (area1 * solidity(first) + area2 * solidity(second)) / (area1 + area2);
+      if (std::min(area1, area2) < rule.min_part_fraction * total) continue;
+      // Both parts must look like potatoes (nearly convex): cutting a ragged blob (clutter, a
+      // partly covered textured potato) makes it more convex too, but leaves ragged parts.
+      const double s1 = solidity(first), s2 = solidity(second);
+      if (std::min(s1, s2) < rule.min_part_solidity) continue;
+      const double s = (area1 * s1 + area2 * s2) / (area1 + area2);
       if (s > best) best = s, cut_a = a, cut_b = b;
     }
   }
@@ -64,15 +68,14 @@ void split_polygon(const std::vector<cv::Point>& poly, double min_depth_px, doub
   std::vector<cv::Point> first(poly.begin() + cut_a, poly.begin() + cut_b + 1);
   std::vector<cv::Point> second(poly.begin() + cut_b, poly.end());
   second.insert(second.end(), poly.begin(), poly.begin() + cut_a + 1);
-  split_polygon(first, min_depth_px, min_part_fraction, depth_left - 1, out);
-  split_polygon(second, min_depth_px, min_part_fraction, depth_left - 1, out);
+  split_polygon(first, rule, min_depth_px, depth_left - 1, out);
+  split_polygon(second, rule, min_depth_px, depth_left - 1, out);
 }
 
 }  // namespace
 
-int split_at_concavities(const cv::Mat& blob, double depth_fraction, double min_part_fraction, int max_depth,
-                         std::vector<cv::Mat>& parts) {
-  if (depth_fraction <= 0 || max_depth <= 0) return 1;
+int split_at_concavities(const cv::Mat& blob, const SplitRule& rule, std::vector<cv::Mat>& parts) {
+  if (rule.depth_fraction <= 0 || rule.max_depth <= 0) return 1;
   cv::Mat padded, dist;
   cv::copyMakeBorder(blob, padded, 1, 1, 1, 1, cv::BORDER_CONSTANT, 0);
   std::vector<std::vector<cv::Point>> contours;
@@ -87,7 +90,7 @@ int split_at_concavities(const cv::Mat& blob, double depth_fraction, double min_
   double radius = 0;
   cv::minMaxLoc(dist, nullptr, &radius);
   std::vector<std::vector<cv::Point>> polys;
-  split_polygon(poly, depth_fraction * radius, min_part_fraction, max_depth, polys);
+  split_polygon(poly, rule, rule.depth_fraction * radius, rule.max_depth, polys);
   if (polys.size() < 2) return 1;
   for (const auto& p : polys) {
     cv::Mat part = cv::Mat::zeros(blob.size(), CV_8UC1);

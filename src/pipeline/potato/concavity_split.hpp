@@ -8,8 +8,9 @@
 // convex up to small notches (eyes, sprouts, a string's attachment). So: a blob splits only when
 // its outline has a notch deeper than `depth_fraction` x its inscribed radius (scale-free); the
 // cut runs from that notch to the outline point that leaves the two parts most convex (area-weighted
-// solidity), and is kept only when the parts are more convex than the whole and each holds at
-// least `min_part_fraction` of it. Parts are split again, up to `max_depth` levels.
+// solidity), and is kept only when the parts are more convex than the whole, each is nearly convex
+// itself (`min_part_solidity`) and holds at least `min_part_fraction` of it. Parts are split
+// again, up to `max_depth` levels.
 #include <vector>
 
 namespace cv {
@@ -18,10 +19,16 @@ class Mat;
 
 namespace cropsight::pipeline::potato::detail {
 
+struct SplitRule {
+  double depth_fraction = 0.5;      ///< notch depth / inscribed radius that splits; <= 0 = never
+  double min_part_fraction = 0.15;  ///< area of the smaller part / the blob's
+  double min_part_solidity = 0.9;   ///< area / convex hull area of each part
+  int max_depth = 2;                ///< levels of splitting; <= 0 = never
+};
+
 /// `blob`: 8-bit mask of one connected component (non-zero inside). Appends to `parts` one mask
 /// per part (blob-sized, 255 inside). Returns the number of parts; 1 means no split and `parts`
-/// gets nothing (the caller keeps the blob). depth_fraction <= 0 or max_depth <= 0: never splits.
-int split_at_concavities(const cv::Mat& blob, double depth_fraction, double min_part_fraction, int max_depth,
-                         std::vector<cv::Mat>& parts);
+/// gets nothing (the caller keeps the blob).
+int split_at_concavities(const cv::Mat& blob, const SplitRule& rule, std::vector<cv::Mat>& parts);
 
 }  // namespace cropsight::pipeline::potato::detail

@@ -60,7 +60,8 @@ cv::Mat disc(double fraction, int short_side) {
 
 double aspect(const std::vector<cv::Point>& pts) {
   const cv::RotatedRect rr = cv::minAreaRect(pts);
-  const double lo = std::max(1.0f, std::min(rr.size.width, rr.size.height)), hi = std::max(rr.size.width, rr.size.height);
+  const double lo = std::max(1.0f, std::min(rr.size.width, rr.size.height)),
+               hi = std::max(rr.size.width, rr.size.height);
   return hi / lo;
 }
 
@@ -77,11 +78,12 @@ std::vector<cv::Point> outline_points(const cv::Mat& mask) {
 double contrast_factor(const cv::Mat& part, cv::Rect r, const cv::Mat& lab, const cv::Mat& foreground, int ring,
                        double scale) {
   if (scale <= 0 || ring < 1) return 1.0;
-  const cv::Rect wide = cv::Rect(r.x - ring, r.y - ring, r.width + 2 * ring, r.height + 2 * ring) &
-                        cv::Rect(0, 0, lab.cols, lab.rows);
+  const cv::Rect wide =
+      cv::Rect(r.x - ring, r.y - ring, r.width + 2 * ring, r.height + 2 * ring) & cv::Rect(0, 0, lab.cols, lab.rows);
   cv::Mat grown = cv::Mat::zeros(wide.size(), CV_8UC1);
   part.copyTo(grown(r - wide.tl()));
-  cv::dilate(grown, grown, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * ring + 1, 2 * ring + 1)));
+  // A square ring: separable, so its cost does not grow with the ring width.
+  cv::dilate(grown, grown, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * ring + 1, 2 * ring + 1)));
   grown.setTo(0, foreground(wide));
   if (cv::countNonZero(grown) == 0) return 1.0;
   const double l_ring = cv::mean(lab(wide), grown)[0], l_part = cv::mean(lab(r), part)[0];
@@ -150,6 +152,8 @@ std::vector<Detection2D> PotatoBlobDetector::detect(const DetectorInput& in) {
   const int n = cv::connectedComponentsWithStats(m.mask, m.labels, m.stats, m.centroids, 8, CV_32S);
   const double min_area = cfg.min_area_fraction * double(w) * double(h);
   const int ring = int(std::lround(cfg.contrast_ring_fraction * short_side));
+  const detail::SplitRule split_rule{cfg.split_concavity_depth, cfg.split_min_part_fraction,
+                                     cfg.split_min_part_solidity, cfg.split_max_depth};
   std::vector<Detection2D> out;
   cv::Mat blob;
   std::vector<cv::Mat> parts;
@@ -162,9 +166,7 @@ std::vector<Detection2D> PotatoBlobDetector::detect(const DetectorInput& in) {
     // a part of a split may be a thin visible sliver of a potato behind another.
     if (aspect(outline_points(blob)) > cfg.max_aspect) continue;
     parts.clear();
-    if (detail::split_at_concavities(blob, cfg.split_concavity_depth, cfg.split_min_part_fraction,
-                                     cfg.split_max_depth, parts) < 2)
-      parts.assign(1, blob);
+    if (detail::split_at_concavities(blob, split_rule, parts) < 2) parts.assign(1, blob);
     for (const cv::Mat& part : parts) {
       const int area = cv::countNonZero(part);
       if (area < min_area) continue;

@@ -13,8 +13,9 @@
 // potatoes of the 11 shared images (tools: see docs; leave-one-image-out figures in the report).
 //
 // Touching potatoes: a blob whose outline has a notch deeper than `split_concavity_depth` x its
-// inscribed radius is cut from that notch to where the parts come out most convex (two potatoes
-// touching along a wide edge leave such notches but no neck in the distance transform).
+// inscribed radius is cut from that notch to where the parts come out most convex, when both parts
+// are nearly convex (two potatoes touching along a wide edge leave such notches but no neck in the
+// distance transform; a ragged blob of clutter cut anywhere stays ragged).
 //
 // Score: the potatoes hang in front of a lighter sheet, while clutter of potato colour (wooden
 // furniture, clothes in the room beside the sheet) sits among darker things; so the score weighs
@@ -54,6 +55,7 @@ struct PotatoBlobConfig {
   // Touching potatoes (see above); chosen on the 11 shared images (AP50 flat for depth 0.3-0.6).
   double split_concavity_depth = 0.5;     ///< notch depth / inscribed radius that splits; 0 = never
   double split_min_part_fraction = 0.15;  ///< each part holds at least this fraction of the blob
+  double split_min_part_solidity = 0.9;   ///< each part is nearly convex (AP50 flat for 0-0.9)
   int split_max_depth = 2;                ///< cuts applied again to the parts: up to 2^depth potatoes
   // Contrast with the background ring (see above); AP50 flat for scales 3-10 on the shared images.
   double contrast_scale = 5.0;            ///< 8-bit L; logistic scale of (ring L - blob L); 0 = off
@@ -83,9 +85,12 @@ struct PotatoBlobConfig {
       Range::at_least(1));
     v("min_solidity", min_solidity, "ratio; area / convex hull area of each part", Range::within(0, 1));
     v("split_concavity_depth", split_concavity_depth,
-      "ratio; a blob splits at an outline notch deeper than this x its inscribed radius, 0 = never", Range::at_least(0));
+      "ratio; a blob splits at an outline notch deeper than this x its inscribed radius, 0 = never",
+      Range::at_least(0));
     v("split_min_part_fraction", split_min_part_fraction, "ratio; smallest part of a split, as a fraction of the blob",
       Range::within(0, 0.5));
+    v("split_min_part_solidity", split_min_part_solidity,
+      "ratio; each part of a split must be at least this convex (area / convex hull area)", Range::within(0, 1));
     v("split_max_depth", split_max_depth, "count; levels of splitting (parts are split again), 0 = never",
       Range::within(0, 4));
     v("contrast_scale", contrast_scale,
