@@ -21,6 +21,14 @@ double solidity(const std::vector<cv::Point>& poly) {
 
 bool inside(const std::vector<cv::Point>& poly, cv::Point2f p) { return cv::pointPolygonTest(poly, p, false) >= 0; }
 
+// The two polygons a cut between vertices a < b makes: a..b and b..end..a (both closed by the cut).
+void halves(const std::vector<cv::Point>& poly, int a, int b, std::vector<cv::Point>& first,
+            std::vector<cv::Point>& second) {
+  first.assign(poly.begin() + a, poly.begin() + b + 1);
+  second.assign(poly.begin() + b, poly.end());
+  second.insert(second.end(), poly.begin(), poly.begin() + a + 1);
+}
+
 // Splits polygon `poly` into `out` (one or more polygons).
 void split_polygon(const std::vector<cv::Point>& poly, const SplitRule& rule, double min_depth_px, int depth_left,
                    std::vector<std::vector<cv::Point>>& out) {
@@ -40,6 +48,7 @@ void split_polygon(const std::vector<cv::Point>& poly, const SplitRule& rule, do
   const double total = cv::contourArea(poly);
   double best = solidity(poly);  // a cut must make the parts more convex than the whole
   int cut_a = -1, cut_b = -1;
+  std::vector<cv::Point> first, second;
   for (const cv::Vec4i& d : defects) {
     if (d[3] / 256.0 < min_depth_px) continue;  // depth is in 1/256 px
     const int i = d[2];
@@ -51,9 +60,7 @@ void split_polygon(const std::vector<cv::Point>& poly, const SplitRule& rule, do
       if (!inside(poly, 0.5f * (p + q)) || !inside(poly, 0.75f * p + 0.25f * q) || !inside(poly, 0.25f * p + 0.75f * q))
         continue;
       const int a = std::min(i, j), b = std::max(i, j);
-      const std::vector<cv::Point> first(poly.begin() + a, poly.begin() + b + 1);
-      std::vector<cv::Point> second(poly.begin() + b, poly.end());
-      second.insert(second.end(), poly.begin(), poly.begin() + a + 1);
+      halves(poly, a, b, first, second);
       const double area1 = cv::contourArea(first), area2 = cv::contourArea(second);
       if (std::min(area1, area2) < rule.min_part_fraction * total) continue;
       // Both parts must look like potatoes (nearly convex): cutting a ragged blob (clutter, a
@@ -65,9 +72,7 @@ void split_polygon(const std::vector<cv::Point>& poly, const SplitRule& rule, do
     }
   }
   if (cut_a < 0) return out.push_back(poly);
-  std::vector<cv::Point> first(poly.begin() + cut_a, poly.begin() + cut_b + 1);
-  std::vector<cv::Point> second(poly.begin() + cut_b, poly.end());
-  second.insert(second.end(), poly.begin(), poly.begin() + cut_a + 1);
+  halves(poly, cut_a, cut_b, first, second);
   split_polygon(first, rule, min_depth_px, depth_left - 1, out);
   split_polygon(second, rule, min_depth_px, depth_left - 1, out);
 }
