@@ -2,7 +2,8 @@
 // on one core), next to a baseline that every colour-threshold detector pays: cv::cvtColor to
 // Lab plus one cv::threshold. OpenCV runs single-threaded here (cv::setNumThreads(0)), so the
 // figures are one core's. The ratio BM_PotatoBlobDetector / BM_CvtColorThreshold is the number
-// to compare across machines.
+// to compare across machines. BM_PotatoBlobDetectorAllShared runs all 11 shared images per
+// iteration (divide by 11 for one image).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -17,17 +18,25 @@ using namespace cropsight;
 
 namespace {
 
-// The first image (by name) of the shared detection set; empty when the data is absent.
-const ColorImage& shared_image() {
-  static const ColorImage img = [] {
+// The shared detection images, sorted by name; empty when the data is absent.
+const std::vector<ColorImage>& shared_images() {
+  static const std::vector<ColorImage> images = [] {
     const std::filesystem::path dir = std::filesystem::path(CROPSIGHT_SHARED_DATA_DIR) / "potato/detection/images";
     std::vector<std::filesystem::path> files;
     if (std::filesystem::is_directory(dir))
       for (const auto& e : std::filesystem::directory_iterator(dir)) files.push_back(e.path());
     std::sort(files.begin(), files.end());
-    return files.empty() ? ColorImage{} : io::read_color(files.front());
+    std::vector<ColorImage> out;
+    for (const auto& f : files) out.push_back(io::read_color(f));
+    return out;
   }();
-  return img;
+  return images;
+}
+
+// The first image (by name): no touching potatoes, so no split search.
+const ColorImage& shared_image() {
+  static const ColorImage none;
+  return shared_images().empty() ? none : shared_images().front();
 }
 
 void BM_CvtColorThreshold(benchmark::State& state) {
@@ -59,6 +68,22 @@ void BM_PotatoBlobDetector(benchmark::State& state) {
   state.counters["boxes"] = double(boxes);
 }
 BENCHMARK(BM_PotatoBlobDetector)->Unit(benchmark::kMillisecond);
+
+// All 11 shared images per iteration (the touching-potato splits and clutter included); the time
+// per image is the iteration time / 11.
+void BM_PotatoBlobDetectorAllShared(benchmark::State& state) {
+  cv::setNumThreads(0);
+  const std::vector<ColorImage>& images = shared_images();
+  if (images.empty()) return state.SkipWithError("shared potato images not found");
+  pipeline::potato::PotatoBlobDetector det;
+  for (auto _ : state)
+    for (const ColorImage& img : images) {
+      const auto d = det.detect({&img, nullptr});
+      benchmark::DoNotOptimize(d.data());
+    }
+  state.counters["images"] = double(images.size());
+}
+BENCHMARK(BM_PotatoBlobDetectorAllShared)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -7,6 +7,7 @@
 #include <opencv2/imgproc.hpp>
 #include <optional>
 
+#include "concavity_split.hpp"
 #include "cropsight/core/error.hpp"
 #include "stereo/cv_convert.hpp"
 
@@ -57,48 +58,47 @@ cv::Mat disc(double fraction, int short_side) {
   return k >= 2 ? cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(k, k)) : cv::Mat();
 }
 
-// Potatoes that touch or overlap in the image form one blob with a neck between two convex
-// parts. The cores of the blob (pixels farther from its boundary than `core_fraction` of the
-// deepest one) fall apart at such a neck; each core then takes the blob pixels nearest to it.
-// One core = one potato: `parts` is left untouched and 1 is returned. Scale-free: only the ratio
-// of distances counts.
-int split_touching(const cv::Mat& blob, double core_fraction, cv::Mat& parts) {
-  if (core_fraction <= 0) return 1;
-  cv::Mat padded, dist, cores, core_labels;
-  cv::copyMakeBorder(blob, padded, 1, 1, 1, 1, cv::BORDER_CONSTANT, 0);
-  cv::distanceTransform(padded, dist, cv::DIST_L2, cv::DIST_MASK_5);
-  double max_d = 0;
-  cv::minMaxLoc(dist, nullptr, &max_d);
-  if (max_d <= 1) return 1;
-  cv::compare(dist, core_fraction * max_d, cores, cv::CMP_GE);
-  const int n = cv::connectedComponents(cores, core_labels, 8, CV_32S) - 1;
-  if (n < 2) return 1;
-  // Each pixel of the blob goes to its nearest core (distance transform with labels of the
-  // nearest zero pixel; the cores are the only zeros).
-  cv::Mat not_cores = ~cores, nearest_dist, nearest;
-  cv::distanceTransform(not_cores, nearest_dist, nearest, cv::DIST_L2, cv::DIST_MASK_5, cv::DIST_LABEL_CCOMP);
-  parts = nearest(cv::Rect(1, 1, blob.cols, blob.rows)).clone();
-  parts.setTo(0, blob == 0);
-  double num = 0;  // labels are numbered by the transform's own pass over the cores
-  cv::minMaxLoc(nearest, nullptr, &num);
-  return int(num);
-}
-
-// The box and score of one part (mask in its ROI at `tl`), or nothing when it fails the shape rules.
-std::optional<Detection2D> blob_detection(const cv::Mat& part, cv::Point tl, int area, double colour,
-                                          const PotatoBlobConfig& cfg) {
-  std::vector<std::vector<cv::Point>> contours;
-  cv::findContours(part, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
-  if (contours.empty()) return std::nullopt;
-  std::vector<cv::Point> pts;
-  for (const auto& c : contours) pts.insert(pts.end(), c.begin(), c.end());
-  std::vector<cv::Point> hull;
-  cv::convexHull(pts, hull);
-  const double solidity = std::min(1.0, area / std::max(1.0, cv::contourArea(hull)));
+double aspect(const std::vector<cv::Point>& pts) {
   const cv::RotatedRect rr = cv::minAreaRect(pts);
   const double lo = std::max(1.0f, std::min(rr.size.width, rr.size.height)),
                hi = std::max(rr.size.width, rr.size.height);
-  if (solidity < cfg.min_solidity || hi / lo > cfg.max_aspect) return std::nullopt;
+  return hi / lo;
+}
+
+std::vector<cv::Point> outline_points(const cv::Mat& mask) {
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(mask, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
+  std::vector<cv::Point> pts;
+  for (const auto& c : contours) pts.insert(pts.end(), c.begin(), c.end());
+  return pts;
+}
+
+// Logistic weight of how much darker the part is than the background (not foreground) pixels in
+// a ring of `ring` px around it; 1 when the ring holds no background.
+double contrast_factor(const cv::Mat& part, cv::Rect r, const cv::Mat& lab, const cv::Mat& foreground, int ring,
+                       double scale) {
+  if (scale <= 0 || ring < 1) return 1.0;
+  const cv::Rect wide =
+      cv::Rect(r.x - ring, r.y - ring, r.width + 2 * ring, r.height + 2 * ring) & cv::Rect(0, 0, lab.cols, lab.rows);
+  cv::Mat grown = cv::Mat::zeros(wide.size(), CV_8UC1);
+  part.copyTo(grown(r - wide.tl()));
+  // A square ring: separable, so its cost does not grow with the ring width.
+  cv::dilate(grown, grown, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(2 * ring + 1, 2 * ring + 1)));
+  grown.setTo(0, foreground(wide));
+  if (cv::countNonZero(grown) == 0) return 1.0;
+  const double l_ring = cv::mean(lab(wide), grown)[0], l_part = cv::mean(lab(r), part)[0];
+  return 1.0 / (1.0 + std::exp(-(l_ring - l_part) / scale));
+}
+
+// The box of one part (mask in its ROI at `tl`), or nothing when it fails the convexity rule.
+std::optional<Detection2D> part_detection(const cv::Mat& part, cv::Point tl, int area, double score_without_shape,
+                                          const PotatoBlobConfig& cfg) {
+  const std::vector<cv::Point> pts = outline_points(part);
+  if (pts.empty()) return std::nullopt;
+  std::vector<cv::Point> hull;
+  cv::convexHull(pts, hull);
+  const double solidity = std::min(1.0, area / std::max(1.0, cv::contourArea(hull)));
+  if (solidity < cfg.min_solidity) return std::nullopt;
   const cv::Rect b = cv::boundingRect(pts);
   Detection2D d;
   d.x1 = float(tl.x + b.x);
@@ -106,7 +106,7 @@ std::optional<Detection2D> blob_detection(const cv::Mat& part, cv::Point tl, int
   d.x2 = float(tl.x + b.x + b.width);
   d.y2 = float(tl.y + b.y + b.height);
   d.class_id = 0;
-  d.score = float(colour * solidity);
+  d.score = float(score_without_shape * solidity);
   if (d.score < cfg.min_score) return std::nullopt;
   return d;
 }
@@ -151,23 +151,28 @@ std::vector<Detection2D> PotatoBlobDetector::detect(const DetectorInput& in) {
 
   const int n = cv::connectedComponentsWithStats(m.mask, m.labels, m.stats, m.centroids, 8, CV_32S);
   const double min_area = cfg.min_area_fraction * double(w) * double(h);
+  const int ring = int(std::lround(cfg.contrast_ring_fraction * short_side));
+  const detail::SplitRule split_rule{cfg.split_concavity_depth, cfg.split_min_part_fraction,
+                                     cfg.split_min_part_solidity, cfg.split_max_depth};
   std::vector<Detection2D> out;
-  cv::Mat blob, parts, part;
+  cv::Mat blob;
+  std::vector<cv::Mat> parts;
   for (int i = 1; i < n; ++i) {
     const int* s = m.stats.ptr<int>(i);
     if (s[cv::CC_STAT_AREA] < min_area) continue;
     const cv::Rect r(s[cv::CC_STAT_LEFT], s[cv::CC_STAT_TOP], s[cv::CC_STAT_WIDTH], s[cv::CC_STAT_HEIGHT]);
     cv::compare(m.labels(r), i, blob, cv::CMP_EQ);
-    const int num_parts = split_touching(blob, cfg.split_core_fraction, parts);
-    for (int k = 1; k <= num_parts; ++k) {
-      if (num_parts == 1)
-        part = blob;
-      else
-        cv::compare(parts, k, part, cv::CMP_EQ);
+    // The aspect rule is the whole blob's: a bundle of roots is long and thin as one piece, while
+    // a part of a split may be a thin visible sliver of a potato behind another.
+    if (aspect(outline_points(blob)) > cfg.max_aspect) continue;
+    parts.clear();
+    if (detail::split_at_concavities(blob, split_rule, parts) < 2) parts.assign(1, blob);
+    for (const cv::Mat& part : parts) {
       const int area = cv::countNonZero(part);
       if (area < min_area) continue;
       const double colour = cv::sum(m.like(r) & part)[0] / (255.0 * area);  // like is 0 outside the colour test
-      if (auto d = blob_detection(part, r.tl(), area, colour, cfg)) out.push_back(*d);
+      const double contrast = contrast_factor(part, r, m.lab, m.mask, ring, cfg.contrast_scale);
+      if (auto d = part_detection(part, r.tl(), area, colour * contrast, cfg)) out.push_back(*d);
     }
   }
   std::stable_sort(out.begin(), out.end(),

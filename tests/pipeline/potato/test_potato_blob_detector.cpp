@@ -1,12 +1,13 @@
 // The classical potato detector: synthetic scenes with known answers (a potato on a sheet, a
-// string, a blue object, two touching potatoes, depth gating) and the shared images (AP50 with
-// the colour model refit leaving each image out).
+// string, a blue object, touching potatoes, a notch that must not split, contrast, depth gating) and the shared images
+// (AP50 with the colour model refit leaving each image out).
 #include "cropsight/pipeline/potato/potato_blob_detector.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <opencv2/imgproc.hpp>
 
 #include "cropsight/core/error.hpp"
@@ -61,22 +62,84 @@ TEST(PotatoBlobDetector, FindsThePotatoNotTheStringOrTheBlueObject) {
   EXPECT_EQ(det.class_names(), std::vector<std::string>{"potato"});
 }
 
-TEST(PotatoBlobDetector, SplitsTwoTouchingPotatoes) {
+// The box of an axis-aligned ellipse at (cx, cy) with half axes (a, b), as Detection2D.
+Detection2D ellipse_box(double cx, double cy, double a, double b) {
+  Detection2D d;
+  d.x1 = float(cx - a), d.y1 = float(cy - b), d.x2 = float(cx + a + 1), d.y2 = float(cy + b + 1);
+  return d;
+}
+
+// Each truth box is matched by one detection with IoU above `min_iou`.
+void expect_boxes(const std::vector<Detection2D>& dets, const std::vector<Detection2D>& truth, float min_iou) {
+  ASSERT_EQ(dets.size(), truth.size());
+  for (const Detection2D& t : truth) {
+    float best = 0;
+    for (const Detection2D& d : dets) best = std::max(best, iou(d, t));
+    EXPECT_GT(best, min_iou) << "truth " << t.x1 << " " << t.y1 << " " << t.x2 << " " << t.y2;
+  }
+}
+
+TEST(PotatoBlobDetector, SplitsTwoPotatoesJoinedByANeck) {
   cv::Mat m(416, 416, CV_8UC3, cv::Scalar(235, 235, 240));
+  // 2 px apart, bridged by the closing: one blob with a neck.
   cv::ellipse(m, {150, 200}, {22, 35}, 0, 0, 360, skin_rgb(), cv::FILLED);
-  // 2 px apart, bridged by the closing: the neck is about half the deepest distance (measured
-  // 11.4 of 23 px), below split_core_fraction = 0.6.
   cv::ellipse(m, {196, 205}, {22, 35}, 0, 0, 360, skin_rgb(), cv::FILLED);
   const ColorImage im = to_image(m);
   PotatoBlobConfig cfg;
-  const auto two = PotatoBlobDetector(cfg).detect({&im, nullptr});
-  ASSERT_EQ(two.size(), 2u);
-  // Each box holds one potato: left one in x [128, 172], right one in [174, 218].
-  const float left_x2 = std::min(two[0].x2, two[1].x2), right_x1 = std::max(two[0].x1, two[1].x1);
-  EXPECT_NEAR(left_x2, 173, 3);
-  EXPECT_NEAR(right_x1, 173, 3);
-  cfg.split_core_fraction = 0;  // no split: one blob
+  expect_boxes(PotatoBlobDetector(cfg).detect({&im, nullptr}),
+               {ellipse_box(150, 200, 22, 35), ellipse_box(196, 205, 22, 35)}, 0.85f);
+  cfg.split_concavity_depth = 0;  // no split: one blob
   EXPECT_EQ(PotatoBlobDetector(cfg).detect({&im, nullptr}).size(), 1u);
+}
+
+// Two potatoes side by side that overlap by 4 px along most of their length (as in the shared
+// image 2fea): no neck, the distance transform has one ridge, but the outline has a deep notch at
+// each end of the contact.
+TEST(PotatoBlobDetector, SplitsTwoPotatoesTouchingAlongAWideEdge) {
+  cv::Mat m(416, 416, CV_8UC3, cv::Scalar(235, 235, 240));
+  cv::ellipse(m, {200, 200}, {22, 55}, 0, 0, 360, skin_rgb(), cv::FILLED);
+  cv::ellipse(m, {236, 215}, {18, 38}, 0, 0, 360, skin_rgb(), cv::FILLED);
+  const ColorImage im = to_image(m);
+  PotatoBlobConfig cfg;
+  expect_boxes(PotatoBlobDetector(cfg).detect({&im, nullptr}),
+               {ellipse_box(200, 200, 22, 55), ellipse_box(236, 215, 18, 38)}, 0.8f);
+  cfg.split_max_depth = 0;
+  EXPECT_EQ(PotatoBlobDetector(cfg).detect({&im, nullptr}).size(), 1u);
+}
+
+// One potato with a shallow notch (a string's attachment, an eye) stays one detection.
+TEST(PotatoBlobDetector, DoesNotSplitOnePotatoWithANotch) {
+  cv::Mat m(416, 416, CV_8UC3, cv::Scalar(235, 235, 240));
+  cv::ellipse(m, {200, 200}, {25, 50}, 0, 0, 360, skin_rgb(), cv::FILLED);
+  cv::circle(m, {225, 200}, 7, cv::Scalar(235, 235, 240), cv::FILLED);  // notch 7 px deep, radius 25
+  const ColorImage im = to_image(m);
+  expect_boxes(PotatoBlobDetector().detect({&im, nullptr}), {ellipse_box(200, 200, 25, 50)}, 0.85f);
+}
+
+// The same potato scores lower among dark surroundings than on the light sheet, by the logistic
+// of the lightness difference; with contrast_scale = 0 both score alike.
+TEST(PotatoBlobDetector, ContrastWithTheSheetRanksTheScore) {
+  auto on = [](cv::Scalar background) {
+    cv::Mat m(416, 416, CV_8UC3, background);
+    cv::ellipse(m, {200, 200}, {25, 50}, 0, 0, 360, skin_rgb(), cv::FILLED);
+    return to_image(m);
+  };
+  const ColorImage sheet = on(cv::Scalar(235, 235, 240)), dark = on(cv::Scalar(20, 20, 20));
+  PotatoBlobConfig cfg;
+  cfg.min_score = 0;  // report the dark one too
+  const auto a = PotatoBlobDetector(cfg).detect({&sheet, nullptr}),
+             b = PotatoBlobDetector(cfg).detect({&dark, nullptr});
+  ASSERT_EQ(a.size(), 1u);
+  ASSERT_EQ(b.size(), 1u);
+  // Skin L is 110 (8-bit): about 125 below the sheet (factor ~1) and ~95 above the black (~1e-8).
+  EXPECT_GT(a[0].score, 0.5f);
+  EXPECT_LT(b[0].score, 0.01f * a[0].score);
+  cfg.contrast_scale = 0;
+  const auto c = PotatoBlobDetector(cfg).detect({&sheet, nullptr}),
+             d = PotatoBlobDetector(cfg).detect({&dark, nullptr});
+  ASSERT_EQ(c.size(), 1u);
+  ASSERT_EQ(d.size(), 1u);
+  EXPECT_NEAR(c[0].score, d[0].score, 1e-3);
 }
 
 TEST(PotatoBlobDetector, DepthGatesTheForeground) {
@@ -103,56 +166,102 @@ TEST(PotatoBlobDetector, ConfigIsChecked) {
   EXPECT_THROW(PotatoBlobDetector{cfg}, Error);
 }
 
-// AP50 on the 11 shared images. The colour model is refit on the other 10 images for each one
-// (leave-one-image-out); the morphology and shape thresholds were chosen on all 11 images, so
-// this is not a held-out figure for them (the judges' 20 images are).
-TEST(PotatoBlobDetector, SharedImagesLeaveOneOut) {
-  const auto dir = cropsight::testing::shared_data_dir() / "potato" / "detection";
-  CROPSIGHT_REQUIRE_DATA(dir);
-  const auto set = pipeline::potato::load_annotated_images(dir / "images", dir / "annotations_voc");
+// The 11 shared images with their truth boxes (as Detection2D for the colour fit).
+struct SharedSet {
+  std::vector<pipeline::potato::AnnotatedImage> set;
   std::vector<ColorImage> images;
   std::vector<std::vector<Detection2D>> boxes;
-  for (const auto& a : set) {
-    images.push_back(io::read_color(a.image));
-    boxes.emplace_back();
+};
+
+SharedSet load_shared(const std::filesystem::path& dir) {
+  SharedSet s;
+  s.set = pipeline::potato::load_annotated_images(dir / "images", dir / "annotations_voc");
+  for (const auto& a : s.set) {
+    s.images.push_back(io::read_color(a.image));
+    s.boxes.emplace_back();
     for (const auto& b : pipeline::potato::truth_boxes(a.truth)) {
       Detection2D d;
       d.x1 = float(b.x1), d.y1 = float(b.y1), d.x2 = float(b.x2), d.y2 = float(b.y2);
-      boxes.back().push_back(d);
+      s.boxes.back().push_back(d);
     }
   }
-  std::vector<eval::VocImage> loo(set.size()), fixed(set.size());
-  PotatoBlobDetector shipped;
-  for (std::size_t i = 0; i < set.size(); ++i) {
+  return s;
+}
+
+// AP of `base` with the colour model refit on the other 10 images for each one (leave-one-image-out).
+eval::VocApSummary leave_one_out(const SharedSet& s, const PotatoBlobConfig& base) {
+  std::vector<eval::VocImage> loo(s.set.size());
+  for (std::size_t i = 0; i < s.set.size(); ++i) {
     std::vector<const ColorImage*> train_images;
     std::vector<std::vector<Detection2D>> train_boxes;
-    for (std::size_t j = 0; j < set.size(); ++j)
-      if (j != i) train_images.push_back(&images[j]), train_boxes.push_back(boxes[j]);
-    PotatoBlobConfig cfg;
+    for (std::size_t j = 0; j < s.set.size(); ++j)
+      if (j != i) train_images.push_back(&s.images[j]), train_boxes.push_back(s.boxes[j]);
+    PotatoBlobConfig cfg = base;
     pipeline::potato::fit_potato_colour(train_images, train_boxes).apply_to(cfg);
     PotatoBlobDetector det(cfg);
-    loo[i].truth = fixed[i].truth = pipeline::potato::truth_boxes(set[i].truth);
-    loo[i].detections = pipeline::potato::detection_boxes(det.detect({&images[i], nullptr}));
-    fixed[i].detections = pipeline::potato::detection_boxes(shipped.detect({&images[i], nullptr}));
+    loo[i].truth = pipeline::potato::truth_boxes(s.set[i].truth);
+    loo[i].detections = pipeline::potato::detection_boxes(det.detect({&s.images[i], nullptr}));
   }
-  const auto s_loo = eval::voc_ap_summary(loo), s_fixed = eval::voc_ap_summary(fixed);
+  return eval::voc_ap_summary(loo);
+}
+
+// AP50 on the 11 shared images. The colour model is refit on the other 10 images for each one
+// (leave-one-image-out); the morphology, split and score thresholds were chosen on all 11 images,
+// so this is not a held-out figure for them (the judges' 20 images are).
+TEST(PotatoBlobDetector, SharedImagesLeaveOneOut) {
+  const auto dir = cropsight::testing::shared_data_dir() / "potato" / "detection";
+  CROPSIGHT_REQUIRE_DATA(dir);
+  const SharedSet s = load_shared(dir);
+  std::vector<eval::VocImage> fixed(s.set.size());
+  PotatoBlobDetector shipped;
+  for (std::size_t i = 0; i < s.set.size(); ++i) {
+    fixed[i].truth = pipeline::potato::truth_boxes(s.set[i].truth);
+    fixed[i].detections = pipeline::potato::detection_boxes(shipped.detect({&s.images[i], nullptr}));
+  }
+  const auto s_loo = leave_one_out(s, PotatoBlobConfig{}), s_fixed = eval::voc_ap_summary(fixed);
   std::printf("[ classical ] 11 images, colour leave-one-out: AP50 %.4f AP75 %.4f mAP50:95 %.4f\n", s_loo.ap50,
               s_loo.ap75, s_loo.map50_95);
   std::printf("[ classical ] 11 images, shipped defaults (fit on all 11): AP50 %.4f AP75 %.4f mAP50:95 %.4f\n",
               s_fixed.ap50, s_fixed.ap75, s_fixed.map50_95);
-  EXPECT_GT(s_loo.ap50, 0.75);    // measured 0.807 when written
-  EXPECT_GT(s_fixed.ap50, 0.75);  // measured 0.788
+  EXPECT_GT(s_loo.ap50, 0.9);    // measured 0.919 when written (0.807 before the concavity split)
+  EXPECT_GT(s_loo.ap75, 0.65);   // measured 0.704 (0.470 before)
+  EXPECT_GT(s_fixed.ap50, 0.9);  // measured 0.929 (0.788 before)
 
   // The shipped colour model is the fit on all 11 images (to the printed digits).
   std::vector<const ColorImage*> all;
-  for (const auto& im : images) all.push_back(&im);
-  const auto fit = pipeline::potato::fit_potato_colour(all, boxes);
+  for (const auto& im : s.images) all.push_back(&im);
+  const auto fit = pipeline::potato::fit_potato_colour(all, s.boxes);
   const PotatoBlobConfig def;
   EXPECT_NEAR(fit.mean_a, def.mean_a, 0.01);
   EXPECT_NEAR(fit.mean_b, def.mean_b, 0.01);
   EXPECT_NEAR(fit.cov_aa, def.cov_aa, 0.01);
   EXPECT_NEAR(fit.cov_ab, def.cov_ab, 0.01);
   EXPECT_NEAR(fit.cov_bb, def.cov_bb, 0.01);
+}
+
+// The leave-one-out figures of the thresholds chosen on these images, one at a time around the
+// preset (the table in docs/pipelines/potatoes.md). Prints only: a sweep, not a check.
+// build/bin/test_pipeline --gtest_also_run_disabled_tests --gtest_filter='*DISABLED_SharedImagesSweep'
+TEST(PotatoBlobDetector, DISABLED_SharedImagesSweep) {
+  const auto dir = cropsight::testing::shared_data_dir() / "potato" / "detection";
+  CROPSIGHT_REQUIRE_DATA(dir);
+  const SharedSet s = load_shared(dir);
+  auto run = [&](const char* key, std::initializer_list<double> values, auto set) {
+    for (const double v : values) {
+      PotatoBlobConfig cfg;
+      set(cfg, v);
+      const auto r = leave_one_out(s, cfg);
+      std::printf("[ sweep ] %s %g: leave-one-out AP50 %.4f AP75 %.4f\n", key, v, r.ap50, r.ap75);
+    }
+  };
+  run("split_concavity_depth", {0, 0.3, 0.4, 0.5, 0.6, 0.7},
+      [](PotatoBlobConfig& c, double v) { c.split_concavity_depth = v; });
+  run("contrast_scale", {0, 3, 5, 10, 20}, [](PotatoBlobConfig& c, double v) { c.contrast_scale = v; });
+  run("split_min_part_solidity", {0, 0.8, 0.9, 0.95},
+      [](PotatoBlobConfig& c, double v) { c.split_min_part_solidity = v; });
+  run("split_max_depth", {1, 2, 3}, [](PotatoBlobConfig& c, double v) { c.split_max_depth = int(v); });
+  run("split_min_part_fraction", {0.1, 0.15, 0.25},
+      [](PotatoBlobConfig& c, double v) { c.split_min_part_fraction = v; });
 }
 
 }  // namespace

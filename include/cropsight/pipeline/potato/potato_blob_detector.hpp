@@ -12,6 +12,16 @@
 // Defaults: the Gaussian fitted to the inner ellipses (70 % of the box) of the 32 annotated
 // potatoes of the 11 shared images (tools: see docs; leave-one-image-out figures in the report).
 //
+// Touching potatoes: a blob whose outline has a notch deeper than `split_concavity_depth` x its
+// inscribed radius is cut from that notch to where the parts come out most convex, when both parts
+// are nearly convex (two potatoes touching along a wide edge leave such notches but no neck in the
+// distance transform; a ragged blob of clutter cut anywhere stays ragged).
+//
+// Score: the potatoes hang in front of a lighter sheet, while clutter of potato colour (wooden
+// furniture, clothes in the room beside the sheet) sits among darker things; so the score weighs
+// the blob's colour likelihood and convexity by how much darker it is than the background ring
+// around it (`contrast_scale`; 0 turns this off, e.g. for a dark root chamber).
+//
 // Geometry: sizes are fractions of the image's shorter side, so the same preset serves 416x416
 // crops and 640x480 frames at the same field of view.
 #include <memory>
@@ -39,10 +49,17 @@ struct PotatoBlobConfig {
   double opening_fraction = 0.015;    ///< opening kernel side / short side; strings are ~0.7 % wide
   double closing_fraction = 0.01;     ///< closing kernel (fills eyes and dark spots), 0 = none
   double min_area_fraction = 0.0008;  ///< blobs smaller than this fraction of the image are dropped
-  double max_aspect = 4.0;            ///< box long/short side above this = a bundle of roots
-  double min_solidity = 0.6;          ///< blob area / convex hull area
+  double max_aspect = 4.0;            ///< blob's rotated box long/short side above this = a bundle of roots
+  double min_solidity = 0.6;          ///< part area / convex hull area
   double min_score = 0.05;            ///< detections below this score are not reported
-  double split_core_fraction = 0.6;   ///< touching potatoes: cores deeper than this × the deepest; 0 = no split
+  // Touching potatoes (see above); chosen on the 11 shared images (AP50 flat for depth 0.3-0.6).
+  double split_concavity_depth = 0.5;     ///< notch depth / inscribed radius that splits; 0 = never
+  double split_min_part_fraction = 0.15;  ///< each part holds at least this fraction of the blob
+  double split_min_part_solidity = 0.9;   ///< each part is nearly convex (AP50 flat for 0-0.9)
+  int split_max_depth = 2;                ///< cuts applied again to the parts: up to 2^depth potatoes
+  // Contrast with the background ring (see above); AP50 flat for scales 3-10 on the shared images.
+  double contrast_scale = 5.0;            ///< 8-bit L; logistic scale of (ring L - blob L); 0 = off
+  double contrast_ring_fraction = 0.012;  ///< ring width / short image side (5 px at 416)
 
   template <class V>
   void visit(V& v) {
@@ -64,19 +81,33 @@ struct PotatoBlobConfig {
     v("closing_fraction", closing_fraction, "fraction of the short image side; closing kernel, 0 = none",
       Range::within(0, 0.2));
     v("min_area_fraction", min_area_fraction, "fraction of the image area; smallest blob kept", Range::within(0, 1));
-    v("max_aspect", max_aspect, "ratio; longest/shortest side of the blob's rotated box", Range::at_least(1));
-    v("min_solidity", min_solidity, "ratio; blob area / convex hull area", Range::within(0, 1));
-    v("split_core_fraction", split_core_fraction,
-      "ratio; a blob splits where its cores (distance to the boundary >= this x the largest) fall apart, 0 = never",
-      Range::within(0, 1).open_above());
+    v("max_aspect", max_aspect, "ratio; longest/shortest side of the blob's rotated box (before any split)",
+      Range::at_least(1));
+    v("min_solidity", min_solidity, "ratio; area / convex hull area of each part", Range::within(0, 1));
+    v("split_concavity_depth", split_concavity_depth,
+      "ratio; a blob splits at an outline notch deeper than this x its inscribed radius, 0 = never",
+      Range::at_least(0));
+    v("split_min_part_fraction", split_min_part_fraction, "ratio; smallest part of a split, as a fraction of the blob",
+      Range::within(0, 0.5));
+    v("split_min_part_solidity", split_min_part_solidity,
+      "ratio; each part of a split must be at least this convex (area / convex hull area)", Range::within(0, 1));
+    v("split_max_depth", split_max_depth, "count; levels of splitting (parts are split again), 0 = never",
+      Range::within(0, 4));
+    v("contrast_scale", contrast_scale,
+      "8-bit L; score factor 1/(1 + exp(-(L_ring - L_blob)/scale)) for a blob darker than its background ring, 0 = off",
+      Range::at_least(0));
+    v("contrast_ring_fraction", contrast_ring_fraction,
+      "fraction of the short image side; width of the background ring of the contrast factor", Range::within(0, 0.1));
     v("min_score", min_score, "score in [0, 1]; lower-scoring blobs are not reported", Range::within(0, 1));
   }
   /// Rules between fields (ranges are checked by check_config). Throws Error(where, ...).
   void validate(const std::string& where) const;
 };
 
-/// Implements Detector2D with one class, "potato". Score = mean colour likelihood of the blob's
-/// pixels (exp(-d²/2), d the Mahalanobis distance) × its solidity, in [0, 1].
+/// Implements Detector2D with one class, "potato". Score, in [0, 1] = mean colour likelihood of the
+/// part's pixels (exp(-d²/2), d the Mahalanobis distance) × its solidity × the contrast factor
+/// (mean 8-bit L of the background pixels within the ring around it against the part's own; 1
+/// when the ring holds no background or contrast_scale = 0).
 class PotatoBlobDetector final : public Detector2D {
  public:
   explicit PotatoBlobDetector(const PotatoBlobConfig& cfg = {});
