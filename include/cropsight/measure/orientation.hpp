@@ -57,6 +57,7 @@ struct OrientationConfig {
   double bilateral_sigma_color = 75, bilateral_sigma_space = 75;
   double canny_low = 50, canny_high = 150;
   int canny_close_iterations = 2;
+  double canny_stretch_percent = 1.0;
   // kmeans
   int kmeans_attempts = 3;
   int kmeans_max_iterations = 10;
@@ -64,6 +65,7 @@ struct OrientationConfig {
   int kmeans_seed = 22;
   // ours
   double ours_opening_fraction = 0.12;
+  double ours_closing_fraction = 0.12;
   int ours_black_value = 40;
   // all
   int border_px = 2;
@@ -93,6 +95,11 @@ struct OrientationConfig {
     v("canny_close_iterations", canny_close_iterations,
       "canny: 3x3 dilations that close gaps in the edge contour before it is filled (our choice)",
       Range::within(0, 10));
+    v("canny_stretch_percent", canny_stretch_percent,
+      "percent; canny, input=rgb: the region's grey levels are stretched linearly so that this share of its pixels is "
+      "0 and the same share 255 before the filter, so that the Canny thresholds mean one contrast whatever "
+      "the exposure (0 = no stretch, the paper's plain pipeline)",
+      Range::within(0.0, 49.0));
     v("kmeans_attempts", kmeans_attempts, "kmeans: cv::kmeans restarts, best compactness kept (our choice)",
       Range::within(1, 20));
     v("kmeans_max_iterations", kmeans_max_iterations, "kmeans: iterations per attempt (our choice)",
@@ -104,6 +111,11 @@ struct OrientationConfig {
     v("ours_opening_fraction", ours_opening_fraction,
       "fraction of the box's smaller side; ours: side of the elliptic opening that removes strings and roots "
       "(strings are ~4 px wide where potatoes are ~100 px; tuned on potato 1)",
+      Range::within(0.0, 0.5));
+    v("ours_closing_fraction", ours_closing_fraction,
+      "fraction of the box's smaller side; ours, input=rgb: side of the elliptic closing, before the opening, that "
+      "bridges "
+      "the gap a string crossing the potato cuts into the mask (0 = none)",
       Range::within(0.0, 0.5));
     v("ours_black_value", ours_black_value,
       "grey level; ours, input=depth: pixels whose brightest channel is below this are 'no depth' (background)",

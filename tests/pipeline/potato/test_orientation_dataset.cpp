@@ -53,10 +53,10 @@ TEST(OrientationDataset, OursMatchesTheDocumentedMae) {
   if (!fs::exists(kDir)) GTEST_SKIP() << "no shared potato data at " << kDir;
   using S = measure::OrientationSegmentation;
   const auto d = run(S::ours, measure::OrientationAxis::pca, measure::OrientationInput::depth);
-  EXPECT_NEAR(d.all.mae_deg, 7.3, 0.5);
+  EXPECT_NEAR(d.all.mae_deg, 5.4, 0.5);
   EXPECT_EQ(d.all.failures, 0);
   const auto r = run(S::ours, measure::OrientationAxis::pca, measure::OrientationInput::rgb);
-  EXPECT_NEAR(r.all.mae_deg, 12.8, 0.5);
+  EXPECT_NEAR(r.all.mae_deg, 3.5, 0.5);
   EXPECT_EQ(r.all.failures, 0);
 }
 
