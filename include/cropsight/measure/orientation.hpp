@@ -5,14 +5,15 @@
 //
 // Segmentation (OrientationSegmentation):
 //   canny:  the paper's fast pipeline: grey, bilateral filter, Canny, then the largest closed
-//           edge contour filled;
+//           edge contour filled; on RGB the region's grey levels are first stretched to the full
+//           range (canny_stretch_percent), so that the fixed thresholds hold on dim shots too;
 //   kmeans: the paper's accurate pipeline: cv::kmeans with 2 clusters on the pixels' colour; the
 //           potato is the cluster that holds fewer of the widened box's border pixels (the
 //           margin puts background on the border);
 //   ours:   one scalar per pixel that separates potato from background by a stated rule, Otsu's
-//           threshold on it, a morphological opening that removes strings and roots (thinner than
-//           the opening), and the connected component nearest the box centre with its holes
-//           filled. The scalar: on colourised depth, nearness decoded from the colour map's hue
+//           threshold on it, on RGB a closing that bridges the gap a string crossing the potato
+//           cuts, a morphological opening that removes strings and roots (thinner than the
+//           opening), and the connected component nearest the box centre with its holes filled. The scalar: on colourised depth, nearness decoded from the colour map's hue
 //           (red = near ... blue = far; black = no depth = background), because the potato hangs
 //           in front of everything else in its box; on RGB, the chroma distance (Lab a*, b*) from
 //           the median colour of the box border, because the board is white or grey whatever the
@@ -134,6 +135,11 @@ struct AxisEstimate {
   double major_px = 0;     ///< full length of the long axis, px (pca: 4 sqrt(λ1), exact for a filled ellipse)
   double minor_px = 0;     ///< full length of the short axis, px
   std::size_t pixels = 0;  ///< mask pixels used
+  /// How well the angle is defined, in [0, 1]: 1 − (minor / major)², i.e. 1 − λ2 / λ1 of the second
+  /// moments (pca) or of the fitted ellipse's axes. 0 = a disc, whose long axis is any direction
+  /// (the gripper may close at any angle); a 4:3 potato gives 0.44, a 2:1 one 0.75. A consumer
+  /// that must trust the angle compares this with its own threshold.
+  double confidence = 0;
 };
 
 /// One potato's orientation.

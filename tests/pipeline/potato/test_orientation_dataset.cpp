@@ -4,6 +4,7 @@
 // ("Orientation"); the tolerances allow for OpenCV version differences, not for a worse method.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 
@@ -37,6 +38,29 @@ TEST(OrientationDataset, ListsTheSharedShots) {
   EXPECT_EQ(shots.front().angle_deg, 0);
   EXPECT_EQ(shots.front().rgb.filename(), "image2.png");    // sorted by angle, light, number
   EXPECT_EQ(shots.front().depth.filename(), "image3.png");  // partner numbered one after
+}
+
+// A potato (120 x 80 px, brown) on a light grey board, cut in two by a light string 6 px wide,
+// with a brown string 6 px wide hanging from it and a knot (a 14 px blob) on that string: the box
+// is the whole potato, not its larger half and not the string.
+TEST(BoardBlobDetector, BoxIsTheWholePotatoNotItsHalfNorTheString) {
+  ColorImage im(640, 480, Rgb8{135, 133, 128});
+  const double cx = 320, cy = 240, a = 60, b = 40;
+  for (int v = 0; v < im.height; ++v)
+    for (int u = 0; u < im.width; ++u) {
+      const double x = u + 0.5 - cx, y = v + 0.5 - cy;
+      if ((x * x) / (a * a) + (y * y) / (b * b) <= 1) im.at(u, v) = {120, 80, 40};
+      if (std::abs(x - 10) < 3 && std::abs(y) < 60) im.at(u, v) = {130, 128, 124};        // light string across
+      if (std::abs(y + 0.6 * x) < 3 && x < -50 && x > -200) im.at(u, v) = {110, 85, 60};  // brown string
+      if (std::hypot(x + 150, y - 90) < 7) im.at(u, v) = {110, 85, 60};                   // its knot
+    }
+  BoardBlobDetector det;
+  const auto boxes = det.detect({&im, nullptr});
+  ASSERT_EQ(boxes.size(), 1u);
+  EXPECT_NEAR(boxes[0].x1, cx - a, 4);
+  EXPECT_NEAR(boxes[0].x2, cx + a, 4);
+  EXPECT_NEAR(boxes[0].y1, cy - b, 4);
+  EXPECT_NEAR(boxes[0].y2, cy + b, 4);
 }
 
 TEST(OrientationDataset, MissingFolderNamesIt) {
