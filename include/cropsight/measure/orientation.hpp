@@ -13,7 +13,8 @@
 //   ours:   one scalar per pixel that separates potato from background by a stated rule, Otsu's
 //           threshold on it, on RGB a closing that bridges the gap a string crossing the potato
 //           cuts, a morphological opening that removes strings and roots (thinner than the
-//           opening), and the connected component nearest the box centre with its holes filled. The scalar: on colourised depth, nearness decoded from the colour map's hue
+//           opening), and the connected component nearest the box centre with its holes
+//           filled. The scalar: on colourised depth, nearness decoded from the colour map's hue
 //           (red = near ... blue = far; black = no depth = background), because the potato hangs
 //           in front of everything else in its box; on RGB, the chroma distance (Lab a*, b*) from
 //           the median colour of the box border, because the board is white or grey whatever the
