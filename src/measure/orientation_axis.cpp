@@ -1,5 +1,6 @@
 // measure/orientation: the long axis of a mask, by PCA of its pixel centres or by an ellipse fit
 // of its largest outer contour; both turned into the trigonometric angle in [0, π).
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <opencv2/imgproc.hpp>
@@ -70,7 +71,10 @@ AxisEstimate ellipse_axis(const GrayImage& mask, int min_pixels) {
 }  // namespace
 
 AxisEstimate mask_axis(const GrayImage& mask, OrientationAxis axis, int min_pixels) {
-  return axis == OrientationAxis::pca ? pca_axis(mask, min_pixels) : ellipse_axis(mask, min_pixels);
+  AxisEstimate e = axis == OrientationAxis::pca ? pca_axis(mask, min_pixels) : ellipse_axis(mask, min_pixels);
+  if (e.ok && e.major_px > 0)
+    e.confidence = std::clamp(1.0 - (e.minor_px * e.minor_px) / (e.major_px * e.major_px), 0.0, 1.0);
+  return e;
 }
 
 }  // namespace cropsight::measure

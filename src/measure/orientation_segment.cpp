@@ -50,6 +50,23 @@ std::uint8_t median_of(std::vector<std::uint8_t>& v) {
   return v[v.size() / 2];
 }
 
+// Maps the grey levels of `grey` linearly so that its `percent` darkest pixels go to 0 and its
+// `percent` brightest to 255: Canny's thresholds are gradients in grey levels, and a dim shot
+// (the shared RGB board is ~130 of 255) has half the gradients of a bright one.
+void stretch_contrast(cv::Mat& grey, double percent) {
+  int hist[256] = {};
+  for (int v = 0; v < grey.rows; ++v) {
+    const std::uint8_t* row = grey.ptr<std::uint8_t>(v);
+    for (int u = 0; u < grey.cols; ++u) ++hist[row[u]];
+  }
+  const double n = double(grey.total()), cut = n * percent / 100.0;
+  int lo = 0, hi = 255;
+  for (double acc = 0; lo < 255 && (acc += hist[lo]) <= cut;) ++lo;
+  for (double acc = 0; hi > 0 && (acc += hist[hi]) <= cut;) --hi;
+  if (hi <= lo) return;
+  grey.convertTo(grey, CV_8U, 255.0 / (hi - lo), -255.0 * lo / (hi - lo));
+}
+
 }  // namespace
 
 cv::Mat component_nearest_centre(const cv::Mat& mask) {
@@ -78,6 +95,9 @@ cv::Mat component_nearest_centre(const cv::Mat& mask) {
 cv::Mat segment_canny(const cv::Mat& rgb, const OrientationConfig& cfg) {
   cv::Mat grey, smooth, edges;
   cv::cvtColor(rgb, grey, cv::COLOR_RGB2GRAY);
+  // RGB only: the colour map of a depth image spans its full range by construction.
+  if (cfg.input == OrientationInput::rgb && cfg.canny_stretch_percent > 0)
+    stretch_contrast(grey, cfg.canny_stretch_percent);
   cv::bilateralFilter(grey, smooth, cfg.bilateral_diameter, cfg.bilateral_sigma_color, cfg.bilateral_sigma_space);
   cv::Canny(smooth, edges, cfg.canny_low, cfg.canny_high);
   if (cfg.canny_close_iterations > 0)
@@ -140,8 +160,16 @@ cv::Mat segment_ours(const cv::Mat& rgb, const OrientationConfig& cfg) {
   }
   const double t = otsu_threshold(score, valid);
   cv::Mat mask = (score > t) & valid;
-  const double side = cfg.ours_opening_fraction * std::min(rgb.rows, rgb.cols) / (1.0 + 2.0 * cfg.box_margin);
-  const int k = std::max(1, int(std::lround(side)) | 1);
+  const double box_side = std::min(rgb.rows, rgb.cols) / (1.0 + 2.0 * cfg.box_margin);
+  // A string across the potato cuts a gap as wide as the string into the mask (RGB: the string's
+  // colour; depth: its no-depth shadow): a closing wider than a string bridges it, before the
+  // opening removes the strings outside the potato.
+  // RGB only: on colourised depth a string is no depth (black), background already, and a closing
+  // would join the near blobs of strings above the potato to it.
+  const double closing = cfg.input == OrientationInput::rgb ? cfg.ours_closing_fraction : 0.0;
+  const int kc = std::max(1, int(std::lround(closing * box_side)) | 1);
+  if (kc > 1) cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_ELLIPSE, {kc, kc}));
+  const int k = std::max(1, int(std::lround(cfg.ours_opening_fraction * box_side)) | 1);
   if (k > 1) cv::morphologyEx(mask, mask, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_ELLIPSE, {k, k}));
   return component_nearest_centre(mask);
 }

@@ -5,13 +5,15 @@
 //
 // Segmentation (OrientationSegmentation):
 //   canny:  the paper's fast pipeline: grey, bilateral filter, Canny, then the largest closed
-//           edge contour filled;
+//           edge contour filled; on RGB the region's grey levels are first stretched to the full
+//           range (canny_stretch_percent), so that the fixed thresholds hold on dim shots too;
 //   kmeans: the paper's accurate pipeline: cv::kmeans with 2 clusters on the pixels' colour; the
 //           potato is the cluster that holds fewer of the widened box's border pixels (the
 //           margin puts background on the border);
 //   ours:   one scalar per pixel that separates potato from background by a stated rule, Otsu's
-//           threshold on it, a morphological opening that removes strings and roots (thinner than
-//           the opening), and the connected component nearest the box centre with its holes
+//           threshold on it, on RGB a closing that bridges the gap a string crossing the potato
+//           cuts, a morphological opening that removes strings and roots (thinner than the
+//           opening), and the connected component nearest the box centre with its holes
 //           filled. The scalar: on colourised depth, nearness decoded from the colour map's hue
 //           (red = near ... blue = far; black = no depth = background), because the potato hangs
 //           in front of everything else in its box; on RGB, the chroma distance (Lab a*, b*) from
@@ -57,6 +59,7 @@ struct OrientationConfig {
   double bilateral_sigma_color = 75, bilateral_sigma_space = 75;
   double canny_low = 50, canny_high = 150;
   int canny_close_iterations = 2;
+  double canny_stretch_percent = 1.0;
   // kmeans
   int kmeans_attempts = 3;
   int kmeans_max_iterations = 10;
@@ -64,6 +67,7 @@ struct OrientationConfig {
   int kmeans_seed = 22;
   // ours
   double ours_opening_fraction = 0.12;
+  double ours_closing_fraction = 0.12;
   int ours_black_value = 40;
   // all
   int border_px = 2;
@@ -93,6 +97,11 @@ struct OrientationConfig {
     v("canny_close_iterations", canny_close_iterations,
       "canny: 3x3 dilations that close gaps in the edge contour before it is filled (our choice)",
       Range::within(0, 10));
+    v("canny_stretch_percent", canny_stretch_percent,
+      "percent; canny, input=rgb: the region's grey levels are stretched linearly so that this share of its pixels is "
+      "0 and the same share 255 before the filter, so that the Canny thresholds mean one contrast whatever "
+      "the exposure (0 = no stretch, the paper's plain pipeline)",
+      Range::within(0.0, 49.0));
     v("kmeans_attempts", kmeans_attempts, "kmeans: cv::kmeans restarts, best compactness kept (our choice)",
       Range::within(1, 20));
     v("kmeans_max_iterations", kmeans_max_iterations, "kmeans: iterations per attempt (our choice)",
@@ -104,6 +113,11 @@ struct OrientationConfig {
     v("ours_opening_fraction", ours_opening_fraction,
       "fraction of the box's smaller side; ours: side of the elliptic opening that removes strings and roots "
       "(strings are ~4 px wide where potatoes are ~100 px; tuned on potato 1)",
+      Range::within(0.0, 0.5));
+    v("ours_closing_fraction", ours_closing_fraction,
+      "fraction of the box's smaller side; ours, input=rgb: side of the elliptic closing, before the opening, that "
+      "bridges "
+      "the gap a string crossing the potato cuts into the mask (0 = none)",
       Range::within(0.0, 0.5));
     v("ours_black_value", ours_black_value,
       "grey level; ours, input=depth: pixels whose brightest channel is below this are 'no depth' (background)",
@@ -122,6 +136,11 @@ struct AxisEstimate {
   double major_px = 0;     ///< full length of the long axis, px (pca: 4 sqrt(λ1), exact for a filled ellipse)
   double minor_px = 0;     ///< full length of the short axis, px
   std::size_t pixels = 0;  ///< mask pixels used
+  /// How well the angle is defined, in [0, 1]: 1 − (minor / major)², i.e. 1 − λ2 / λ1 of the second
+  /// moments (pca) or of the fitted ellipse's axes. 0 = a disc, whose long axis is any direction
+  /// (the gripper may close at any angle); a 4:3 potato gives 0.44, a 2:1 one 0.75. A consumer
+  /// that must trust the angle compares this with its own threshold.
+  double confidence = 0;
 };
 
 /// One potato's orientation.

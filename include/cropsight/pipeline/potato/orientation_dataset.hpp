@@ -37,20 +37,23 @@ eval::OrientationEvaluation evaluate_orientation(const std::vector<OrientationSh
                                                  const measure::OrientationConfig& cfg);
 
 /// A stand-in box source for these images while the potato detector is being written: the
-/// largest blob of colour on the white board. Chroma distance (Lab a*, b*) from the image's median
-/// chroma (the board's, which covers most of the image) above `chroma_threshold`, an elliptic
-/// opening of `opening_px` (removes strings), the largest 8-connected component → one box,
-/// score 1. Not a general detector: it assumes one potato on a white or grey background.
+/// thickest blob of colour on the white board. Chroma distance (Lab a*, b*) from the image's median
+/// chroma (the board's, which covers most of the image) above `chroma_threshold`; an elliptic
+/// closing of `closing_px` (bridges a string that crosses the potato and cuts its blob in two) and
+/// an opening of `opening_px` (removes strings); then the blob holding the largest inscribed disc
+/// (radius r; strings and knots are thin), opened once more by a disc of diameter r so that strings
+/// still touching it fall off, grown back by r / 4 inside the foreground → one box, score 1. Not a
+/// general detector: it assumes one potato on a white or grey background.
 class BoardBlobDetector : public Detector2D {
  public:
-  explicit BoardBlobDetector(double chroma_threshold = 12, int opening_px = 15)
-      : chroma_threshold_(chroma_threshold), opening_px_(opening_px) {}
+  explicit BoardBlobDetector(double chroma_threshold = 12, int opening_px = 15, int closing_px = 9)
+      : chroma_threshold_(chroma_threshold), opening_px_(opening_px), closing_px_(closing_px) {}
   std::vector<Detection2D> detect(const DetectorInput& in) override;
   std::vector<std::string> class_names() const override { return {"potato"}; }
 
  private:
   double chroma_threshold_;
-  int opening_px_;
+  int opening_px_, closing_px_;
 };
 
 }  // namespace cropsight::pipeline::potato
