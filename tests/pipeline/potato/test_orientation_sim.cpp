@@ -2,7 +2,7 @@
 // fully in view, boxes from the labels, each segmentation with PCA on the colour image and on the
 // colourised depth (io::colorize_depth over 0.2-1.0 m, as PotatoPipeline::orient). The measurement
 // behind docs/pipelines/potatoes.md, on held-out seeds 3001..3000+N that no test or tuning used:
-//   CROPSIGHT_POTATO_SEEDS=3 build/bin/test_pipeline --gtest_also_run_disabled_tests \
+//   CROPSIGHT_POTATO_SEEDS=3 build/bin/test_pipeline --gtest_also_run_disabled_tests
 //     --gtest_filter='OrientationSim.DISABLED_*'
 #include <gtest/gtest.h>
 
