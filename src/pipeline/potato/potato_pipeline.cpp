@@ -108,6 +108,7 @@ PotatoFrameResult PotatoPipeline::process(const RgbdFrame& frame) {
     const measure::Position3D p = u.candidate >= 0 ? r.positions[std::size_t(u.candidate)] : locate(t.box);
     t.score = u.candidate >= 0 ? r.detections[std::size_t(u.candidate)].score : 0.f;
     t.depth_ok = p.depth_ok;
+    t.cut = p.cut_by_border;
     t.x = p.xyz.x(), t.y = p.xyz.y(), t.z = p.xyz.z();
     t.width = p.width_m, t.height = p.height_m;
     // 5. orient
