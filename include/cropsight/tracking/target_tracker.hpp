@@ -8,9 +8,15 @@
 //    id) -> detected; none -> selecting.
 //  * with a target: a candidate "lies within epsilon" of the last target box's centre when both
 //    |du| < epsilon and |dv| < epsilon (pixels, per axis, as the authors' code compares; the paper's
-//    EPSILON = 300). Association `nearest` (paper) takes the nearest such candidate (smallest
-//    distance); `closest` (ours) the one whose centre is closest to the last centre. Found ->
-//    detected (the tracking counter resets).
+//    EPSILON = 300). 300 px per axis admits nearly every potato in a 640 x 480 view, so when the
+//    target's own box is missing for a frame (a root across it, a detector miss) another potato
+//    takes over. Ours also gates by the last box itself: the candidate's centre must lie within
+//    epsilon_box_fraction of the last box's width / height (0.5: inside the last box), and its
+//    area within max_area_ratio of the last box's; the camera moves a few pixels a frame, so the
+//    target's next box passes and a neighbour does not (predict_motion centres the gate on the
+//    last centre moved by its last motion, for a camera that sweeps fast). Association `nearest` (paper) takes the
+//    nearest passing candidate (smallest distance); `closest` (ours) the one whose centre is
+//    closest to the last centre. Found -> detected (the tracking counter resets).
 //  * none within epsilon: the visual tracker (initialised on the last detected box) continues ->
 //    tracked, for at most tracking_limit consecutive frames (paper TRACKING_LIM = 10). The next
 //    frame without a match, or a visual-tracker failure, is `lost`: the target is dropped
@@ -35,8 +41,11 @@ enum class TargetAssociation { nearest, closest };
 constexpr std::array<const char*, 2> config_names(TargetAssociation) { return {"nearest", "closest"}; }
 
 struct TargetTrackerConfig {
-  double epsilon_px = 300;  ///< paper EPSILON: per-axis proximity to the last target centre, pixels
-  int tracking_limit = 10;  ///< paper TRACKING_LIM: most consecutive frames tracked without detection
+  double epsilon_px = 300;            ///< paper EPSILON: per-axis proximity to the last target centre, pixels
+  double epsilon_box_fraction = 0.5;  ///< per-axis proximity as a fraction of the last box's side; 0 = off (paper)
+  double max_area_ratio = 4.0;        ///< most area ratio to the last box (either way); 0 = off (paper)
+  bool predict_motion = true;         ///< box gate around the last centre moved by its last motion (ours)
+  int tracking_limit = 10;            ///< paper TRACKING_LIM: most consecutive frames tracked without detection
   TargetAssociation association = TargetAssociation::closest;
   VisualTrackerKind visual_tracker = VisualTrackerKind::csrt;
 
@@ -46,6 +55,17 @@ struct TargetTrackerConfig {
       "px; a detection continues the target when |du| and |dv| between box centres are both below this "
       "(paper EPSILON = 300, compared per axis in pixels in the authors' track_object.py)",
       Range::above(0.0));
+    v("epsilon_box_fraction", epsilon_box_fraction,
+      "fraction; a detection continues the target only when |du| < this x the last box's width and |dv| < this x "
+      "its height (0.5 = its centre inside the last box; ours, 0 = off as in the paper)",
+      Range::at_least(0.0));
+    v("max_area_ratio", max_area_ratio,
+      "ratio; ... and its box area is within this factor of the last box's, either way (ours, 0 = off as in the "
+      "paper)",
+      Range::at_least(0.0));
+    v("predict_motion", predict_motion,
+      "bool; the box gate and `closest` use the last centre moved by its motion in the last frame (constant "
+      "velocity, at most half the gate; ours, false = the last centre as in the paper)");
     v("tracking_limit", tracking_limit,
       "frames; most consecutive frames the visual tracker carries the target without detection (paper "
       "TRACKING_LIM = 10)",
@@ -91,13 +111,15 @@ class TargetTracker {
  private:
   int select(const std::vector<TargetCandidate>& candidates) const;
   int associate(const std::vector<TargetCandidate>& candidates) const;
-  TargetUpdate detected(const ColorImage* image, const std::vector<TargetCandidate>& candidates, int index);
+  TargetUpdate detected(const ColorImage* image, const std::vector<TargetCandidate>& candidates, int index, bool fresh);
+  void move_to(const Detection2D& box, bool fresh);
 
   TargetTrackerConfig cfg_;
   std::unique_ptr<VisualTracker> visual_;
   bool has_target_ = false;
   int target_id_ = 0, next_id_ = 1, frames_tracked_ = 0;
   Detection2D last_box_;
+  float vu_ = 0, vv_ = 0;  // the last box centre's motion per frame, pixels (predict_motion)
   // The visual tracker is initialised lazily, on the last detected frame, when a miss needs it:
   // detected frames (most of them) cost no tracker initialisation.
   ColorImage last_image_;
