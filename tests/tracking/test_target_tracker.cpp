@@ -124,7 +124,7 @@ TEST_F(TargetTrackerTest, FarDetectionsDoNotContinueTheTarget) {
   EXPECT_EQ(u.state, TargetState::tracked);
   EXPECT_EQ(u.candidate, -1);
   // Per-axis rule: 49 px in u and 49 px in v is within (a Euclidean 69 px); the paper has no box gate.
-  cfg.epsilon_box_fraction = 0;
+  cfg.min_overlap = 0;
   cfg.max_area_ratio = 0;
   TargetTracker t2 = make(cfg);
   t2.update(&image, {cand(200, 150, 0.4f)});
@@ -135,7 +135,7 @@ TEST_F(TargetTrackerTest, NearerPotatoWithinEpsilon) {
   // Paper association: the nearest detection within epsilon wins, even a new, nearer potato.
   TargetTrackerConfig paper;
   paper.association = TargetAssociation::nearest;
-  paper.epsilon_box_fraction = 0;
+  paper.min_overlap = 0;
   paper.max_area_ratio = 0;
   TargetTracker p = make(paper);
   p.update(&image, {cand(200, 150, 0.4f)});
@@ -152,7 +152,7 @@ TEST_F(TargetTrackerTest, NeighbourDoesNotTakeOverWhileTheTargetIsMissing) {
   // The target (60 x 60 px at u = 200) and a nearer neighbour 90 px to its right, well within the
   // paper's 300 px. The target's box is missing for two frames.
   TargetTrackerConfig paper;
-  paper.epsilon_box_fraction = 0;
+  paper.min_overlap = 0;
   paper.max_area_ratio = 0;
   TargetTracker p = make(paper);
   p.update(&image, {cand(200, 150, 0.4f), cand(290, 150, 0.45f)});
@@ -179,8 +179,9 @@ TEST_F(TargetTrackerTest, NeighbourDoesNotTakeOverWhileTheTargetIsMissing) {
 }
 
 TEST_F(TargetTrackerTest, PredictedMotionKeepsAFastSweepingTarget) {
-  // A 20 x 20 px box (gate 10 px) moving 8 px, then 12 px a frame: without prediction the 12 px step
-  // leaves the gate; with it the gate is centred 5 px ahead (the last motion, at most half the gate).
+  // A 20 x 20 px box moving 8 px, then 12 px a frame: without prediction the 12 px step overlaps the
+  // last box by 8 / 20 < min_overlap; with it the gate's box is 5 px ahead (the last motion, at most
+  // a quarter of the box) and the overlap is 13 / 20.
   const auto at = [](float u) { return TargetCandidate{box_at(u, 100, 10), 0.4f, true, true}; };
   TargetTrackerConfig still;
   still.predict_motion = false;
@@ -219,6 +220,10 @@ TEST_F(TargetTrackerTest, RootCrossingTheTarget) {
     EXPECT_EQ(u.state, TargetState::detected);
     EXPECT_EQ(u.target_id, 1);
     EXPECT_NE(u.candidate, 2);  // never the other potato
+    EXPECT_EQ(u.parts, 2);      // the two halves are one potato
+    ASSERT_TRUE(u.box);
+    EXPECT_FLOAT_EQ(u.box->x1, 170);
+    EXPECT_FLOAT_EQ(u.box->x2, 230);
   }
   const TargetUpdate whole = t.update(&image, {cand(450, 150, 0.42f), cand(201, 150, 0.4f)});
   EXPECT_EQ(whole.candidate, 1);

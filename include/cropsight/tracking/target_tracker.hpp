@@ -10,11 +10,12 @@
 //    |du| < epsilon and |dv| < epsilon (pixels, per axis, as the authors' code compares; the paper's
 //    EPSILON = 300). 300 px per axis admits nearly every potato in a 640 x 480 view, so when the
 //    target's own box is missing for a frame (a root across it, a detector miss) another potato
-//    takes over. Ours also gates by the last box itself: the candidate's centre must lie within
-//    epsilon_box_fraction of the last box's width / height (0.5: inside the last box), and its
-//    area within max_area_ratio of the last box's; the camera moves a few pixels a frame, so the
-//    target's next box passes and a neighbour does not (predict_motion centres the gate on the
-//    last centre moved by its last motion, for a camera that sweeps fast). Association `nearest` (paper) takes the
+//    takes over. Ours also gates by the last box itself: the candidate must overlap the last box
+//    (moved by its last motion, predict_motion) by min_overlap of the smaller of the two, and its
+//    area be within max_area_ratio of the last box's; the camera moves a few pixels a frame, so the
+//    target's next box passes and a neighbour (beside it, not on it) does not. With merge_parts,
+//    the other detections lying mostly inside that box are parts of the target split by a root,
+//    and the target's box is their union. Association `nearest` (paper) takes the
 //    nearest passing candidate (smallest distance); `closest` (ours) the one whose centre is
 //    closest to the last centre. Found -> detected (the tracking counter resets).
 //  * none within epsilon: the visual tracker (initialised on the last detected box) continues ->
@@ -41,11 +42,12 @@ enum class TargetAssociation { nearest, closest };
 constexpr std::array<const char*, 2> config_names(TargetAssociation) { return {"nearest", "closest"}; }
 
 struct TargetTrackerConfig {
-  double epsilon_px = 300;            ///< paper EPSILON: per-axis proximity to the last target centre, pixels
-  double epsilon_box_fraction = 0.5;  ///< per-axis proximity as a fraction of the last box's side; 0 = off (paper)
-  double max_area_ratio = 4.0;        ///< most area ratio to the last box (either way); 0 = off (paper)
-  bool predict_motion = true;         ///< box gate around the last centre moved by its last motion (ours)
-  int tracking_limit = 10;            ///< paper TRACKING_LIM: most consecutive frames tracked without detection
+  double epsilon_px = 300;      ///< paper EPSILON: per-axis proximity to the last target centre, pixels
+  double min_overlap = 0.5;     ///< intersection with the (predicted) last box over the smaller area; 0 = off (paper)
+  double max_area_ratio = 4.0;  ///< most area ratio to the last box (either way); 0 = off (paper)
+  bool predict_motion = true;   ///< the gate's box is the last box moved by its last motion (ours)
+  bool merge_parts = true;      ///< detections mostly inside that box are parts of the target (ours)
+  int tracking_limit = 10;      ///< paper TRACKING_LIM: most consecutive frames tracked without detection
   TargetAssociation association = TargetAssociation::closest;
   VisualTrackerKind visual_tracker = VisualTrackerKind::csrt;
 
@@ -55,17 +57,20 @@ struct TargetTrackerConfig {
       "px; a detection continues the target when |du| and |dv| between box centres are both below this "
       "(paper EPSILON = 300, compared per axis in pixels in the authors' track_object.py)",
       Range::above(0.0));
-    v("epsilon_box_fraction", epsilon_box_fraction,
-      "fraction; a detection continues the target only when |du| < this x the last box's width and |dv| < this x "
-      "its height (0.5 = its centre inside the last box; ours, 0 = off as in the paper)",
-      Range::at_least(0.0));
+    v("min_overlap", min_overlap,
+      "fraction; a detection continues the target only when its intersection with the last box (moved by its last "
+      "motion) is at least this of the smaller box's area (ours, 0 = off as in the paper)",
+      Range::within(0.0, 1.0));
     v("max_area_ratio", max_area_ratio,
       "ratio; ... and its box area is within this factor of the last box's, either way (ours, 0 = off as in the "
       "paper)",
       Range::at_least(0.0));
     v("predict_motion", predict_motion,
-      "bool; the box gate and `closest` use the last centre moved by its motion in the last frame (constant "
-      "velocity, at most half the gate; ours, false = the last centre as in the paper)");
+      "bool; the gate and `closest` use the last box moved by its motion in the last frame (constant velocity, at "
+      "most a quarter of the box; ours, false = the last box as in the paper)");
+    v("merge_parts", merge_parts,
+      "bool; the other detections lying mostly inside that box are parts of the target split by a root: the "
+      "target's box is their union (ours, false as in the paper)");
     v("tracking_limit", tracking_limit,
       "frames; most consecutive frames the visual tracker carries the target without detection (paper "
       "TRACKING_LIM = 10)",
@@ -93,6 +98,7 @@ struct TargetUpdate {
   std::optional<Detection2D> box;  ///< the target's box (detected or tracked)
   int candidate = -1;              ///< index into the frame's candidates when detected, else -1
   int frames_tracked = 0;          ///< consecutive frames without detection so far
+  int parts = 1;                   ///< detections merged into `box` (merge_parts); 1 = box is candidate's
   bool has_target() const { return box.has_value(); }
 };
 
@@ -113,6 +119,9 @@ class TargetTracker {
   int associate(const std::vector<TargetCandidate>& candidates) const;
   TargetUpdate detected(const ColorImage* image, const std::vector<TargetCandidate>& candidates, int index, bool fresh);
   void move_to(const Detection2D& box, bool fresh);
+  Detection2D predicted() const;
+  bool in_gate(const Detection2D& box, const Detection2D& predicted) const;
+  Detection2D merge_parts(const std::vector<TargetCandidate>& candidates, int index, int& parts) const;
 
   TargetTrackerConfig cfg_;
   std::unique_ptr<VisualTracker> visual_;
