@@ -19,7 +19,7 @@ using cropsight::testing::TempDir;
 fs::path simulate(const TempDir& tmp) {
   const fs::path seq = tmp.path() / "seq";
   const auto r =
-      run_cli("simulate potato --scene sheet --frames 8 --seed 4243 --set width=320 --set height=240 --out " +
+      run_cli("simulate potato --scene sheet --frames 12 --seed 4244 --set width=320 --set height=240 --out " +
               shell_quoted(seq.string()) + " --json");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   return seq;
@@ -32,12 +32,13 @@ TEST(PotatoEvalCli, SimulatedApproachIsScoredAgainstTruth) {
   const auto r = run_cli("eval potato --data " + shell_quoted(seq.string()) + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  EXPECT_EQ(j["frames"], 8);
-  EXPECT_GE(j["frames_on_target"].get<int>(), 7);
+  // On this seed the nearest potato (the loop's choice) is the one the camera approaches.
+  EXPECT_EQ(j["frames"], 12);
+  EXPECT_GE(j["frames_on_target"].get<int>(), 11);
   EXPECT_EQ(j["target_switches"], 0);
   EXPECT_EQ(j["lost_events"], 0);
   for (const char* axis : {"x", "y", "z"}) {
-    EXPECT_LT(j["position"][axis]["mae_mm"].get<double>(), 10.0) << axis;
+    EXPECT_LT(j["position"][axis]["mae_mm"].get<double>(), 5.0) << axis;  // the target
     EXPECT_TRUE(j["position"][axis].contains("std_mm"));
   }
   for (const char* k : {"length_mae_mm", "width_mae_mm", "angle_mae_deg"}) EXPECT_TRUE(j.contains(k)) << k;
