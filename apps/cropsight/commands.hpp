@@ -33,11 +33,12 @@ void add_eval_seedling(CLI::App& eval);
 void add_eval_stereo(CLI::App& eval);
 void add_simulate_seedling(CLI::App& simulate);
 
-// Potatoes (issue 22): detect potato, eval potato-detection, eval potato-orientation, harvest potato,
-// bench potato
+// Potatoes (issue 22): detect potato, eval potato-detection, eval potato-orientation, eval potato,
+// harvest potato, bench potato
 void add_detect_potato(CLI::App& detect);
 void add_eval_potato_detection(CLI::App& eval);
 void add_eval_potato_orientation(CLI::App& eval);
+void add_eval_potato(CLI::App& eval);  // the harvest loop against the simulator's truth
 void add_harvest_potato(CLI::App& harvest);
 void add_bench_potato(CLI::App& bench);
 

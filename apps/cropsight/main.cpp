@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
   add_detect_potato(*detect);
   add_eval_potato_detection(*eval);
   add_eval_potato_orientation(*eval);
+  add_eval_potato(*eval);
   auto* harvest = app.add_subcommand("harvest", "Run a harvest loop: one target message per frame");
   harvest->require_subcommand(1);
   add_harvest_potato(*harvest);

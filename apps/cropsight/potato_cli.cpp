@@ -31,6 +31,7 @@ nlohmann::json harvest_json(const pipeline::potato::HarvestTarget& t) {
                    {"width", json_number(t.width)},
                    {"angle", json_number(t.angle)},
                    {"angle_ok", t.angle_ok},
+                   {"cut", t.cut},
                    {"target_id", t.target_id},
                    {"state", config_name(t.state)},
                    {"score", json_number(t.score)}};

@@ -1,6 +1,9 @@
 // Box-centre deprojection against hand-computed cases, the robust depth window on noisy and holey
-// depth, depth_ok at the D415's minimum range, and ripeness by metric box area.
+// depth, the centre behind the surface (silhouette rule on a ray-cast ellipsoid), depth_ok at the
+// D415's minimum range, and ripeness by metric box area.
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/measure/position.hpp"
@@ -56,12 +59,77 @@ TEST(Position, HalfWidthOffsetFindsTheCentreOfASphere) {
   const double r = 0.03, zc = 0.43, half = 600 * std::tan(std::asin(r / zc));
   const double halfy = 500 * std::tan(std::asin(r / zc));
   Image<float> depth(640, 480, float(zc - r));
+  PositionConfig cfg;
+  cfg.centre_offset = CentreOffset::half_width;
   const Position3D p = locate(box(float(320.5 - half), float(240.5 - halfy), float(320.5 + half), float(240.5 + halfy)),
-                              depth, camera());
+                              depth, camera(), cfg);
   ASSERT_TRUE(p.depth_ok);
   EXPECT_NEAR(p.xyz.z(), zc, 0.001);  // perspective: the silhouette is a little in front of the centre
   EXPECT_NEAR(p.xyz.x(), 0.0, 1e-6);
   EXPECT_NEAR(p.width_m, 2 * r, 0.001);
+}
+
+// Ray-cast depth of an ellipsoid (semi-axes a along the image direction `angle`, b across it in the
+// image plane, c along the view) centred at `c0`, in front of a backdrop at 0.7 m, with a root
+// (a vertical strip 3 cm in front of the potato) crossing it; and the box of its silhouette.
+namespace {
+struct Rendered {
+  Image<float> depth{640, 480, 0.7f};
+  Detection2D box;
+};
+Rendered render_ellipsoid(const Eigen::Vector3d& c0, double a, double b, double c, double angle) {
+  Rendered out;
+  const CameraIntrinsics cam = camera();
+  const Eigen::Vector3d ax(std::cos(angle), -std::sin(angle), 0), bx(std::sin(angle), std::cos(angle), 0), cz(0, 0, 1);
+  Eigen::Matrix3d A = ax * ax.transpose() / (a * a) + bx * bx.transpose() / (b * b) + cz * cz.transpose() / (c * c);
+  float u0 = 1e9f, v0 = 1e9f, u1 = -1, v1 = -1;
+  for (int v = 0; v < 480; ++v)
+    for (int u = 0; u < 640; ++u) {
+      const Eigen::Vector3d d((u - cam.cx) / cam.fx, (v - cam.cy) / cam.fy, 1.0);
+      // (t d - c0)^T A (t d - c0) = 1
+      const double qa = d.dot(A * d), qb = -2 * d.dot(A * c0), qc = c0.dot(A * c0) - 1;
+      const double disc = qb * qb - 4 * qa * qc;
+      if (disc < 0) continue;
+      out.depth.at(u, v) = float((-qb - std::sqrt(disc)) / (2 * qa));
+      u0 = std::min(u0, float(u)), u1 = std::max(u1, float(u + 1)), v0 = std::min(v0, float(v)),
+      v1 = std::max(v1, float(v + 1));
+    }
+  out.box = box(u0, v0, u1, v1);
+  const int root_u = int(std::lround(0.5f * (u0 + u1) + 0.2f * (u1 - u0)));
+  for (int v = 0; v < 480; ++v)
+    for (int u = root_u; u < root_u + 4; ++u) out.depth.at(u, v) = float(c0.z() - c - 0.03);
+  return out;
+}
+}  // namespace
+
+TEST(Position, SilhouetteOffsetFindsTheCentreOfAnEllipsoidAtAnAngle) {
+  // A potato 9 x 5.6 x 5.6 cm lying at 45 deg in the image, centre 0.42 m away, 3 cm right of the axis.
+  const Eigen::Vector3d c0(0.03, -0.01, 0.42);
+  const Rendered r = render_ellipsoid(c0, 0.045, 0.028, 0.028, M_PI / 4);
+  const Position3D p = locate(r.box, r.depth, camera());
+  ASSERT_TRUE(p.depth_ok);
+  EXPECT_NEAR(p.xyz.z(), c0.z(), 0.0015);
+  EXPECT_NEAR(p.xyz.x(), c0.x(), 0.001);
+  EXPECT_NEAR(p.xyz.y(), c0.y(), 0.001);
+  EXPECT_NEAR(p.minor_m, 0.056, 0.003);
+  EXPECT_NEAR(p.major_m, 0.09, 0.005);
+  // The cause of the older rule's far bias: the axis-aligned box of a potato at 45 deg is about
+  // (a + b) / sqrt(2) wide, so half its side overshoots the semi-axis by about 1 cm here.
+  PositionConfig box_rule;
+  box_rule.centre_offset = CentreOffset::half_width;
+  EXPECT_GT(locate(r.box, r.depth, camera(), box_rule).xyz.z() - c0.z(), 0.006);
+  // Lying along the image x axis, the two rules agree.
+  const Rendered flat = render_ellipsoid(c0, 0.045, 0.028, 0.028, 0.0);
+  EXPECT_NEAR(locate(flat.box, flat.depth, camera()).xyz.z(), c0.z(), 0.0015);
+  EXPECT_NEAR(locate(flat.box, flat.depth, camera(), box_rule).xyz.z(), c0.z(), 0.0015);
+  // 24 deg off the optical axis, standing upright: in plain image coordinates the silhouette is
+  // stretched sideways (radially) by 1 / cos 24 deg; measured across the ray to it, it is not.
+  const Eigen::Vector3d c1(-0.15, 0.06, 0.36);
+  const Rendered side = render_ellipsoid(c1, 0.04, 0.033, 0.033, M_PI / 2);
+  const Position3D q = locate(side.box, side.depth, camera());
+  ASSERT_TRUE(q.depth_ok);
+  EXPECT_NEAR((q.xyz.cast<double>() - c1).norm(), 0.0, 0.002);
+  EXPECT_NEAR(q.minor_m, 0.066, 0.003);
 }
 
 TEST(Position, MedianWindowIgnoresHolesAndARootInFront) {

@@ -123,7 +123,9 @@ TEST_F(TargetTrackerTest, FarDetectionsDoNotContinueTheTarget) {
   const TargetUpdate u = t.update(&image, {cand(260, 150, 0.3f)});
   EXPECT_EQ(u.state, TargetState::tracked);
   EXPECT_EQ(u.candidate, -1);
-  // Per-axis rule: 49 px in u and 49 px in v is within (a Euclidean 69 px).
+  // Per-axis rule: 49 px in u and 49 px in v is within (a Euclidean 69 px); the paper has no box gate.
+  cfg.min_overlap = 0;
+  cfg.max_area_ratio = 0;
   TargetTracker t2 = make(cfg);
   t2.update(&image, {cand(200, 150, 0.4f)});
   EXPECT_EQ(t2.update(&image, {cand(249, 199, 0.4f)}).state, TargetState::detected);
@@ -133,6 +135,8 @@ TEST_F(TargetTrackerTest, NearerPotatoWithinEpsilon) {
   // Paper association: the nearest detection within epsilon wins, even a new, nearer potato.
   TargetTrackerConfig paper;
   paper.association = TargetAssociation::nearest;
+  paper.min_overlap = 0;
+  paper.max_area_ratio = 0;
   TargetTracker p = make(paper);
   p.update(&image, {cand(200, 150, 0.4f)});
   const TargetUpdate pu = p.update(&image, {cand(202, 150, 0.4f), cand(320, 220, 0.3f)});
@@ -142,6 +146,67 @@ TEST_F(TargetTrackerTest, NearerPotatoWithinEpsilon) {
   TargetTracker ours = make();
   ours.update(&image, {cand(200, 150, 0.4f)});
   EXPECT_EQ(ours.update(&image, {cand(320, 220, 0.3f), cand(202, 150, 0.4f)}).candidate, 1);
+}
+
+TEST_F(TargetTrackerTest, NeighbourDoesNotTakeOverWhileTheTargetIsMissing) {
+  // The target (60 x 60 px at u = 200) and a nearer neighbour 90 px to its right, well within the
+  // paper's 300 px. The target's box is missing for two frames.
+  TargetTrackerConfig paper;
+  paper.min_overlap = 0;
+  paper.max_area_ratio = 0;
+  TargetTracker p = make(paper);
+  p.update(&image, {cand(200, 150, 0.4f), cand(290, 150, 0.45f)});
+  const TargetUpdate pu = p.update(&image, {cand(290, 150, 0.45f)});
+  EXPECT_EQ(pu.candidate, 0);  // the paper's rule: the neighbour continues target 1 (a switch)
+  EXPECT_EQ(pu.state, TargetState::detected);
+
+  TargetTracker ours = make();
+  ours.update(&image, {cand(200, 150, 0.4f), cand(290, 150, 0.45f)});
+  for (int f = 1; f <= 2; ++f) {
+    const TargetUpdate u = ours.update(&image, {cand(290, 150, 0.45f)});
+    EXPECT_EQ(u.state, TargetState::tracked) << f;  // the visual tracker carries the target
+    EXPECT_EQ(u.candidate, -1);
+  }
+  // Back (the scripted tracker drifted 4 px): detected again, same id.
+  const TargetUpdate back = ours.update(&image, {cand(290, 150, 0.45f), cand(203, 151, 0.4f)});
+  EXPECT_EQ(back.state, TargetState::detected);
+  EXPECT_EQ(back.candidate, 1);
+  EXPECT_EQ(back.target_id, 1);
+  // A box overlapping the target's centre but five times its area (a nearer potato in front) is not it.
+  Detection2D big = box_at(210, 150, 70);
+  const TargetUpdate u = ours.update(&image, {{big, 0.3f, true, true}});
+  EXPECT_EQ(u.state, TargetState::tracked);
+}
+
+TEST_F(TargetTrackerTest, PredictedMotionKeepsAFastSweepingTarget) {
+  // A 20 x 20 px box moving 8 px, then 12 px a frame: without prediction the 12 px step overlaps the
+  // last box by 8 / 20 < min_overlap; with it the gate's box is 5 px ahead (the last motion, at most
+  // a quarter of the box) and the overlap is 13 / 20.
+  const auto at = [](float u) { return TargetCandidate{box_at(u, 100, 10), 0.4f, true, true}; };
+  TargetTrackerConfig still;
+  still.predict_motion = false;
+  TargetTracker a = make(still), b = make();
+  for (TargetTracker* t : {&a, &b}) {
+    t->update(&image, {at(100)});
+    EXPECT_EQ(t->update(&image, {at(108)}).state, TargetState::detected);
+  }
+  EXPECT_EQ(a.update(&image, {at(120)}).state, TargetState::tracked);
+  EXPECT_EQ(b.update(&image, {at(120)}).state, TargetState::detected);
+}
+
+TEST_F(TargetTrackerTest, LostWithANeighbourInViewSelectsTheNeighbourAfterTheLimit) {
+  TargetTrackerConfig cfg;
+  cfg.tracking_limit = 3;
+  TargetTracker t = make(cfg);
+  t.update(&image, {cand(200, 150, 0.4f), cand(330, 150, 0.45f)});
+  for (int f = 1; f <= 3; ++f) EXPECT_EQ(t.update(&image, {cand(330, 150, 0.45f)}).state, TargetState::tracked) << f;
+  const TargetUpdate lost = t.update(&image, {cand(330, 150, 0.45f)});
+  EXPECT_EQ(lost.state, TargetState::lost);
+  EXPECT_EQ(lost.target_id, 1);
+  const TargetUpdate next = t.update(&image, {cand(330, 150, 0.45f)});
+  EXPECT_EQ(next.state, TargetState::detected);
+  EXPECT_EQ(next.target_id, 2);
+  EXPECT_EQ(next.candidate, 0);
 }
 
 TEST_F(TargetTrackerTest, RootCrossingTheTarget) {
@@ -155,6 +220,10 @@ TEST_F(TargetTrackerTest, RootCrossingTheTarget) {
     EXPECT_EQ(u.state, TargetState::detected);
     EXPECT_EQ(u.target_id, 1);
     EXPECT_NE(u.candidate, 2);  // never the other potato
+    EXPECT_EQ(u.parts, 2);      // the two halves are one potato
+    ASSERT_TRUE(u.box);
+    EXPECT_FLOAT_EQ(u.box->x1, 170);
+    EXPECT_FLOAT_EQ(u.box->x2, 230);
   }
   const TargetUpdate whole = t.update(&image, {cand(450, 150, 0.42f), cand(201, 150, 0.4f)});
   EXPECT_EQ(whole.candidate, 1);

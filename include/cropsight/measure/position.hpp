@@ -6,10 +6,14 @@
 // box (robust to the D415's holes and to a root crossing the centre); `sampling: centre_pixel`
 // keeps the paper's reading. Camera frame: x right, y down, z forward, metres.
 //
-// The depth read at the box centre is the potato's front surface. The gripper needs the centre:
-// `centre_offset: half_width` (default) moves the point along the viewing ray by half the box's
-// smaller metric side (a potato is about as thick as it is wide); `surface` keeps the paper's
-// surface point.
+// The depth read at the box centre is the potato's front surface. The gripper needs the centre,
+// which lies one semi-axis behind it along the view. `centre_offset: silhouette` (default) takes
+// that semi-axis from the potato's silhouette in the box (the pixels whose depth lies between just
+// in front of the surface and one box length behind it): the semi-minor axis of its equivalent
+// ellipse, i.e. the potato's cross-section is taken as round (the depth extent along the view of
+// a potato lying across the view is its thickness, which the camera cannot see; width is the
+// nearest thing it can). `half_width` takes half the box's smaller side (wrong for a potato lying
+// at an angle: the axis-aligned box is wider than the potato); `surface` keeps the paper's point.
 #include <Eigen/Core>
 #include <array>
 #include <vector>
@@ -24,8 +28,12 @@ namespace cropsight::measure {
 enum class DepthSampling { median_window, centre_pixel };
 constexpr std::array<const char*, 2> config_names(DepthSampling) { return {"median_window", "centre_pixel"}; }
 
-enum class CentreOffset { half_width, surface };
-constexpr std::array<const char*, 2> config_names(CentreOffset) { return {"half_width", "surface"}; }
+enum class CentreOffset { silhouette, half_width, surface };
+constexpr std::array<const char*, 3> config_names(CentreOffset) { return {"silhouette", "half_width", "surface"}; }
+
+/// The ray the centre lies on: through the box centre (paper) or through the silhouette's centroid.
+enum class CentreRay { box, silhouette };
+constexpr std::array<const char*, 2> config_names(CentreRay) { return {"box", "silhouette"}; }
 
 struct PositionConfig {
   DepthSampling sampling = DepthSampling::median_window;
@@ -34,7 +42,10 @@ struct PositionConfig {
   double min_depth_m = 0.25;         ///< D415's minimum usable range
   double max_depth_m = 3.0;          ///< farther depths are not trusted
   double min_valid_fraction = 0.25;  ///< of the window's pixels that must have a depth
-  CentreOffset centre_offset = CentreOffset::half_width;
+  CentreOffset centre_offset = CentreOffset::silhouette;
+  double silhouette_near_m = 0.01;  ///< silhouette pixels may lie this much in front of the surface depth
+  int silhouette_min_px = 20;       ///< fewer silhouette pixels: fall back to half_width
+  CentreRay ray = CentreRay::silhouette;
 
   template <class V>
   void visit(V& v) {
@@ -51,8 +62,17 @@ struct PositionConfig {
       "fraction; depth_ok false when fewer of the window's pixels have a depth (not in the paper)",
       Range::within(0.0, 1.0));
     v("centre_offset", centre_offset,
-      "half_width | surface; report the potato's centre (surface depth + half the box's smaller metric side, ours) "
-      "or the surface point (paper)");
+      "silhouette | half_width | surface; report the potato's centre: surface depth + the silhouette's semi-minor "
+      "axis (ours), + half the box's smaller metric side (ours, older), or the surface point (paper)");
+    v("silhouette_near_m", silhouette_near_m,
+      "m; a box pixel belongs to the silhouette from this much in front of the surface depth (a root in front of "
+      "the potato is nearer; not in the paper)",
+      Range::at_least(0.0));
+    v("silhouette_min_px", silhouette_min_px,
+      "px; fewer silhouette pixels fall back to centre_offset half_width (not in the paper)", Range::at_least(3));
+    v("ray", ray,
+      "box | silhouette; x and y: the ray through the box centre (paper) or through the centroid of the "
+      "silhouette (ours; needs centre_offset silhouette)");
   }
   /// Rules between fields; throws Error(where, ...).
   void validate(const std::string& where) const;
@@ -65,7 +85,11 @@ struct Position3D {
   float width_m = 0, height_m = 0;                ///< box sides at the potato's depth, m
   float area_m2 = 0;                              ///< width_m * height_m
   int valid_pixels = 0, window_pixels = 0;        ///< depth samples used / window size
+  int silhouette_pixels = 0;                      ///< box pixels of the silhouette (centre_offset silhouette)
+  float minor_m = 0, major_m = 0;                 ///< silhouette's equivalent-ellipse full axes at the centre depth, m
   bool depth_ok = false;                          ///< depth inside [min, max] from enough valid pixels
+  bool cut_by_border = false;  ///< the box touches the image border: part of the potato is out of view, so
+                               ///< its centre (box or silhouette) is off toward the image inside
 };
 
 /// Locates `box` in `depth_m` (metres, 0 = no depth, registered to the image the box is in).

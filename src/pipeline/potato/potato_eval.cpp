@@ -6,8 +6,9 @@
 #include <map>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/sequence.hpp"
 
-namespace cropsight::pipeline {
+namespace cropsight::pipeline::potato {
 
 double axis_angle_error(double a, double b) {
   double d = std::fmod(std::abs(a - b), M_PI);
@@ -32,22 +33,29 @@ PotatoEvaluation evaluate_potato_run(const std::vector<PotatoFrameResult>& run,
   if (run.size() != truth.size()) throw Error("potato evaluation", "run and truth have different frame counts");
   PotatoEvaluation ev;
   ev.frames = int(run.size());
-  std::vector<double> ex, ey, ez, el, ew, ea;
+  std::vector<double> ex, ey, ez, el, ew, ea, cx, cy, cz;
   std::map<int, int> potato_of_target;  // target id -> matched potato id
   for (std::size_t f = 0; f < run.size(); ++f) {
-    const auto& r = run[f];
+    const HarvestTarget& r = run[f].target;
+    PotatoFrameScore& row = ev.per_frame.emplace_back();
+    row.frame = int(f);
     if (r.state == tracking::TargetState::lost) ++ev.lost_events;
-    if (!r.box) continue;
+    if (!r.detection) continue;
     ++ev.frames_with_target;
     const sim::PotatoFrameTruth* best = nullptr;
     float best_iou = float(min_iou);
     for (const auto& t : truth[f]) {
       if (t.visible_pixels == 0) continue;
-      const float o = iou(*r.box, t.box);
+      const float o = iou(r.box, t.box);
       if (o >= best_iou) best_iou = o, best = &t;
     }
     if (!best) continue;
+    row.potato = best->id;
+    row.on_target = best->target;
+    row.iou = best_iou;
+    row.true_z_m = best->centre_camera.z();
     ++ev.frames_matched;
+    if (best->target) ++ev.frames_on_target;
     auto [it, fresh] = potato_of_target.emplace(r.target_id, best->id);
     if (fresh) ++ev.targets;
     if (!fresh && it->second != best->id) {
@@ -55,18 +63,34 @@ PotatoEvaluation evaluate_potato_run(const std::vector<PotatoFrameResult>& run,
       it->second = best->id;
     }
     if (r.depth_ok) {
-      ++ev.frames_positioned;
-      ex.push_back(1000.0 * (r.xyz.x() - best->centre_camera.x()));
-      ey.push_back(1000.0 * (r.xyz.y() - best->centre_camera.y()));
-      ez.push_back(1000.0 * (r.xyz.z() - best->centre_camera.z()));
-      el.push_back(1000.0 * (std::max(r.width_m, r.height_m) - best->length_m));
-      ew.push_back(1000.0 * (std::min(r.width_m, r.height_m) - best->width_m));
+      row.positioned = true;
+      row.cut = r.cut;
+      row.error_mm = 1000.0 * (Eigen::Vector3d(r.x, r.y, r.z) - best->centre_camera);
     }
-    if (r.angle_rad) ea.push_back(axis_angle_error(*r.angle_rad, best->angle_rad) * 180.0 / M_PI);
+    if (r.depth_ok && r.cut) {
+      ++ev.frames_cut;
+      cx.push_back(row.error_mm.x());
+      cy.push_back(row.error_mm.y());
+      cz.push_back(row.error_mm.z());
+    } else if (r.depth_ok) {
+      ++ev.frames_positioned;
+      ex.push_back(row.error_mm.x());
+      ey.push_back(row.error_mm.y());
+      ez.push_back(row.error_mm.z());
+      el.push_back(1000.0 * (std::max(r.width, r.height) - best->length_m));
+      ew.push_back(1000.0 * (std::min(r.width, r.height) - best->width_m));
+    }
+    if (r.angle_ok) {
+      row.angle_error_deg = axis_angle_error(r.angle, best->angle_rad) * 180.0 / M_PI;
+      ea.push_back(row.angle_error_deg);
+    }
   }
   ev.x = summarise(ex);
   ev.y = summarise(ey);
   ev.z = summarise(ez);
+  ev.cut_x = summarise(cx);
+  ev.cut_y = summarise(cy);
+  ev.cut_z = summarise(cz);
   ev.length_mae_mm = summarise(el).mae_mm;
   ev.width_mae_mm = summarise(ew).mae_mm;
   ev.angle_mae_deg = summarise(ea).mae_mm;
@@ -74,4 +98,38 @@ PotatoEvaluation evaluate_potato_run(const std::vector<PotatoFrameResult>& run,
   return ev;
 }
 
-}  // namespace cropsight::pipeline
+PotatoStageTimes stage_times(const std::vector<PotatoFrameResult>& run) {
+  PotatoStageTimes t;
+  if (run.empty()) return t;
+  for (const auto& r : run) {
+    t.detect += r.ms_detect, t.locate += r.ms_locate, t.track += r.ms_track, t.orient += r.ms_orient;
+    t.max_total = std::max(t.max_total, r.ms_detect + r.ms_locate + r.ms_track + r.ms_orient);
+  }
+  const double n = double(run.size());
+  t.detect /= n, t.locate /= n, t.track /= n, t.orient /= n;
+  t.total = t.detect + t.locate + t.track + t.orient;
+  return t;
+}
+
+PotatoSequenceEvaluation evaluate_potato_sequence(PotatoPipeline& pipeline, const std::filesystem::path& seq,
+                                                  double min_iou) {
+  const io::SequenceReader reader(seq);
+  // The truth the evaluation needs: per-potato instances, the camera's path, the label images.
+  if (reader.groundtruth().instances.empty())
+    throw Error((seq / "groundtruth.json").string(), "missing or without instances (not a simulated potato sequence)");
+  if (!reader.info().has_poses) throw Error((seq / "poses.csv").string(), "missing (not a simulated sequence)");
+  if (!reader.info().has_labels) throw Error((seq / "labels").string(), "missing (not a simulated sequence)");
+  PotatoSequenceEvaluation out;
+  pipeline.reset();
+  for (int i = 0; i < reader.size(); ++i) {
+    const RgbdFrame f = reader.read(i);
+    if (!f.camera_position) throw Error((seq / "poses.csv").string(), "no pose for frame " + std::to_string(i));
+    out.truth.push_back(sim::potato_frame_truth(reader.groundtruth(), *f.camera_position, f.camera, f.labels));
+    out.run.push_back(pipeline.process(f));
+  }
+  out.figures = evaluate_potato_run(out.run, out.truth, min_iou);
+  out.ms = stage_times(out.run);
+  return out;
+}
+
+}  // namespace cropsight::pipeline::potato

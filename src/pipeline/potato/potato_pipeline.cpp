@@ -111,10 +111,12 @@ PotatoFrameResult PotatoPipeline::process(const RgbdFrame& frame) {
   if (u.box) {
     t.detection = true;
     t.box = *u.box;
-    // A detected target reuses its step-2 position; a tracked box is located anew.
-    const measure::Position3D p = u.candidate >= 0 ? r.positions[std::size_t(u.candidate)] : locate(t.box);
+    // A detected target reuses its step-2 position; a tracked or merged box is located anew.
+    const measure::Position3D p =
+        u.candidate >= 0 && u.parts == 1 ? r.positions[std::size_t(u.candidate)] : locate(t.box);
     t.score = u.candidate >= 0 ? r.detections[std::size_t(u.candidate)].score : 0.f;
     t.depth_ok = p.depth_ok;
+    t.cut = p.cut_by_border;
     t.x = p.xyz.x(), t.y = p.xyz.y(), t.z = p.xyz.z();
     t.width = p.width_m, t.height = p.height_m;
     // 5. orient

@@ -151,11 +151,16 @@ PotatoSceneModel build_potato_scene(const PotatoSimConfig& cfg, std::uint64_t se
     add_tube(m, hanging_polyline(rng, y, z, -1.0, rng.uniform(-0.1, 0.6)), float(rng.uniform(0.0008, 0.002)), c, 0,
              SurfaceKind::stem);
   }
-  if (cfg.root_across_target && !scene.potatoes.empty()) {
-    const auto& t = scene.potatoes[0];
+  // A root 2 cm in front of a potato, within 0.3 widths of its centre line.
+  const auto root_in_front = [&](Rng& r, const PotatoSpec& t) {
     const double front = t.centre.z() + 0.5 * t.thickness + 0.02;
-    add_tube(m, hanging_polyline(rng, t.centre.y() + rng.uniform(-0.3, 0.3) * t.width, front, -1.0, 0.6), 0.0015f,
+    add_tube(m, hanging_polyline(r, t.centre.y() + r.uniform(-0.3, 0.3) * t.width, front, -1.0, 0.6), 0.0015f,
              V3(225, 215, 190) * light, 0, SurfaceKind::stem);
+  };
+  if (cfg.root_across_target && !scene.potatoes.empty()) root_in_front(rng, scene.potatoes[0]);
+  if (cfg.roots_across_others) {
+    Rng others(derive_seed(seed, {5}));
+    for (std::size_t k = 1; k < scene.potatoes.size(); ++k) root_in_front(others, scene.potatoes[k]);
   }
   // Backdrop.
   const V3 white = V3(235, 235, 230) * light;

@@ -2,6 +2,8 @@
 // that agrees with the rendered depth and labels, and no depth below the minimum range.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "cropsight/io/depth_colormap.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/sequence.hpp"
@@ -74,6 +76,28 @@ TEST(PotatoSim, ReproducibleFromTheSeedAndScenesDiffer) {
   EXPECT_THROW(sim::simulate_potato_sequence(small(), 9, 1, dir / "a", false), Error);
 }
 
+TEST(PotatoSim, RootsAcrossOthersCrossEveryPotatoAndLeaveTheRestOfTheScene) {
+  cropsight::testing::TempDir dir;
+  auto with = small();
+  with.roots_across_others = true;
+  sim::simulate_potato_sequence(small(), 9, 1, dir / "a", false);
+  sim::simulate_potato_sequence(with, 9, 1, dir / "b", false);
+  const io::SequenceReader ra(dir / "a"), rb(dir / "b");
+  const RgbdFrame a = ra.read(0), b = rb.read(0);
+  ASSERT_EQ(ra.groundtruth().instances.size(), rb.groundtruth().instances.size());
+  int crossed = 0;
+  for (std::size_t k = 0; k < ra.groundtruth().instances.size(); ++k) {
+    const auto& ia = ra.groundtruth().instances[k];
+    EXPECT_EQ(ia.position, rb.groundtruth().instances[k].position);  // the same potatoes
+    const auto count = [&](const LabelImage& l) { return std::count(l.data.begin(), l.data.end(), ia.id); };
+    const long before = count(a.labels), after = count(b.labels);
+    if (ia.extra.at("target") > 0.5 || before < 50) continue;
+    EXPECT_LT(after, before) << "potato " << ia.id << ": no root in front of it";
+    ++crossed;
+  }
+  EXPECT_GT(crossed, 0);
+}
+
 TEST(PotatoSim, NoDepthBelowTheMinimumRange) {
   cropsight::testing::TempDir dir;
   auto cfg = small();
@@ -82,8 +106,11 @@ TEST(PotatoSim, NoDepthBelowTheMinimumRange) {
   cfg.root_across_target = false;
   sim::simulate_potato_sequence(cfg, 3, 1, dir / "s", false);
   const RgbdFrame f = io::SequenceReader(dir / "s").read(0);
-  for (auto d : f.depth.data)
-    if (d) EXPECT_GE(d * f.camera.depth_scale, 0.25 - 1e-9);
+  for (auto d : f.depth.data) {
+    if (d) {
+      EXPECT_GE(d * f.camera.depth_scale, 0.25 - 1e-9);
+    }
+  }
   EXPECT_EQ(f.depth.at(160, 120), 0);  // the target's front at the centre is too near
 }
 

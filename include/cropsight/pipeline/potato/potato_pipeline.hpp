@@ -81,6 +81,7 @@ struct HarvestTarget {
   float height = 0, width = 0;  ///< m, box sides at the potato's depth
   float angle = 0;              ///< rad, length axis, counter-clockwise from the image x axis, [0, π)
   bool angle_ok = false;        ///< the orientation step found the potato in the box
+  bool cut = false;             ///< the box touches the image border: x, y, z are of the visible part
   int target_id = 0;            ///< 1, 2, ... per selected target; 0 = none
   tracking::TargetState state = tracking::TargetState::selecting;
   float score = 0;  ///< detector score of the target's box (0 when tracked)

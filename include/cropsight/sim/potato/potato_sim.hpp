@@ -34,12 +34,13 @@ struct PotatoSimConfig {
   double length_min_m = 0.06, length_max_m = 0.10;
   double width_ratio_min = 0.6, width_ratio_max = 0.85;  ///< width / length
   int sprouts_max = 3;
-  int roots = 10;                  ///< hanging roots (thin tubes) across the scene
-  bool root_across_target = true;  ///< one root hangs in front of the target
-  double scan_distance_m = 0.5;    ///< camera-to-target distance (z) during the scan
-  double approach_end_m = 0.3;     ///< ... at the end of the approach
-  double scan_fraction = 0.4;      ///< fraction of the frames spent scanning
-  double scan_sweep_m = 0.15;      ///< lateral half-sweep of the scan
+  int roots = 10;                    ///< hanging roots (thin tubes) across the scene
+  bool root_across_target = true;    ///< one root hangs in front of the target
+  bool roots_across_others = false;  ///< one root hangs in front of every other potato too
+  double scan_distance_m = 0.5;      ///< camera-to-target distance (z) during the scan
+  double approach_end_m = 0.3;       ///< ... at the end of the approach
+  double scan_fraction = 0.4;        ///< fraction of the frames spent scanning
+  double scan_sweep_m = 0.15;        ///< lateral half-sweep of the scan
   double fps = 15;
   // D415-like sensor.
   int width = 640, height = 480;
@@ -64,6 +65,9 @@ struct PotatoSimConfig {
     v("sprouts_max", sprouts_max, "count; most sprouts per potato", Range::within(0, 10));
     v("roots", roots, "count; hanging roots across the scene", Range::within(0, 60));
     v("root_across_target", root_across_target, "bool; one root hangs in front of the target potato");
+    v("roots_across_others", roots_across_others,
+      "bool; one root hangs in front of every other potato too (the loop's target is the nearest potato, not "
+      "always the one the camera approaches; drawn from a stream of its own, so the rest of the scene is unchanged)");
     v("scan_distance_m", scan_distance_m, "m; camera-to-target distance while scanning", Range::within(0.26, 1.5));
     v("approach_end_m", approach_end_m, "m; camera-to-target distance at the end of the approach",
       Range::within(0.26, 1.5));
