@@ -73,8 +73,10 @@ std::vector<cv::Point> outline_points(const cv::Mat& mask) {
   return pts;
 }
 
-// Logistic weight of how much darker the part is than the background (not foreground) pixels in
-// a ring of `ring` px around it; 1 when the ring holds no background.
+// Logistic weight of how much the part stands out from the background (not foreground) pixels in a
+// ring of `ring` px around it, darker or lighter: 0.5 when level with it, towards 1 with contrast;
+// 1 when the ring holds no background. Either sign, so that the same preset serves a potato in
+// front of a white sheet and one in a dark root chamber.
 double contrast_factor(const cv::Mat& part, cv::Rect r, const cv::Mat& lab, const cv::Mat& foreground, int ring,
                        double scale) {
   if (scale <= 0 || ring < 1) return 1.0;
@@ -87,7 +89,7 @@ double contrast_factor(const cv::Mat& part, cv::Rect r, const cv::Mat& lab, cons
   grown.setTo(0, foreground(wide));
   if (cv::countNonZero(grown) == 0) return 1.0;
   const double l_ring = cv::mean(lab(wide), grown)[0], l_part = cv::mean(lab(r), part)[0];
-  return 1.0 / (1.0 + std::exp(-(l_ring - l_part) / scale));
+  return 1.0 / (1.0 + std::exp(-std::abs(l_ring - l_part) / scale));
 }
 
 // The box of one part (mask in its ROI at `tl`), or nothing when it fails the convexity rule.

@@ -118,25 +118,29 @@ TEST(PotatoBlobDetector, DoesNotSplitOnePotatoWithANotch) {
 
 // The same potato scores lower among dark surroundings than on the light sheet, by the logistic
 // of the lightness difference; with contrast_scale = 0 both score alike.
-TEST(PotatoBlobDetector, ContrastWithTheSheetRanksTheScore) {
+TEST(PotatoBlobDetector, ContrastWithTheBackgroundRanksTheScore) {
   auto on = [](cv::Scalar background) {
     cv::Mat m(416, 416, CV_8UC3, background);
     cv::ellipse(m, {200, 200}, {25, 50}, 0, 0, 360, skin_rgb(), cv::FILLED);
     return to_image(m);
   };
-  const ColorImage sheet = on(cv::Scalar(235, 235, 240)), dark = on(cv::Scalar(20, 20, 20));
+  // Skin L is 110 (8-bit): about 125 below the sheet, ~90 above the black of a root chamber, and
+  // level with a grey of the same lightness (clutter that does not stand out).
+  const ColorImage sheet = on(cv::Scalar(235, 235, 240)), dark = on(cv::Scalar(20, 20, 20)),
+                   level = on(cv::Scalar(105, 105, 105));
   PotatoBlobConfig cfg;
-  cfg.min_score = 0;  // report the dark one too
-  const auto a = PotatoBlobDetector(cfg).detect({&sheet, nullptr}),
-             b = PotatoBlobDetector(cfg).detect({&dark, nullptr});
+  cfg.min_score = 0;  // report every blob
+  const auto a = PotatoBlobDetector(cfg).detect({&sheet, nullptr}), b = PotatoBlobDetector(cfg).detect({&dark, nullptr}),
+             g = PotatoBlobDetector(cfg).detect({&level, nullptr});
   ASSERT_EQ(a.size(), 1u);
   ASSERT_EQ(b.size(), 1u);
-  // Skin L is 110 (8-bit): about 125 below the sheet (factor ~1) and ~95 above the black (~1e-8).
+  ASSERT_EQ(g.size(), 1u);
+  // Darker or lighter than its background: factor ~1 either way; level with it: ~0.5.
   EXPECT_GT(a[0].score, 0.5f);
-  EXPECT_LT(b[0].score, 0.01f * a[0].score);
+  EXPECT_NEAR(b[0].score, a[0].score, 0.02f * a[0].score);
+  EXPECT_LT(g[0].score, 0.7f * a[0].score);
   cfg.contrast_scale = 0;
-  const auto c = PotatoBlobDetector(cfg).detect({&sheet, nullptr}),
-             d = PotatoBlobDetector(cfg).detect({&dark, nullptr});
+  const auto c = PotatoBlobDetector(cfg).detect({&sheet, nullptr}), d = PotatoBlobDetector(cfg).detect({&level, nullptr});
   ASSERT_EQ(c.size(), 1u);
   ASSERT_EQ(d.size(), 1u);
   EXPECT_NEAR(c[0].score, d[0].score, 1e-3);

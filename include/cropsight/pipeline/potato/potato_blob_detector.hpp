@@ -17,10 +17,11 @@
 // are nearly convex (two potatoes touching along a wide edge leave such notches but no neck in the
 // distance transform; a ragged blob of clutter cut anywhere stays ragged).
 //
-// Score: the potatoes hang in front of a lighter sheet, while clutter of potato colour (wooden
-// furniture, clothes in the room beside the sheet) sits among darker things; so the score weighs
-// the blob's colour likelihood and convexity by how much darker it is than the background ring
-// around it (`contrast_scale`; 0 turns this off, e.g. for a dark root chamber).
+// Score: a potato stands out from what is behind it (darker than the white sheet, lighter than a
+// dark root chamber), while clutter of potato colour (wooden furniture, clothes in the room beside
+// the sheet) is about as light as its surroundings; so the score weighs the blob's colour likelihood
+// and convexity by how much its lightness differs from the background ring around it, either way
+// (`contrast_scale`; 0 turns this off).
 //
 // Geometry: sizes are fractions of the image's shorter side, so the same preset serves 416x416
 // crops and 640x480 frames at the same field of view.
@@ -58,7 +59,7 @@ struct PotatoBlobConfig {
   double split_min_part_solidity = 0.9;   ///< each part is nearly convex (AP50 flat for 0-0.9)
   int split_max_depth = 2;                ///< cuts applied again to the parts: up to 2^depth potatoes
   // Contrast with the background ring (see above); AP50 flat for scales 3-10 on the shared images.
-  double contrast_scale = 5.0;            ///< 8-bit L; logistic scale of (ring L - blob L); 0 = off
+  double contrast_scale = 5.0;            ///< 8-bit L; logistic scale of |ring L - blob L|; 0 = off
   double contrast_ring_fraction = 0.012;  ///< ring width / short image side (5 px at 416)
 
   template <class V>
@@ -94,7 +95,7 @@ struct PotatoBlobConfig {
     v("split_max_depth", split_max_depth, "count; levels of splitting (parts are split again), 0 = never",
       Range::within(0, 4));
     v("contrast_scale", contrast_scale,
-      "8-bit L; score factor 1/(1 + exp(-(L_ring - L_blob)/scale)) for a blob darker than its background ring, 0 = off",
+      "8-bit L; score factor 1/(1 + exp(-|L_ring - L_blob|/scale)): a blob that stands out from its background ring, darker or lighter, 0 = off",
       Range::at_least(0));
     v("contrast_ring_fraction", contrast_ring_fraction,
       "fraction of the short image side; width of the background ring of the contrast factor", Range::within(0, 0.1));
