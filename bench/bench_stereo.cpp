@@ -79,6 +79,11 @@ void BM_DisparityOpenCvEngine128(benchmark::State& st) {
 void BM_DisparityOpenCvSgbm128(benchmark::State& st) {
   for (auto _ : st) benchmark::DoNotOptimize(stereo::opencv_sgbm_disparity(pair().left, pair().right, 128));
 }
+// OpenCV's fastest SGBM variant (3 paths, MODE_SGBM_3WAY), same parameters: issue 23's speed baseline.
+void BM_DisparityOpenCvSgbm3Way128(benchmark::State& st) {
+  for (auto _ : st)
+    benchmark::DoNotOptimize(stereo::opencv_sgbm_disparity(pair().left, pair().right, 128, 3, "bench", true));
+}
 pipeline::SeedlingPipeline preset_pipeline(const std::string& preset) {
   return pipeline::SeedlingPipeline::from_preset(std::string(CROPSIGHT_SOURCE_DIR) + "/configs/" + preset + ".yaml");
 }
@@ -132,6 +137,7 @@ BENCHMARK(BM_CensusSgmMatcherOnly128)
     ->UseRealTime();
 BENCHMARK(BM_DisparityOpenCvEngine128)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 BENCHMARK(BM_DisparityOpenCvSgbm128)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+BENCHMARK(BM_DisparityOpenCvSgbm3Way128)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 BENCHMARK(BM_SeedlingPipeline)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 BENCHMARK(BM_GmmOurs)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_GmmOpenCvEm)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);

@@ -139,8 +139,10 @@ DisparityImage compute_disparity(const GrayImage& left, const GrayImage& right, 
 /// Plain OpenCV StereoSGBM with the parameters of OpenCV's stereo_match sample (block 3 → here
 /// `block_size`, P1 = 8·cn·bs², P2 = 32·cn·bs², uniqueness 10, speckle 100/32, disp12MaxDiff 1),
 /// no padding, no filling: the baseline the issue compares against. Invalid pixels are NaN.
+/// `three_way`: OpenCV's faster MODE_SGBM_3WAY instead of MODE_SGBM (the speed baseline of bench_stereo).
 DisparityImage opencv_sgbm_disparity(const ColorImage& left, const ColorImage& right, int num_disparities,
-                                     int block_size = 3, const std::string& where = "stereo pair");
+                                     int block_size = 3, const std::string& where = "stereo pair",
+                                     bool three_way = false);
 
 /// Winner-take-all block matching with a square window (the paper's SAD / SSD baselines, 55×55),
 /// integer disparities, computed with box filters. Pixels whose window leaves the image get NaN.
