@@ -8,11 +8,11 @@
 //   - plain OpenCV StereoSGBM (the baseline of eval stereo),
 // and our GMM vs cv::ml::EM on the same 4096 points (K = 10, same tolerance and iteration cap):
 // first Arg 0 = eight well-separated synthetic blobs (EM converges in a few iterations), 1 = the
-// 4096 points the fast seedling pipeline hands to its GMM for the simulated pair (28 EM
+// 4096 points the default seedling pipeline hands to its GMM for the simulated pair (28 EM
 // iterations, what `eval seedling` reports as ms_gmm); our second Arg 0 = the portable SSE2
 // build of the EM, 1 = what fit_gmm() runs (the AVX2 + FMA build where the CPU has it),
 // and the whole seedling pipeline (SeedlingPipeline::process) with the shipped presets: Arg 0 =
-// configs/seedling.yaml (OpenCV engine), Arg 1 = configs/seedling-fast.yaml (census engine).
+// configs/seedling-paper.yaml (OpenCV engine), Arg 1 = configs/seedling.yaml (the default, census engine).
 //   build/bin/bench_stereo --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
@@ -79,16 +79,21 @@ void BM_DisparityOpenCvEngine128(benchmark::State& st) {
 void BM_DisparityOpenCvSgbm128(benchmark::State& st) {
   for (auto _ : st) benchmark::DoNotOptimize(stereo::opencv_sgbm_disparity(pair().left, pair().right, 128));
 }
+// OpenCV's fastest SGBM variant (3 paths, MODE_SGBM_3WAY), same parameters: issue 23's speed baseline.
+void BM_DisparityOpenCvSgbm3Way128(benchmark::State& st) {
+  for (auto _ : st)
+    benchmark::DoNotOptimize(stereo::opencv_sgbm_disparity(pair().left, pair().right, 128, 3, "bench", true));
+}
 pipeline::SeedlingPipeline preset_pipeline(const std::string& preset) {
   return pipeline::SeedlingPipeline::from_preset(std::string(CROPSIGHT_SOURCE_DIR) + "/configs/" + preset + ".yaml");
 }
 
 stereo::RectifiedGeometry sim_geometry() { return sim::rectified_geometry(sim::SeedlingSimConfig{}.rig()); }
 
-// The down-sampled candidates the fast preset's GMM sees for the simulated pair.
+// The down-sampled candidates the default preset's GMM sees for the simulated pair.
 const std::vector<Eigen::Vector3f>& seedling_points() {
   static const std::vector<Eigen::Vector3f> pts =
-      preset_pipeline("seedling-fast").process(pair().left, pair().right, sim_geometry()).sampled;
+      preset_pipeline("seedling").process(pair().left, pair().right, sim_geometry()).sampled;
   return pts;
 }
 
@@ -114,7 +119,7 @@ void BM_GmmOpenCvEm(benchmark::State& st) {
 }
 
 void BM_SeedlingPipeline(benchmark::State& st) {
-  const std::string preset = st.range(0) == 0 ? "seedling" : "seedling-fast";
+  const std::string preset = st.range(0) == 0 ? "seedling-paper" : "seedling";
   const pipeline::SeedlingPipeline seedlings = preset_pipeline(preset);
   const stereo::RectifiedGeometry g = sim_geometry();
   st.SetLabel(preset);
@@ -132,6 +137,7 @@ BENCHMARK(BM_CensusSgmMatcherOnly128)
     ->UseRealTime();
 BENCHMARK(BM_DisparityOpenCvEngine128)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 BENCHMARK(BM_DisparityOpenCvSgbm128)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+BENCHMARK(BM_DisparityOpenCvSgbm3Way128)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 BENCHMARK(BM_SeedlingPipeline)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 BENCHMARK(BM_GmmOurs)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_GmmOpenCvEm)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);

@@ -3,7 +3,7 @@
 // and score it against the simulator's exact ground truth - the headline figure of
 // docs/pipelines/broccoli-seedlings.md, with no CLI and no files.
 //
-//   example_seedling_recognise [PRESET [SEED [PAIRS]]]     (default: seedling-fast 4711 30)
+//   example_seedling_recognise [PRESET [SEED [PAIRS]]]     (default: seedling 4711 30)
 //
 // With the defaults it reproduces the held-out figure the docs report for the fast preset on seed
 // 4711 (30 pairs): recognition 100.0 %, sensitivity 90.8 %, envelope volume ratio 99.9 %; ctest runs
@@ -22,7 +22,7 @@
 
 int main(int argc, char** argv) {
   using namespace cropsight;
-  const std::string preset = argc > 1 ? argv[1] : "seedling-fast";
+  const std::string preset = argc > 1 ? argv[1] : "seedling";
   const long seed = argc > 2 ? std::strtol(argv[2], nullptr, 10) : 4711;
   const long pairs = argc > 3 ? std::strtol(argv[3], nullptr, 10) : 30;
   if (argc > 4 || seed < 0 || pairs < 1 || pairs > sim::kMaxSeedlingPairs) {

@@ -38,7 +38,7 @@ fi
 [[ -d "$data/seedlings" ]] || "$bin" simulate seedling --seed 4711 --pairs 4 --out "$data/seedlings" >/dev/null 2>&1 || true
 if [[ -d "$data/seedlings" ]]; then
   run eval-seedling eval seedling --data "$data/seedlings" --no-opencv --quiet --json
-  run eval-seedling-fast eval seedling --data "$data/seedlings" --config seedling-fast --no-opencv --quiet --json
+  run eval-seedling-paper eval seedling --data "$data/seedlings" --config seedling-paper --no-opencv --quiet --json
 fi
 [[ -d ../shared/data/middlebury ]] && run eval-stereo eval stereo --middlebury ../shared/data/middlebury --json
 echo "$out"

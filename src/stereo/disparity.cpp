@@ -309,14 +309,15 @@ DisparityImage compute_disparity(const GrayImage& left, const GrayImage& right, 
 }
 
 DisparityImage opencv_sgbm_disparity(const ColorImage& left, const ColorImage& right, int num_disparities,
-                                     int block_size, const std::string& where) {
+                                     int block_size, const std::string& where, bool three_way) {
   check_pair(left.width, left.height, right.width, right.height, where);
   check_range(num_disparities, left.width, where, "num_disparities");
   if (block_size < 1 || block_size > 31 || block_size % 2 == 0)
     throw Error(where, "block size must be odd, 1..31, got " + std::to_string(block_size));
   const int cn = 3;
   auto sgbm = cv::StereoSGBM::create(0, num_disparities, block_size, 8 * cn * block_size * block_size,
-                                     32 * cn * block_size * block_size, 1, 63, 10, 100, 32, cv::StereoSGBM::MODE_SGBM);
+                                     32 * cn * block_size * block_size, 1, 63, 10, 100, 32,
+                                     three_way ? cv::StereoSGBM::MODE_SGBM_3WAY : cv::StereoSGBM::MODE_SGBM);
   cv::Mat d16;
   sgbm->compute(detail::view(left), detail::view(right), d16);
   return from_fixed(d16, 0, 0);

@@ -45,13 +45,17 @@ std::vector<MiddleburyPair> load_middlebury(const fs::path& dir) {
   return out;
 }
 
-BadPixelStats bad_pixels(const DisparityImage& est, const DisparityImage& truth, const std::string& where) {
+BadPixelStats bad_pixels(const DisparityImage& est, const DisparityImage& truth, const std::string& where,
+                         const GrayImage& mask) {
   if (est.width != truth.width || est.height != truth.height)
     throw Error(where, "estimate and ground truth differ in size");
+  if (!mask.empty() && (mask.width != truth.width || mask.height != truth.height))
+    throw Error(where, "mask and ground truth differ in size");
   long n = 0, b1 = 0, b2 = 0, inv = 0;
+  double err_sum = 0;
   for (std::size_t i = 0; i < truth.size(); ++i) {
     const float t = truth.data[i];
-    if (std::isnan(t)) continue;
+    if (std::isnan(t) || (!mask.empty() && mask.data[i] == 0)) continue;
     ++n;
     const float e = est.data[i];
     if (std::isnan(e)) {
@@ -59,38 +63,68 @@ BadPixelStats bad_pixels(const DisparityImage& est, const DisparityImage& truth,
       continue;
     }
     const float err = std::fabs(e - t);
+    err_sum += err;
     b1 += err > 1.0f;
     b2 += err > 2.0f;
   }
   if (n == 0) throw Error(where, "ground truth has no valid pixel; nothing to score");
   BadPixelStats s;
   s.pixels = n;
-  if (n > 0) {
-    s.bad1 = 100.0 * double(b1) / double(n);
-    s.bad2 = 100.0 * double(b2) / double(n);
-    s.invalid = 100.0 * double(inv) / double(n);
-  }
+  s.bad1 = 100.0 * double(b1) / double(n);
+  s.bad2 = 100.0 * double(b2) / double(n);
+  s.invalid = 100.0 * double(inv) / double(n);
+  s.avg_error = n > inv ? err_sum / double(n - inv) : 0.0;
   return s;
+}
+
+GrayImage nonoccluded_mask(const DisparityImage& lt, const DisparityImage& rt, double tolerance,
+                           const std::string& where) {
+  if (lt.width != rt.width || lt.height != rt.height) throw Error(where, "left and right ground truths differ in size");
+  GrayImage m(lt.width, lt.height, 0);
+  for (int y = 0; y < lt.height; ++y)
+    for (int x = 0; x < lt.width; ++x) {
+      const float d = lt.at(x, y);
+      if (std::isnan(d)) continue;
+      const int xr = int(std::lround(double(x) - d));
+      if (xr < 0 || xr >= rt.width) continue;  // the partner lies outside the right image
+      const float dr = rt.at(xr, y);
+      if (!std::isnan(dr) && std::fabs(double(dr) - d) <= tolerance) m.at(x, y) = 255;
+    }
+  return m;
 }
 
 MiddleburyEvaluation evaluate_middlebury(const std::vector<MiddleburyPair>& pairs, const MiddleburyMatcher& match) {
   MiddleburyEvaluation e;
-  double s1 = 0, s2 = 0;
+  BadPixelStats sum, sum_nonocc;
   for (const auto& p : pairs) {
-    const int nd = ((p.max_disparity + 1 + 15) / 16) * 16;
+    const int nd = p.num_disparities > 0 ? p.num_disparities : ((p.max_disparity + 1 + 15) / 16) * 16;
     StageTimer t;
     DisparityImage d;
     {
       auto scope = t.scope("match");
       d = match(p, nd);
     }
-    const BadPixelStats st = bad_pixels(d, p.truth, p.name);
-    e.pairs.push_back({p.name, st, t.total_ms(), nd});
-    s1 += st.bad1;
-    s2 += st.bad2;
+    MiddleburyPairResult r{p.name, bad_pixels(d, p.truth, p.name), false, {}, t.total_ms(), nd};
+    if (!p.nonoccluded.empty()) {
+      r.has_nonoccluded = true;
+      r.nonoccluded = bad_pixels(d, p.truth, p.name + " (non-occluded)", p.nonoccluded);
+      sum_nonocc.bad1 += r.nonoccluded.bad1, sum_nonocc.bad2 += r.nonoccluded.bad2;
+      sum_nonocc.invalid += r.nonoccluded.invalid, sum_nonocc.avg_error += r.nonoccluded.avg_error;
+      sum_nonocc.pixels += r.nonoccluded.pixels;
+      ++e.nonoccluded_pairs;
+    }
+    sum.bad1 += r.stats.bad1, sum.bad2 += r.stats.bad2, sum.invalid += r.stats.invalid;
+    sum.avg_error += r.stats.avg_error;
+    e.pairs.push_back(std::move(r));
   }
-  e.mean_bad1 = s1 / double(pairs.size());
-  e.mean_bad2 = s2 / double(pairs.size());
+  const double n = pairs.empty() ? 1.0 : double(pairs.size());
+  e.mean_bad1 = sum.bad1 / n, e.mean_bad2 = sum.bad2 / n;
+  e.mean_invalid = sum.invalid / n, e.mean_avg_error = sum.avg_error / n;
+  if (e.nonoccluded_pairs > 0) {
+    const double k = double(e.nonoccluded_pairs);
+    e.mean_nonoccluded = {sum_nonocc.bad1 / k, sum_nonocc.bad2 / k, sum_nonocc.invalid / k, sum_nonocc.avg_error / k,
+                          sum_nonocc.pixels};
+  }
   return e;
 }
 

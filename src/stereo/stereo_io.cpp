@@ -1,10 +1,15 @@
 #include "cropsight/stereo/stereo_io.hpp"
 
+#include <bit>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <string>
+#include <vector>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
@@ -104,6 +109,69 @@ DisparityImage read_disparity(const fs::path& path, double scale, int bits) {
       out.at(x, y) = v > 0 ? float(v / scale) : std::nanf("");
     }
   return out;
+}
+
+Image<float> read_pfm(const fs::path& path) {
+  const std::string where = path.string();
+  if (!fs::exists(path)) throw Error(where, "file not found");
+  if (fs::is_directory(path)) throw Error(where, "is a folder, expected a PFM file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(where, "cannot open");
+  std::string magic;
+  in >> magic;
+  if (magic == "PF") throw Error(where, "is a colour PFM (PF); a disparity map is one-channel (Pf)");
+  if (magic != "Pf") throw Error(where, "not a PFM file (expected the header 'Pf')");
+  long w = 0, h = 0;
+  double scale = 0;
+  if (!(in >> w >> h >> scale)) throw Error(where, "PFM header lacks 'width height scale'");
+  if (w < 1 || h < 1 || w > 65535 || h > 65535)
+    throw Error(where, "PFM size " + std::to_string(w) + "x" + std::to_string(h) + " outside 1..65535");
+  if (scale == 0 || !std::isfinite(scale)) throw Error(where, "PFM scale must be a non-zero number");
+  in.get();  // the single whitespace character that ends the header
+  std::vector<float> raw(std::size_t(w) * std::size_t(h));
+  in.read(reinterpret_cast<char*>(raw.data()), std::streamsize(raw.size() * sizeof(float)));
+  if (in.gcount() != std::streamsize(raw.size() * sizeof(float)))
+    throw Error(where, "PFM data truncated: expected " + std::to_string(w) + "x" + std::to_string(h) + " floats, got " +
+                           std::to_string(in.gcount() / long(sizeof(float))));
+  // The sign of the scale gives the byte order; swap when it differs from this machine's.
+  const bool little = scale < 0;
+  if (little != (std::endian::native == std::endian::little))
+    for (float& f : raw) {
+      std::uint32_t u;
+      std::memcpy(&u, &f, 4);
+      u = __builtin_bswap32(u);
+      std::memcpy(&f, &u, 4);
+    }
+  Image<float> out{static_cast<int>(w), static_cast<int>(h)};
+  for (long y = 0; y < h; ++y)
+    for (long x = 0; x < w; ++x) {
+      const float v = raw[std::size_t(h - 1 - y) * std::size_t(w) + std::size_t(x)];  // bottom row first
+      out.at(int(x), int(y)) = std::isfinite(v) ? v : std::nanf("");
+    }
+  return out;
+}
+
+DisparityImage read_ground_truth(const fs::path& path, double scale) {
+  if (lower_extension(path) != ".pfm") return read_disparity(path, scale, 0);
+  DisparityImage d = read_pfm(path);
+  for (float& v : d.data) v = std::isfinite(v) && v > 0 ? float(v / scale) : std::nanf("");
+  return d;
+}
+
+void write_pfm(const fs::path& path, const Image<float>& values) {
+  io::write_atomic_with(path, [&](const fs::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    out << "Pf\n" << values.width << " " << values.height << "\n-1\n";
+    for (int y = values.height - 1; y >= 0; --y)
+      for (int x = 0; x < values.width; ++x) {
+        float v = values.at(x, y);
+        std::uint32_t u;
+        std::memcpy(&u, &v, 4);
+        if constexpr (std::endian::native != std::endian::little) u = __builtin_bswap32(u);
+        out.write(reinterpret_cast<const char*>(&u), 4);
+      }
+    if (!out) throw Error(path.string(), "cannot write PFM file");
+  });
 }
 
 void check_image_output(const fs::path& path, const std::string& option, bool sixteen_bit) {

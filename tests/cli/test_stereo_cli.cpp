@@ -8,7 +8,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
+#include "cropsight/stereo/stereo_io.hpp"
 #include "seedling_cli_fixture.hpp"
 #include "testing/testing.hpp"
 
@@ -127,6 +129,45 @@ TEST_F(StereoCli, EvalStereoOnMiddlebury) {
   for (const char* p : {"tsukuba", "venus", "teddy", "cones"}) EXPECT_TRUE(j["pairs"].contains(p)) << p;
 }
 
+// --scenes: the shared 2005/2006 scenes (scene.yaml layout, range from the scene) and a written
+// Middlebury 2014 folder with a right-view truth (non-occluded scores).
+TEST_F(StereoCli, EvalStereoOnSceneFolders) {
+  const auto mb = cropsight::testing::shared_data_dir() / "middlebury2006";
+  CROPSIGHT_REQUIRE_DATA(mb);
+  auto r = run_cli("eval stereo --scenes " + shell_quoted(mb) + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  for (const char* p : {"Aloe", "Baby1", "Cloth3", "Dolls"}) ASSERT_TRUE(j["pairs"].contains(p)) << p;
+  EXPECT_EQ(j["pairs"]["Aloe"]["num_disparities"].get<int>(), 112);
+  EXPECT_LT(j["mean_bad1"].get<double>(), j["opencv_sgbm"]["mean_bad1"].get<double>());
+  EXPECT_FALSE(j.contains("mean_nonoccluded"));
+
+  const fs::path s = dir() / "scenes2014" / "plane";
+  fs::create_directories(s);
+  cv::Mat left(40, 80, CV_8UC3), right;
+  cv::randu(left, 0, 255);
+  cv::GaussianBlur(left, left, cv::Size(3, 3), 0);
+  const cv::Mat shift = (cv::Mat_<double>(2, 3) << 1, 0, -4, 0, 1, 0);
+  cv::warpAffine(left, right, shift, left.size(), cv::INTER_NEAREST, cv::BORDER_REPLICATE);
+  cv::imwrite((s / "im0.png").string(), left);
+  cv::imwrite((s / "im1.png").string(), right);
+  cropsight::stereo::DisparityImage truth(80, 40, 4.0f);
+  cropsight::stereo::write_pfm(s / "disp0GT.pfm", truth);
+  cropsight::stereo::write_pfm(s / "disp1GT.pfm", truth);
+  std::ofstream(s / "calib.txt") << "width=80\nheight=40\nndisp=16\n";
+  r = run_cli("eval stereo --scenes " + shell_quoted(dir() / "scenes2014") + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j["pairs"]["plane"].contains("nonoccluded")) << r.out;
+  EXPECT_EQ(j["mean_nonoccluded"]["pairs"].get<int>(), 1);
+  EXPECT_LT(j["pairs"]["plane"]["nonoccluded"]["bad1"].get<double>(), 5.0);
+  // The text form prints one row per scene and the mean.
+  r = run_cli("eval stereo --scenes " + shell_quoted(dir() / "scenes2014"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("plane"), std::string::npos);
+  EXPECT_NE(r.out.find("mean"), std::string::npos);
+}
+
 TEST_F(StereoCli, EvalStereoErrors) {
   auto r = run_cli("eval stereo --middlebury " + shell_quoted(dir() / "no_middlebury") + " --json");
   expect_one_line_error(r, "no_middlebury");
@@ -145,5 +186,21 @@ TEST_F(StereoCli, EvalStereoErrors) {
   r = run_cli("eval stereo --middlebury " + shell_quoted(mb) + " --json");
   expect_one_line_error(r, "tsukuba");
   EXPECT_NE(r.err.find("differ"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+  // Neither folder option; a folder without scenes; a truncated PFM ground truth: one line
+  // naming the folder or file, exit 2.
+  r = run_cli("eval stereo --json");
+  expect_one_line_error(r, "--scenes");
+  r = run_cli("eval stereo --scenes " + shell_quoted(dir()) + "/no_scenes --json");
+  expect_one_line_error(r, "no_scenes");
+  const fs::path s = dir() / "bad_pfm" / "one";
+  fs::create_directories(s);
+  cv::imwrite((s / "im0.png").string(), img);
+  cv::imwrite((s / "im1.png").string(), img);
+  std::ofstream(s / "calib.txt") << "ndisp=16\n";
+  std::ofstream(s / "disp0GT.pfm") << "Pf\n64 48\n-1\nshort";
+  r = run_cli("eval stereo --scenes " + shell_quoted(dir() / "bad_pfm") + " --json");
+  expect_one_line_error(r, "disp0GT.pfm");
+  EXPECT_NE(r.err.find("truncated"), std::string::npos) << r.err;
   EXPECT_TRUE(r.out.empty());
 }

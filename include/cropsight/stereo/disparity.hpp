@@ -42,28 +42,30 @@ struct DisparityConfig {
   int census_width = 5;           ///< px; census window (census engine), odd, width*height <= 65
   int census_height = 5;          ///< px; odd
   int census_p1 = 15;             ///< Hamming bits; SGM penalty of a +-1 px step (census engine)
-  int census_p2 = 120;            ///< Hamming bits; SGM penalty of a larger step (census engine)
-  int census_p2_step = 4;         ///< grey levels; P2 / (1 + |dI| / this) along a path (0 = constant)
-  int census_blur = 0;            ///< px; Gaussian kernel applied to the grey images before the census (0 = none)
-  int census_box = 1;             ///< columns; horizontal box sum of census costs before SGM (odd; 1 = none)
-  bool allow_avx2 = true;         ///< census engine: use the AVX2 kernel when the CPU has it (else SSE2)
-  int num_disparities = 128;      ///< search range [min_disparity, min_disparity + num_disparities); multiple of 16
-  int min_disparity = 0;          ///< pixels
-  int block_size = 5;             ///< matching window side (odd)
-  double p1 = 32;                 ///< SGM small-jump penalty per channel per window pixel (P1 = p1*cn*bs^2)
-  double p2 = 64;                 ///< SGM large-jump penalty per channel per window pixel (P2 = p2*cn*bs^2)
-  int uniqueness_ratio = 15;      ///< percent margin of best over second-best cost
-  int speckle_window = 100;       ///< pixels; connected regions smaller than this are invalidated
-  int speckle_range = 2;          ///< pixels; max disparity step inside one speckle region
-  int disp12_max_diff = 1;        ///< pixels; OpenCV's internal left-right check tolerance (-1 off)
-  int pre_filter_cap = 63;        ///< clip of OpenCV's x-Sobel prefilter
-  int lr_check = 1;               ///< px; explicit left-right check against the mirrored match (-1 off)
-  std::string mode = "3way";      ///< "sgbm" (5 paths), "hh" (8 paths), "hh4", "3way"
-  bool pad_left = true;           ///< pad left so the left-most columns get a disparity
-  bool fill_holes = true;         ///< fill invalid pixels (background-favouring scan-line fill + median)
-  int median = 5;                 ///< median window (0/1 = none) applied after filling
-  bool use_color = true;          ///< match on colour when both images have colour (ignored when rank_radius > 0)
-  int rank_radius = 3;            ///< px; rank-transform window radius of the matching features (0 = raw image)
+  /// Hamming bits; SGM penalty of a larger step (census engine). 100 with census_p2_step 2: chosen
+  /// on all eight shared Middlebury scenes together (issue 23; was 120 / 4, tuned on the classic four)
+  int census_p2 = 100;
+  int census_p2_step = 2;     ///< grey levels; P2 / (1 + |dI| / this) along a path (0 = constant)
+  int census_blur = 0;        ///< px; Gaussian kernel applied to the grey images before the census (0 = none)
+  int census_box = 1;         ///< columns; horizontal box sum of census costs before SGM (odd; 1 = none)
+  bool allow_avx2 = true;     ///< census engine: use the AVX2 kernel when the CPU has it (else SSE2)
+  int num_disparities = 128;  ///< search range [min_disparity, min_disparity + num_disparities); multiple of 16
+  int min_disparity = 0;      ///< pixels
+  int block_size = 5;         ///< matching window side (odd)
+  double p1 = 32;             ///< SGM small-jump penalty per channel per window pixel (P1 = p1*cn*bs^2)
+  double p2 = 64;             ///< SGM large-jump penalty per channel per window pixel (P2 = p2*cn*bs^2)
+  int uniqueness_ratio = 15;  ///< percent margin of best over second-best cost
+  int speckle_window = 100;   ///< pixels; connected regions smaller than this are invalidated
+  int speckle_range = 2;      ///< pixels; max disparity step inside one speckle region
+  int disp12_max_diff = 1;    ///< pixels; OpenCV's internal left-right check tolerance (-1 off)
+  int pre_filter_cap = 63;    ///< clip of OpenCV's x-Sobel prefilter
+  int lr_check = 1;           ///< px; explicit left-right check against the mirrored match (-1 off)
+  std::string mode = "3way";  ///< "sgbm" (5 paths), "hh" (8 paths), "hh4", "3way"
+  bool pad_left = true;       ///< pad left so the left-most columns get a disparity
+  bool fill_holes = true;     ///< fill invalid pixels (background-favouring scan-line fill + median)
+  int median = 5;             ///< median window (0/1 = none) applied after filling
+  bool use_color = true;      ///< match on colour when both images have colour (ignored when rank_radius > 0)
+  int rank_radius = 3;        ///< px; rank-transform window radius of the matching features (0 = raw image)
 
   template <class V>
   void visit(V& v) {
@@ -139,8 +141,10 @@ DisparityImage compute_disparity(const GrayImage& left, const GrayImage& right, 
 /// Plain OpenCV StereoSGBM with the parameters of OpenCV's stereo_match sample (block 3 → here
 /// `block_size`, P1 = 8·cn·bs², P2 = 32·cn·bs², uniqueness 10, speckle 100/32, disp12MaxDiff 1),
 /// no padding, no filling: the baseline the issue compares against. Invalid pixels are NaN.
+/// `three_way`: OpenCV's faster MODE_SGBM_3WAY instead of MODE_SGBM (the speed baseline of bench_stereo).
 DisparityImage opencv_sgbm_disparity(const ColorImage& left, const ColorImage& right, int num_disparities,
-                                     int block_size = 3, const std::string& where = "stereo pair");
+                                     int block_size = 3, const std::string& where = "stereo pair",
+                                     bool three_way = false);
 
 /// Winner-take-all block matching with a square window (the paper's SAD / SSD baselines, 55×55),
 /// integer disparities, computed with box filters. Pixels whose window leaves the image get NaN.

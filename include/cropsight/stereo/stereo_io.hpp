@@ -24,6 +24,18 @@ std::pair<ColorImage, ColorImage> read_color_pair(const std::filesystem::path& l
 /// requires that depth (Error(path, ...) otherwise: a 16-bit file read with an 8-bit scale is off
 /// by 256x); 0 accepts either.
 DisparityImage read_disparity(const std::filesystem::path& path, double scale, int bits = 0);
+/// One-channel Portable Float Map ("Pf", the Middlebury 2014 ground-truth format): header "Pf",
+/// "width height", scale (negative = little-endian), then rows of 32-bit floats from the bottom
+/// row up. Values are returned as stored; infinite or NaN values (unknown in Middlebury) → NaN.
+/// Throws Error(path, ...) for a missing file, a bad or colour ("PF") header, a size outside
+/// 1..65535 or data shorter than width x height floats.
+Image<float> read_pfm(const std::filesystem::path& path);
+/// Ground-truth disparity of any of the formats the data sets use: .pfm (read_pfm), else an 8- or
+/// 16-bit one-channel image (read_disparity, bits = 0); the stored value is divided by `scale`
+/// and 0, infinite and NaN values become NaN (no ground truth). Throws Error(path, ...).
+DisparityImage read_ground_truth(const std::filesystem::path& path, double scale);
+/// Writes `values` as a little-endian one-channel PFM (tests, fixtures); atomic.
+void write_pfm(const std::filesystem::path& path, const Image<float>& values);
 /// Checks, before any work is done, that `path` can take an image written by the functions below:
 /// a file name (not a folder) whose extension names a lossless format OpenCV can write (.png,
 /// .tif, .tiff, .pgm, plus .bmp when !sixteen_bit); `option` (e.g. "--out") goes into the message.

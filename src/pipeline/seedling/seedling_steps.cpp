@@ -65,13 +65,18 @@ Components component_heights(const std::vector<float>& height, const segmentatio
   return c;
 }
 
-// True when a member of component `c` lies within sqrt(j2) of a member of a chosen component.
-bool touches(const std::vector<Eigen::Vector3f>& sampled, const Components& comp, int c, const std::vector<int>& chosen,
-             double j2) {
+// True when a member of component `c` lies within sqrt(j2) of a member of a chosen component:
+// in 3D, or with `top_view` seen from above (along the soil normal: the squared 3D distance less
+// the squared height difference).
+bool touches(const std::vector<Eigen::Vector3f>& sampled, const std::vector<float>& height, const Components& comp,
+             int c, const std::vector<int>& chosen, double j2, bool top_view) {
   for (int a : comp.members[c])
     for (int s : chosen)
-      for (int b : comp.members[s])
-        if ((sampled[a] - sampled[b]).squaredNorm() < j2) return true;
+      for (int b : comp.members[s]) {
+        double d2 = (sampled[a] - sampled[b]).squaredNorm();
+        if (top_view) d2 -= double(height[a] - height[b]) * double(height[a] - height[b]);
+        if (d2 < j2) return true;
+      }
   return false;
 }
 
@@ -198,7 +203,7 @@ std::vector<int> select_components(const std::vector<Eigen::Vector3f>& sampled, 
     grew = false;
     for (int c = 0; c < k; ++c) {
       if (in[c] || comp.members[c].empty() || comp.mean_height[c] < cfg.height_ratio * comp.mean_height[seed]) continue;
-      if (!touches(sampled, comp, c, chosen, j2)) continue;
+      if (!touches(sampled, height, comp, c, chosen, j2, cfg.join_top_view)) continue;
       in[c] = true;
       chosen.push_back(c);
       grew = true;

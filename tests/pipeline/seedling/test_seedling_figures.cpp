@@ -1,6 +1,7 @@
 // Pins the seedling pipeline's held-out figure (docs/pipelines/broccoli-seedlings.md, "Held-out
-// test, seed 4711"): the fast preset on simulated seed 4711, which was simulated after every choice
-// of the preset and scored once with it. The docs' headline is over 30 pairs (100 % / 90.8 % /
+// test, seed 4711"): the default preset (then named seedling-fast) on simulated seed 4711, which was
+// simulated after every choice of the preset and scored once with it (issue 23's top-view join
+// leaves its scores unchanged). The docs' headline is over 30 pairs (100 % / 90.8 % /
 // 99.9 %); rendering a pair costs ~0.6 s of CPU, so this test scores the first 8 of them, whose
 // figure the docs state beside it: recognition 100 %, sensitivity 91.6 %, envelope volume ratio
 // 99.8 % (`eval seedling` on pair_000..007 of `simulate seedling --seed 4711`).
@@ -20,9 +21,9 @@
 using namespace cropsight;
 using namespace cropsight::pipeline;
 
-TEST(SeedlingFigures, FastPresetOnHeldOutSeed4711MatchesTheDocs) {
+TEST(SeedlingFigures, DefaultPresetOnSeed4711MatchesTheDocs) {
   constexpr double kTolerance = 0.003;  // 0.3 point of a percent, see above
-  const auto seedlings = SeedlingPipeline::from_preset("seedling-fast");
+  const auto seedlings = SeedlingPipeline::from_preset("seedling");
   const sim::SeedlingSimConfig scenes;  // the defaults `simulate seedling` renders with
   const stereo::RectifiedGeometry g = sim::rectified_geometry(scenes.rig());
   SeedlingEvaluator ev(seedlings.config().gmm);

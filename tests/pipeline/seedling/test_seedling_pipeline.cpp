@@ -32,8 +32,8 @@ void expect_throw_naming(F&& f, const std::string& what) {
   }
 }
 
-// The shipped fast preset, configs/seedling-fast.yaml (census engine).
-SeedlingConfig fast_preset() { return load_seedling_config("seedling-fast"); }
+// The shipped default preset, configs/seedling.yaml (census engine, excess-green test).
+SeedlingConfig default_preset() { return load_seedling_config("seedling"); }
 
 // The detection found the simulated seedling: top-view IoU >= 0.5, envelope volume within 30 %.
 void expect_recognised(const SeedlingDetection& d, const sim::SeedlingPair& p, const stereo::RectifiedGeometry& g,
@@ -79,8 +79,8 @@ TEST(SeedlingPipeline, RecognisesSimulatedSeedlings) {
 TEST(SeedlingPipeline, CandidateOpeningDropsCensusSoilSpeckles) {
   const sim::SeedlingSimConfig cfg = fast_sim();
   const stereo::RectifiedGeometry g = sim::rectified_geometry(cfg.rig());
-  // The fast preset, colour test off, opening switched off and on.
-  SeedlingConfig sc = fast_preset();
+  // The default preset, colour test off, opening switched off and on.
+  SeedlingConfig sc = default_preset();
   ASSERT_EQ(sc.disparity.engine, "census");
   sc.candidate_min_exg = -1.0;
   for (int k = 0; k < 2; ++k) {
@@ -100,8 +100,8 @@ TEST(SeedlingPipeline, CandidateOpeningDropsCensusSoilSpeckles) {
 TEST(SeedlingPipeline, ExcessGreenTestDropsFattenedSoilPixels) {
   const sim::SeedlingSimConfig cfg = fast_sim();
   const stereo::RectifiedGeometry g = sim::rectified_geometry(cfg.rig());
-  SeedlingConfig sc = fast_preset();
-  ASSERT_GT(sc.candidate_min_exg, -1.0) << "the fast preset is expected to use the colour test";
+  SeedlingConfig sc = default_preset();
+  ASSERT_GT(sc.candidate_min_exg, -1.0) << "the default preset is expected to use the colour test";
   const double exg = sc.candidate_min_exg;
   auto outside = [](const SeedlingDetection& d, const GrayImage& truth) {
     int n = 0;
@@ -169,6 +169,31 @@ TEST(SeedlingSteps, ComponentSelectionFollowsTheRule) {
   EXPECT_TRUE(seedling::select_components(pts, height, gmm, cfg).empty());
 }
 
+// A leaf whose petiole was lost: 2 cm below the seed leaf and 1 cm beside it. In 3D it is 2.2 cm
+// away (> join_distance), seen from above 1 cm: it joins with join_top_view only.
+TEST(SeedlingSteps, TopViewJoinKeepsALeafWhosePetioleWasLost) {
+  segmentation::GmmResult gmm;
+  gmm.model.weights.assign(2, 0.5);
+  std::vector<Eigen::Vector3f> pts;
+  std::vector<float> height;
+  const Eigen::Vector3f up(0, 0, -1);  // the soil normal points towards the camera at the origin
+  for (int i = 0; i < 20; ++i) {
+    pts.push_back(Eigen::Vector3f(0.001f * float(i), 0, 0.5f) + 0.08f * up);  // seed: 8 cm high
+    height.push_back(0.08f);
+    gmm.labels.push_back(0);
+  }
+  for (int i = 0; i < 20; ++i) {
+    pts.push_back(Eigen::Vector3f(0.029f + 0.001f * float(i), 0, 0.5f) + 0.06f * up);  // 6 cm high
+    height.push_back(0.06f);
+    gmm.labels.push_back(1);
+  }
+  SeedlingConfig cfg;
+  ASSERT_TRUE(cfg.join_top_view);
+  EXPECT_EQ(seedling::select_components(pts, height, gmm, cfg), (std::vector<int>{0, 1}));
+  cfg.join_top_view = false;
+  EXPECT_EQ(seedling::select_components(pts, height, gmm, cfg), (std::vector<int>{0}));
+}
+
 TEST(SeedlingConfig, ErrorsNameTheKeyAndPresetsLoad) {
   SeedlingConfig s;
   s.gmm.tolerance = -1;
@@ -178,9 +203,18 @@ TEST(SeedlingConfig, ErrorsNameTheKeyAndPresetsLoad) {
   s.topview_cell = 1e-9;
   expect_throw_naming([&] { validate_seedling_config(s, "x"); }, "'topview_cell'");
   EXPECT_NO_THROW(validate_seedling_config(SeedlingConfig{}, "x"));
-  // The default preset is the struct's defaults written down; the fast one differs in engine.
-  EXPECT_EQ(load_seedling_config("seedling").disparity.engine, SeedlingConfig{}.disparity.engine);
-  EXPECT_EQ(SeedlingPipeline::from_preset("seedling-fast").config().disparity.engine, "census");
+  // The default preset is the struct's defaults written down; the paper's differs in engine and
+  // has no colour test.
+  const SeedlingConfig def = load_seedling_config("seedling"), none{};
+  EXPECT_EQ(def.disparity.engine, none.disparity.engine);
+  EXPECT_EQ(def.disparity.census_p1, none.disparity.census_p1);
+  EXPECT_EQ(def.disparity.census_p2, none.disparity.census_p2);
+  EXPECT_EQ(def.disparity.census_p2_step, none.disparity.census_p2_step);
+  EXPECT_EQ(def.candidate_min_exg, none.candidate_min_exg);
+  const SeedlingConfig paper = SeedlingPipeline::from_preset("seedling-paper").config();
+  EXPECT_EQ(paper.disparity.engine, "opencv");
+  EXPECT_EQ(paper.candidate_min_exg, -1.0);
+  EXPECT_FALSE(paper.join_top_view);
   cropsight::testing::TempDir tmp;
   std::ofstream(tmp / "bad.yaml") << "gmm:\n  components: 0\n";
   expect_throw_naming([&] { load_seedling_config((tmp / "bad.yaml").string()); }, "bad.yaml");

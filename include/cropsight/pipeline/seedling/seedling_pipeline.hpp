@@ -26,7 +26,10 @@
 //      components with at least `min_component_points` points).
 //   3. Components are added while one of them has a mean height >= `height_ratio` x the seed's
 //      and a member point within `join_distance` of the points chosen so far (the lower leaves
-//      of the same plant touch the upper ones; distant weeds do not).
+//      of the same plant touch the upper ones; distant weeds do not), measured seen from above
+//      with `join_top_view` (the default): the leaves meet at the stem, whose thin petioles often
+//      lie below min_height or get no disparity, so in 3D an upper leaf can float > 1.5 cm above
+//      the others while from above it still touches them.
 //   4. The chosen points go through the KNN outlier filter (mean distance to k neighbours above
 //      mean + alpha sigma removed).
 //   5. Dense result: every reconstructed point above `min_height` whose top-view cell lies

@@ -36,7 +36,8 @@ std::vector<int> select_candidates(const stereo::StereoPoints& points, const std
 
 /// The recognition rule (steps 2-3): the seed component (highest mean height among components of
 /// at least min_component_points members), then every component with mean height >= height_ratio x
-/// the seed's and a member within join_distance of the chosen ones, in the order they joined.
+/// the seed's and a member within join_distance of the chosen ones (seen from above, i.e. the 3D
+/// distance with the height difference taken out, when cfg.join_top_view), in the order they joined.
 /// Empty when no component is large enough. `height[i]` is the height of `sampled[i]`.
 std::vector<int> select_components(const std::vector<Eigen::Vector3f>& sampled, const std::vector<float>& height,
                                    const segmentation::GmmResult& gmm, const SeedlingConfig& cfg);
