@@ -29,7 +29,7 @@ void expect_error(const CommandResult& r, const std::string& what) {
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
 
-void write(const fs::path& p, const std::string& s) { std::ofstream(p) << s; }
+using cropsight::testing::write_text;
 
 // One 200x200 image with one potato-coloured ellipse (box [70, 130] x [50, 150]) and its VOC file.
 void synthetic_set(const fs::path& dir) {
@@ -40,7 +40,7 @@ void synthetic_set(const fs::path& dir) {
   cv::Mat m(200, 200, CV_8UC3, cv::Scalar(240, 235, 235));
   cv::ellipse(m, {100, 100}, {30, 50}, 0, 0, 360, cv::Scalar(bgr.at<cv::Vec3b>(0, 0)), cv::FILLED);
   cv::imwrite((dir / "images" / "a.png").string(), m);
-  write(dir / "ann" / "a.xml",
+  write_text(dir / "ann" / "a.xml",
         "<annotation><filename>a.png</filename><object><name>potato</name><bndbox><xmin>70</xmin><ymin>50</ymin>"
         "<xmax>130</xmax><ymax>150</ymax></bndbox></object></annotation>");
 }
@@ -90,7 +90,7 @@ TEST(PotatoDetectionCli, BadInputsAreOneLineNamingTheFile) {
   synthetic_set(t.path());
   // Undecodable image: nothing written to --out.
   fs::create_directories(t / "bad_images");
-  write(t / "bad_images" / "broken.jpg", "not a jpeg");
+  write_text(t / "bad_images" / "broken.jpg", "not a jpeg");
   expect_error(run_cli("detect potato --images " + shell_quoted(t / "bad_images") + " --out " + shell_quoted(t / "o1")),
                "broken.jpg");
   EXPECT_FALSE(fs::exists(t / "o1"));
@@ -100,13 +100,13 @@ TEST(PotatoDetectionCli, BadInputsAreOneLineNamingTheFile) {
                "detector.classical.colour");
   // Malformed XML.
   fs::create_directories(t / "bad_ann");
-  write(t / "bad_ann" / "a.xml", "<annotation><object>");
+  write_text(t / "bad_ann" / "a.xml", "<annotation><object>");
   expect_error(run_cli("eval potato-detection --images " + shell_quoted(t / "images") + " --annotations " +
                        shell_quoted(t / "bad_ann")),
                "a.xml: malformed XML");
   // A detection file with a bad line.
   fs::create_directories(t / "bad_dets");
-  write(t / "bad_dets" / "a.txt", "potato 0.9 70 50 130 150\npotato 0.8 70 50 x 150\n");
+  write_text(t / "bad_dets" / "a.txt", "potato 0.9 70 50 130 150\npotato 0.8 70 50 x 150\n");
   expect_error(run_cli("eval potato-detection --images " + shell_quoted(t / "images") + " --annotations " +
                        shell_quoted(t / "ann") + " --detections " + shell_quoted(t / "bad_dets")),
                "a.txt: line 2: x2 is not a number");
@@ -154,7 +154,7 @@ TEST(PotatoDetectionCli, DetectReadsOneImageOrASequenceAndDrawsAxes) {
   expect_error(run_cli("detect potato --images " + shell_quoted(t / "images") + " --data " + shell_quoted(seq) +
                        " --out " + shell_quoted(t / "n2")),
                "exactly one of --images and --data");
-  write(t / "fake.onnx", "not an onnx graph");
+  write_text(t / "fake.onnx", "not an onnx graph");
   expect_error(run_cli("detect potato --images " + shell_quoted(t / "images") + " --model " +
                        shell_quoted(t / "fake.onnx") + " --out " + shell_quoted(t / "n3")),
                "fake.onnx");

@@ -7,7 +7,7 @@
 using namespace cropsight;
 
 namespace {
-struct Inner {
+struct RangeInner {
   double weight = 0.5;
   template <class V>
   void visit(V& v) {
@@ -17,7 +17,7 @@ struct Inner {
 struct Ranged {
   int k = 4;
   bool flag = false;
-  Inner inner;
+  RangeInner inner;
   template <class V>
   void visit(V& v) {
     v("k", k, "count", Range::at_least(1, "one voter at least"));

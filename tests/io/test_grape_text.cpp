@@ -10,7 +10,7 @@ namespace {
 using cropsight::Error;
 using cropsight::testing::TempDir;
 
-void write(const std::filesystem::path& p, const std::string& s) { std::ofstream(p) << s; }
+using cropsight::testing::write_text;
 
 std::string error_of(const std::filesystem::path& p) {
   try {
@@ -23,7 +23,7 @@ std::string error_of(const std::filesystem::path& p) {
 
 TEST(GrapeText, ReadsAllChannels) {
   TempDir t;
-  write(t / "a.txt", "0.1 0.2 0.3 0 0 1 0.5 0.25 1 2.000000\n-1 -2 -3 1 0 0 0 0 0 5.0\n\n");
+  write_text(t / "a.txt", "0.1 0.2 0.3 0 0 1 0.5 0.25 1 2.000000\n-1 -2 -3 1 0 0 0 0 0 5.0\n\n");
   const auto c = cropsight::io::read_grape_text(t / "a.txt");
   ASSERT_EQ(c.size(), 2u);
   EXPECT_FLOAT_EQ(c.points[0].y(), 0.2f);
@@ -35,20 +35,20 @@ TEST(GrapeText, ReadsAllChannels) {
 
 TEST(GrapeText, ErrorsNameFileAndLine) {
   TempDir t;
-  write(t / "short.txt", "0 0 0 0 0 1 0 0 0 1\n0 0 0 0 0 1 0 0 0\n");
+  write_text(t / "short.txt", "0 0 0 0 0 1 0 0 0 1\n0 0 0 0 0 1 0 0 0\n");
   const std::string e1 = error_of(t / "short.txt");
   EXPECT_NE(e1.find("short.txt"), std::string::npos) << e1;
   EXPECT_NE(e1.find("line 2"), std::string::npos) << e1;
   EXPECT_NE(e1.find("got 9"), std::string::npos) << e1;
 
-  write(t / "bad.txt", "0 0 0 0 0 1 0 0 0 1\n0 0 0 0 0 1 0 0 0 1\n0 0 abc 0 0 1 0 0 0 1\n");
+  write_text(t / "bad.txt", "0 0 0 0 0 1 0 0 0 1\n0 0 0 0 0 1 0 0 0 1\n0 0 abc 0 0 1 0 0 0 1\n");
   const std::string e2 = error_of(t / "bad.txt");
   EXPECT_NE(e2.find("bad.txt: line 3"), std::string::npos) << e2;
   EXPECT_NE(e2.find("abc"), std::string::npos) << e2;
 
-  write(t / "label.txt", "0 0 0 0 0 1 0 0 0 1.5\n");
+  write_text(t / "label.txt", "0 0 0 0 0 1 0 0 0 1.5\n");
   EXPECT_NE(error_of(t / "label.txt").find("line 1: label"), std::string::npos);
-  write(t / "empty.txt", "\n");
+  write_text(t / "empty.txt", "\n");
   EXPECT_NE(error_of(t / "empty.txt").find("no points"), std::string::npos);
   EXPECT_NE(error_of(t / "missing.txt").find("missing.txt: cannot open"), std::string::npos);
 }

@@ -12,7 +12,7 @@ using cropsight::Error;
 using cropsight::testing::TempDir;
 namespace io = cropsight::io;
 
-void write(const std::filesystem::path& p, const std::string& s) { std::ofstream(p) << s; }
+using cropsight::testing::write_text;
 
 std::string box_xml(const std::string& xmin, const std::string& ymin, const std::string& xmax,
                     const std::string& ymax) {
@@ -32,7 +32,7 @@ std::string error_of(F&& f) {
 
 TEST(Voc, ReadsFilenameSizeAndObjects) {
   TempDir t;
-  write(t / "a.xml",
+  write_text(t / "a.xml",
         "<?xml version=\"1.0\"?>\n<annotation><filename>a.jpg</filename>"
         "<size><width>416</width><height>400</height><depth>3</depth></size>" +
             box_xml("113", "98", "141", "162") +
@@ -58,13 +58,13 @@ TEST(Voc, ReadsFilenameSizeAndObjects) {
 TEST(Voc, BadFilesNameFileAndElement) {
   TempDir t;
   const auto head = std::string("<annotation><filename>a.jpg</filename>");
-  write(t / "broken.xml", head + "<object><name>potato</name>");  // unclosed
-  write(t / "missing.xml", head +
+  write_text(t / "broken.xml", head + "<object><name>potato</name>");  // unclosed
+  write_text(t / "missing.xml", head +
                                "<object><name>potato</name><bndbox><xmin>1</xmin><ymin>1</ymin><xmax>2</xmax>"
                                "</bndbox></object></annotation>");
-  write(t / "text.xml", head + box_xml("1", "1", "abc", "2") + "</annotation>");
-  write(t / "reversed.xml", head + box_xml("1", "1", "2", "2") + box_xml("5", "1", "4", "2") + "</annotation>");
-  write(t / "root.xml", "<html></html>");
+  write_text(t / "text.xml", head + box_xml("1", "1", "abc", "2") + "</annotation>");
+  write_text(t / "reversed.xml", head + box_xml("1", "1", "2", "2") + box_xml("5", "1", "4", "2") + "</annotation>");
+  write_text(t / "root.xml", "<html></html>");
   const std::string e1 = error_of([&] { io::read_voc(t / "broken.xml"); });
   EXPECT_NE(e1.find("broken.xml: malformed XML"), std::string::npos) << e1;
   const std::string e2 = error_of([&] { io::read_voc(t / "missing.xml"); });
@@ -81,7 +81,7 @@ TEST(Voc, BadFilesNameFileAndElement) {
 
 TEST(DetectionText, ReadsThePapersFormat) {
   TempDir t;
-  write(t / "a.txt", "potato 0.99349546 98 208 143 298\n\npotato 0.91259694 7 128 38 180\r\n");
+  write_text(t / "a.txt", "potato 0.99349546 98 208 143 298\n\npotato 0.91259694 7 128 38 180\r\n");
   const auto d = io::read_detection_text(t / "a.txt");
   ASSERT_EQ(d.size(), 2u);
   EXPECT_EQ(d[0].label, "potato");
@@ -95,9 +95,9 @@ TEST(DetectionText, ReadsThePapersFormat) {
 
 TEST(DetectionText, BadLinesNameFileAndLine) {
   TempDir t;
-  write(t / "few.txt", "potato 0.9 1 2 3 4\npotato 0.9 1 2 3\n");
-  write(t / "nan.txt", "potato 0.9 1 2 x 4\n");
-  write(t / "rev.txt", "\n\npotato 0.9 5 2 3 4\n");
+  write_text(t / "few.txt", "potato 0.9 1 2 3 4\npotato 0.9 1 2 3\n");
+  write_text(t / "nan.txt", "potato 0.9 1 2 x 4\n");
+  write_text(t / "rev.txt", "\n\npotato 0.9 5 2 3 4\n");
   EXPECT_NE(error_of([&] { io::read_detection_text(t / "few.txt"); }).find("few.txt: line 2: expected 6 fields"),
             std::string::npos);
   EXPECT_NE(error_of([&] { io::read_detection_text(t / "nan.txt"); }).find("nan.txt: line 1: x2 is not a number"),

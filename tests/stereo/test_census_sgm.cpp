@@ -21,7 +21,7 @@ using namespace cropsight::stereo;
 namespace {
 
 // Smoothed random texture, 8-bit.
-cv::Mat texture(int w, int h, unsigned seed) {
+cv::Mat texture_mat(int w, int h, unsigned seed) {
   cv::Mat noise(h / 2 + 1, w / 2 + 1, CV_8U), big;
   cv::RNG rng(seed);
   rng.fill(noise, cv::RNG::UNIFORM, 0, 256);
@@ -38,7 +38,7 @@ struct Scene {
 };
 Scene two_planes(int w, int h) {
   const int dbg = 9, dfg = 23;
-  const cv::Mat bg = texture(w + 64, h, 11), fg = texture(w + 64, h, 12);
+  const cv::Mat bg = texture_mat(w + 64, h, 11), fg = texture_mat(w + 64, h, 12);
   const int x0 = w / 3, x1 = w / 3 + w / 4, y0 = h / 4, y1 = 3 * h / 4;  // square in the left view
   auto in_square = [&](int x, int y) { return x >= x0 && x < x1 && y >= y0 && y < y1; };
   Scene s;
@@ -160,7 +160,7 @@ TEST(CensusSgm, Avx2KernelEqualsPortableKernel) {
 }
 
 TEST(CensusSgm, RejectsBadInput) {
-  const cv::Mat a = texture(64, 48, 1), b = texture(60, 48, 2);
+  const cv::Mat a = texture_mat(64, 48, 1), b = texture_mat(60, 48, 2);
   stereo::detail::CensusSgmParams p;
   p.num_disparities = 16;
   EXPECT_THROW(stereo::detail::census_sgm(a, b, p), Error);

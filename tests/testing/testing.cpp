@@ -60,4 +60,10 @@ CommandResult run_cli(const std::string& args) {
   return r;
 }
 
+void write_text(const fs::path& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  if (!out.flush()) throw std::runtime_error("cannot write fixture " + path.string());
+}
+
 }  // namespace cropsight::testing

@@ -32,6 +32,9 @@ struct CommandResult {
   std::string err;  ///< stderr
 };
 /// `p` in single quotes, for the shell command lines of run_cli (test paths hold no quote).
+/// Writes `text` to `path` (a fixture file); throws std::runtime_error when it cannot.
+void write_text(const std::filesystem::path& path, const std::string& text);
+
 inline std::string shell_quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 /// Runs the CLI with `args` (a shell-quoted argument string) and captures its output.
 CommandResult run_cli(const std::string& args);
