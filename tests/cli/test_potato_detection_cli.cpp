@@ -41,8 +41,8 @@ void synthetic_set(const fs::path& dir) {
   cv::ellipse(m, {100, 100}, {30, 50}, 0, 0, 360, cv::Scalar(bgr.at<cv::Vec3b>(0, 0)), cv::FILLED);
   cv::imwrite((dir / "images" / "a.png").string(), m);
   write_text(dir / "ann" / "a.xml",
-        "<annotation><filename>a.png</filename><object><name>potato</name><bndbox><xmin>70</xmin><ymin>50</ymin>"
-        "<xmax>130</xmax><ymax>150</ymax></bndbox></object></annotation>");
+             "<annotation><filename>a.png</filename><object><name>potato</name><bndbox><xmin>70</xmin><ymin>50</ymin>"
+             "<xmax>130</xmax><ymax>150</ymax></bndbox></object></annotation>");
 }
 
 TEST(PotatoDetectionCli, ScoresThePapersDetections) {

@@ -33,11 +33,11 @@ std::string error_of(F&& f) {
 TEST(Voc, ReadsFilenameSizeAndObjects) {
   TempDir t;
   write_text(t / "a.xml",
-        "<?xml version=\"1.0\"?>\n<annotation><filename>a.jpg</filename>"
-        "<size><width>416</width><height>400</height><depth>3</depth></size>" +
-            box_xml("113", "98", "141", "162") +
-            "<object><name> potato </name><difficult>1</difficult><bndbox><xmin>1.5</xmin>"
-            "<ymin>2</ymin><xmax>3</xmax><ymax>4</ymax></bndbox></object></annotation>");
+             "<?xml version=\"1.0\"?>\n<annotation><filename>a.jpg</filename>"
+             "<size><width>416</width><height>400</height><depth>3</depth></size>" +
+                 box_xml("113", "98", "141", "162") +
+                 "<object><name> potato </name><difficult>1</difficult><bndbox><xmin>1.5</xmin>"
+                 "<ymin>2</ymin><xmax>3</xmax><ymax>4</ymax></bndbox></object></annotation>");
   const io::VocAnnotation a = io::read_voc(t / "a.xml");
   EXPECT_EQ(a.filename, "a.jpg");
   EXPECT_EQ(a.width, 416);
@@ -60,8 +60,8 @@ TEST(Voc, BadFilesNameFileAndElement) {
   const auto head = std::string("<annotation><filename>a.jpg</filename>");
   write_text(t / "broken.xml", head + "<object><name>potato</name>");  // unclosed
   write_text(t / "missing.xml", head +
-                               "<object><name>potato</name><bndbox><xmin>1</xmin><ymin>1</ymin><xmax>2</xmax>"
-                               "</bndbox></object></annotation>");
+                                    "<object><name>potato</name><bndbox><xmin>1</xmin><ymin>1</ymin><xmax>2</xmax>"
+                                    "</bndbox></object></annotation>");
   write_text(t / "text.xml", head + box_xml("1", "1", "abc", "2") + "</annotation>");
   write_text(t / "reversed.xml", head + box_xml("1", "1", "2", "2") + box_xml("5", "1", "4", "2") + "</annotation>");
   write_text(t / "root.xml", "<html></html>");

@@ -130,7 +130,8 @@ TEST(PotatoBlobDetector, ContrastWithTheBackgroundRanksTheScore) {
                    level = on(cv::Scalar(105, 105, 105));
   PotatoBlobConfig cfg;
   cfg.min_score = 0;  // report every blob
-  const auto a = PotatoBlobDetector(cfg).detect({&sheet, nullptr}), b = PotatoBlobDetector(cfg).detect({&dark, nullptr}),
+  const auto a = PotatoBlobDetector(cfg).detect({&sheet, nullptr}),
+             b = PotatoBlobDetector(cfg).detect({&dark, nullptr}),
              g = PotatoBlobDetector(cfg).detect({&level, nullptr});
   ASSERT_EQ(a.size(), 1u);
   ASSERT_EQ(b.size(), 1u);
@@ -140,7 +141,8 @@ TEST(PotatoBlobDetector, ContrastWithTheBackgroundRanksTheScore) {
   EXPECT_NEAR(b[0].score, a[0].score, 0.02f * a[0].score);
   EXPECT_LT(g[0].score, 0.7f * a[0].score);
   cfg.contrast_scale = 0;
-  const auto c = PotatoBlobDetector(cfg).detect({&sheet, nullptr}), d = PotatoBlobDetector(cfg).detect({&level, nullptr});
+  const auto c = PotatoBlobDetector(cfg).detect({&sheet, nullptr}),
+             d = PotatoBlobDetector(cfg).detect({&level, nullptr});
   ASSERT_EQ(c.size(), 1u);
   ASSERT_EQ(d.size(), 1u);
   EXPECT_NEAR(c[0].score, d[0].score, 1e-3);

@@ -95,7 +95,8 @@ struct PotatoBlobConfig {
     v("split_max_depth", split_max_depth, "count; levels of splitting (parts are split again), 0 = never",
       Range::within(0, 4));
     v("contrast_scale", contrast_scale,
-      "8-bit L; score factor 1/(1 + exp(-|L_ring - L_blob|/scale)): a blob that stands out from its background ring, darker or lighter, 0 = off",
+      "8-bit L; score factor 1/(1 + exp(-|L_ring - L_blob|/scale)): a blob that stands out from its background ring, "
+      "darker or lighter, 0 = off",
       Range::at_least(0));
     v("contrast_ring_fraction", contrast_ring_fraction,
       "fraction of the short image side; width of the background ring of the contrast factor", Range::within(0, 0.1));
