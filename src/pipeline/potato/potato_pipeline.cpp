@@ -1,6 +1,9 @@
 // The potato pipeline's composition (see potato_pipeline.hpp): one call per step of the paper.
 #include "cropsight/pipeline/potato/potato_pipeline.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/timer.hpp"
 #include "cropsight/io/config_yaml.hpp"
@@ -58,15 +61,33 @@ std::vector<tracking::TargetCandidate> PotatoPipeline::candidates(const PotatoFr
 }
 
 // Step 5 on the target's box: the colourised depth (as the paper, from the frame's metric depth)
-// or the colour image, as the preset says.
+// or the colour image, as the preset says. Only the region the orientation step reads (the box
+// widened by its margin, plus a pixel) is colourised: the colour map is per pixel, so the result is
+// that of the whole frame's map, at a fraction of its cost (it was half of a frame's time).
 measure::OrientationResult PotatoPipeline::orient(const ColorImage& color, const Image<float>& depth_m,
                                                   const Detection2D& box) const {
   const bool use_depth = cfg_.orientation.input == measure::OrientationInput::depth && !depth_m.empty();
   measure::OrientationConfig oc = cfg_.orientation;
-  if (!use_depth) oc.input = measure::OrientationInput::rgb;
-  const ColorImage image =
-      use_depth ? io::colorize_depth(depth_m, float(cfg_.colormap_near_m), float(cfg_.colormap_far_m)) : ColorImage{};
-  return measure::estimate_orientation(use_depth ? image : color, box, oc);
+  if (!use_depth) {
+    oc.input = measure::OrientationInput::rgb;
+    return measure::estimate_orientation(color, box, oc);
+  }
+  const double mx = oc.box_margin * box.width() + 1, my = oc.box_margin * box.height() + 1;
+  const int x0 = std::clamp(int(std::floor(box.x1 - mx)), 0, depth_m.width),
+            y0 = std::clamp(int(std::floor(box.y1 - my)), 0, depth_m.height);
+  const int x1 = std::clamp(int(std::ceil(box.x2 + mx)), x0, depth_m.width),
+            y1 = std::clamp(int(std::ceil(box.y2 + my)), y0, depth_m.height);
+  if (!std::isfinite(mx) || !std::isfinite(my) || x1 - x0 < 3 || y1 - y0 < 3)
+    return measure::estimate_orientation(color, box, oc);  // its one-line error for a bad box
+  Image<float> crop(x1 - x0, y1 - y0);
+  for (int v = y0; v < y1; ++v) std::copy(depth_m.row(v) + x0, depth_m.row(v) + x1, crop.row(v - y0));
+  const ColorImage image = io::colorize_depth(crop, float(cfg_.colormap_near_m), float(cfg_.colormap_far_m));
+  Detection2D shifted = box;
+  shifted.x1 -= float(x0), shifted.x2 -= float(x0), shifted.y1 -= float(y0), shifted.y2 -= float(y0);
+  measure::OrientationResult r = measure::estimate_orientation(image, shifted, oc);
+  r.roi_x += x0;
+  r.roi_y += y0;
+  return r;
 }
 
 void PotatoPipeline::orient_target(const RgbdFrame& frame, const Image<float>& depth_m, PotatoFrameResult& r) {
