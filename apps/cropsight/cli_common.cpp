@@ -9,6 +9,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/config_yaml.hpp"
+#include "cropsight/io/sequence.hpp"
 
 namespace cropsight::cli {
 
@@ -35,6 +36,21 @@ void add_config_options(CLI::App* cmd, CommonOptions& o) {
 nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 void print_json(const nlohmann::json& j) { std::cout << j.dump() << std::endl; }
+
+std::vector<RgbdFrame> read_bench_frames(const std::string& dir, int max_frames) {
+  const io::SequenceReader reader(dir);
+  if (max_frames < 0) throw Error("--frames", "must be >= 0 (0: every frame)");
+  if (max_frames > reader.size())
+    throw Error("--frames", std::to_string(max_frames) + " asked, but " + dir + " has " +
+                                std::to_string(reader.size()) + " frames");
+  std::vector<RgbdFrame> frames;
+  for (int i = 0; i < (max_frames > 0 ? max_frames : reader.size()); ++i) {
+    frames.push_back(reader.read(i));
+    frames.back().labels = {};
+  }
+  if (frames.empty()) throw Error(dir, "sequence has no frames");
+  return frames;
+}
 
 std::vector<std::string> split_list(const std::string& text, const std::string& option) {
   std::vector<std::string> out;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cropsight/core/config.hpp"
+#include "cropsight/core/rgbd_frame.hpp"
 #include "cropsight/core/timer.hpp"
 
 namespace cropsight::cli {
@@ -30,6 +31,11 @@ nlohmann::json json_number(double v);
 
 /// Prints `j` as one line of JSON on stdout.
 void print_json(const nlohmann::json& j);
+
+/// The bench commands' frames: the first `max_frames` (0: all) of the sequence `dir`, in memory
+/// and without their label images (a robot's frames carry no truth). Throws Error("--frames", ...)
+/// when `max_frames` is negative or more than `dir` holds, Error(dir, ...) when it has none.
+std::vector<RgbdFrame> read_bench_frames(const std::string& dir, int max_frames);
 
 /// "a,b,c" → {"a", "b", "c"}; throws Error(option, ...) when empty or a part is empty.
 std::vector<std::string> split_list(const std::string& text, const std::string& option);

@@ -30,7 +30,6 @@
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/config_yaml.hpp"
-#include "cropsight/io/sequence.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_timing.hpp"
 
 namespace cropsight::cli {
@@ -47,23 +46,6 @@ struct BenchOptions {
 };
 
 using pipeline::PipelineTiming;
-
-// The first --frames frames in memory, without their label images: a robot's frames carry no
-// ground truth, and with labels the detector would also copy them (evaluation bookkeeping, ~1 %).
-std::vector<RgbdFrame> read_frames(const BenchOptions& o) {
-  io::SequenceReader reader(o.data);
-  if (o.frames < 0) throw Error("--frames", "must be >= 0 (0: every frame)");
-  if (o.frames > reader.size())
-    throw Error("--frames", std::to_string(o.frames) + " asked, but " + o.data + " has " +
-                                std::to_string(reader.size()) + " frames");
-  std::vector<RgbdFrame> frames;
-  for (int i = 0; i < (o.frames > 0 ? o.frames : reader.size()); ++i) {
-    frames.push_back(reader.read(i));
-    frames.back().labels = {};
-  }
-  if (frames.empty()) throw Error(o.data, "sequence has no frames");
-  return frames;
-}
 
 std::set<std::string> wanted_pipelines(const BenchOptions& o) {
   std::set<std::string> wanted;
@@ -115,7 +97,9 @@ void run(const BenchOptions& o) {
   // Single-threaded: no stage may use TBB's pool (the paper's numbers are single-threaded too).
   tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
   const auto model = pipeline::load_broccoli_model(o.model);
-  const std::vector<RgbdFrame> frames = read_frames(o);
+  // The first --frames frames in memory, without their label images: with labels the detector
+  // would also copy them (evaluation bookkeeping, ~1 %).
+  const std::vector<RgbdFrame> frames = read_bench_frames(o.data, o.frames);
   const std::set<std::string> wanted = wanted_pipelines(o);
   std::map<std::string, PipelineTiming> timings;
   std::optional<PipelineTiming> tracked;

@@ -2,18 +2,18 @@
 // orient) timed per stage, single-threaded, on frames in memory, for each preset asked, beside an
 // RGB -> Lab conversion of the same frames timed in the same process (the ratio is the figure
 // that holds on a noisy machine). Without --data it simulates one approach (scene sheet, 640x480)
-// into a temporary folder that is removed afterwards. The timing is the library's
+// into a temporary folder (io::TempDirectory) that is removed afterwards. The timing is the library's
 // (pipeline/potato/potato_timing.hpp); this file picks frames and presets and prints.
 #include <oneapi/tbb/global_control.h>
 
 #include <cstdio>
 #include <filesystem>
-#include <random>
+#include <optional>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
-#include "cropsight/io/sequence.hpp"
+#include "cropsight/io/files.hpp"
 #include "cropsight/pipeline/potato/potato_timing.hpp"
 #include "cropsight/sim/potato/potato_sim.hpp"
 
@@ -31,43 +31,26 @@ struct BenchPotatoOptions {
   bool quiet = false;
 };
 
-// Removes the simulated sequence when the bench ends, however it ends.
-struct ScratchDir {
-  std::filesystem::path path;
-  ~ScratchDir() {
-    std::error_code ec;
-    if (!path.empty()) std::filesystem::remove_all(path, ec);
-  }
-};
-
-std::vector<RgbdFrame> read_frames(const std::string& dir, int max_frames) {
-  const io::SequenceReader reader(dir);
-  if (max_frames > reader.size())
-    throw Error("--frames", std::to_string(max_frames) + " asked, but " + dir + " has " +
-                                std::to_string(reader.size()) + " frames");
-  std::vector<RgbdFrame> frames;
-  for (int i = 0; i < (max_frames > 0 ? max_frames : reader.size()); ++i) {
-    frames.push_back(reader.read(i));
-    frames.back().labels = {};  // a robot's frames carry no truth
-  }
-  if (frames.empty()) throw Error(dir, "sequence has no frames");
+std::vector<RgbdFrame> with_colour(std::vector<RgbdFrame> frames, const std::string& dir) {
   if (frames.front().color.empty()) throw Error(dir, "the potato loop needs colour images");
   return frames;
 }
 
-std::vector<RgbdFrame> bench_frames(const BenchPotatoOptions& o, ScratchDir& scratch) {
+// --data's frames, or one simulated approach in `scratch` (a temporary folder never committed, so
+// removed when the bench ends, however it ends).
+std::vector<RgbdFrame> bench_frames(const BenchPotatoOptions& o, std::optional<io::TempDirectory>& scratch) {
   if (o.frames < 0) throw Error("--frames", "must be at least 0 (0: every frame)");
-  if (!o.data.empty()) return read_frames(o.data, o.frames);
+  if (!o.data.empty()) return with_colour(read_bench_frames(o.data, o.frames), o.data);
   sim::PotatoSimConfig cfg;
   apply_config(cfg, ConfigMap{{"scene", o.scene}}, "--scene");
   cfg.validate("--scene");
-  scratch.path =
-      std::filesystem::temp_directory_path() / ("cropsight-bench-potato-" + std::to_string(std::random_device{}()));
+  scratch.emplace(std::filesystem::temp_directory_path() / "cropsight-bench-potato");
+  const std::filesystem::path seq = scratch->path() / "sequence";
   const int n = o.frames > 0 ? o.frames : 40;
   Progress progress("simulate potato", n, o.quiet || o.common.json);
-  sim::simulate_potato_sequence(cfg, o.seed, n, scratch.path, false, [&](int done, int) { progress.update(done); });
+  sim::simulate_potato_sequence(cfg, o.seed, n, seq, false, [&](int done, int) { progress.update(done); });
   progress.finish();
-  return read_frames(scratch.path.string(), 0);
+  return with_colour(read_bench_frames(seq.string(), 0), seq.string());
 }
 
 nlohmann::json timing_json(const PipelineTiming& t, const PipelineTiming& baseline) {
@@ -90,7 +73,7 @@ void run(const BenchPotatoOptions& o) {
   std::vector<std::pair<std::string, pp::PotatoPipelineConfig>> presets;
   for (const auto& name : split_list(o.presets, "--presets"))
     presets.emplace_back(name, pp::load_potato_config(name, o.common.config_map()));
-  ScratchDir scratch;
+  std::optional<io::TempDirectory> scratch;
   const std::vector<RgbdFrame> frames = bench_frames(o, scratch);
   const PipelineTiming baseline = pp::time_lab_conversion(frames, o.repeat);
   nlohmann::json out{

@@ -50,17 +50,21 @@ bool looks_grey(const ColorImage& im, int x0, int y0, int x1, int y1) {
 
 }  // namespace
 
+PixelRegion orientation_region(const Detection2D& box, const OrientationConfig& cfg, int width, int height,
+                               int pad_px) {
+  const double mx = cfg.box_margin * box.width() + pad_px, my = cfg.box_margin * box.height() + pad_px;
+  // Pixels whose span [u, u + 1) meets the widened box, clipped to the image.
+  return {std::max(0, int(std::floor(box.x1 - mx))), std::max(0, int(std::floor(box.y1 - my))),
+          std::min(width, int(std::ceil(box.x2 + mx))), std::min(height, int(std::ceil(box.y2 + my)))};
+}
+
 OrientationResult estimate_orientation(const ColorImage& image, const Detection2D& box, const OrientationConfig& cfg,
                                        const std::string& where) {
   if (image.empty() || image.width <= 0 || image.height <= 0) throw Error(where, "empty image");
   if (!std::isfinite(box.x1) || !std::isfinite(box.y1) || !std::isfinite(box.x2) || !std::isfinite(box.y2) ||
       !(box.width() > 0) || !(box.height() > 0))
     throw Error(where, "empty or non-finite box");
-  const double mx = cfg.box_margin * box.width(), my = cfg.box_margin * box.height();
-  // Pixels whose span [u, u + 1) meets the widened box, clipped to the image.
-  const int x0 = std::max(0, int(std::floor(box.x1 - mx))), y0 = std::max(0, int(std::floor(box.y1 - my)));
-  const int x1 = std::min(image.width, int(std::ceil(box.x2 + mx))),
-            y1 = std::min(image.height, int(std::ceil(box.y2 + my)));
+  const auto [x0, y0, x1, y1] = orientation_region(box, cfg, image.width, image.height);
   if (x1 - x0 < 3 || y1 - y0 < 3) throw Error(where, "box outside the image (or under 3 px inside it)");
   if (cfg.input == OrientationInput::depth && looks_grey(image, x0, y0, x1, y1))
     throw Error(where, "input=depth expects a colourised depth image (near = red, far = blue), this one is grey");

@@ -149,6 +149,15 @@ struct OrientationResult : AxisEstimate {
   int roi_x = 0, roi_y = 0;  ///< image pixel of mask pixel (0, 0)
 };
 
+/// The pixels estimate_orientation reads for `box` in a `width` x `height` image: [x0, x1) x
+/// [y0, y1), the pixels whose span meets the box widened by cfg.box_margin (and by `pad_px` more on
+/// each side), clipped to the image; empty (x1 <= x0 or y1 <= y0) when it lies outside.
+struct PixelRegion {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+PixelRegion orientation_region(const Detection2D& box, const OrientationConfig& cfg, int width, int height,
+                               int pad_px = 0);
+
 /// Segments the potato in `box` (widened by cfg.box_margin, clipped to the image) and measures its
 /// long axis. Throws Error(where, ...) for an empty image, an empty or non-finite box, a box
 /// outside the image, or (input = depth) an image that is grey, not a colourised depth map.

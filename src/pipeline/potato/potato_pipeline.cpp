@@ -72,13 +72,12 @@ measure::OrientationResult PotatoPipeline::orient(const ColorImage& color, const
     oc.input = measure::OrientationInput::rgb;
     return measure::estimate_orientation(color, box, oc);
   }
-  const double mx = oc.box_margin * box.width() + 1, my = oc.box_margin * box.height() + 1;
-  const int x0 = std::clamp(int(std::floor(box.x1 - mx)), 0, depth_m.width),
-            y0 = std::clamp(int(std::floor(box.y1 - my)), 0, depth_m.height);
-  const int x1 = std::clamp(int(std::ceil(box.x2 + mx)), x0, depth_m.width),
-            y1 = std::clamp(int(std::ceil(box.y2 + my)), y0, depth_m.height);
-  if (!std::isfinite(mx) || !std::isfinite(my) || x1 - x0 < 3 || y1 - y0 < 3)
+  if (!std::isfinite(box.x1) || !std::isfinite(box.y1) || !std::isfinite(box.x2) || !std::isfinite(box.y2))
     return measure::estimate_orientation(color, box, oc);  // its one-line error for a bad box
+  // One pixel more than the step reads, so that its own widening of the shifted box, rounded in
+  // floating point, stays inside the crop.
+  const auto [x0, y0, x1, y1] = measure::orientation_region(box, oc, depth_m.width, depth_m.height, 1);
+  if (x1 - x0 < 3 || y1 - y0 < 3) return measure::estimate_orientation(color, box, oc);
   Image<float> crop(x1 - x0, y1 - y0);
   for (int v = y0; v < y1; ++v) std::copy(depth_m.row(v) + x0, depth_m.row(v) + x1, crop.row(v - y0));
   const ColorImage image = io::colorize_depth(crop, float(cfg_.colormap_near_m), float(cfg_.colormap_far_m));

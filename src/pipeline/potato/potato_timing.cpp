@@ -28,15 +28,6 @@ class OneOpenCvThread {
   int before_;
 };
 
-void add_stage(PipelineTiming& t, const char* name, double ms) {
-  for (auto& s : t.stages)
-    if (s.name == name) {
-      s.total_ms += ms;
-      ++s.count;
-      return;
-    }
-  t.stages.push_back({name, ms, 1});
-}
 }  // namespace
 
 PipelineTiming time_potato_pipeline(PotatoPipeline& pipeline, const std::vector<RgbdFrame>& frames, int repeat) {
@@ -45,18 +36,20 @@ PipelineTiming time_potato_pipeline(PotatoPipeline& pipeline, const std::vector<
   pipeline.reset();
   pipeline.process(frames.front());  // warm-up: buffers sized, the tracker's first allocation
   PipelineTiming t;
+  StageTimer stages;
   for (int r = 0; r < repeat; ++r) {
     pipeline.reset();
     for (const RgbdFrame& f : frames) {
       const PotatoFrameResult out = timed(t, [&] { return pipeline.process(f); });
-      add_stage(t, "detect", out.ms_detect);
-      add_stage(t, "locate", out.ms_locate);
-      add_stage(t, "track", out.ms_track);
-      add_stage(t, "orient", out.ms_orient);
+      stages.add("detect", out.ms_detect);
+      stages.add("locate", out.ms_locate);
+      stages.add("track", out.ms_track);
+      stages.add("orient", out.ms_orient);
       t.clusters += out.target.detection ? 1 : 0;
       ++t.frames;
     }
   }
+  t.stages = stages.stages();
   return t;
 }
 
