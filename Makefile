@@ -13,6 +13,11 @@ BUILD      ?= build
 BUILD_TYPE ?= Release
 JOBS       ?= $(shell nproc)
 CMAKE_ARGS ?=
+# Ninja (Debian ninja-build, scripts/install-deps.sh) where it is installed: it starts a target's
+# compiles while the libraries it links are still being built, where Make waits for them, and the
+# unity batches make a clean build a few long compiles whose order matters on two cores. A tree
+# configured before keeps its generator (cmake refuses to switch one).
+GENERATOR  ?= $(if $(shell command -v ninja),Ninja,Unix Makefiles)
 CTEST_ARGS ?=
 
 # ccache: rewrite absolute paths under the checkout so that caches are shared between clones.
@@ -27,7 +32,7 @@ deps:
 	@scripts/install-deps.sh
 
 $(BUILD)/CMakeCache.txt: | deps
-	cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(CMAKE_ARGS)
+	cmake -S . -B $(BUILD) -G "$(GENERATOR)" -DCMAKE_BUILD_TYPE=$(BUILD_TYPE) $(CMAKE_ARGS)
 
 configure: deps $(BUILD)/CMakeCache.txt
 
@@ -51,7 +56,7 @@ bench: build
 
 asan:
 	@scripts/install-deps.sh
-	cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCROPSIGHT_SANITIZE=ON -DCROPSIGHT_BUILD_BENCH=OFF $(CMAKE_ARGS)
+	cmake -S . -B build-asan $(if $(wildcard build-asan/CMakeCache.txt),,-G "$(GENERATOR)") -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCROPSIGHT_SANITIZE=ON -DCROPSIGHT_BUILD_BENCH=OFF $(CMAKE_ARGS)
 	cmake --build build-asan -j $(JOBS)
 	cd build-asan && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
 

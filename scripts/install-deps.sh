@@ -8,7 +8,7 @@ set -euo pipefail
 
 PACKAGES=(
   # toolchain
-  build-essential cmake ccache pkg-config git lld
+  build-essential cmake ninja-build ccache pkg-config git lld
   # core libraries (ARCHITECTURE.md "Dependencies")
   libeigen3-dev libopencv-dev libopencv-dnn-dev libpcl-dev libnanoflann-dev libtbb-dev libsvm-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev

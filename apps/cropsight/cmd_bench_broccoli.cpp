@@ -34,7 +34,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace bench_broccoli_cmd {
 struct BenchOptions {
   CommonOptions common;
   std::string data, model, variety = "uk";
@@ -139,9 +139,10 @@ void run(const BenchOptions& o) {
   else
     print_text(timings, tracked ? &*tracked : nullptr, frames, o.repeat);
 }
-}  // namespace
+}  // namespace bench_broccoli_cmd
 
 void add_bench_broccoli(CLI::App& bench) {
+  using namespace bench_broccoli_cmd;
   auto o = std::make_shared<BenchOptions>();
   auto* cmd = bench.add_subcommand("broccoli", "Time OES, ORG, FEC and the PCL reference pipeline");
   cmd->add_option("--data", o->data, "Sequence directory")->required();

@@ -19,7 +19,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace bench_potato_cmd {
 namespace pp = pipeline::potato;
 using pipeline::PipelineTiming;
 
@@ -100,9 +100,10 @@ void run(const BenchPotatoOptions& o) {
   }
   if (o.common.json) print_json(out);
 }
-}  // namespace
+}  // namespace bench_potato_cmd
 
 void add_bench_potato(CLI::App& bench) {
+  using namespace bench_potato_cmd;
   auto o = std::make_shared<BenchPotatoOptions>();
   auto* cmd = bench.add_subcommand("potato", "Time the potato loop per stage (single-threaded) against a baseline");
   cmd->add_option("--data", o->data, "RGB-D sequence (default: one simulated approach in a temporary folder)");

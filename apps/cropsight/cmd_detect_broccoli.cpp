@@ -24,7 +24,7 @@ namespace cropsight::cli {
 
 namespace fs = std::filesystem;
 
-namespace {
+namespace detect_broccoli_cmd {
 struct DetectOptions {
   CommonOptions common;
   std::string data, model, out, masks;
@@ -120,9 +120,10 @@ void run(const DetectOptions& o) {
                 summary["fps"].get<double>(), o.out.c_str(), o.masks.empty() ? "" : " and masks in ", o.masks.c_str());
   }
 }
-}  // namespace
+}  // namespace detect_broccoli_cmd
 
 void add_detect_broccoli(CLI::App& detect) {
+  using namespace detect_broccoli_cmd;
   auto o = std::make_shared<DetectOptions>();
   auto* cmd = detect.add_subcommand("broccoli", "Detect broccoli heads in a sequence with a trained model");
   cmd->add_option("--data", o->data, "Sequence directory")->required();

@@ -20,7 +20,7 @@
 #include "potato_cli.hpp"
 
 namespace cropsight::cli {
-namespace {
+namespace detect_potato_cmd {
 namespace fs = std::filesystem;
 
 struct Options {
@@ -139,9 +139,10 @@ void run(const Options& o) {
   if (overlay) overlay->commit("overlay folder");
 }
 
-}  // namespace
+}  // namespace detect_potato_cmd
 
 void add_detect_potato(CLI::App& detect) {
+  using namespace detect_potato_cmd;
   auto o = std::make_shared<Options>();
   auto* cmd = detect.add_subcommand("potato", "Detect potatoes in images or an RGB-D sequence (issue 22)");
   cmd->add_option("--images", o->images, "Folder of .jpg/.png images, or one image");

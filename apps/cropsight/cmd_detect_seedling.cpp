@@ -19,7 +19,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace detect_seedling_cmd {
 
 namespace fs = std::filesystem;
 
@@ -104,9 +104,10 @@ void run(const Options& o) {
   }
 }
 
-}  // namespace
+}  // namespace detect_seedling_cmd
 
 void add_detect_seedling(CLI::App& detect) {
+  using namespace detect_seedling_cmd;
   auto o = std::make_shared<Options>();
   auto* cmd = detect.add_subcommand("seedling", "Recognise a broccoli seedling in a stereo pair (issue 5)");
   cmd->add_option("--left", o->left, "Left image")->required();

@@ -15,7 +15,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace eval_broccoli_cmd {
 struct EvalOptions {
   CommonOptions common;
   std::string data, model;
@@ -79,9 +79,10 @@ void run(const EvalOptions& o) {
   std::printf("  %.1f fps (%.2f ms/frame, pipeline only)\n", r.fps(), r.frames ? r.pipeline_ms / r.frames : 0.0);
   if (figures) print_tracking_summary(*figures);
 }
-}  // namespace
+}  // namespace eval_broccoli_cmd
 
 void add_eval_broccoli(CLI::App& eval) {
+  using namespace eval_broccoli_cmd;
   auto o = std::make_shared<EvalOptions>();
   auto* cmd = eval.add_subcommand("broccoli", "Evaluate a broccoli head model on labelled sequences");
   cmd->add_option("--data", o->data, "Sequence directories, comma separated")->required();

@@ -22,7 +22,7 @@
 #include "grape_segmenter_options.hpp"
 
 namespace cropsight::cli {
-namespace {
+namespace eval_grape_cmd {
 struct EvalGrapeOptions {
   CommonOptions common;
   std::string data, fold;
@@ -65,9 +65,10 @@ void run(const EvalGrapeOptions& o) {
     std::printf("model %s (%s)\n%s", cfg.model.c_str(), model.kind().c_str(), ev.text().c_str());
   }
 }
-}  // namespace
+}  // namespace eval_grape_cmd
 
 void add_eval_grape(CLI::App& eval) {
+  using namespace eval_grape_cmd;
   auto o = std::make_shared<EvalGrapeOptions>();
   auto* cmd = eval.add_subcommand("grape", "Evaluate a grape segmentation model on labelled text clouds");
   cmd->add_option("--data", o->data, "Folder of labelled text clouds (directly or under points/)")->required();

@@ -8,7 +8,7 @@
 #include "potato_cli.hpp"
 
 namespace cropsight::cli {
-namespace {
+namespace eval_potato_cmd {
 
 struct Options {
   CommonOptions common;
@@ -98,9 +98,10 @@ void run(const Options& o) {
               t.locate, t.track, t.orient, t.total, t.max_total);
 }
 
-}  // namespace
+}  // namespace eval_potato_cmd
 
 void add_eval_potato(CLI::App& eval) {
+  using namespace eval_potato_cmd;
   auto o = std::make_shared<Options>();
   auto* cmd = eval.add_subcommand(
       "potato", "The harvest loop on a simulated approach, scored against the simulator's truth (position, tracking)");

@@ -8,7 +8,7 @@
 #include "potato_cli.hpp"
 
 namespace cropsight::cli {
-namespace {
+namespace eval_potato_detection_cmd {
 
 struct Options {
   CommonOptions common;
@@ -43,9 +43,10 @@ void run(const Options& o) {
   }
 }
 
-}  // namespace
+}  // namespace eval_potato_detection_cmd
 
 void add_eval_potato_detection(CLI::App& eval) {
+  using namespace eval_potato_detection_cmd;
   auto o = std::make_shared<Options>();
   auto* cmd = eval.add_subcommand("potato-detection", "Pascal VOC AP of potato detections (the paper's metric)");
   cmd->add_option("--images", o->images, "Folder of images")->required();

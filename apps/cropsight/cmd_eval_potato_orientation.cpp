@@ -11,7 +11,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace eval_potato_orientation_cmd {
 
 struct Options {
   CommonOptions common;
@@ -65,9 +65,10 @@ void run(const Options& o) {
       std::printf("  %-8s n=%d MAE %.2f std %.2f\n", s.key.c_str(), s.count, s.mae_deg, s.std_deg);
 }
 
-}  // namespace
+}  // namespace eval_potato_orientation_cmd
 
 void add_eval_potato_orientation(CLI::App& eval) {
+  using namespace eval_potato_orientation_cmd;
   auto o = std::make_shared<Options>();
   auto* cmd =
       eval.add_subcommand("potato-orientation", "Potato orientation error on <angle>_<light>_rgb folders (issue 22)");

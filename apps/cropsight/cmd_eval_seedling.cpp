@@ -10,7 +10,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace eval_seedling_cmd {
 
 struct Options {
   CommonOptions common;
@@ -40,9 +40,10 @@ void run(const Options& o) {
     print_text(e);
 }
 
-}  // namespace
+}  // namespace eval_seedling_cmd
 
 void add_eval_seedling(CLI::App& eval) {
+  using namespace eval_seedling_cmd;
   auto o = std::make_shared<Options>();
   auto* cmd = eval.add_subcommand("seedling", "Seedling recognition on simulated stereo pairs (issue 5)");
   cmd->add_option("--data", o->data, "Folder written by cropsight simulate seedling")->required();

@@ -16,7 +16,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace eval_stereo_cmd {
 
 struct Options {
   CommonOptions common;
@@ -118,9 +118,10 @@ void run(const Options& o) {
   std::printf(" | %11.2f\n", sgbm.mean_bad1);
 }
 
-}  // namespace
+}  // namespace eval_stereo_cmd
 
 void add_eval_stereo(CLI::App& eval) {
+  using namespace eval_stereo_cmd;
   auto o = std::make_shared<Options>();
   auto* cmd =
       eval.add_subcommand("stereo", "Disparity accuracy on Middlebury pairs or any scene folders (issues 5, 23)");

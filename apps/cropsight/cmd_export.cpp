@@ -11,7 +11,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace export_cmd {
 struct ExportOptions {
   CommonOptions common;
   std::string seq, out;
@@ -38,9 +38,10 @@ void run(const ExportOptions& o) {
                 cloud.has_labels() ? ", labels" : "");
   }
 }
-}  // namespace
+}  // namespace export_cmd
 
 void add_export(CLI::App& app) {
+  using namespace export_cmd;
   auto o = std::make_shared<ExportOptions>();
   auto* cmd = app.add_subcommand("export", "Export one frame as an organised point cloud (.pcd or .ply)");
   cmd->add_option("SEQ", o->seq, "Sequence directory")->required();

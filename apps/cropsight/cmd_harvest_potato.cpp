@@ -16,7 +16,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace harvest_potato_cmd {
 
 struct Options {
   CommonOptions common;
@@ -57,9 +57,10 @@ void run(const Options& o) {
                 ms / std::max(1, seq.size()), fps, o.out.c_str());
 }
 
-}  // namespace
+}  // namespace harvest_potato_cmd
 
 void add_harvest_potato(CLI::App& harvest) {
+  using namespace harvest_potato_cmd;
   auto o = std::make_shared<Options>();
   auto* cmd =
       harvest.add_subcommand("potato", "The potato harvest loop on an RGB-D sequence: one harvest message per frame");

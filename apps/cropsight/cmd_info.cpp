@@ -10,7 +10,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace info_cmd {
 struct InfoOptions {
   CommonOptions common;
   std::string seq;
@@ -56,9 +56,10 @@ void run(const InfoOptions& o) {
   std::printf("camera       fx %.3f fy %.3f cx %.3f cy %.3f depth_scale %g m/unit%s%s\n", c.fx, c.fy, c.cx, c.cy,
               c.depth_scale, c.sensor.empty() ? "" : " sensor ", c.sensor.c_str());
 }
-}  // namespace
+}  // namespace info_cmd
 
 void add_info(CLI::App& app) {
+  using namespace info_cmd;
   auto o = std::make_shared<InfoOptions>();
   auto* cmd = app.add_subcommand("info", "Validate a sequence and print its summary");
   cmd->add_option("SEQ", o->seq, "Sequence directory")->required();

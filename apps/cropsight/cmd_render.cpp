@@ -12,7 +12,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace render_cmd {
 struct RenderOptions {
   CommonOptions common;
   std::string seq, out, what = "depth";
@@ -47,9 +47,10 @@ void run(const RenderOptions& o) {
     std::printf("wrote %s: frame %d, %s%s, %d x %d\n", o.out.c_str(), o.frame, o.what.c_str(),
                 outlines ? " with ground-truth outlines" : "", img.width, img.height);
 }
-}  // namespace
+}  // namespace render_cmd
 
 void add_render(CLI::App& app) {
+  using namespace render_cmd;
   auto o = std::make_shared<RenderOptions>();
   auto* cmd = app.add_subcommand("render", "Render a frame as a PNG (depth colour map with ground-truth outlines)");
   cmd->add_option("SEQ", o->seq, "Sequence directory")->required();

@@ -17,7 +17,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace report_cmd {
 struct ReportOptions {
   CommonOptions common;
   std::string data, out, title;
@@ -79,9 +79,10 @@ void run(const ReportOptions& o) {
   } else
     std::printf("wrote %s\n", abs.c_str());
 }
-}  // namespace
+}  // namespace report_cmd
 
 void add_report(CLI::App& app) {
+  using namespace report_cmd;
   auto o = std::make_shared<ReportOptions>();
   auto* cmd = app.add_subcommand("report", "Write a self-contained HTML page about a sequence");
   cmd->add_option("--data", o->data, "Sequence directory")->required();

@@ -29,7 +29,7 @@
 #include "cropsight/pipeline/grape/grape_roi.hpp"
 
 namespace cropsight::cli {
-namespace {
+namespace roi_cloud_cmd {
 namespace fs = std::filesystem;
 
 struct RoiCloudOptions {
@@ -112,9 +112,10 @@ void run(const RoiCloudOptions& o) {
   else
     std::printf("%zu detections -> %zu ROI clouds in %s\n", dets.size(), outs.size(), o.out.c_str());
 }
-}  // namespace
+}  // namespace roi_cloud_cmd
 
 void add_roi_cloud(CLI::App& app) {
+  using namespace roi_cloud_cmd;
   auto o = std::make_shared<RoiCloudOptions>();
   auto* cmd = app.add_subcommand("roi-cloud", "Grape ROIs (Eq. 1) to coloured, normal-annotated ROI clouds");
   cmd->add_option("--color", o->color, "Colour image (registered to depth)")->required();

@@ -21,7 +21,7 @@
 #include "grape_segmenter_options.hpp"
 
 namespace cropsight::cli {
-namespace {
+namespace segment_grape_cmd {
 struct SegmentGrapeOptions {
   CommonOptions common;
   std::string input, out;
@@ -52,9 +52,10 @@ void run(const SegmentGrapeOptions& o) {
     std::printf("%zu points labelled in %.1f ms -> %s\n", cloud.size(), ms, o.out.c_str());
   }
 }
-}  // namespace
+}  // namespace segment_grape_cmd
 
 void add_segment_grape(CLI::App& segment) {
+  using namespace segment_grape_cmd;
   auto o = std::make_shared<SegmentGrapeOptions>();
   auto* cmd = segment.add_subcommand("grape", "Label every point of a grape text cloud");
   cmd->add_option(

@@ -12,7 +12,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace simulate_broccoli_cmd {
 struct SimulateBroccoliOptions {
   std::string variety = "uk";
   int frames = 60;
@@ -56,9 +56,10 @@ void run_simulate_broccoli(const SimulateBroccoliOptions& o) {
               << ", " << summary.seconds << " s\n";
   }
 }
-}  // namespace
+}  // namespace simulate_broccoli_cmd
 
 void add_simulate_broccoli(CLI::App& simulate) {
+  using namespace simulate_broccoli_cmd;
   auto o = std::make_shared<SimulateBroccoliOptions>();
   auto* cmd = simulate.add_subcommand("broccoli", "Simulate a tractor-mounted ToF camera over a broccoli field");
   cmd->add_option("--variety", o->variety, "Field preset: uk (Ironman) or spain (Titanium)")

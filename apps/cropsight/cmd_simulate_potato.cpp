@@ -10,7 +10,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace simulate_potato_cmd {
 struct SimulatePotatoOptions {
   std::string scene = "sheet";
   int frames = 60;
@@ -45,9 +45,10 @@ void run_simulate_potato(const SimulatePotatoOptions& o) {
               << config_name(cfg.scene) << "), valid depth " << s.valid_fraction << ", " << s.seconds << " s\n";
   }
 }
-}  // namespace
+}  // namespace simulate_potato_cmd
 
 void add_simulate_potato(CLI::App& simulate) {
+  using namespace simulate_potato_cmd;
   auto o = std::make_shared<SimulatePotatoOptions>();
   auto* cmd = simulate.add_subcommand("potato", "Simulate a D415 on an arm approaching potatoes in aeroponics");
   cmd->add_option("--scene", o->scene, "Backdrop: sheet, room or chamber")

@@ -18,7 +18,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace simulate_seedling_cmd {
 
 namespace fs = std::filesystem;
 
@@ -86,9 +86,10 @@ void run(const Options& o) {
                 o.calib_pairs, o.out.c_str());
 }
 
-}  // namespace
+}  // namespace simulate_seedling_cmd
 
 void add_simulate_seedling(CLI::App& simulate) {
+  using namespace simulate_seedling_cmd;
   auto o = std::make_shared<Options>();
   auto* cmd = simulate.add_subcommand("seedling", "Stereo pairs of broccoli seedlings with ground truth (issue 5)");
   cmd->add_option("--out", o->out, "Output folder (written whole at the end; must not exist or be empty)")->required();

@@ -14,7 +14,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace stereo_cmd {
 
 stereo::Checkerboard parse_board(const std::string& text, double square_mm) {
   stereo::Checkerboard b;
@@ -67,9 +67,10 @@ void run_calibrate(const CalibrateOptions& o) {
   }
 }
 
-}  // namespace
+}  // namespace stereo_cmd
 
 void add_stereo(CLI::App& app) {
+  using namespace stereo_cmd;
   auto* stereo = app.add_subcommand("stereo", "Stereo calibration and disparity (broccoli seedlings, issue 5)");
   stereo->require_subcommand(1);
 

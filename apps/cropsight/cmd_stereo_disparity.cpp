@@ -15,7 +15,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace stereo_disparity_cmd {
 
 struct DisparityOptions {
   CommonOptions common;
@@ -81,9 +81,10 @@ void run_disparity(const DisparityOptions& o) {
   }
 }
 
-}  // namespace
+}  // namespace stereo_disparity_cmd
 
 void add_stereo_disparity(CLI::App& parent) {
+  using namespace stereo_disparity_cmd;
   auto dopt = std::make_shared<DisparityOptions>();
   auto* dis = parent.add_subcommand("disparity", "Dense disparity of a stereo pair");
   dis->add_option("--left", dopt->left, "Left image")->required();

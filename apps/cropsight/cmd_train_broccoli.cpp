@@ -14,7 +14,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace train_broccoli_cmd {
 struct TrainOptions {
   CommonOptions common;
   std::string data, pipeline, features, classifier, out;
@@ -119,9 +119,10 @@ void run(const TrainOptions& o) {
                 cfg.classifier.type == "knn" ? "samples" : "support vectors", o.out.c_str(), secs);
   }
 }
-}  // namespace
+}  // namespace train_broccoli_cmd
 
 void add_train_broccoli(CLI::App& train) {
+  using namespace train_broccoli_cmd;
   auto o = std::make_shared<TrainOptions>();
   auto* cmd = train.add_subcommand("broccoli", "Train a broccoli head classifier on labelled sequences");
   cmd->add_option("--data", o->data, "Sequence directories, comma separated")->required();

@@ -22,7 +22,7 @@
 #include "train_grape_options.hpp"
 
 namespace cropsight::cli {
-namespace {
+namespace train_grape_cmd {
 // Progress lines go to stderr, so that stdout holds only the result.
 void progress(const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); }
 
@@ -59,9 +59,10 @@ void run(const TrainGrapeOptions& o) {
   }
   if (o.common.json) print_json(result);
 }
-}  // namespace
+}  // namespace train_grape_cmd
 
 void add_train_grape(CLI::App& train) {
+  using namespace train_grape_cmd;
   auto o = std::make_shared<TrainGrapeOptions>();
   auto* cmd = train.add_subcommand("grape", "Train a grape bunch segmentation model (GBDT, PointResNet, PointNet++)");
   cmd->add_option("--data", o->data, "Folder of labelled text clouds (directly or under points/)")->required();

@@ -1,6 +1,9 @@
 #pragma once
 // Every sub-command registers itself on its parent verb here. One file per sub-command
 // (cmd_<verb>[_<pipeline>].cpp) defines the matching function; main.cpp calls them.
+// Each file keeps its options and helpers in a namespace named after it (cmd_eval_stereo.cpp:
+// `eval_stereo_cmd`), not an anonymous one: the CLI compiles as unity batches (apps/cropsight/
+// CMakeLists.txt), where every file's `Options` and `run` would otherwise meet.
 #include <CLI/CLI.hpp>
 
 namespace cropsight::cli {

@@ -27,7 +27,7 @@ std::string describe(const cv::Mat& m) {
   return std::string(bits) + " " + std::to_string(m.channels()) + "-channel";
 }
 
-cv::Mat load(const fs::path& path) {
+cv::Mat load_image(const fs::path& path) {
   if (!fs::exists(path)) throw Error(path.string(), "file not found");
   // Checked before imread, which gives an empty Mat for every failure (and logs a warning line of
   // its own for a file it cannot open): a permission or directory problem is fixed differently
@@ -84,7 +84,7 @@ void check_size(const std::string& where, int w, int h, std::size_t n) {
 }  // namespace
 
 Image<std::uint16_t> read_u16(const fs::path& path) {
-  const cv::Mat m = load(path);
+  const cv::Mat m = load_image(path);
   if (m.depth() != CV_16U || m.channels() != 1)
     throw Error(path.string(), "expected a 16-bit single-channel image, got " + describe(m));
   Image<std::uint16_t> out(m.cols, m.rows);
@@ -93,7 +93,7 @@ Image<std::uint16_t> read_u16(const fs::path& path) {
 }
 
 ColorImage read_color(const fs::path& path) {
-  const cv::Mat m = load(path);
+  const cv::Mat m = load_image(path);
   if (m.depth() != CV_8U || (m.channels() != 3 && m.channels() != 1))
     throw Error(path.string(), "expected an 8-bit colour (3-channel) or grey image, got " + describe(m));
   cv::Mat rgb;
@@ -104,7 +104,7 @@ ColorImage read_color(const fs::path& path) {
 }
 
 GrayImage read_gray(const fs::path& path) {
-  const cv::Mat m = load(path);
+  const cv::Mat m = load_image(path);
   if (m.depth() != CV_8U || m.channels() != 1)
     throw Error(path.string(), "expected an 8-bit single-channel image, got " + describe(m));
   GrayImage out(m.cols, m.rows);

@@ -338,8 +338,8 @@ Gbdt Gbdt::load(const std::filesystem::path& path, int nthread) {
   check(XGBoosterSetParam(g.booster_, "nthread", std::to_string(nthread).c_str()), where);
   g.nthread_ = std::max(1, nthread);
   // The whole attribute must be a number ("6abc" is a corrupt file, not 6 classes).
-  detail::parse_value(where, "cropsight.num_class", g.attribute("cropsight.num_class"), g.num_class_);
-  detail::parse_value(where, "cropsight.num_features", g.attribute("cropsight.num_features"), g.cols_);
+  cropsight::detail::parse_value(where, "cropsight.num_class", g.attribute("cropsight.num_class"), g.num_class_);
+  cropsight::detail::parse_value(where, "cropsight.num_features", g.attribute("cropsight.num_features"), g.cols_);
   cropsight::detail::check_range(where, "cropsight.num_class", g.num_class_, Range::at_least(2));
   cropsight::detail::check_range(where, "cropsight.num_features", g.cols_, Range::at_least(1));
   return g;

@@ -8,6 +8,7 @@
 
 #include "cropsight/report/svg_charts.hpp"
 #include "cropsight/report/svg_plot.hpp"
+#include "number_format.hpp"
 
 namespace cropsight::report {
 
@@ -136,11 +137,9 @@ std::vector<PrCurve> pr_curves(const std::vector<PrFrame>& frames, const std::ve
 
 namespace {
 
-std::string fmt(double v, const char* f = "%.3f") {
-  if (!std::isfinite(v)) return "n/a";
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
+/// A figure of the page's tables: "n/a" where it is undefined (NaN: no truth to score against).
+std::string figure(double v, const char* printf_format = "%.3f") {
+  return std::isfinite(v) ? detail::format_number(v, printf_format) : "n/a";
 }
 
 std::string pr_plot(const std::vector<PrCurve>& curves, const std::string& title) {
@@ -253,8 +252,8 @@ void pr_section(HtmlPage& page, const BroccoliReportData& d) {
              "Detections of heads confirmed by the temporal filter ranked first");
   std::vector<std::vector<std::string>> rows;
   for (std::size_t i = 0; i < d.pr_single.size(); ++i)
-    rows.push_back({fmt(d.pr_single[i].iou, "%.2f"), fmt(d.pr_single[i].ap),
-                    i < d.pr_tracked.size() ? fmt(d.pr_tracked[i].ap) : "n/a"});
+    rows.push_back({figure(d.pr_single[i].iou, "%.2f"), figure(d.pr_single[i].ap),
+                    i < d.pr_tracked.size() ? figure(d.pr_tracked[i].ap) : "n/a"});
   page.table({"IoU", "AP single frame", "AP temporal filter (offline, after the pass)"}, rows);
 }
 

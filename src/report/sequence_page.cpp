@@ -5,16 +5,11 @@
 
 #include "cropsight/report/render.hpp"
 #include "cropsight/report/svg_plot.hpp"
+#include "number_format.hpp"
 
 namespace cropsight::report {
 
-namespace {
-std::string fmt(double v, const char* f = "%.4g") {
-  char buf[64];
-  std::snprintf(buf, sizeof(buf), f, v);
-  return buf;
-}
-}  // namespace
+using detail::format_number;
 
 std::vector<int> evenly_spaced_frames(int frames, int count) {
   std::vector<int> out;
@@ -37,14 +32,14 @@ void summary_section(HtmlPage& page, const io::SequenceReader& reader, const Seq
       {"directory", s.info.dir.string()},
       {"frames", std::to_string(s.info.frames)},
       {"resolution", std::to_string(cam.width) + " x " + std::to_string(cam.height)},
-      {"valid depth fraction (mean over frames)", fmt(s.valid_depth_fraction, "%.4f")},
-      {"depth range (m)", fmt(s.depth_min_m, "%.3f") + " .. " + fmt(s.depth_max_m, "%.3f")},
+      {"valid depth fraction (mean over frames)", format_number(s.valid_depth_fraction, "%.4f")},
+      {"depth range (m)", format_number(s.depth_min_m, "%.3f") + " .. " + format_number(s.depth_max_m, "%.3f")},
       {"ground-truth instances", std::to_string(s.instances)},
       {"colour", s.info.has_color ? "yes" : "no"},
       {"labels", s.info.has_labels ? "yes" : "no"},
       {"camera poses", s.info.has_poses ? "yes" : "no"},
   };
-  if (s.info.has_labels) rows.push_back({"labelled pixel fraction (mean)", fmt(s.labelled_fraction, "%.4f")});
+  if (s.info.has_labels) rows.push_back({"labelled pixel fraction (mean)", format_number(s.labelled_fraction, "%.4f")});
   for (const auto& [k, v] : reader.groundtruth().attributes) rows.push_back({"truth: " + k, v});
   page.key_values(rows);
 }
@@ -54,11 +49,11 @@ void camera_section(HtmlPage& page, const SequenceSummary& s) {
   const CameraIntrinsics& cam = s.info.camera;
   page.section("Camera", HtmlPage::Part::Data);
   std::string distortion;
-  for (double d : cam.distortion) distortion += (distortion.empty() ? "" : ", ") + fmt(d, "%.6g");
+  for (double d : cam.distortion) distortion += (distortion.empty() ? "" : ", ") + format_number(d, "%.6g");
   page.key_values({{"sensor", cam.sensor.empty() ? "(unspecified)" : cam.sensor},
-                   {"fx, fy (px)", fmt(cam.fx, "%.3f") + ", " + fmt(cam.fy, "%.3f")},
-                   {"cx, cy (px)", fmt(cam.cx, "%.3f") + ", " + fmt(cam.cy, "%.3f")},
-                   {"depth scale (m per unit)", fmt(cam.depth_scale, "%.6g")},
+                   {"fx, fy (px)", format_number(cam.fx, "%.3f") + ", " + format_number(cam.fy, "%.3f")},
+                   {"cx, cy (px)", format_number(cam.cx, "%.3f") + ", " + format_number(cam.cy, "%.3f")},
+                   {"depth scale (m per unit)", format_number(cam.depth_scale, "%.6g")},
                    {"distortion", distortion.empty() ? "none" : distortion}});
 
   std::vector<double> xs;
@@ -90,7 +85,7 @@ void frames_section(HtmlPage& page, const io::SequenceReader& reader, const Sequ
     if (r.near_m >= s.depth_min_m && r.far_m <= s.depth_max_m) range = r;
   }
   page.paragraph("Depth colour map: near = red, far = blue, black = no return; the same range, " +
-                 fmt(range.near_m, "%.3f") + " .. " + fmt(range.far_m, "%.3f") +
+                 format_number(range.near_m, "%.3f") + " .. " + format_number(range.far_m, "%.3f") +
                  " m, for every frame shown (2nd-98th percentile of the first one)." +
                  (s.info.has_labels ? " White outlines: ground-truth instances." : ""));
   for (int i : shown) {
@@ -104,7 +99,7 @@ void frames_section(HtmlPage& page, const io::SequenceReader& reader, const Sequ
     if (!f.labels.empty())
       row.push_back(make_figure(upscale(label_colormap(f.labels), factor), "frame " + std::to_string(i) + ": labels"));
     page.heading("Frame " + std::to_string(i) +
-                 (f.camera_position ? " (camera at x = " + fmt(f.camera_position->x(), "%.3f") + " m)" : ""));
+                 (f.camera_position ? " (camera at x = " + format_number(f.camera_position->x(), "%.3f") + " m)" : ""));
     page.figures(row);
   }
 }
@@ -118,9 +113,11 @@ void truth_section(HtmlPage& page, const io::SequenceReader& reader, const Seque
     for (std::size_t k = 0; k < inst.size() && int(k) < o.max_instances_listed; ++k) {
       const auto& t = inst[k];
       std::string extra;
-      for (const auto& [name, v] : t.extra) extra += (extra.empty() ? "" : ", ") + name + "=" + fmt(v);
-      trows.push_back({std::to_string(t.id), fmt(t.position.x(), "%.3f"), fmt(t.position.y(), "%.3f"),
-                       fmt(t.position.z(), "%.3f"), fmt(t.diameter_mm, "%.1f"), extra});
+      for (const auto& [name, v] : t.extra)
+        extra += (extra.empty() ? "" : ", ") + name + "=" + format_number(v, "%.4g");
+      trows.push_back({std::to_string(t.id), format_number(t.position.x(), "%.3f"),
+                       format_number(t.position.y(), "%.3f"), format_number(t.position.z(), "%.3f"),
+                       format_number(t.diameter_mm, "%.1f"), extra});
     }
     page.table({"id", "x (m)", "y (m)", "z (m)", "diameter (mm)", "other"}, trows,
                inst.size() > trows.size() ? "first " + std::to_string(trows.size()) + " of " +

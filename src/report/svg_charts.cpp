@@ -6,29 +6,13 @@
 #include <limits>
 
 #include "cropsight/report/html_page.hpp"
+#include "number_format.hpp"
 
 namespace cropsight::report {
 
-namespace {
-
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
-}
-std::string px(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f", v);
-  return buf;
-}
-double tick_step(double span, int n) {  // 1, 2 or 5 × 10^k, about n ticks over span
-  const double raw = span / std::max(1, n);
-  const double p = std::pow(10.0, std::floor(std::log10(raw)));
-  const double m = raw / p;
-  return (m < 1.5 ? 1 : m < 3.5 ? 2 : m < 7.5 ? 5 : 10) * p;
-}
-
-}  // namespace
+using detail::svg_number;
+using detail::svg_pixels;
+using detail::tick_step;
 
 std::string svg_scatter_plot(const std::vector<ScatterSeries>& series, const ScatterOptions& o) {
   const double inf = std::numeric_limits<double>::infinity();
@@ -56,30 +40,30 @@ std::string svg_scatter_plot(const std::vector<ScatterSeries>& series, const Sca
   auto sx = [&](double x) { return left + (x - x0) / (x1 - x0) * pw; };
   auto sy = [&](double y) { return top + (1.0 - (y - y0) / (y1 - y0)) * ph; };
 
-  std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"cs-chart\" width=\"" + px(W) + "\" height=\"" +
-                  px(H) + "\" font-family=\"sans-serif\" font-size=\"11\">";
+  std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"cs-chart\" width=\"" + svg_pixels(W) +
+                  "\" height=\"" + svg_pixels(H) + "\" font-family=\"sans-serif\" font-size=\"11\">";
   if (!o.title.empty())
-    s += "<text x=\"" + px(W / 2) + "\" y=\"18\" text-anchor=\"middle\" font-size=\"13\">" + html_escape(o.title) +
-         "</text>";
-  s += "<rect x=\"" + px(left) + "\" y=\"" + px(top) + "\" width=\"" + px(pw) + "\" height=\"" + px(ph) +
-       "\" fill=\"none\" stroke=\"#999\"/>";
+    s += "<text x=\"" + svg_pixels(W / 2) + "\" y=\"18\" text-anchor=\"middle\" font-size=\"13\">" +
+         html_escape(o.title) + "</text>";
+  s += "<rect x=\"" + svg_pixels(left) + "\" y=\"" + svg_pixels(top) + "\" width=\"" + svg_pixels(pw) + "\" height=\"" +
+       svg_pixels(ph) + "\" fill=\"none\" stroke=\"#999\"/>";
   const double xs = tick_step(x1 - x0, 6), ys = tick_step(y1 - y0, 5);
   for (double t = std::ceil(x0 / xs) * xs; t <= x1 + 1e-9 * xs; t += xs)
-    s += "<line x1=\"" + px(sx(t)) + "\" y1=\"" + px(top) + "\" x2=\"" + px(sx(t)) + "\" y2=\"" + px(top + ph) +
-         "\" stroke=\"#eee\"/><text x=\"" + px(sx(t)) + "\" y=\"" + px(top + ph + 16) + "\" text-anchor=\"middle\">" +
-         num(t) + "</text>";
+    s += "<line x1=\"" + svg_pixels(sx(t)) + "\" y1=\"" + svg_pixels(top) + "\" x2=\"" + svg_pixels(sx(t)) +
+         "\" y2=\"" + svg_pixels(top + ph) + "\" stroke=\"#eee\"/><text x=\"" + svg_pixels(sx(t)) + "\" y=\"" +
+         svg_pixels(top + ph + 16) + "\" text-anchor=\"middle\">" + svg_number(t) + "</text>";
   for (double t = std::ceil(y0 / ys) * ys; t <= y1 + 1e-9 * ys; t += ys)
-    s += "<line x1=\"" + px(left) + "\" y1=\"" + px(sy(t)) + "\" x2=\"" + px(left + pw) + "\" y2=\"" + px(sy(t)) +
-         "\" stroke=\"#eee\"/><text x=\"" + px(left - 6) + "\" y=\"" + px(sy(t) + 4) + "\" text-anchor=\"end\">" +
-         num(t) + "</text>";
+    s += "<line x1=\"" + svg_pixels(left) + "\" y1=\"" + svg_pixels(sy(t)) + "\" x2=\"" + svg_pixels(left + pw) +
+         "\" y2=\"" + svg_pixels(sy(t)) + "\" stroke=\"#eee\"/><text x=\"" + svg_pixels(left - 6) + "\" y=\"" +
+         svg_pixels(sy(t) + 4) + "\" text-anchor=\"end\">" + svg_number(t) + "</text>";
   if (o.diagonal)
-    s += "<line x1=\"" + px(sx(x0)) + "\" y1=\"" + px(sy(x0)) + "\" x2=\"" + px(sx(x1)) + "\" y2=\"" + px(sy(x1)) +
-         "\" stroke=\"#888\" stroke-dasharray=\"4 3\"/>";
+    s += "<line x1=\"" + svg_pixels(sx(x0)) + "\" y1=\"" + svg_pixels(sy(x0)) + "\" x2=\"" + svg_pixels(sx(x1)) +
+         "\" y2=\"" + svg_pixels(sy(x1)) + "\" stroke=\"#888\" stroke-dasharray=\"4 3\"/>";
   if (!o.x_label.empty())
-    s += "<text x=\"" + px(left + pw / 2) + "\" y=\"" + px(H - 8) + "\" text-anchor=\"middle\">" +
+    s += "<text x=\"" + svg_pixels(left + pw / 2) + "\" y=\"" + svg_pixels(H - 8) + "\" text-anchor=\"middle\">" +
          html_escape(o.x_label) + "</text>";
   if (!o.y_label.empty())
-    s += "<text transform=\"translate(14," + px(top + ph / 2) + ") rotate(-90)\" text-anchor=\"middle\">" +
+    s += "<text transform=\"translate(14," + svg_pixels(top + ph / 2) + ") rotate(-90)\" text-anchor=\"middle\">" +
          html_escape(o.y_label) + "</text>";
   const double scale = pw / (x1 - x0);
   double legend_y = top + 14;
@@ -90,12 +74,14 @@ std::string svg_scatter_plot(const std::vector<ScatterSeries>& series, const Sca
     for (std::size_t i = 0; i < std::min(ser.x.size(), ser.y.size()); ++i) {
       if (!std::isfinite(ser.x[i]) || !std::isfinite(ser.y[i])) continue;
       const double r = i < ser.r.size() && std::isfinite(ser.r[i]) ? std::max(1.5, ser.r[i] * scale) : 3.0;
-      s += "<circle class=\"cs-mark\" cx=\"" + px(sx(ser.x[i])) + "\" cy=\"" + px(sy(ser.y[i])) + "\" r=\"" + px(r) +
-           "\" " + paint + "/>";
+      s += "<circle class=\"cs-mark\" cx=\"" + svg_pixels(sx(ser.x[i])) + "\" cy=\"" + svg_pixels(sy(ser.y[i])) +
+           "\" r=\"" + svg_pixels(r) + "\" " + paint + "/>";
     }
     if (!ser.name.empty()) {
-      s += "<circle cx=\"" + px(left + 10) + "\" cy=\"" + px(legend_y - 4) + "\" r=\"4\" " + paint + "/>";
-      s += "<text x=\"" + px(left + 18) + "\" y=\"" + px(legend_y) + "\">" + html_escape(ser.name) + "</text>";
+      s += "<circle cx=\"" + svg_pixels(left + 10) + "\" cy=\"" + svg_pixels(legend_y - 4) + "\" r=\"4\" " + paint +
+           "/>";
+      s += "<text x=\"" + svg_pixels(left + 18) + "\" y=\"" + svg_pixels(legend_y) + "\">" + html_escape(ser.name) +
+           "</text>";
       legend_y += 14;
     }
   }
@@ -111,19 +97,19 @@ std::string svg_bar_chart(const std::vector<Bar>& bars, const std::string& title
     if (std::isfinite(b.value)) vmax = std::max(vmax, b.value);
   if (vmax <= 0) vmax = 1;
   std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"cs-chart\" width=\"" + std::to_string(width) +
-                  "\" height=\"" + px(H) + "\" font-family=\"sans-serif\" font-size=\"11\">";
+                  "\" height=\"" + svg_pixels(H) + "\" font-family=\"sans-serif\" font-size=\"11\">";
   if (!title.empty())
-    s += "<text x=\"" + px(width / 2.0) + "\" y=\"18\" text-anchor=\"middle\" font-size=\"13\">" + html_escape(title) +
-         "</text>";
+    s += "<text x=\"" + svg_pixels(width / 2.0) + "\" y=\"18\" text-anchor=\"middle\" font-size=\"13\">" +
+         html_escape(title) + "</text>";
   for (std::size_t i = 0; i < bars.size(); ++i) {
     const double y = top + row * double(i);
     const double v = std::isfinite(bars[i].value) ? std::max(0.0, bars[i].value) : 0.0;
-    s += "<text x=\"" + px(left - 6) + "\" y=\"" + px(y + 13) + "\" text-anchor=\"end\">" + html_escape(bars[i].label) +
-         "</text>";
-    s += "<rect class=\"cs-mark\" x=\"" + px(left) + "\" y=\"" + px(y + 3) + "\" width=\"" + px(v / vmax * pw) +
-         "\" height=\"" + px(row - 6) + "\" fill=\"#4a8\"/>";
-    s += "<text x=\"" + px(left + v / vmax * pw + 4) + "\" y=\"" + px(y + 13) + "\">" + num(bars[i].value) + " " +
-         html_escape(unit) + "</text>";
+    s += "<text x=\"" + svg_pixels(left - 6) + "\" y=\"" + svg_pixels(y + 13) + "\" text-anchor=\"end\">" +
+         html_escape(bars[i].label) + "</text>";
+    s += "<rect class=\"cs-mark\" x=\"" + svg_pixels(left) + "\" y=\"" + svg_pixels(y + 3) + "\" width=\"" +
+         svg_pixels(v / vmax * pw) + "\" height=\"" + svg_pixels(row - 6) + "\" fill=\"#4a8\"/>";
+    s += "<text x=\"" + svg_pixels(left + v / vmax * pw + 4) + "\" y=\"" + svg_pixels(y + 13) + "\">" +
+         svg_number(bars[i].value) + " " + html_escape(unit) + "</text>";
   }
   s += "</svg>";
   return s;

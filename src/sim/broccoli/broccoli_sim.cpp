@@ -13,11 +13,11 @@
 #include "cropsight/core/timer.hpp"
 #include "cropsight/sim/random.hpp"
 #include "cropsight/sim/renderer.hpp"
+#include "sim/angles.hpp"
 
 namespace cropsight::sim {
 
 namespace {
-constexpr double kDeg = 3.141592653589793 / 180.0;
 enum : std::int64_t { kMotionTag = 20, kFrameTag = 30 };
 }  // namespace
 

@@ -4,12 +4,12 @@
 
 #include "cropsight/sim/broccoli/broccoli_field.hpp"
 #include "cropsight/sim/random.hpp"
+#include "sim/angles.hpp"
 #include "sim/value_noise.hpp"
 
 namespace cropsight::sim {
 
 namespace {
-constexpr double kDeg = 3.141592653589793 / 180.0;
 // Stream tags for derive_seed: one per kind of object, so that streams never overlap.
 enum : std::int64_t { kRowTag = 1, kPlantTag = 2, kPlantMeshTag = 3 };
 }  // namespace

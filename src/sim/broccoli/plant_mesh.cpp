@@ -5,14 +5,13 @@
 
 #include "cropsight/sim/broccoli/broccoli_field.hpp"
 #include "cropsight/sim/random.hpp"
+#include "sim/angles.hpp"
 #include "sim/leaf_mesh.hpp"
 #include "sim/value_noise.hpp"
 
 namespace cropsight::sim {
 
 namespace {
-constexpr double kPi = 3.141592653589793;
-constexpr double kDeg = kPi / 180.0;
 constexpr double kGoldenAngle = 137.50776405 * kDeg;  // phyllotaxis of leaves and florets
 
 Eigen::Vector3f light_direction(const SimLightConfig& L) {

@@ -4,14 +4,13 @@
 
 #include "cropsight/sim/broccoli/broccoli_field.hpp"
 #include "cropsight/sim/random.hpp"
+#include "sim/angles.hpp"
 #include "sim/leaf_mesh.hpp"
 #include "sim/value_noise.hpp"
 
 namespace cropsight::sim {
 
 namespace {
-constexpr double kPi = 3.141592653589793;
-constexpr double kDeg = kPi / 180.0;
 enum : std::int64_t { kClodTag = 4, kWeedTag = 5, kSoilColorTag = 11, kMoistTag = 12 };
 constexpr double kClodCell = 0.1;  // m; clods are drawn per cell of this size
 

@@ -11,14 +11,13 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/sim/seedling/seedling_sim.hpp"
 #include "seedling_render.hpp"
+#include "sim/angles.hpp"
 
 namespace cropsight::sim {
 
 using namespace seedling_detail;
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
 
 // Portable uniform numbers from a fixed generator (std distributions differ between libraries).
 struct Uniform {
