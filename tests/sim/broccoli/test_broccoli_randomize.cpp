@@ -11,18 +11,13 @@
 #include "cropsight/sim/broccoli/broccoli_randomize.hpp"
 #include "cropsight/sim/broccoli/broccoli_sim.hpp"
 #include "cropsight/sim/renderer.hpp"
+#include "pipeline/broccoli/broccoli_sim_frames.hpp"
 #include "testing/testing.hpp"
 
 using namespace cropsight;
 
 namespace {
-sim::BroccoliSimConfig rand_preset(const std::string& name) {
-  sim::BroccoliSimConfig c;
-  const auto path = cropsight::testing::source_dir() / "configs" / ("sim-broccoli-" + name + ".yaml");
-  apply_config(c, io::load_config_map(path), path.string());
-  c.validate(path.string());
-  return c;
-}
+sim::BroccoliSimConfig rand_preset(const std::string& name) { return testdata::sim_preset(name); }
 
 bool in_range(double x, const std::vector<double>& r) { return x >= r[0] - 1e-9 && x <= r[1] + 1e-9; }
 }  // namespace
