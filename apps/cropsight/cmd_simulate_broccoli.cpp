@@ -20,6 +20,7 @@ struct SimulateBroccoliOptions {
   std::optional<double> fps;  // unset = the preset's value
   std::string out;
   bool force = false;
+  bool randomize = false;
   CommonOptions common;
 };
 
@@ -32,6 +33,7 @@ void run_simulate_broccoli(const SimulateBroccoliOptions& o) {
       o.common.config.empty() ? "configs/sim-broccoli-" + o.variety + ".yaml (with --set)" : o.common.config;
   apply_config(cfg, o.common.config_map("sim-broccoli-" + o.variety), where);
   if (o.fps) cfg.motion.fps = *o.fps;
+  if (o.randomize) cfg.randomize.enabled = true;
   cfg.validate(where);
 
   Progress progress("simulate broccoli", o.frames, o.common.json);
@@ -62,8 +64,13 @@ void add_simulate_broccoli(CLI::App& simulate) {
   using namespace simulate_broccoli_cmd;
   auto o = std::make_shared<SimulateBroccoliOptions>();
   auto* cmd = simulate.add_subcommand("broccoli", "Simulate a tractor-mounted ToF camera over a broccoli field");
-  cmd->add_option("--variety", o->variety, "Field preset: uk (Ironman) or spain (Titanium)")
-      ->check(CLI::IsMember({"uk", "spain"}));
+  cmd->add_option("--variety", o->variety,
+                  "Field preset: uk (Ironman), spain (Titanium), random (randomised fields, training ranges) or "
+                  "random-wide (wider ranges, for held-out evaluation)")
+      ->check(CLI::IsMember({"uk", "spain", "random", "random-wide"}));
+  cmd->add_flag("--randomize", o->randomize,
+                "Draw this sequence's field, plants, heads, soil, camera and sensor from the randomize.* ranges "
+                "(from the seed) on top of the preset (docs/simulator.md)");
   cmd->add_option("--frames", o->frames, "Number of frames")->default_val(60);
   cmd->add_option("--seed", o->seed, "Random seed (same seed and options = byte-identical output)")->default_val(1);
   cmd->add_option("--fps", o->fps, "Frame rate (default: the preset's 7.5; the datasets used 7.5, 3.3, 6.4)");

@@ -13,6 +13,7 @@ void add_simulate_broccoli(CLI::App& simulate);
 void add_simulate_potato(CLI::App& simulate);
 void add_info(CLI::App& app);
 void add_export(CLI::App& app);
+void add_import(CLI::App& app);
 void add_render(CLI::App& app);
 void add_report(CLI::App& app);
 

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   add_simulate_potato(*simulate);
   add_info(app);
   add_export(app);
+  add_import(app);
   add_render(app);
   add_report(app);
   // Verbs shared by the pipelines (broccoli, stereo, grape...): each adds its sub-command.

@@ -1,5 +1,6 @@
 #include "leaf_mesh.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -52,7 +53,10 @@ void add_leaf(Mesh& mesh, const LeafShape& L, SurfaceKind kind, Rng& rng) {
       w = petiole_w;
     } else {
       const double u = (s - L.petiole) / (1.0 - L.petiole);
-      w = L.width * std::sin(3.141592653589793 * std::pow(u, 0.7)) + petiole_w * (1.0 - u);
+      double profile = std::sin(3.141592653589793 * std::pow(u, L.blade_exponent));
+      // Only a non-default fullness takes the power: the presets' leaves stay bit-identical.
+      if (L.blade_fullness != 1.0) profile = std::pow(std::max(0.0, profile), L.blade_fullness);
+      w = L.width * profile + petiole_w * (1.0 - u);
     }
     const bool blade = s >= L.petiole;
     for (int k = 0; k < nt; ++k) {

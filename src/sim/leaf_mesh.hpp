@@ -16,13 +16,15 @@ struct LeafShape {
   double width = 0.12;                              ///< m; widest blade width
   double petiole = 0.2;                             ///< fraction of the length that is bare petiole
   double elevation0 = 0.9;                          ///< rad; midrib angle above horizontal at the base
-  double elevation1 = 0.1;  ///< rad; at the tip (> pi/2 means the leaf curls back over its base)
-  double bend_power = 1.5;  ///< how the angle moves from elevation0 to elevation1 along the leaf
-  double cup = 0.25;        ///< margin lift as a fraction of the half width
-  double ruffle = 0.006;    ///< m; amplitude of the wavy margin
-  double twist = 0.0;       ///< rad; roll of the blade about the midrib at the tip
-  int segments = 22;        ///< along the midrib
-  int across = 9;           ///< across the blade (odd: a vertex row on the midrib)
+  double elevation1 = 0.1;      ///< rad; at the tip (> pi/2 means the leaf curls back over its base)
+  double bend_power = 1.5;      ///< how the angle moves from elevation0 to elevation1 along the leaf
+  double blade_exponent = 0.7;  ///< width(u) = sin(pi u^e): e < 1 widest towards the tip, ~1 mid-blade
+  double blade_fullness = 1.0;  ///< the width profile raised to this: < 1 rounded, > 1 pointed
+  double cup = 0.25;            ///< margin lift as a fraction of the half width
+  double ruffle = 0.006;        ///< m; amplitude of the wavy margin
+  double twist = 0.0;           ///< rad; roll of the blade about the midrib at the tip
+  int segments = 22;            ///< along the midrib
+  int across = 9;               ///< across the blade (odd: a vertex row on the midrib)
   Eigen::Vector3f color{95, 125, 120};
   Eigen::Vector3f midrib_color{170, 190, 165};
   float reflectivity = 0.55f;

@@ -1,6 +1,7 @@
 #include "cropsight/sim/renderer.hpp"
 
 #include <tbb/parallel_for.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -13,6 +14,16 @@ Eigen::Matrix3d field_to_camera_rotation() {
       1, 0, 0,   //
       0, 0, -1;
   return R;
+}
+
+Eigen::Matrix3d tilted_camera_rotation(double tilt_deg, double azimuth_deg) {
+  if (tilt_deg == 0.0) return field_to_camera_rotation();
+  constexpr double kDeg = 3.141592653589793 / 180.0;
+  // The optical axis (field -z) swings towards (cos az, sin az, 0): a rotation about the
+  // horizontal axis perpendicular to it.
+  const Eigen::Vector3d axis(std::sin(azimuth_deg * kDeg), -std::cos(azimuth_deg * kDeg), 0.0);
+  const Eigen::Matrix3d camera_to_field_tilt = Eigen::AngleAxisd(tilt_deg * kDeg, axis).toRotationMatrix();
+  return field_to_camera_rotation() * camera_to_field_tilt.transpose();
 }
 
 Eigen::Vector3d camera_to_field(const Eigen::Vector3d& p_camera, const Eigen::Vector3d& camera_position) {
@@ -64,7 +75,7 @@ constexpr int kBand = 16;  // rows per parallel task
 void render(const std::vector<const Mesh*>& meshes, const Eigen::Vector3d& C, const CameraIntrinsics& cam,
             const RenderOptions& opt, SampleBuffers& out) {
   out.reset(cam.width, cam.height);
-  const Eigen::Matrix3d R = field_to_camera_rotation();
+  const Eigen::Matrix3d R = opt.field_to_camera;
   // 1. Vertices to the camera (parallel over meshes; offsets fixed in mesh order).
   std::vector<std::size_t> offset(meshes.size() + 1, 0);
   for (std::size_t m = 0; m < meshes.size(); ++m) offset[m + 1] = offset[m] + meshes[m]->position.size();

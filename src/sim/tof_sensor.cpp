@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cropsight/sim/random.hpp"
+#include "sim/value_noise.hpp"
 
 namespace cropsight::sim {
 
@@ -15,6 +16,26 @@ double amplitude(const SimSensorConfig& cfg, double z, double nir) {
   return std::max(1e-4, nir / cfg.reference_reflectivity / (z * z));
 }
 double background(const SimSensorConfig& cfg) { return cfg.sunlight ? cfg.sunlight_background : cfg.background; }
+
+// Stereo holes: where smooth value noise at the hole scale exceeds its (1 - fraction) quantile
+// over the image, so a frame loses about stereo_hole_fraction in blobs (failed matches on
+// textureless or specular patches). Empty for the ToF model.
+std::vector<std::uint8_t> stereo_holes(const SimSensorConfig& cfg, int W, int H, std::uint64_t frame_seed) {
+  if (cfg.model != "stereo" || cfg.stereo_hole_fraction <= 0) return {};
+  const std::uint64_t seed = derive_seed(frame_seed, {-1});
+  std::vector<float> field(std::size_t(W) * std::size_t(H));
+  for (int v = 0; v < H; ++v)
+    for (int u = 0; u < W; ++u)
+      field[std::size_t(v) * W + u] =
+          float(detail::fbm(seed, u / cfg.stereo_hole_scale_px, v / cfg.stereo_hole_scale_px, 2));
+  std::vector<float> sorted = field;
+  const auto k = std::size_t(double(sorted.size() - 1) * (1.0 - cfg.stereo_hole_fraction));
+  std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(k), sorted.end());
+  const float cut = sorted[k];
+  std::vector<std::uint8_t> hole(field.size());
+  for (std::size_t i = 0; i < field.size(); ++i) hole[i] = field[i] > cut;
+  return hole;
+}
 }  // namespace
 
 double tof_noise_sigma(const SimSensorConfig& cfg, double z, double nir) {
@@ -32,6 +53,8 @@ SensorStats apply_tof_sensor(const SampleBuffers& S, int f, const CameraIntrinsi
   frame.labels = LabelImage(W, H, 0);
   std::vector<SensorStats> row_stats(static_cast<std::size_t>(H));
   const int n = f * f;
+  const bool stereo = cfg.model == "stereo";
+  const std::vector<std::uint8_t> holes = stereo_holes(cfg, W, H, frame_seed);
   tbb::parallel_for(0, H, [&](int v) {
     SensorStats& st = row_stats[std::size_t(v)];
     float z[16], a[16];
@@ -73,7 +96,11 @@ SensorStats apply_tof_sensor(const SampleBuffers& S, int f, const CameraIntrinsi
       bool flying = false;
       int used = m;  // samples that make up the return
       if (zmax - zmin > cfg.edge_threshold_m) {
-        if (r_edge < cfg.flying_prob) {
+        if (stereo && r_edge < cfg.stereo_edge_dropout_prob) {
+          // Stereo: the left-right check (or the occlusion shadow) removes edge pixels; no mixing.
+          ++st.dropped;
+          continue;
+        } else if (!stereo && r_edge < cfg.flying_prob) {
           double wsum = 0;
           for (int k = 0; k < m; ++k) {
             const double w = std::max(1e-6, double(a[k])) / (double(z[k]) * z[k]);
@@ -84,7 +111,7 @@ SensorStats apply_tof_sensor(const SampleBuffers& S, int f, const CameraIntrinsi
           depth /= wsum;
           nir /= m;
           flying = true;
-        } else if (r_edge < cfg.flying_prob + cfg.edge_dropout_prob) {
+        } else if (!stereo && r_edge < cfg.flying_prob + cfg.edge_dropout_prob) {
           ++st.dropped;
           continue;
         } else {
@@ -119,14 +146,21 @@ SensorStats apply_tof_sensor(const SampleBuffers& S, int f, const CameraIntrinsi
         ++st.dropped;
         continue;
       }
-      const double A = amplitude(cfg, depth, nir);
-      const double p_drop = cfg.random_dropout + (cfg.sunlight ? cfg.sunlight_dropout : 0.0) +
-                            1.0 / (1.0 + std::exp((A - cfg.amplitude_min) / cfg.amplitude_softness));
+      double p_drop, sigma;
+      if (stereo) {
+        p_drop = holes.empty() ? cfg.random_dropout : (holes[pix] ? 1.0 : cfg.random_dropout);
+        sigma = cfg.stereo_noise_at_1m_m * depth * depth;  // disparity noise: sigma_z ~ z^2
+      } else {
+        const double A = amplitude(cfg, depth, nir);
+        p_drop = cfg.random_dropout + (cfg.sunlight ? cfg.sunlight_dropout : 0.0) +
+                 1.0 / (1.0 + std::exp((A - cfg.amplitude_min) / cfg.amplitude_softness));
+        sigma = tof_noise_sigma(cfg, depth, nir);
+      }
       if (r_drop < p_drop) {
         ++st.dropped;
         continue;
       }
-      const double zn = depth + tof_noise_sigma(cfg, depth, nir) * gauss;
+      const double zn = depth + sigma * gauss;
       if (zn < cam.depth_scale * 0.5 || zn < 0) {
         ++st.dropped;
         continue;

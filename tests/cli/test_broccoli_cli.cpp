@@ -4,9 +4,11 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 
 #include "cropsight/io/config_yaml.hpp"
+#include "cropsight/io/files.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/learning/model.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_training.hpp"
@@ -278,4 +280,82 @@ TEST_F(BroccoliCli, OutputsNeverDestroyUnrelatedFilesAndBadOptionsAreRefused) {
   EXPECT_NE(r.err.find("half.json"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("truncated"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;  // libsvm printed nothing
+}
+
+// Randomised fields from the CLI (issue 27): --variety random / random-wide and --randomize
+// draw a field and record it in groundtruth.json; a malformed range is one error line, exit 2.
+TEST_F(BroccoliCli, SimulateRandomizedFields) {
+  for (const std::string opts : {"--variety random", "--variety random-wide", "--variety spain --randomize"}) {
+    const fs::path out = dir() / ("rand-" + std::to_string(std::hash<std::string>{}(opts)));
+    auto r = run_cli("simulate broccoli " + opts + " --seed 9 --frames 1 --json --out " + shell_quoted(out));
+    ASSERT_EQ(r.exit_code, 0) << opts << ": " << r.err;
+    const auto gt = nlohmann::json::parse(io::read_file(out / "groundtruth.json"));
+    EXPECT_EQ(gt["attributes"]["randomized"], "1") << opts;
+  }
+  auto r = run_cli("simulate broccoli --variety random --frames 1 --set randomize.camera_height_m=[1.5,1.1] --out " +
+                   shell_quoted(dir() / "bad-range"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("camera_height_m"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir() / "bad-range"));
+}
+
+// cropsight import (issue 27, Deliver 4): a RealSense-style folder pair (rs-convert names whose
+// depth and colour timestamps differ) becomes a sequence that detect broccoli runs on without
+// ground truth; a bad image is one line naming it, exit 2, and no output folder.
+TEST_F(BroccoliCli, ImportRecordingThenDetect) {
+  const fs::path rec = dir() / "recording";
+  fs::create_directories(rec / "depth");
+  fs::create_directories(rec / "color");
+  for (int i = 0; i < 3; ++i) {
+    const std::string stamp = std::to_string(1596203844000 + 133 * i);
+    fs::copy_file(seq() / "depth" / io::frame_file_name(i), rec / "depth" / ("_Depth_" + stamp + ".250.png"));
+    fs::copy_file(seq() / "color" / io::frame_file_name(i), rec / "color" / ("_Color_" + stamp + "7.5.png"));
+  }
+  const fs::path out = dir() / "imported";
+  auto r = run_cli("import --depth " + shell_quoted(rec / "depth") + " --color " + shell_quoted(rec / "color") +
+                   " --camera " + shell_quoted(seq() / "camera.yaml") + " --out " + shell_quoted(out) + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["frames"], 3);
+  EXPECT_TRUE(j["color"].get<bool>());
+  EXPECT_TRUE(j["timestamps_from_names"].get<bool>());
+  for (int i = 0; i < 3; ++i)
+    EXPECT_EQ(io::read_file(out / "depth" / io::frame_file_name(i)),
+              io::read_file(seq() / "depth" / io::frame_file_name(i)));
+  EXPECT_FALSE(fs::exists(out / "groundtruth.json"));
+  const fs::path model = cropsight::testing::source_dir() / "models" / "broccoli-oes-uk.json";
+  r = run_cli("detect broccoli --data " + shell_quoted(out) + " --model " + shell_quoted(model) + " --out " +
+              shell_quoted(dir() / "imported.jsonl"));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+
+  // Organised PCDs (as `cropsight export` writes them) import to the same depth, +-1 raw unit.
+  fs::create_directories(rec / "pcd");
+  for (int i = 0; i < 2; ++i) {
+    r = run_cli("export " + shell_quoted(seq()) + " --frame " + std::to_string(i) + " --out " +
+                shell_quoted(rec / "pcd" / ("cloud_" + std::to_string(i) + ".pcd")));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  r = run_cli("import --pcd " + shell_quoted(rec / "pcd") + " --camera " + shell_quoted(seq() / "camera.yaml") +
+              " --out " + shell_quoted(dir() / "imported-pcd"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  {
+    io::SequenceReader a(seq()), b(dir() / "imported-pcd");
+    ASSERT_EQ(b.size(), 2);
+    const RgbdFrame fa = a.read(1), fb = b.read(1);
+    int off = 0;
+    for (std::size_t i = 0; i < fa.depth.data.size(); ++i)
+      off += std::abs(int(fa.depth.data[i]) - int(fb.depth.data[i])) > 1;
+    EXPECT_EQ(off, 0);
+  }
+
+  // A colour PNG among the depth images: one line naming it, exit 2, nothing written.
+  fs::copy_file(seq() / "color" / io::frame_file_name(0), rec / "depth" / "_Depth_1596203999000.000.png");
+  r = run_cli("import --depth " + shell_quoted(rec / "depth") + " --camera " + shell_quoted(seq() / "camera.yaml") +
+              " --out " + shell_quoted(dir() / "bad-import"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("_Depth_1596203999000.000.png"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir() / "bad-import"));
+  for (const auto& e : fs::directory_iterator(dir()))
+    EXPECT_EQ(e.path().filename().string().find("bad-import"), std::string::npos) << e.path();
 }

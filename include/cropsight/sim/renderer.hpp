@@ -20,6 +20,9 @@ namespace cropsight::sim {
 
 /// Rotation taking field-frame vectors to the nadir camera frame.
 Eigen::Matrix3d field_to_camera_rotation();
+/// Field-to-camera rotation of a camera whose optical axis leans `tilt_deg` from straight down
+/// towards the field direction `azimuth_deg` (from +x towards +y); 0 = field_to_camera_rotation().
+Eigen::Matrix3d tilted_camera_rotation(double tilt_deg, double azimuth_deg);
 /// Field-frame point of a camera-frame point seen from a camera at `camera_position` (field frame).
 Eigen::Vector3d camera_to_field(const Eigen::Vector3d& p_camera, const Eigen::Vector3d& camera_position);
 
@@ -37,6 +40,8 @@ struct SampleBuffers {
 struct RenderOptions {
   bool heads_only = false;  ///< render only head triangles (occlusion ground truth)
   bool attributes = true;   ///< fill colour / nir / kind (false: depth and label only)
+  /// Field-to-camera rotation: the nadir camera unless the rig is tilted (tilted_camera_rotation).
+  Eigen::Matrix3d field_to_camera = field_to_camera_rotation();
 };
 
 /// Renders `meshes` seen from `camera_position` with intrinsics `camera` into `out`

@@ -16,6 +16,10 @@
 //    amplitude_min): dark (moist soil) and grazing surfaces lose returns.
 //  * Labels: a pixel keeps the instance id of its surface only when it returns a depth of that
 //    surface (not dropped, not a mixed flying pixel).
+// With cfg.model == "stereo" (a RealSense-like active stereo camera) instead: edge pixels are
+// dropped with stereo_edge_dropout_prob or keep the foreground (no flying pixels), returns are lost
+// in blob-shaped holes (stereo_hole_fraction of the image) and at random_dropout, and the noise
+// std is stereo_noise_at_1m_m x z^2.
 // Every pixel draws from its own stream derive_seed(frame_seed, {pixel}), so output is
 // deterministic under parallel processing.
 #include <cstdint>

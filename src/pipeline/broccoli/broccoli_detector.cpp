@@ -36,6 +36,25 @@ CROPSIGHT_AVX2_CLONES void deproject_depth(std::size_t n, const std::uint16_t* _
     Y[i] = ry[i] * z;
   }
 }
+// The `fraction` percentile of the valid (non-zero) raw depths, in metres, from a histogram of
+// 5 mm bins; NaN with fewer than 1000 valid pixels (the estimate would be noise).
+float depth_percentile(const std::vector<std::uint16_t>& depth, float scale, float fraction,
+                       std::vector<std::uint32_t>& hist) {
+  constexpr float kBin = 0.005f;
+  const float per_raw = scale / kBin;
+  hist.assign(std::size_t(65535 * per_raw) + 2, 0);
+  std::size_t valid = 0;
+  for (std::uint16_t d : depth)
+    if (d) ++hist[std::size_t(float(d) * per_raw)], ++valid;
+  if (valid < 1000) return std::numeric_limits<float>::quiet_NaN();
+  const auto target = std::size_t(double(valid) * fraction);
+  std::size_t seen = 0;
+  for (std::size_t b = 0; b < hist.size(); ++b) {
+    seen += hist[b];
+    if (seen > target) return (float(b) + 0.5f) * kBin;
+  }
+  return (float(hist.size()) - 0.5f) * kBin;
+}
 }  // namespace
 
 BroccoliDetector::BroccoliDetector(BroccoliDetectorConfig cfg) : cfg_(std::move(cfg)) {
@@ -81,8 +100,29 @@ void BroccoliDetector::make_cloud(const RgbdFrame& frame) {
   // and then calling geometry::filter_depth_range (z = d·scale, NaN outside [min, max]).
   if (!(cfg_.depth.min_depth <= cfg_.depth.max_depth))
     throw Error("depth range", "min_depth must not exceed max_depth");
+  // Range-aware options: the window's far end and the OES thresholds follow the soil's depth.
+  float max_depth = cfg_.depth.max_depth;
+  oes_frame_ = cfg_.oes;
+  soil_depth_ = std::numeric_limits<float>::quiet_NaN();
+  const BroccoliRangeConfig& rc = cfg_.range;
+  if (rc.soil_relative || rc.reference_range > 0.0f) {
+    soil_depth_ =
+        depth_percentile(frame.depth.data, float(frame.camera.depth_scale), rc.soil_percentile, depth_histogram_);
+    if (std::isfinite(soil_depth_)) {
+      if (rc.soil_relative) max_depth = std::max(cfg_.depth.min_depth, soil_depth_ - rc.min_height_above_soil);
+      if (rc.reference_range > 0.0f) {
+        const float r = std::max(cfg_.depth.min_depth + 0.1f, soil_depth_ - rc.head_height);
+        const float s = r / rc.reference_range;
+        auto points = [&](int p) { return p > 0 ? std::max(1, int(std::lround(float(p) / (s * s)))) : p; };
+        oes_frame_.min_size = points(cfg_.oes.min_size);
+        oes_frame_.min_size_border = points(cfg_.oes.min_size_border);
+        oes_frame_.max_size = std::max(oes_frame_.min_size, points(cfg_.oes.max_size));
+        oes_frame_.distance_tolerance = cfg_.oes.distance_tolerance * s;
+      }
+    }
+  }
   deproject_depth(n, frame.depth.data.data(), ray_x_.data(), ray_y_.data(), float(frame.camera.depth_scale),
-                  cfg_.depth.min_depth, cfg_.depth.max_depth, cloud_.x.data(), cloud_.y.data(), cloud_.z.data());
+                  cfg_.depth.min_depth, max_depth, cloud_.x.data(), cloud_.y.data(), cloud_.z.data());
   if (!frame.labels.empty()) {
     if (frame.labels.width != w || frame.labels.height != h)
       throw Error("frame " + std::to_string(frame.index), "label image size differs from the depth image");
@@ -122,7 +162,7 @@ void BroccoliDetector::cluster_oes() {
   }
   {
     auto t = timer_.scope("clustering");
-    segments_ = segmentation::segment_oes(cloud_, edges_, cfg_.oes, flood_);
+    segments_ = segmentation::segment_oes(cloud_, edges_, oes_frame_, flood_);
   }
   if (lazy) normals(flood_.labels);
 }

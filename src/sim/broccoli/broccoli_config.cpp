@@ -4,6 +4,7 @@
 #include <string>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/sim/broccoli/broccoli_randomize.hpp"
 
 namespace cropsight::sim {
 
@@ -71,6 +72,16 @@ void BroccoliSimConfig::validate(const std::string& where) const {
     require(p >= 0 && p <= 1, where, "sensor probabilities must be in [0, 1]");
   require(sensor.flying_prob + sensor.edge_dropout_prob <= 1, where,
           "sensor.flying_prob + sensor.edge_dropout_prob must be <= 1");
+  require(sensor.model == "tof" || sensor.model == "stereo", where, "sensor.model must be tof or stereo");
+  require(sensor.stereo_noise_at_1m_m >= 0 && sensor.stereo_hole_fraction >= 0 && sensor.stereo_hole_fraction < 1 &&
+              sensor.stereo_hole_scale_px >= 1 && sensor.stereo_edge_dropout_prob >= 0 &&
+              sensor.stereo_edge_dropout_prob <= 1,
+          where, "sensor.stereo_* must be >= 0 (hole fraction < 1, hole scale >= 1 px, edge dropout <= 1)");
+  require(camera.tilt_deg >= 0 && camera.tilt_deg <= 30, where, "camera.tilt_deg must be in [0, 30]");
+  require(plant.leaf_blade_exponent > 0.1 && plant.leaf_blade_exponent <= 3 && plant.leaf_blade_fullness > 0.1 &&
+              plant.leaf_blade_fullness <= 4,
+          where, "plant.leaf_blade_exponent must be in (0.1, 3], plant.leaf_blade_fullness in (0.1, 4]");
+  validate_randomize(randomize, where);
   require(light.ambient >= 0 && light.ambient <= 1, where, "light.ambient must be in [0, 1]");
 }
 

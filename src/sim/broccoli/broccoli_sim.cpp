@@ -29,8 +29,10 @@ double HeadVisibility::occlusion() const {
 BroccoliSimulator::~BroccoliSimulator() = default;
 
 BroccoliSimulator::BroccoliSimulator(BroccoliSimConfig config, std::uint64_t seed, int frames)
-    : field_(std::move(config), seed), seed_(seed) {
+    : field_(draw_randomized_config(config, seed, &leaf_family_), seed), seed_(seed) {
   const auto& cfg = field_.config();
+  if (cfg.randomize.enabled) cfg.validate("sim config (randomized draw of seed " + std::to_string(seed) + ")");
+  field_to_camera_ = tilted_camera_rotation(cfg.camera.tilt_deg, cfg.camera.tilt_azimuth_deg);
   if (frames < 1 || frames > 1000000) throw Error("sim config", "frames must be in 1..1000000");
   camera_ = CameraIntrinsics::from_fov(cfg.camera.width, cfg.camera.height, cfg.camera.hfov_deg * kDeg,
                                        cfg.camera.vfov_deg * kDeg);
@@ -58,8 +60,11 @@ BroccoliSimulator::BroccoliSimulator(BroccoliSimConfig config, std::uint64_t see
     xmax = std::max(xmax, p.x());
     ymax = std::max(ymax, std::abs(p.y()));
   }
-  const double across = zmax * std::tan(0.5 * cfg.camera.hfov_deg * kDeg);
-  const double along = zmax * std::tan(0.5 * cfg.camera.vfov_deg * kDeg);
+  // A tilted camera sees farther to one side (only then the margin grows: nadir strips, and so the
+  // head ids, stay as they were).
+  const double lean = cfg.camera.tilt_deg > 0 ? zmax * std::tan(cfg.camera.tilt_deg * kDeg) : 0.0;
+  const double across = zmax * std::tan(0.5 * cfg.camera.hfov_deg * kDeg) + lean;
+  const double along = zmax * std::tan(0.5 * cfg.camera.vfov_deg * kDeg) + lean;
   soil_half_width_ = ymax + across + 0.15;
   rows_ = field_.rows_within(soil_half_width_);
   const double reach = cfg.plant.leaf_length_max_m + 0.15;
@@ -74,7 +79,8 @@ BroccoliSimulator::BroccoliSimulator(BroccoliSimConfig config, std::uint64_t see
 
 std::vector<const Mesh*> BroccoliSimulator::scene_for(const Eigen::Vector3d& C) {
   const auto& cfg = field_.config();
-  const double along = C.z() * std::tan(0.5 * cfg.camera.vfov_deg * kDeg);
+  const double lean = cfg.camera.tilt_deg > 0 ? C.z() * std::tan(cfg.camera.tilt_deg * kDeg) : 0.0;
+  const double along = C.z() * std::tan(0.5 * cfg.camera.vfov_deg * kDeg) + lean;
   const double reach = cfg.plant.leaf_length_max_m + 0.15;
   // Plants whose leaves can reach into the view.
   std::vector<std::size_t> needed, missing;
@@ -120,8 +126,8 @@ RgbdFrame BroccoliSimulator::render(int index) {
   const std::vector<const Mesh*> meshes = scene_for(C);
   const int f = cfg.camera.supersample;
   const CameraIntrinsics ss = supersampled(camera_, f);
-  sim::render(meshes, C, ss, RenderOptions{}, samples_);
-  sim::render(meshes, C, ss, RenderOptions{true, false}, heads_only_);
+  sim::render(meshes, C, ss, RenderOptions{false, true, field_to_camera_}, samples_);
+  sim::render(meshes, C, ss, RenderOptions{true, false, field_to_camera_}, heads_only_);
 
   RgbdFrame frame;
   frame.index = index;
@@ -216,6 +222,26 @@ io::GroundTruth BroccoliSimulator::groundtruth() const {
   gt.attributes["plants"] = std::to_string(plants_.size());
   gt.attributes["harvested_plants"] = std::to_string(harvested);
   gt.attributes["heads_in_strip"] = std::to_string(heads);
+  if (cfg.randomize.enabled) {
+    // What this sequence drew (docs/simulator.md, "Randomised fields").
+    gt.attributes["randomized"] = "1";
+    gt.attributes["rows_under_camera"] = std::to_string(cfg.field.rows_under_camera);
+    gt.attributes["leaf_family"] = leaf_family_name(leaf_family_);
+    gt.attributes["leaf_width_ratio"] = num(cfg.plant.leaf_width_ratio);
+    gt.attributes["plant_height_m"] = num(cfg.plant.plant_height_m);
+    gt.attributes["head_diameter_range_mm"] = num(cfg.head.diameter_min_mm) + "," + num(cfg.head.diameter_max_mm);
+    gt.attributes["floret_ratio"] = num(cfg.head.floret_ratio);
+    gt.attributes["floret_height"] = num(cfg.head.floret_height);
+    gt.attributes["sensor_model"] = cfg.sensor.model;
+    gt.attributes["sunlight"] = cfg.sensor.sunlight ? "1" : "0";
+  }
+  if (cfg.camera.tilt_deg > 0) {
+    gt.attributes["camera_tilt_deg"] = num(cfg.camera.tilt_deg);
+    gt.attributes["camera_tilt_azimuth_deg"] = num(cfg.camera.tilt_azimuth_deg);
+    gt.attributes["camera_orientation"] =
+        "tilted: the optical axis leans camera_tilt_deg from nadir towards camera_tilt_azimuth_deg (from field +x "
+        "towards +y); poses.csv holds positions only";
+  }
   gt.attributes["field_frame"] = "x along the row (driving direction), y across, z up; z = 0 mean soil; metres";
   gt.attributes["camera_frame"] = "nadir: camera x = field +y, camera y = field +x, camera z = field -z";
   gt.attributes["position"] = "apex of the smooth head dome (top of the head on its axis), field frame";

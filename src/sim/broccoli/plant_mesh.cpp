@@ -241,6 +241,8 @@ detail::LeafShape outer_leaf(const SimPlantConfig& P, Rng& rng, int i, int n, do
   L.length = rng.uniform(P.leaf_length_min_m, P.leaf_length_max_m) * (1.05 - 0.2 * rank);
   L.width = L.length * P.leaf_width_ratio * rng.uniform(0.85, 1.15);
   L.petiole = rng.uniform(0.15, 0.28);
+  L.blade_exponent = P.leaf_blade_exponent;
+  L.blade_fullness = P.leaf_blade_fullness;
   L.elevation0 = (rng.uniform(P.leaf_elevation_min_deg, P.leaf_elevation_max_deg) + 10 * rank) * kDeg;
   L.elevation1 = L.elevation0 - rng.uniform(P.leaf_droop_min_deg, P.leaf_droop_max_deg) * kDeg;
   L.bend_power = rng.uniform(1.2, 2.2);
@@ -269,6 +271,8 @@ detail::LeafShape inner_leaf(const SimPlantConfig& P, Rng& rng, const PlantSpec&
   L.length = rng.uniform(P.inner_leaf_length_min_m, P.inner_leaf_length_max_m);
   L.width = L.length * rng.uniform(0.45, 0.6);
   L.petiole = 0.08;
+  L.blade_exponent = P.leaf_blade_exponent;
+  L.blade_fullness = P.leaf_blade_fullness;
   L.elevation0 = rng.uniform(72, 88) * kDeg;
   L.elevation1 = rng.uniform(P.inner_leaf_curl_min_deg, P.inner_leaf_curl_max_deg) * kDeg;
   L.bend_power = rng.uniform(1.3, 2.0);

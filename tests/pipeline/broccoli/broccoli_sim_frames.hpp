@@ -1,5 +1,6 @@
 #pragma once
 // Simulated broccoli frames for the pipeline tests (rendered in-process by the sim module).
+#include <string>
 #include <vector>
 
 #include "cropsight/core/rgbd_frame.hpp"
@@ -8,6 +9,16 @@
 #include "testing/testing.hpp"
 
 namespace cropsight::testdata {
+
+/// A shipped simulator preset, configs/sim-broccoli-<name>.yaml applied to the defaults and
+/// validated, as `simulate broccoli --variety <name>` does (uk, spain, random, random-wide).
+inline sim::BroccoliSimConfig sim_preset(const std::string& name) {
+  sim::BroccoliSimConfig c;
+  const auto path = testing::source_dir() / "configs" / ("sim-broccoli-" + name + ".yaml");
+  apply_config(c, io::load_config_map(path), path.string());
+  c.validate(path.string());
+  return c;
+}
 
 /// Simulator config of the `spain` variety: configs/sim-broccoli-spain.yaml applied to the
 /// defaults (= the `uk` preset), as `simulate broccoli --variety spain` does.

@@ -11,6 +11,7 @@
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/sim/broccoli/broccoli_sim.hpp"
 #include "cropsight/sim/tof_sensor.hpp"
+#include "pipeline/broccoli/broccoli_sim_frames.hpp"
 #include "testing/testing.hpp"
 
 using namespace cropsight;
@@ -18,13 +19,7 @@ using namespace cropsight;
 namespace {
 // The shipped presets (configs/sim-broccoli-<variety>.yaml), as `simulate broccoli --variety`
 // applies them.
-sim::BroccoliSimConfig preset(const std::string& variety) {
-  sim::BroccoliSimConfig c;
-  const auto path = cropsight::testing::source_dir() / "configs" / ("sim-broccoli-" + variety + ".yaml");
-  apply_config(c, io::load_config_map(path), path.string());
-  c.validate(path.string());
-  return c;
-}
+sim::BroccoliSimConfig preset(const std::string& variety) { return testdata::sim_preset(variety); }
 sim::BroccoliSimConfig spain() { return preset("spain"); }
 
 // Camera frame -> field frame for the downward-looking camera (broccoli_sim.hpp):

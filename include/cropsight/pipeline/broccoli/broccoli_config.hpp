@@ -52,6 +52,41 @@ struct BroccoliDetectionConfig {
   }
 };
 
+/// Range-aware detection (issue 27; docs/pipelines/broccoli-heads.md, "Generalisation"): the
+/// paper's fixed 0.5-1.0 m depth window and its point and distance thresholds assume one camera
+/// height. These options tie them to the soil instead, estimated per frame from the depth image:
+/// the farthest surfaces (a high percentile of the valid depths) are the soil.
+struct BroccoliRangeConfig {
+  bool soil_relative = false;           ///< depth window's far end = soil depth - min_height_above_soil
+  float soil_percentile = 0.97f;        ///< fraction; the soil depth is this percentile of valid depths
+  float min_height_above_soil = 0.25f;  ///< m; points nearer the soil than this are dropped
+  float reference_range = 0.0f;         ///< m; > 0: scale OES thresholds by the heads' range over this
+  float head_height = 0.45f;            ///< m; the heads' typical height above the soil (their range = soil - this)
+
+  template <class V>
+  void visit(V& v) {
+    v("soil_relative", soil_relative,
+      "replace depth.max_depth per frame by (soil depth - min_height_above_soil): the window follows the camera "
+      "height (ours; off = the paper's fixed window). depth.max_depth stays in use when a frame has under 1000 valid "
+      "pixels");
+    v("soil_percentile", soil_percentile,
+      "fraction; the soil depth of a frame is this percentile of its valid depths (the soil is the farthest "
+      "surface; a canopy covering all but 3 % of the soil still leaves the estimate on the soil or the lowest leaves)",
+      Range::within(0.5, 1.0));
+    v("min_height_above_soil", min_height_above_soil,
+      "m; with soil_relative, points less than this above the soil estimate are dropped (uk preset: 1.25 m camera "
+      "with max_depth 1.0 = 0.25 m)",
+      Range::within(0.0, 2.0));
+    v("reference_range", reference_range,
+      "m; > 0: per frame, oes.min_size / min_size_border / max_size scale by (reference_range / r)^2 and "
+      "oes.distance_tolerance by r / reference_range, with r = soil depth - head_height (a head's point count falls "
+      "and its point spacing grows with range); 0 = fixed thresholds (the paper). uk preset: 0.80",
+      Range::within(0.0, 5.0));
+    v("head_height", head_height, "m; typical head apex height above the soil for reference_range",
+      Range::within(0.0, 2.0));
+  }
+};
+
 /// How ground truth is joined to clusters, for training labels and evaluation only: the detector
 /// never reads these. Their keys stay "detection.*" (BroccoliPipelineConfig visits them under that
 /// name) so that presets and the model files written before the split keep loading.
@@ -98,6 +133,7 @@ struct BroccoliDetectorConfig {
   features::FeatureConfig feature_options;
   learning::ClassifierParams classifier;
   BroccoliDetectionConfig detection;
+  BroccoliRangeConfig range;
 
   template <class V>
   void visit(V& v) {
@@ -115,6 +151,7 @@ struct BroccoliDetectorConfig {
     v("feature_options", feature_options, "feature options");
     v("classifier", classifier, "classifier (used by training; a model file records its own)");
     v("detection", detection, "decision and ground-truth rules");
+    v("range", range, "range-aware depth window and thresholds (ours, issue 27)");
   }
 
   /// Throws Error(where, ...) for an unknown feature spec or a value out of range.

@@ -19,6 +19,7 @@
 // segments' index lists).
 //
 // Not thread-safe: one detector per thread.
+#include <limits>
 #include <memory>
 #include <span>
 #include <vector>
@@ -72,6 +73,8 @@ class BroccoliDetector {
   /// The cloud of the last processed frame (depth-filtered, with normals — OES: only on the
   /// pixels of its candidates; labels when present).
   const OrganizedCloud& cloud() const { return cloud_; }
+  /// Soil depth (m, camera z) estimated for the last frame; NaN unless range.* options need it.
+  float soil_depth() const { return soil_depth_; }
   /// Detections (candidates classified as heads) of the last processed frame, best score first.
   std::vector<Detection> detections() const;
 
@@ -103,6 +106,9 @@ class BroccoliDetector {
   std::vector<BroccoliCandidate> candidates_;  // a pool: only grows, so its buffers are reused
   std::size_t count_ = 0;                      // candidates of the last frame
   std::vector<float> scratch_;
+  float soil_depth_ = std::numeric_limits<float>::quiet_NaN();
+  segmentation::OesConfig oes_frame_;  // cfg_.oes, scaled to the frame's range when range.reference_range > 0
+  std::vector<std::uint32_t> depth_histogram_;
 };
 
 }  // namespace cropsight::pipeline

@@ -17,6 +17,7 @@
 // Field frame: x along the row (driving direction), y across the rows (left of the driver),
 // z up; z = 0 is the mean soil surface. Lengths in metres, angles in degrees, unless `_mm`.
 #include <string>
+#include <vector>
 
 namespace cropsight::sim {
 
@@ -30,6 +31,8 @@ struct SimCameraConfig {
   int supersample = 2;
   double min_range_m = 0.5;
   double max_range_m = 4.5;
+  double tilt_deg = 0.0;
+  double tilt_azimuth_deg = 0.0;
   template <class V>
   void visit(V& v) {
     v("width", width, "px; depth image width (kinect2: 512)");
@@ -42,6 +45,11 @@ struct SimCameraConfig {
       "samples per pixel side; >1 renders sub-pixels so edge pixels can mix depths (flying pixels)");
     v("min_range_m", min_range_m, "m; no return closer than this (kinect2: 0.5)");
     v("max_range_m", max_range_m, "m; no return farther than this (kinect2: 4.5)");
+    v("tilt_deg", tilt_deg,
+      "deg; optical axis tilted this much from straight down (0 = nadir; a loosely mounted or sloping rig). The "
+      "poses record the position only: the tilt is written to groundtruth.json's attributes");
+    v("tilt_azimuth_deg", tilt_azimuth_deg,
+      "deg; the direction the optical axis leans towards, from field +x (along the row) towards +y");
   }
 };
 
@@ -99,6 +107,8 @@ struct SimPlantConfig {
   double leaf_length_min_m = 0.28;
   double leaf_length_max_m = 0.42;
   double leaf_width_ratio = 0.42;
+  double leaf_blade_exponent = 0.7;
+  double leaf_blade_fullness = 1.0;
   double leaf_elevation_min_deg = 40.0;
   double leaf_elevation_max_deg = 70.0;
   double leaf_droop_min_deg = 30.0;
@@ -128,6 +138,11 @@ struct SimPlantConfig {
     v("leaf_length_min_m", leaf_length_min_m, "m; outer leaf length incl. petiole, minimum [agro]");
     v("leaf_length_max_m", leaf_length_max_m, "m; outer leaf length incl. petiole, maximum [agro]");
     v("leaf_width_ratio", leaf_width_ratio, "blade width / leaf length [agro]");
+    v("leaf_blade_exponent", leaf_blade_exponent,
+      "blade outline: width(u) = sin(pi u^e) along the blade u in [0, 1]; e < 1 puts the widest point towards the "
+      "tip (obovate), e near 1 in the middle (lanceolate), e < 0.6 makes it round (ovate/rounded) [agro]");
+    v("leaf_blade_fullness", leaf_blade_fullness,
+      "blade outline: the width profile is raised to this power; < 1 = full, rounded blades, > 1 = pointed [agro]");
     v("leaf_elevation_min_deg", leaf_elevation_min_deg,
       "deg; outer leaf angle above horizontal at the stem, minimum [agro]");
     v("leaf_elevation_max_deg", leaf_elevation_max_deg,
@@ -248,6 +263,11 @@ struct SimSensorConfig {
   double flying_prob = 0.5;
   double edge_dropout_prob = 0.3;
   double color_noise = 3.0;
+  std::string model = "tof";
+  double stereo_noise_at_1m_m = 0.003;
+  double stereo_hole_fraction = 0.05;
+  double stereo_hole_scale_px = 12.0;
+  double stereo_edge_dropout_prob = 0.6;
   template <class V>
   void visit(V& v) {
     v("noise_at_1m_m", noise_at_1m_m,
@@ -271,6 +291,17 @@ struct SimSensorConfig {
     v("edge_dropout_prob", edge_dropout_prob,
       "probability that a straddling pixel is dropped (driver's flying-pixel filter) [kinect2/libfreenect2]");
     v("color_noise", color_noise, "std of per-channel colour noise, 8-bit levels");
+    v("model", model,
+      "tof = Kinect v2 time of flight (the fields above); stereo = a RealSense-like active stereo camera: depth "
+      "noise grows with the square of the range, blob-shaped holes, dropouts at depth edges (no flying pixels)");
+    v("stereo_noise_at_1m_m", stereo_noise_at_1m_m,
+      "m; stereo: depth noise std at 1 m, sigma = this x z^2 (disparity noise; RealSense D4xx about 2-5 mm at 1 m)");
+    v("stereo_hole_fraction", stereo_hole_fraction,
+      "stereo: fraction of the image lost in holes (failed matches on textureless or specular patches)");
+    v("stereo_hole_scale_px", stereo_hole_scale_px, "px; stereo: typical hole size");
+    v("stereo_edge_dropout_prob", stereo_edge_dropout_prob,
+      "stereo: probability that a pixel straddling a depth edge has no depth (left-right check, occlusion "
+      "shadow); otherwise it keeps the foreground surface");
   }
 };
 
@@ -286,6 +317,87 @@ struct SimLightConfig {
   }
 };
 
+/// Domain randomisation (docs/simulator.md, "Randomised fields"): when enabled, every sequence
+/// draws its own field, plants, heads, soil, camera and sensor from these ranges, from the seed
+/// (sim/broccoli/broccoli_randomize.hpp). Each range is {min, max}, drawn uniformly per sequence;
+/// the values drawn replace the preset's. Defaults = configs/sim-broccoli-random.yaml (training
+/// ranges); configs/sim-broccoli-random-wide.yaml widens them for held-out evaluation.
+struct SimRandomizeConfig {
+  bool enabled = false;
+  std::vector<double> camera_height_m{1.10, 1.50};
+  std::vector<double> camera_tilt_deg{0.0, 3.0};
+  double one_row_prob = 0.5;
+  std::vector<double> row_spacing_m{0.55, 0.95};
+  std::vector<double> in_row_spacing_m{0.28, 0.45};
+  std::vector<double> leaf_family_weights{1.0, 1.0, 1.0};
+  std::vector<double> leaf_count{6, 16};
+  std::vector<double> leaf_length_m{0.24, 0.50};
+  std::vector<double> leaf_elevation_deg{30, 75};
+  std::vector<double> leaf_droop_deg{15, 80};
+  std::vector<double> leaf_ruffle_m{0.0, 0.02};
+  std::vector<double> plant_height_m{0.45, 0.70};
+  std::vector<double> head_diameter_mm{50, 180};
+  std::vector<double> head_dome_ratio{0.35, 0.80};
+  std::vector<double> floret_ratio{0.05, 0.22};
+  std::vector<double> floret_height{0.05, 0.80};
+  std::vector<double> head_below_canopy_m{0.04, 0.25};
+  std::vector<double> inner_leaves{0, 5};
+  std::vector<double> soil_roughness_m{0.003, 0.025};
+  std::vector<double> clod_density_m2{0, 120};
+  std::vector<double> weed_density_m2{0, 25};
+  double stereo_prob = 0.25;
+  std::vector<double> tof_noise_at_1m_m{0.001, 0.004};
+  std::vector<double> tof_flying_prob{0.2, 0.8};
+  std::vector<double> tof_amplitude_min{0.03, 0.12};
+  std::vector<double> random_dropout{0.001, 0.02};
+  std::vector<double> stereo_noise_at_1m_m{0.002, 0.006};
+  std::vector<double> stereo_hole_fraction{0.02, 0.15};
+  double sunlight_prob = 0.2;
+  template <class V>
+  void visit(V& v) {
+    v("enabled", enabled,
+      "draw every sequence's field from the ranges below, from the seed (simulate broccoli --randomize); off = the "
+      "preset as written");
+    v("camera_height_m", camera_height_m, "m; camera height above the soil {min, max} (issue 27: 1.1-1.5)");
+    v("camera_tilt_deg", camera_tilt_deg, "deg; optical axis tilt from nadir {min, max}, towards a random azimuth");
+    v("one_row_prob", one_row_prob, "probability of one row under the camera (else two)");
+    v("row_spacing_m", row_spacing_m, "m; distance between rows {min, max}");
+    v("in_row_spacing_m", in_row_spacing_m, "m; plant spacing within a row {min, max} (dense = canopy closes)");
+    v("leaf_family_weights", leaf_family_weights,
+      "relative weights of the leaf shape families {pointed/lanceolate, broad ovate/rounded, the presets' "
+      "obovate}; a sequence draws one family");
+    v("leaf_count", leaf_count, "outer leaves per plant {min, max}; a sequence draws a window of 2-6 inside");
+    v("leaf_length_m", leaf_length_m, "m; outer leaf length {min, max}; a sequence draws a window inside");
+    v("leaf_elevation_deg", leaf_elevation_deg, "deg; outer leaf angle at the stem {min, max}");
+    v("leaf_droop_deg", leaf_droop_deg, "deg; blade droop from base to tip {min, max}");
+    v("leaf_ruffle_m", leaf_ruffle_m, "m; wavy-margin amplitude {min, max} (0 = flat margins)");
+    v("plant_height_m", plant_height_m, "m; canopy top above the soil {min, max}");
+    v("head_diameter_mm", head_diameter_mm,
+      "mm; head diameters {min, max} (issue 27: 50-180): a sequence's heads span a window of it");
+    v("head_dome_ratio", head_dome_ratio, "dome height / head radius {min, max}");
+    v("floret_ratio", floret_ratio, "floret radius / head radius {min, max} (small = mm-scale bumps)");
+    v("floret_height", floret_height, "floret bump height / floret radius {min, max} (0.05 = a smooth dome)");
+    v("head_below_canopy_m", head_below_canopy_m,
+      "m; how far the highest head apex lies below the canopy top {min, max} (large = heads sunk in the leaves)");
+    v("inner_leaves", inner_leaves, "young leaves curling over each head {min, max} (leaves over heads: occlusion)");
+    v("soil_roughness_m", soil_roughness_m, "m; soil height noise amplitude {min, max}");
+    v("clod_density_m2", clod_density_m2, "clods per square metre {min, max}");
+    v("weed_density_m2", weed_density_m2, "weeds per square metre {min, max}");
+    v("stereo_prob", stereo_prob, "probability that a sequence uses the stereo sensor model (else Kinect v2 ToF)");
+    v("tof_noise_at_1m_m", tof_noise_at_1m_m, "m; ToF axial noise at 1 m {min, max}");
+    v("tof_flying_prob", tof_flying_prob,
+      "ToF: probability of a flying (mixed) pixel at a depth edge {min, max}; the rest of the edge pixels split "
+      "between dropped and foreground");
+    v("tof_amplitude_min", tof_amplitude_min,
+      "ToF: amplitude of half dropout {min, max} (higher = more grazing-angle and dark-surface dropouts, the "
+      "losses multipath interference causes at grazing incidence)");
+    v("random_dropout", random_dropout, "probability of a missing return anywhere {min, max}");
+    v("stereo_noise_at_1m_m", stereo_noise_at_1m_m, "m; stereo noise at 1 m {min, max}");
+    v("stereo_hole_fraction", stereo_hole_fraction, "stereo: image fraction in holes {min, max}");
+    v("sunlight_prob", sunlight_prob, "probability of direct sunlight (ToF background, extra dropout)");
+  }
+};
+
 struct BroccoliSimConfig {
   SimCameraConfig camera;
   SimMotionConfig motion;
@@ -296,6 +408,7 @@ struct BroccoliSimConfig {
   SimSoilConfig soil;
   SimSensorConfig sensor;
   SimLightConfig light;
+  SimRandomizeConfig randomize;
   template <class V>
   void visit(V& v) {
     v("camera", camera, "");
@@ -307,6 +420,7 @@ struct BroccoliSimConfig {
     v("soil", soil, "");
     v("sensor", sensor, "");
     v("light", light, "");
+    v("randomize", randomize, "");
   }
   /// Throws Error(where, ...) when a value is out of range.
   void validate(const std::string& where) const;

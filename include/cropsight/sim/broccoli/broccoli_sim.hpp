@@ -21,6 +21,7 @@
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/sim/broccoli/broccoli_config.hpp"
 #include "cropsight/sim/broccoli/broccoli_field.hpp"
+#include "cropsight/sim/broccoli/broccoli_randomize.hpp"
 #include "cropsight/sim/tof_sensor.hpp"
 
 namespace cropsight::sim {
@@ -39,12 +40,15 @@ struct HeadVisibility {
 
 class BroccoliSimulator {
  public:
-  /// Throws Error("sim config", ...) on invalid parameters or frames < 1.
+  /// Throws Error("sim config", ...) on invalid parameters or frames < 1. With
+  /// config.randomize.enabled the field is drawn from its ranges first (config() is the draw).
   BroccoliSimulator(BroccoliSimConfig config, std::uint64_t seed, int frames);
   ~BroccoliSimulator();
 
   int frames() const { return int(poses_.size()); }
   const BroccoliSimConfig& config() const { return field_.config(); }
+  /// Leaf family of a randomised draw (obovate, the presets' outline, when not randomised).
+  LeafFamily leaf_family() const { return leaf_family_; }
   const CameraIntrinsics& camera() const { return camera_; }
   Eigen::Vector3d camera_position(int frame) const { return poses_.at(std::size_t(frame)); }
   double timestamp(int frame) const { return frame / config().motion.fps; }
@@ -66,8 +70,10 @@ class BroccoliSimulator {
  private:
   std::vector<const Mesh*> scene_for(const Eigen::Vector3d& camera_position);
 
+  LeafFamily leaf_family_ = LeafFamily::obovate;  // before field_: its initialiser sets it
   BroccoliField field_;
   std::uint64_t seed_;
+  Eigen::Matrix3d field_to_camera_;
   CameraIntrinsics camera_;
   std::vector<Eigen::Vector3d> poses_;
   std::vector<PlantSpec> plants_;
