@@ -16,6 +16,8 @@ PACKAGES=(
   libtinyxml2-dev
   # neural networks and gradient-boosted trees
   libtorch-dev libxgboost-dev
+  # the detector's ONNX export writes onnx::ModelProto (issue 24)
+  libonnx-dev
   # fast BLAS for libtorch/OpenCV (the generic libblas.so.3 is the slow reference one)
   libopenblas0-pthread
   # tests and benchmarks (python3-onnx: the tiny ONNX graphs of tests/nn/test_onnx_detector.cpp)

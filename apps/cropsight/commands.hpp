@@ -46,4 +46,7 @@ void add_eval_potato(CLI::App& eval);  // the harvest loop against the simulator
 void add_harvest_potato(CLI::App& harvest);
 void add_bench_potato(CLI::App& bench);
 
+// Our own 2D detector (issue 24): train detector
+void add_train_detector(CLI::App& train);
+
 }  // namespace cropsight::cli

@@ -69,6 +69,9 @@ int main(int argc, char** argv) {
   add_harvest_potato(*harvest);
   add_bench_potato(*bench);
 
+  // Our own 2D detector (issue 24)
+  add_train_detector(*train);
+
   // CLI11 reports a mistyped command as "A subcommand is required"; name it instead. Same one
   // level down (cropsight detect brocoli).
   for (CLI::App* level = &app; level;) {

@@ -4,9 +4,9 @@
 #include <opencv2/core/utils/logger.hpp>
 #include <opencv2/dnn.hpp>
 #include <opencv2/imgproc.hpp>
-#include <sstream>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/nn/center_net.hpp"
 #include "nn/onnx_decode.hpp"
 
 namespace cropsight::nn {
@@ -20,15 +20,7 @@ void OnnxDetectorConfig::validate(const std::string& where) const {
   if (names().empty()) throw Error(where, "'class_names' names no class");
 }
 
-std::vector<std::string> OnnxDetectorConfig::names() const {
-  std::vector<std::string> out;
-  std::istringstream in(class_names);
-  for (std::string name; std::getline(in, name, ',');) {
-    const auto b = name.find_first_not_of(" \t"), e = name.find_last_not_of(" \t");
-    if (b != std::string::npos) out.push_back(name.substr(b, e - b + 1));
-  }
-  return out;
-}
+std::vector<std::string> OnnxDetectorConfig::names() const { return split_class_names(class_names); }
 
 namespace {
 // OpenCV's messages span lines ("> Node [Add]... parse error: ..."); a cropsight::Error is one.

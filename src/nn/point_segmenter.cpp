@@ -60,7 +60,8 @@ const detail::BackendApi* load_backend() {
     using Entry = const detail::BackendApi* (*)();
     auto entry = reinterpret_cast<Entry>(dlsym(handle, detail::kBackendEntry));
     const detail::BackendApi* api = entry ? entry() : nullptr;
-    if (!api || api->version != detail::kBackendApiVersion || !api->create || !api->load)
+    if (!api || api->version != detail::kBackendApiVersion || !api->create || !api->load || !api->create_detector ||
+        !api->load_detector)
       throw Error(file, "not a cropsight network backend of this version (rebuild cropsight)");
     return api;
   }
@@ -69,13 +70,17 @@ const detail::BackendApi* load_backend() {
                                      "); set CROPSIGHT_NN_BACKEND to its path");
 }
 
+}  // namespace
+
 // Loaded once per process, on the first network built or loaded (a throwing first attempt is
 // retried by the next call); initialisation of a function-local static is thread-safe.
-const detail::BackendApi& backend() {
+const detail::BackendApi& detail::backend_api() {
   static const detail::BackendApi* api = load_backend();
   return *api;
 }
 
+namespace {
+const detail::BackendApi& backend() { return detail::backend_api(); }
 }  // namespace
 
 struct PointSegmenter::Impl {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cropsight/nn/point_segmenter.hpp"
+#include "nn/detector_backend.hpp"
 
 namespace cropsight::nn::detail {
 
@@ -34,15 +35,22 @@ class SegmenterBackend {
   virtual void save(const std::filesystem::path& path) const = 0;
 };
 
-/// Bumped whenever SegmenterBackend, PointNetConfig, EpochLog or Cloud change layout: a plugin of
-/// another version is refused (it would be a build mix-up, never a supported combination).
-inline constexpr int kBackendApiVersion = 2;  // 2: PointNetConfig::lovasz_weight
+/// Bumped whenever SegmenterBackend, DetectorBackend, their configurations, EpochLog or Cloud
+/// change layout: a plugin of another version is refused (it would be a build mix-up, never a
+/// supported combination).
+inline constexpr int kBackendApiVersion = 3;  // 2: PointNetConfig::lovasz_weight; 3: the detector
 
 struct BackendApi {
   int version = 0;
   std::unique_ptr<SegmenterBackend> (*create)(const PointNetConfig& cfg) = nullptr;  ///< throws Error
   std::unique_ptr<SegmenterBackend> (*load)(const std::filesystem::path& path, int threads) = nullptr;
+  std::unique_ptr<DetectorBackend> (*create_detector)(const CenterNetConfig& cfg) = nullptr;  ///< throws Error
+  std::unique_ptr<DetectorBackend> (*load_detector)(const std::filesystem::path& path, int threads) = nullptr;
 };
+
+/// The plugin's table, loaded on first use (point_segmenter.cpp says where it is looked for).
+/// Throws Error when no plugin of this version is found.
+const BackendApi& backend_api();
 
 /// The plugin's one exported symbol.
 inline constexpr const char* kBackendEntry = "cropsight_nn_backend";

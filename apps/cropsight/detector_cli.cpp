@@ -1,0 +1,48 @@
+// The detector commands' shared options (detector_cli.hpp).
+#include "detector_cli.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+#include "cli_common.hpp"
+#include "cropsight/core/error.hpp"
+
+namespace cropsight::cli {
+
+void add_dataset_options(CLI::App* cmd, DatasetOptions& o) {
+  cmd->add_option("--coco", o.coco, "COCO instance annotations (JSON: images, annotations, categories)");
+  cmd->add_option("--voc", o.voc, "Folder of Pascal VOC .xml annotations");
+  cmd->add_option("--images", o.images, "Folder of the images the annotations name")->required();
+  cmd->add_option("--classes", o.classes,
+                  "Comma-separated class names, in class-id order (VOC: required; COCO: default every category)");
+}
+
+nn::DetectionDataset load_dataset(const DatasetOptions& o) {
+  if (o.coco.empty() == o.voc.empty()) throw Error("--coco/--voc", "give exactly one of --coco ANN.json and --voc DIR");
+  const std::vector<std::string> classes =
+      o.classes.empty() ? std::vector<std::string>{} : split_list(o.classes, "--classes");
+  auto set = o.coco.empty() ? nn::read_voc_detection(o.voc, o.images, classes)
+                            : nn::read_coco_detection(o.coco, o.images, classes);
+  if (set.samples.empty()) throw Error(o.coco.empty() ? o.voc : o.coco, "names no image");
+  return set;
+}
+
+Split split_indices(std::size_t n, double fraction, std::uint64_t seed) {
+  if (!(fraction >= 0 && fraction < 1)) throw Error("--val-split", "must be in [0, 1)");
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::mt19937_64 rng(seed);
+  std::shuffle(order.begin(), order.end(), rng);
+  std::size_t k = std::size_t(std::lround(fraction * double(n)));
+  if (fraction > 0 && n >= 2) k = std::clamp<std::size_t>(k, 1, n - 1);
+  Split s;
+  s.val.assign(order.begin(), order.begin() + std::ptrdiff_t(k));
+  s.train.assign(order.begin() + std::ptrdiff_t(k), order.end());
+  std::sort(s.val.begin(), s.val.end());
+  std::sort(s.train.begin(), s.train.end());
+  return s;
+}
+
+}  // namespace cropsight::cli

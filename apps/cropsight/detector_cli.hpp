@@ -1,0 +1,31 @@
+#pragma once
+// What the detector commands (train / eval / detect objects) share: the labelled-set options
+// (--coco ANN.json | --voc DIR, --images DIR, --classes a,b) and the held-out split.
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cropsight/nn/detection_dataset.hpp"
+
+namespace cropsight::cli {
+
+struct DatasetOptions {
+  std::string coco, voc, images, classes;
+};
+
+/// Adds --coco, --voc, --images and --classes to `cmd`.
+void add_dataset_options(CLI::App* cmd, DatasetOptions& o);
+
+/// Reads the set the options name (exactly one of --coco and --voc). Throws Error naming the
+/// option or file.
+nn::DetectionDataset load_dataset(const DatasetOptions& o);
+
+/// A held-out split: round(fraction * n) images (at least one when fraction > 0 and n >= 2) drawn
+/// with `seed`, the others train. Indices in increasing order.
+struct Split {
+  std::vector<std::size_t> train, val;
+};
+Split split_indices(std::size_t n, double fraction, std::uint64_t seed);
+
+}  // namespace cropsight::cli

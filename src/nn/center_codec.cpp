@@ -1,0 +1,128 @@
+// nn::CenterNet's encoding and decoding (center_codec.hpp): OpenCV only for the letterbox resize.
+#include "nn/center_codec.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+
+namespace cropsight::nn {
+
+std::vector<float> center_blob(const ColorImage& image, int input_w, int input_h, Letterbox* lb_out) {
+  const Letterbox lb = Letterbox::fit(image.width, image.height, input_w, input_h, OnnxResize::letterbox);
+  if (lb_out) *lb_out = lb;
+  const cv::Mat rgb(image.height, image.width, CV_8UC3, const_cast<Rgb8*>(image.data.data()));
+  cv::Mat canvas(input_h, input_w, CV_8UC3, cv::Scalar::all(kCenterPad));
+  cv::Mat roi = canvas(cv::Rect(lb.pad_x, lb.pad_y, lb.resized_w, lb.resized_h));
+  if (lb.resized_w == image.width && lb.resized_h == image.height)
+    rgb.copyTo(roi);
+  else
+    cv::resize(rgb, roi, roi.size(), 0, 0, cv::INTER_LINEAR);
+  const std::size_t plane = std::size_t(input_w) * std::size_t(input_h);
+  std::vector<float> blob(3 * plane);
+  for (int y = 0; y < input_h; ++y) {
+    const auto* row = canvas.ptr<std::uint8_t>(y);
+    for (int x = 0; x < input_w; ++x)
+      for (int c = 0; c < 3; ++c)
+        blob[std::size_t(c) * plane + std::size_t(y) * std::size_t(input_w) + std::size_t(x)] =
+            float(row[3 * x + c]) / 255.f;
+  }
+  return blob;
+}
+
+float gaussian_radius(float h, float w, float mo) {
+  const float b1 = h + w, c1 = w * h * (1 - mo) / (1 + mo);
+  const float r1 = (b1 + std::sqrt(std::max(0.f, b1 * b1 - 4 * c1))) / 2;
+  const float a2 = 4, b2 = 2 * (h + w), c2 = (1 - mo) * w * h;
+  const float r2 = (b2 + std::sqrt(std::max(0.f, b2 * b2 - 4 * a2 * c2))) / 2;
+  const float a3 = 4 * mo, b3 = -2 * mo * (h + w), c3 = (mo - 1) * w * h;
+  const float r3 = (b3 + std::sqrt(std::max(0.f, b3 * b3 - 4 * a3 * c3))) / 2;
+  return std::min({r1, r2, r3});
+}
+
+void draw_gaussian(float* hm, int ow, int oh, int cx, int cy, int radius) {
+  const float sigma = float(2 * radius + 1) / 6.f;
+  const float k = 1.f / (2 * sigma * sigma);
+  for (int y = std::max(0, cy - radius); y <= std::min(oh - 1, cy + radius); ++y)
+    for (int x = std::max(0, cx - radius); x <= std::min(ow - 1, cx + radius); ++x) {
+      const float dx = float(x - cx), dy = float(y - cy);
+      float& v = hm[std::size_t(y) * std::size_t(ow) + std::size_t(x)];
+      v = std::max(v, std::exp(-(dx * dx + dy * dy) * k));
+    }
+}
+
+CenterTargets encode_targets(const std::vector<Detection2D>& boxes, const std::vector<GrayImage>& masks, int classes,
+                             int ow, int oh, int max_objects) {
+  CenterTargets t;
+  const std::size_t plane = std::size_t(ow) * std::size_t(oh);
+  t.heatmap.assign(std::size_t(classes) * plane, 0.f);
+  t.index.assign(std::size_t(max_objects), 0);
+  t.size.assign(2 * std::size_t(max_objects), 0.f);
+  t.offset.assign(2 * std::size_t(max_objects), 0.f);
+  t.reg_mask.assign(std::size_t(max_objects), 0.f);
+  int k = 0;
+  for (const auto& b : boxes) {
+    if (k >= max_objects) break;
+    if (b.class_id < 0 || b.class_id >= classes) continue;
+    const float s = float(kCenterStride);
+    const float w = b.width() / s, h = b.height() / s;
+    const float cx = b.centre_x() / s, cy = b.centre_y() / s;
+    if (b.width() < 1 || b.height() < 1 || cx < 0 || cy < 0 || cx >= float(ow) || cy >= float(oh)) continue;
+    const int ix = int(cx), iy = int(cy);
+    const int radius = std::max(0, int(gaussian_radius(std::ceil(h), std::ceil(w))));
+    draw_gaussian(t.heatmap.data() + std::size_t(b.class_id) * plane, ow, oh, ix, iy, radius);
+    t.index[std::size_t(k)] = std::int64_t(iy) * ow + ix;
+    t.size[2 * std::size_t(k)] = w, t.size[2 * std::size_t(k) + 1] = h;
+    t.offset[2 * std::size_t(k)] = cx - float(ix), t.offset[2 * std::size_t(k) + 1] = cy - float(iy);
+    t.reg_mask[std::size_t(k)] = 1.f;
+    ++k;
+  }
+  if (!masks.empty()) {
+    t.mask.assign(std::size_t(classes) * plane, 0.f);
+    for (int c = 0; c < classes && c < int(masks.size()); ++c)
+      for (std::size_t i = 0; i < plane && i < masks[std::size_t(c)].data.size(); ++i)
+        t.mask[std::size_t(c) * plane + i] = masks[std::size_t(c)].data[i] ? 1.f : 0.f;
+  }
+  return t;
+}
+
+std::vector<Detection2D> decode_heads(const CenterNetHeads& h, const Letterbox& lb, float threshold, int top_k) {
+  struct Peak {
+    float score;
+    int c, y, x;
+  };
+  std::vector<Peak> peaks;
+  const int W = h.out_w, H = h.out_h;
+  const std::size_t plane = std::size_t(W) * std::size_t(H);
+  for (int c = 0; c < h.classes; ++c) {
+    const float* hm = h.heatmap.data() + std::size_t(c) * plane;
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x) {
+        const float v = hm[std::size_t(y) * std::size_t(W) + std::size_t(x)];
+        if (v < threshold) continue;
+        bool peak = true;
+        for (int yy = std::max(0, y - 1); yy <= std::min(H - 1, y + 1) && peak; ++yy)
+          for (int xx = std::max(0, x - 1); xx <= std::min(W - 1, x + 1); ++xx)
+            if (hm[std::size_t(yy) * std::size_t(W) + std::size_t(xx)] > v) {
+              peak = false;
+              break;
+            }
+        if (peak) peaks.push_back({v, c, y, x});
+      }
+  }
+  std::stable_sort(peaks.begin(), peaks.end(), [](const Peak& a, const Peak& b) { return a.score > b.score; });
+  if (int(peaks.size()) > top_k) peaks.resize(std::size_t(top_k));
+  std::vector<Detection2D> out;
+  const float s = float(kCenterStride);
+  for (const auto& p : peaks) {
+    const std::size_t i = std::size_t(p.y) * std::size_t(W) + std::size_t(p.x);
+    const float cx = float(p.x) + h.offset[i], cy = float(p.y) + h.offset[plane + i];
+    const float hw = 0.5f * h.size[i], hh = 0.5f * h.size[plane + i];
+    Detection2D d = lb.to_image((cx - hw) * s, (cy - hh) * s, (cx + hw) * s, (cy + hh) * s);
+    if (d.area() <= 0) continue;
+    d.class_id = p.c, d.score = p.score;
+    out.push_back(d);
+  }
+  return out;
+}
+
+}  // namespace cropsight::nn

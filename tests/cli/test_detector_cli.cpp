@@ -1,0 +1,63 @@
+// train detector: a tiny VOC set trains end to end (model file, one progress line per epoch,
+// JSON with the held-out images), and bad sets are one line naming the file, exit 2.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "cropsight/io/image_io.hpp"
+#include "testing/testing.hpp"
+
+namespace {
+namespace fs = std::filesystem;
+using cropsight::testing::run_cli;
+using cropsight::testing::shell_quoted;
+using cropsight::testing::TempDir;
+using cropsight::testing::write_text;
+
+void write_voc_set(const fs::path& dir, int n) {
+  fs::create_directories(dir / "img");
+  fs::create_directories(dir / "ann");
+  for (int i = 0; i < n; ++i) {
+    cropsight::ColorImage im(64, 64, cropsight::Rgb8{90, 90, 90});
+    for (int y = 10 + i; y < 30 + i; ++y)
+      for (int x = 12; x < 36; ++x) im.at(x, y) = cropsight::Rgb8{200, 150, 60};
+    const std::string stem = "im" + std::to_string(i);
+    cropsight::io::write_color(dir / "img" / (stem + ".png"), im);
+    write_text(dir / "ann" / (stem + ".xml"), "<annotation><filename>" + stem +
+                                                  ".png</filename><object><name>potato</name><bndbox><xmin>12</xmin>"
+                                                  "<ymin>" +
+                                                  std::to_string(10 + i) + "</ymin><xmax>36</xmax><ymax>" +
+                                                  std::to_string(30 + i) + "</ymax></bndbox></object></annotation>");
+  }
+}
+
+TEST(DetectorCli, TrainsOnAVocSetWithAHeldOutSplit) {
+  TempDir t;
+  write_voc_set(t.path(), 4);
+  const auto r = run_cli("train detector --voc " + shell_quoted(t / "ann") + " --images " + shell_quoted(t / "img") +
+                         " --classes potato --out " + shell_quoted(t / "det.pt") +
+                         " --input 64x64 --width 8 --epochs 2 --val-split 0.25 --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(t / "det.pt"));
+  EXPECT_NE(r.err.find("epoch 2/2"), std::string::npos) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["train_images"], 3);
+  EXPECT_EQ(j["val_images"].size(), 1u);
+  EXPECT_EQ(j["log"].size(), 2u);
+}
+
+TEST(DetectorCli, BadSetsAreOneLineExitTwo) {
+  TempDir t;
+  write_text(t / "ann.json", R"({"images": [], "categories": [{"id": 1, "name": "x"}]})");
+  auto r = run_cli("train detector --coco " + shell_quoted(t / "ann.json") + " --images " + shell_quoted(t.path()) +
+                   " --out " + shell_quoted(t / "m.pt"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("ann.json"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("'annotations'"), std::string::npos) << r.err;
+  r = run_cli("train detector --images " + shell_quoted(t.path()) + " --out " + shell_quoted(t / "m.pt"));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--coco"), std::string::npos) << r.err;
+}
+
+}  // namespace

@@ -1,0 +1,115 @@
+// COCO / VOC detection sets and the training augmentation of the detector (issue 24).
+#include <gtest/gtest.h>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/io/image_io.hpp"
+#include "cropsight/nn/detection_augment.hpp"
+#include "cropsight/nn/detection_dataset.hpp"
+#include "testing/testing.hpp"
+
+namespace {
+using namespace cropsight;
+using namespace cropsight::nn;
+using cropsight::testing::TempDir;
+using cropsight::testing::write_text;
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(DetectionDataset, ReadsCocoBoxesAndFillsPolygonMasks) {
+  TempDir t;
+  io::write_color(t / "a.png", ColorImage(40, 30, Rgb8{10, 20, 30}));
+  write_text(t / "ann.json", R"({"images": [{"id": 7, "file_name": "sub/a.png"}],
+    "categories": [{"id": 0, "name": "_background_"}, {"id": 2, "name": "peduncle"}, {"id": 1, "name": "grape"}],
+    "annotations": [{"image_id": 7, "category_id": 1, "bbox": [10, 5, 20, 10],
+                     "segmentation": [[10, 5, 30, 5, 30, 15, 10, 15]]},
+                    {"image_id": 7, "category_id": 2, "bbox": [1, 1, 2, 3]}]})");
+  const auto set = read_coco_detection(t / "ann.json", t.path());
+  EXPECT_EQ(set.classes, (std::vector<std::string>{"grape", "peduncle"}));
+  ASSERT_EQ(set.samples.size(), 1u);
+  const auto& s = set.samples[0];
+  ASSERT_EQ(s.boxes.size(), 2u);
+  EXPECT_FLOAT_EQ(s.boxes[0].x2, 30.f);
+  EXPECT_FLOAT_EQ(s.boxes[0].y2, 15.f);
+  EXPECT_EQ(s.boxes[1].class_id, 1);
+  ASSERT_EQ(s.masks.size(), 2u);
+  EXPECT_GT(s.masks[0].at(20, 10), 0);
+  EXPECT_EQ(s.masks[0].at(5, 10), 0);
+  // Only the named classes, in the order given.
+  const auto peds = read_coco_detection(t / "ann.json", t.path(), {"peduncle"});
+  ASSERT_EQ(peds.samples[0].boxes.size(), 1u);
+  EXPECT_EQ(peds.samples[0].boxes[0].class_id, 0);
+}
+
+TEST(DetectionDataset, BadCocoFilesNameTheFileAndTheKey) {
+  TempDir t;
+  io::write_color(t / "a.png", ColorImage(8, 8));
+  write_text(t / "nobox.json", R"({"images": [{"id": 1, "file_name": "a.png"}], "categories": [{"id": 1, "name": "x"}],
+    "annotations": [{"image_id": 1, "category_id": 1}]})");
+  const std::string e = error_of([&] { read_coco_detection(t / "nobox.json", t.path()); });
+  EXPECT_NE(e.find("nobox.json"), std::string::npos) << e;
+  EXPECT_NE(e.find("annotations[0]: no 'bbox'"), std::string::npos) << e;
+  write_text(t / "noimages.json", R"({"categories": [{"id": 1, "name": "x"}], "annotations": []})");
+  EXPECT_NE(error_of([&] { read_coco_detection(t / "noimages.json", t.path()); }).find("no 'images'"),
+            std::string::npos);
+  write_text(t / "broken.json", "{");
+  EXPECT_NE(error_of([&] { read_coco_detection(t / "broken.json", t.path()); }).find("broken.json"), std::string::npos);
+  write_text(t / "bad.png", "not a png");
+  write_text(t / "badimage.json",
+             R"({"images": [{"id": 1, "file_name": "bad.png"}], "categories": [{"id": 1, "name": "x"}],
+    "annotations": []})");
+  EXPECT_NE(error_of([&] { read_coco_detection(t / "badimage.json", t.path()); }).find("bad.png"), std::string::npos);
+}
+
+DetectionSample square_sample() {
+  DetectionSample s;
+  s.image = ColorImage(64, 48, Rgb8{100, 100, 100});
+  s.masks = {GrayImage(64, 48)};
+  for (int y = 10; y < 20; ++y)
+    for (int x = 8; x < 24; ++x) s.image.at(x, y) = Rgb8{250, 0, 0}, s.masks[0].at(x, y) = 255;
+  s.boxes = {{8, 10, 24, 20, 0, 1}};
+  return s;
+}
+
+TEST(DetectionAugment, AFlipMirrorsTheBoxAndTheMask) {
+  DetectionAugmentConfig cfg;
+  cfg.mosaic = cfg.copy_paste = 0, cfg.flip = 1;
+  cfg.scale_min = cfg.scale_max = 1, cfg.shift = 0;
+  cfg.brightness = cfg.contrast = cfg.saturation = 0;
+  const auto s = square_sample();
+  const auto a = augment_detection(s, {}, cfg, 5);
+  ASSERT_EQ(a.boxes.size(), 1u);
+  EXPECT_NEAR(a.boxes[0].x1, 40, 1e-4);
+  EXPECT_NEAR(a.boxes[0].x2, 56, 1e-4);
+  EXPECT_NEAR(a.boxes[0].y1, 10, 1e-4);
+  EXPECT_EQ(a.masks[0].at(40, 10), 255);
+  EXPECT_EQ(a.masks[0].at(39, 10), 0);
+  EXPECT_EQ(a.masks[0].at(55, 19), 255);
+  EXPECT_EQ(a.image.at(40, 10), (Rgb8{250, 0, 0}));
+}
+
+TEST(DetectionAugment, IsDeterministicAndKeepsBoxesInTheFrame) {
+  DetectionAugmentConfig cfg;
+  cfg.mosaic = cfg.copy_paste = 1;
+  const std::vector<DetectionSample> pool = {square_sample(), square_sample()};
+  for (std::uint64_t draw = 0; draw < 20; ++draw) {
+    const auto a = augment_detection(pool[0], pool, cfg, draw), b = augment_detection(pool[0], pool, cfg, draw);
+    EXPECT_EQ(a.image, b.image);
+    ASSERT_EQ(a.boxes.size(), b.boxes.size());
+    EXPECT_EQ(a.image.width, 64);
+    EXPECT_EQ(a.image.height, 48);
+    for (const auto& d : a.boxes) {
+      EXPECT_GE(d.x1, 0.f);
+      EXPECT_LE(d.x2, 64.f);
+      EXPECT_GE(d.width(), 2.f);
+    }
+  }
+}
+
+}  // namespace
