@@ -8,7 +8,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace import_cmd {
 struct ImportCliOptions {
   io::ImportOptions io;
   bool json = false;
@@ -26,9 +26,10 @@ void run_import(const ImportCliOptions& o) {
               << (s.timestamps_from_names ? ", timestamps from the file names" : "") << "\n";
   }
 }
-}  // namespace
+}  // namespace import_cmd
 
 void add_import(CLI::App& app) {
+  using namespace import_cmd;
   auto o = std::make_shared<ImportCliOptions>();
   auto* cmd = app.add_subcommand(
       "import", "Turn a recording (16-bit depth PNGs [+ colour] or organised PCDs, camera.yaml) into a sequence");
