@@ -5,27 +5,21 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "cropsight/core/error.hpp"
 #include "cropsight/core/organized_cloud.hpp"
 #include "cropsight/io/cloud_io.hpp"
 #include "cropsight/io/sequence.hpp"
 
 namespace cropsight::cli {
 
-namespace {
+namespace export_cmd {
 struct ExportOptions {
   CommonOptions common;
   std::string seq, out;
   int frame = 0;
   bool ascii = false;
-  bool frame_set = false;
 };
 
 void run(const ExportOptions& o) {
-  // Not CLI11-required: `export detector` (cmd_export_detector.cpp) is a sub-command without them.
-  if (o.seq.empty()) throw Error("SEQ", "give the sequence directory");
-  if (!o.frame_set) throw Error("--frame", "give the frame index");
-  if (o.out.empty()) throw Error("--out", "give the output file");
   const io::SequenceReader reader(o.seq);
   const RgbdFrame f = reader.read(o.frame);
   const OrganizedCloud cloud = to_organized_cloud(f);
@@ -44,21 +38,18 @@ void run(const ExportOptions& o) {
                 cloud.has_labels() ? ", labels" : "");
   }
 }
-}  // namespace
+}  // namespace export_cmd
 
 void add_export(CLI::App& app) {
+  using namespace export_cmd;
   auto o = std::make_shared<ExportOptions>();
   auto* cmd = app.add_subcommand("export", "Export one frame as an organised point cloud (.pcd or .ply)");
-  cmd->add_option("SEQ", o->seq, "Sequence directory");
-  auto* frame = cmd->add_option("--frame", o->frame, "Frame index (from 0)");
-  cmd->add_option("--out", o->out, "Output file, .pcd or .ply");
+  cmd->add_option("SEQ", o->seq, "Sequence directory")->required();
+  cmd->add_option("--frame", o->frame, "Frame index (from 0)")->required();
+  cmd->add_option("--out", o->out, "Output file, .pcd or .ply")->required();
   cmd->add_flag("--ascii", o->ascii, "Write ASCII instead of binary");
   add_json_flag(cmd, o->common);
-  cmd->callback([o, cmd, frame] {
-    if (!cmd->get_subcommands().empty()) return;  // export detector
-    o->frame_set = frame->count() > 0;
-    run(*o);
-  });
+  cmd->callback([o] { run(*o); });
 }
 
 }  // namespace cropsight::cli

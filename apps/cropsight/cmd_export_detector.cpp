@@ -1,6 +1,7 @@
-// cropsight export detector --model det.pt --out det.onnx: the trained CenterNet as an ONNX graph
+// cropsight export-detector --model det.pt --out det.onnx: the trained CenterNet as an ONNX graph
 // that OpenCV DNN runs without libtorch (include/cropsight/nn/center_onnx.hpp), checked by
-// loading it back through OpenCV.
+// loading it back through OpenCV. A verb of its own, not `export detector`: `export SEQ` takes a
+// positional sequence, and main.cpp's check for mistyped sub-commands would read SEQ as one.
 #include <cstdio>
 
 #include "cli_common.hpp"
@@ -16,8 +17,7 @@ void add_export_detector(CLI::App& app) {
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
-  CLI::App* parent = app.get_subcommand("export");
-  auto* cmd = parent->add_subcommand("detector", "Export a trained detector (.pt) as ONNX for OpenCV DNN");
+  auto* cmd = app.add_subcommand("export-detector", "Export a trained detector (.pt) as ONNX for OpenCV DNN");
   cmd->add_option("--model", o->model, "Detector model written by train detector (.pt)")->required();
   cmd->add_option("--out", o->out, "ONNX file to write")->required();
   add_json_flag(cmd, o->common);

@@ -249,14 +249,8 @@ class Backend final : public detail::DetectorBackend {
   static std::unique_ptr<detail::DetectorBackend> load(const std::filesystem::path& path, int threads) {
     const std::string where = path.string();
     check_thread_count(threads, "threads");
-    if (!std::filesystem::exists(path)) throw Error(where, "no such model file");
-    if (!std::filesystem::is_regular_file(path)) throw Error(where, "not a model file (a directory?)");
     torch::serialize::InputArchive a;
-    try {
-      a.load_from(where);
-    } catch (const std::exception& e) {
-      throw Error(where, "not a cropsight detector model: " + torch_reason(e));
-    }
+    open_model_archive(a, path, "detector");
     CenterNetConfig c;
     try {
       c10::IValue kind;
@@ -273,13 +267,7 @@ class Backend final : public detail::DetectorBackend {
     c.threads = threads;
     c.validate(where + ": metadata");
     auto b = std::make_unique<Backend>(c);
-    torch::serialize::InputArchive m;
-    try {
-      a.read("model", m);
-    } catch (const std::exception& e) {
-      throw Error(where, "model file lacks its weights: " + torch_reason(e));
-    }
-    load_weights(*b->net_, m, where);
+    read_model_weights(a, *b->net_, where);
     return b;
   }
 
