@@ -71,6 +71,8 @@ int main(int argc, char** argv) {
 
   // Our own 2D detector (issue 24)
   add_train_detector(*train);
+  add_export_detector(app);
+  add_detect_objects(*detect);
 
   // CLI11 reports a mistyped command as "A subcommand is required"; name it instead. Same one
   // level down (cropsight detect brocoli).

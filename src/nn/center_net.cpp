@@ -13,6 +13,7 @@
 #include "cropsight/core/timer.hpp"
 #include "cropsight/eval/voc_ap.hpp"
 #include "nn/center_codec.hpp"
+#include "nn/center_onnx_writer.hpp"
 #include "nn/segmenter_backend.hpp"
 
 namespace cropsight::nn {
@@ -173,6 +174,10 @@ std::vector<Detection2D> CenterNet::detect(const DetectorInput& in) {
 }
 
 void CenterNet::save(const std::filesystem::path& path) const { impl_->backend->save(path); }
+
+void CenterNet::export_onnx(const std::filesystem::path& path) const {
+  write_center_onnx(config(), impl_->backend->folded_convs(), path);
+}
 
 CenterNet CenterNet::load(const std::filesystem::path& path, int threads) {
   CenterNet n;

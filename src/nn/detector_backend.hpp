@@ -6,6 +6,7 @@
 // (center_codec.hpp). Internal header: only src/nn uses it.
 #include <cstdint>
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "cropsight/nn/center_net.hpp"
@@ -21,6 +22,15 @@ struct DetectorBatch {
   std::vector<std::int64_t> index;
 };
 
+/// One convolution of the trained network with its BatchNorm folded in (W' = W g / sqrt(v + e),
+/// b' = beta - m g / sqrt(v + e)): what the ONNX export writes. weight is (out, in, k, k).
+struct FoldedConv {
+  std::string name;  ///< the module path, e.g. "s0a", "lat2", "hm.hidden", "hm.out"
+  int out = 0, in = 0, kernel = 1, stride = 1;
+  bool relu = false;  ///< followed by ReLU
+  std::vector<float> weight, bias;
+};
+
 class DetectorBackend {
  public:
   virtual ~DetectorBackend() = default;
@@ -31,6 +41,8 @@ class DetectorBackend {
   /// Eval-mode heads of n images (n*3*H*W floats).
   virtual std::vector<CenterNetHeads> forward(const std::vector<float>& images, int n) const = 0;
   virtual void save(const std::filesystem::path& path) const = 0;
+  /// Every convolution, folded, by name (center_onnx.cpp wires them as forward() does).
+  virtual std::vector<FoldedConv> folded_convs() const = 0;
   /// Weights, optimiser state and epochs done (training checkpoints, written atomically).
   virtual void write_checkpoint(const std::filesystem::path& path, int epochs_done) const = 0;
   /// Restores a checkpoint of write_checkpoint; returns its epochs done. Throws Error(path).

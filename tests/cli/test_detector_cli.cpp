@@ -45,6 +45,22 @@ TEST(DetectorCli, TrainsOnAVocSetWithAHeldOutSplit) {
   EXPECT_EQ(j["train_images"], 3);
   EXPECT_EQ(j["val_images"].size(), 1u);
   EXPECT_EQ(j["log"].size(), 2u);
+  // ONNX out, then both models through detect objects.
+  const auto e =
+      run_cli("export-detector --model " + shell_quoted(t / "det.pt") + " --out " + shell_quoted(t / "det.onnx"));
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  for (const char* m : {"det.pt", "det.onnx"}) {
+    const auto d = run_cli("detect objects --model " + shell_quoted(t / m) + " --images " + shell_quoted(t / "img") +
+                           " --out " + shell_quoted(t / (std::string(m) + ".out")) + " --json");
+    ASSERT_EQ(d.exit_code, 0) << d.err;
+    EXPECT_EQ(nlohmann::json::parse(d.out)["images"], 4);
+    EXPECT_TRUE(fs::exists(t / (std::string(m) + ".out") / "detections.json"));
+    EXPECT_TRUE(fs::exists(t / (std::string(m) + ".out") / "im0.txt"));
+  }
+  const auto bad = run_cli("detect objects --model " + shell_quoted(t / "img" / "im0.png") + " --images " +
+                           shell_quoted(t / "img") + " --out " + shell_quoted(t / "o"));
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("im0.png"), std::string::npos) << bad.err;
 }
 
 TEST(DetectorCli, BadSetsAreOneLineExitTwo) {

@@ -143,6 +143,10 @@ class CenterNet final : public Detector2D {
 
   /// Weights and configuration in one libtorch archive (written atomically).
   void save(const std::filesystem::path& path) const;
+  /// The network as an ONNX graph for OpenCV DNN (center_onnx.hpp says what it holds).
+  /// Throws Error(path) when the file cannot be written or cropsight was built without
+  /// libonnx-dev.
+  void export_onnx(const std::filesystem::path& path) const;
   /// A model written by save(); `threads` replaces the saved thread count. Throws Error naming
   /// the file (missing, not a cropsight detector, weights that do not fit).
   static CenterNet load(const std::filesystem::path& path, int threads = 1);

@@ -49,6 +49,27 @@ void load_weights(torch::nn::Module& net, torch::serialize::InputArchive& a, con
   }
 }
 
+void open_model_archive(torch::serialize::InputArchive& a, const std::filesystem::path& path, const std::string& what) {
+  const std::string where = path.string();
+  if (!std::filesystem::exists(path)) throw Error(where, "no such model file");
+  if (!std::filesystem::is_regular_file(path)) throw Error(where, "not a model file (a directory?)");
+  try {
+    a.load_from(where);
+  } catch (const std::exception& e) {
+    throw Error(where, "not a cropsight " + what + " model: " + torch_reason(e));
+  }
+}
+
+void read_model_weights(torch::serialize::InputArchive& a, torch::nn::Module& net, const std::string& where) {
+  torch::serialize::InputArchive m;
+  try {
+    a.read("model", m);
+  } catch (const std::exception& e) {
+    throw Error(where, "model file lacks its weights: " + torch_reason(e));
+  }
+  load_weights(net, m, where);
+}
+
 void write_checkpoint(const std::filesystem::path& path, const torch::nn::Module& net,
                       const torch::optim::Optimizer& opt, int epochs_done) {
   torch::serialize::OutputArchive a, m, o;
@@ -123,14 +144,8 @@ void TorchSegmenter::save(const std::filesystem::path& path) const {
 std::unique_ptr<detail::SegmenterBackend> TorchSegmenter::load(const std::filesystem::path& path, int threads) {
   const std::string where = path.string();
   check_thread_count(threads, "threads");
-  if (!std::filesystem::exists(path)) throw Error(where, "no such model file");
-  if (!std::filesystem::is_regular_file(path)) throw Error(where, "not a model file (a directory?)");
   torch::serialize::InputArchive a;
-  try {
-    a.load_from(where);
-  } catch (const std::exception& e) {
-    throw Error(where, "not a cropsight network model: " + torch_impl::torch_reason(e));
-  }
+  torch_impl::open_model_archive(a, path, "network");
   PointNetConfig c;
   try {
     if (get_s(a, "meta.kind") != "grape-pointnet") throw Error(where, "not a grape network model");
@@ -155,13 +170,7 @@ std::unique_ptr<detail::SegmenterBackend> TorchSegmenter::load(const std::filesy
   c.threads = threads;
   c.validate(where + ": metadata");
   auto s = std::make_unique<TorchSegmenter>(c);
-  torch::serialize::InputArchive m;
-  try {
-    a.read("model", m);
-  } catch (const std::exception& e) {
-    throw Error(where, "model file lacks its weights: " + torch_impl::torch_reason(e));
-  }
-  torch_impl::load_weights(*s->impl_->net, m, where);
+  torch_impl::read_model_weights(a, *s->impl_->net, where);
   return s;
 }
 

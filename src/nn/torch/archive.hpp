@@ -21,6 +21,12 @@ void save_archive_atomic(torch::serialize::OutputArchive& a, const std::filesyst
 // load, then crash in the first forward pass). Throws Error(where, ...).
 void load_weights(torch::nn::Module& net, torch::serialize::InputArchive& a, const std::string& where);
 
+// Opens the model file `path` into `a`. Error(path, ...) when it is missing, a directory, or no
+// libtorch archive ("not a cropsight <what> model: <reason>").
+void open_model_archive(torch::serialize::InputArchive& a, const std::filesystem::path& path, const std::string& what);
+// The "model" entry of a model file into `net` (load_weights' shape checks). Error(where, ...).
+void read_model_weights(torch::serialize::InputArchive& a, torch::nn::Module& net, const std::string& where);
+
 // A training checkpoint at `path`: the weights, the optimiser state and the epochs done.
 void write_checkpoint(const std::filesystem::path& path, const torch::nn::Module& net,
                       const torch::optim::Optimizer& opt, int epochs_done);

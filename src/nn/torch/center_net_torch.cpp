@@ -209,6 +209,36 @@ class Backend final : public detail::DetectorBackend {
     save_archive_atomic(a, path);
   }
 
+  std::vector<detail::FoldedConv> folded_convs() const override {
+    torch::NoGradGuard no_grad;
+    std::vector<detail::FoldedConv> out;
+    auto vec = [](const torch::Tensor& t) {
+      const auto c = t.contiguous();
+      return std::vector<float>(c.data_ptr<float>(), c.data_ptr<float>() + c.numel());
+    };
+    auto fold = [&](const std::string& name, ConvBn& m) {
+      const auto& bn = m->bn;
+      const auto g = bn->weight / torch::sqrt(bn->running_var + bn->options.eps());
+      const auto w = m->conv->weight * g.reshape({-1, 1, 1, 1});
+      const auto b = bn->bias - bn->running_mean * g;
+      out.push_back({name, int(w.size(0)), int(w.size(1)), int(w.size(2)), int(m->conv->options.stride()->at(0)),
+                     m->relu, vec(w), vec(b)});
+    };
+    for (std::size_t s = 0; s < 5; ++s) {
+      fold("s" + std::to_string(s) + "a", net_->stages[2 * s]);
+      fold("s" + std::to_string(s) + "b", net_->stages[2 * s + 1]);
+    }
+    fold("lat2", net_->lat2), fold("lat3", net_->lat3), fold("lat4", net_->lat4), fold("lat5", net_->lat5);
+    fold("smooth2", net_->smooth2), fold("smooth3", net_->smooth3), fold("smooth4", net_->smooth4);
+    for (auto [name, head] : {std::pair{"hm", net_->hm}, {"wh", net_->wh}, {"off", net_->off}, {"seg", net_->seg}}) {
+      fold(std::string(name) + ".hidden", head->hidden);
+      const auto& c = head->out;
+      out.push_back({std::string(name) + ".out", int(c->weight.size(0)), int(c->weight.size(1)), 1, 1, false,
+                     vec(c->weight), vec(c->bias)});
+    }
+    return out;
+  }
+
   void write_checkpoint(const std::filesystem::path& path, int epochs_done) const override {
     torch_impl::write_checkpoint(path, *net_, *opt_, epochs_done);
   }
@@ -219,14 +249,8 @@ class Backend final : public detail::DetectorBackend {
   static std::unique_ptr<detail::DetectorBackend> load(const std::filesystem::path& path, int threads) {
     const std::string where = path.string();
     check_thread_count(threads, "threads");
-    if (!std::filesystem::exists(path)) throw Error(where, "no such model file");
-    if (!std::filesystem::is_regular_file(path)) throw Error(where, "not a model file (a directory?)");
     torch::serialize::InputArchive a;
-    try {
-      a.load_from(where);
-    } catch (const std::exception& e) {
-      throw Error(where, "not a cropsight detector model: " + torch_reason(e));
-    }
+    open_model_archive(a, path, "detector");
     CenterNetConfig c;
     try {
       c10::IValue kind;
@@ -243,13 +267,7 @@ class Backend final : public detail::DetectorBackend {
     c.threads = threads;
     c.validate(where + ": metadata");
     auto b = std::make_unique<Backend>(c);
-    torch::serialize::InputArchive m;
-    try {
-      a.read("model", m);
-    } catch (const std::exception& e) {
-      throw Error(where, "model file lacks its weights: " + torch_reason(e));
-    }
-    load_weights(*b->net_, m, where);
+    read_model_weights(a, *b->net_, where);
     return b;
   }
 

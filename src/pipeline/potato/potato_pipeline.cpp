@@ -8,6 +8,7 @@
 #include "cropsight/core/timer.hpp"
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/depth_colormap.hpp"
+#include "cropsight/nn/center_onnx.hpp"
 
 namespace cropsight::pipeline::potato {
 
@@ -26,6 +27,11 @@ std::unique_ptr<Detector2D> make_potato_detector(const PotatoDetectorConfig& cfg
     if (cfg.onnx.model.empty())
       throw Error(where, "'detector.onnx.model' must name an .onnx file for detector.backend onnx");
     return nn::make_onnx_detector(cfg.onnx);
+  }
+  if (cfg.backend == DetectorBackend::cnn) {
+    if (cfg.cnn_model.empty())
+      throw Error(where, "'detector.cnn_model' must name a detector (.onnx or .pt) for detector.backend cnn");
+    return nn::load_center_detector(cfg.cnn_model);
   }
   return std::make_unique<PotatoBlobDetector>(cfg.classical);
 }

@@ -27,20 +27,23 @@
 
 namespace cropsight::pipeline::potato {
 
-enum class DetectorBackend { classical, onnx };
-constexpr std::array<const char*, 2> config_names(DetectorBackend) { return {"classical", "onnx"}; }
+enum class DetectorBackend { classical, onnx, cnn };
+constexpr std::array<const char*, 3> config_names(DetectorBackend) { return {"classical", "onnx", "cnn"}; }
 
 /// The detector slot: which backend and each backend's settings (keys detector.*).
 struct PotatoDetectorConfig {
   DetectorBackend backend = DetectorBackend::classical;
   PotatoBlobConfig classical;
   nn::OnnxDetectorConfig onnx;
+  std::string cnn_model;  ///< the project's CenterNet (issue 24): .onnx (OpenCV DNN) or .pt (libtorch)
 
   template <class V>
   void visit(V& v) {
-    v("backend", backend, "classical | onnx; the 2D detector (paper: SSD300 MobileNet v2, 70 ms a frame)");
+    v("backend", backend, "classical | onnx | cnn; the 2D detector (paper: SSD300 MobileNet v2, 70 ms a frame)");
     v("classical", classical, "the classical colour/range blob detector (pipeline/potato/potato_blob_detector.hpp)");
     v("onnx", onnx, "a user's ONNX detector run by OpenCV DNN (nn/onnx_detector.hpp)");
+    v("cnn_model", cnn_model,
+      "path; the project's CenterNet for backend cnn: .onnx (OpenCV DNN) or .pt (nn/center_onnx.hpp)");
   }
 };
 

@@ -1,0 +1,113 @@
+// nn::CenterNetOnnx: the exported CenterNet through OpenCV DNN (include/cropsight/nn/center_onnx.hpp).
+#include "cropsight/nn/center_onnx.hpp"
+
+#include <opencv2/core/utils/logger.hpp>
+#include <opencv2/dnn.hpp>
+
+#include "cropsight/core/error.hpp"
+#include "nn/center_codec.hpp"
+#include "nn/center_onnx_writer.hpp"
+
+namespace cropsight::nn {
+
+namespace {
+const std::vector<std::string> kOutputs = {"heatmap", "size", "offset", "mask"};
+
+std::string first_line(const cv::Exception& e) {
+  const std::string s = e.what();
+  const auto p = s.find("error: ");
+  std::string t = p == std::string::npos ? s : s.substr(p + 7);
+  return t.substr(0, t.find('\n'));
+}
+}  // namespace
+
+struct CenterNetOnnx::Impl {
+  std::string where;
+  CenterNetConfig cfg;
+  cv::dnn::Net net;
+
+  std::vector<cv::Mat> forward(const std::vector<float>& blob) {
+    const int dims[4] = {1, 3, cfg.input_height, cfg.input_width};
+    net.setInput(cv::Mat(4, dims, CV_32F, const_cast<float*>(blob.data())));
+    std::vector<cv::Mat> outs;
+    try {
+      net.forward(outs, kOutputs);
+    } catch (const cv::Exception& e) {
+      throw Error(where, "forward pass failed: " + first_line(e));
+    }
+    return outs;
+  }
+
+  CenterNetHeads heads(const std::vector<float>& blob) {
+    const auto outs = forward(blob);
+    CenterNetHeads h;
+    h.classes = cfg.num_classes(), h.out_w = cfg.input_width / 4, h.out_h = cfg.input_height / 4;
+    const std::size_t plane = std::size_t(h.out_w) * std::size_t(h.out_h);
+    std::vector<float>* dst[4] = {&h.heatmap, &h.size, &h.offset, &h.mask};
+    const std::size_t channels[4] = {std::size_t(h.classes), 2, 2, std::size_t(h.classes)};
+    for (int i = 0; i < 4; ++i) {
+      const cv::Mat& m = outs[std::size_t(i)];
+      if (m.total() != channels[i] * plane || m.type() != CV_32F)
+        throw Error(where, "output '" + kOutputs[std::size_t(i)] + "' has a foreign layout (expected [1, " +
+                               std::to_string(channels[i]) + ", " + std::to_string(h.out_h) + ", " +
+                               std::to_string(h.out_w) + "])");
+      dst[i]->assign(m.ptr<float>(), m.ptr<float>() + m.total());
+    }
+    return h;
+  }
+};
+
+CenterNetOnnx::CenterNetOnnx(const std::filesystem::path& path) : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  m.where = path.string();
+  if (!std::filesystem::is_regular_file(path)) throw Error(m.where, "no such ONNX file");
+  const OnnxModelInfo info = read_onnx_info(path);
+  if (info.metadata.count("kind") == 0 || info.metadata.at("kind") != "cropsight-centernet")
+    throw Error(m.where, "not a cropsight detector (no cropsight.kind metadata; a foreign ONNX layout?)");
+  ConfigMap map(info.metadata.begin(), info.metadata.end());
+  map.erase("kind");
+  apply_config(m.cfg, map, m.where + ": metadata");
+  m.cfg.validate(m.where + ": metadata");
+  for (const auto& o : kOutputs)
+    if (std::find(info.outputs.begin(), info.outputs.end(), o) == info.outputs.end())
+      throw Error(m.where, "has no output '" + o + "' (a foreign ONNX layout)");
+  const auto level = cv::utils::logging::getLogLevel();
+  cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
+  try {
+    m.net = cv::dnn::readNetFromONNX(m.where);
+  } catch (const cv::Exception& e) {
+    cv::utils::logging::setLogLevel(level);
+    throw Error(m.where, "not an ONNX model OpenCV " CV_VERSION " can load: " + first_line(e));
+  }
+  cv::utils::logging::setLogLevel(level);
+  // One blank input: a file whose outputs do not fit fails here, not on the first image.
+  m.heads(std::vector<float>(3 * std::size_t(m.cfg.input_width) * std::size_t(m.cfg.input_height), 0.5f));
+}
+
+CenterNetOnnx::~CenterNetOnnx() = default;
+const CenterNetConfig& CenterNetOnnx::config() const { return impl_->cfg; }
+std::vector<std::string> CenterNetOnnx::class_names() const { return impl_->cfg.names(); }
+
+CenterNetHeads CenterNetOnnx::heads(const ColorImage& image) {
+  if (image.empty()) throw Error(impl_->where, "detect() needs a colour image");
+  return impl_->heads(center_blob(image, impl_->cfg.input_width, impl_->cfg.input_height, nullptr));
+}
+
+std::vector<Detection2D> CenterNetOnnx::detect(const ColorImage& image) {
+  if (image.empty()) throw Error(impl_->where, "detect() needs a colour image");
+  Letterbox lb;
+  const auto blob = center_blob(image, impl_->cfg.input_width, impl_->cfg.input_height, &lb);
+  return decode_heads(impl_->heads(blob), lb, float(impl_->cfg.score_threshold), impl_->cfg.top_k);
+}
+
+std::vector<Detection2D> CenterNetOnnx::detect(const DetectorInput& in) {
+  if (in.image == nullptr) throw Error(impl_->where, "detect() needs a colour image");
+  return detect(*in.image);
+}
+
+std::unique_ptr<Detector2D> load_center_detector(const std::filesystem::path& path, int threads) {
+  if (path.extension() == ".onnx") return std::make_unique<CenterNetOnnx>(path);
+  return std::make_unique<CenterNet>(CenterNet::load(path, threads));
+}
+
+}  // namespace cropsight::nn

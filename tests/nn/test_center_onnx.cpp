@@ -1,0 +1,107 @@
+// The detector's ONNX export: OpenCV DNN on the exported file gives the boxes libtorch gives
+// (within 1e-3), and files that are not the project's detector are one Error naming the file.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/nn/center_net.hpp"
+#include "cropsight/nn/center_onnx.hpp"
+#include "testing/testing.hpp"
+
+#ifdef CROPSIGHT_HAVE_ONNX
+#include <onnx/onnx_pb.h>
+#endif
+
+namespace {
+using namespace cropsight;
+using namespace cropsight::nn;
+
+std::string onnx_error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+ColorImage scene(int w, int h) {
+  ColorImage im(w, h, Rgb8{110, 120, 100});
+  for (int y = h / 4; y < h / 2; ++y)
+    for (int x = w / 5; x < w / 2; ++x) im.at(x, y) = Rgb8{200, 60, 40};
+  for (int y = h / 2; y < h - 6; ++y)
+    for (int x = w / 2 + 4; x < w - 8; ++x) im.at(x, y) = Rgb8{40, 60, 200};
+  return im;
+}
+
+#ifdef CROPSIGHT_HAVE_ONNX
+TEST(CenterNetOnnx, OpenCvDnnGivesTheBoxesOfLibtorch) {
+  CenterNetConfig cfg;
+  cfg.class_names = "red,blue";
+  cfg.input_width = 96, cfg.input_height = 64;
+  cfg.width = 8;
+  cfg.epochs = 25;
+  cfg.batch_size = 1;
+  cfg.lr = 5e-3;
+  cfg.score_threshold = 0.05;
+  DetectionSample s;
+  s.image = scene(120, 80);
+  s.boxes = {{24, 20, 60, 40, 0, 1}, {64, 40, 112, 74, 1, 1}};
+  CenterNet net(cfg);
+  net.train({s}, {}, {}, {});  // trained a little: BatchNorm statistics that are not the identity
+  cropsight::testing::TempDir t;
+  net.export_onnx(t / "det.onnx");
+  net.save(t / "det.pt");
+  CenterNetOnnx onnx(t / "det.onnx");
+  EXPECT_EQ(onnx.class_names(), net.class_names());
+  EXPECT_EQ(onnx.config().input_width, 96);
+  const ColorImage im = scene(150, 90);  // letterboxed
+  const auto a = net.heads(im), b = onnx.heads(im);
+  ASSERT_EQ(a.heatmap.size(), b.heatmap.size());
+  float worst = 0;
+  for (std::size_t i = 0; i < a.heatmap.size(); ++i) worst = std::max(worst, std::abs(a.heatmap[i] - b.heatmap[i]));
+  for (std::size_t i = 0; i < a.size.size(); ++i) worst = std::max(worst, std::abs(a.size[i] - b.size[i]));
+  for (std::size_t i = 0; i < a.mask.size(); ++i) worst = std::max(worst, std::abs(a.mask[i] - b.mask[i]));
+  EXPECT_LT(worst, 1e-4f);
+  // Boxes: every one of libtorch's five best has its twin from OpenCV (within 1e-3). (Weak peaks
+  // of this briefly trained net can tie with a neighbour to within float rounding, so the full
+  // lists may differ by such a peak.)
+  const auto da = net.detect(im), db = onnx.detect(im);
+  ASSERT_GE(da.size(), 2u);
+  for (std::size_t i = 0; i < std::min<std::size_t>(5, da.size()); ++i) {
+    bool twin = false;
+    for (const auto& d : db)
+      twin = twin || (d.class_id == da[i].class_id && std::abs(d.x1 - da[i].x1) < 1e-3f &&
+                      std::abs(d.y1 - da[i].y1) < 1e-3f && std::abs(d.x2 - da[i].x2) < 1e-3f &&
+                      std::abs(d.y2 - da[i].y2) < 1e-3f && std::abs(d.score - da[i].score) < 1e-3f);
+    EXPECT_TRUE(twin) << "box " << i;
+  }
+  // load_center_detector picks the backend by extension.
+  EXPECT_EQ(load_center_detector(t / "det.onnx")->detect({&im, nullptr}).size(), db.size());
+  EXPECT_EQ(load_center_detector(t / "det.pt")->class_names(), net.class_names());
+}
+
+TEST(CenterNetOnnx, ForeignFilesAreNamed) {
+  cropsight::testing::TempDir t;
+  cropsight::testing::write_text(t / "junk.onnx", "junk");
+  EXPECT_NE(onnx_error_of([&] { CenterNetOnnx x(t / "junk.onnx"); }).find("junk.onnx"), std::string::npos);
+  EXPECT_NE(onnx_error_of([&] { CenterNetOnnx x(t / "none.onnx"); }).find("no such ONNX file"), std::string::npos);
+  // A valid ONNX graph (Identity) without the detector's metadata: a foreign layout.
+  onnx::ModelProto m;
+  m.set_ir_version(7);
+  m.add_opset_import()->set_version(11);
+  auto* n = m.mutable_graph()->add_node();
+  n->set_op_type("Identity");
+  n->add_input("x");
+  n->add_output("y");
+  m.mutable_graph()->add_input()->set_name("x");
+  m.mutable_graph()->add_output()->set_name("y");
+  std::ofstream(t / "foreign.onnx", std::ios::binary) << m.SerializeAsString();
+  const std::string e = onnx_error_of([&] { CenterNetOnnx x(t / "foreign.onnx"); });
+  EXPECT_NE(e.find("foreign.onnx"), std::string::npos) << e;
+  EXPECT_NE(e.find("foreign ONNX layout"), std::string::npos) << e;
+}
+#endif
+
+}  // namespace
