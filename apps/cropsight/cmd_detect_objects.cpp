@@ -18,7 +18,7 @@
 
 namespace cropsight::cli {
 
-namespace {
+namespace detect_objects_cmd {
 std::vector<std::filesystem::path> list_images(const std::filesystem::path& dir) {
   if (!std::filesystem::is_directory(dir)) throw Error(dir.string(), "not a folder of images");
   std::vector<std::filesystem::path> out;
@@ -31,9 +31,10 @@ std::vector<std::filesystem::path> list_images(const std::filesystem::path& dir)
   if (out.empty()) throw Error(dir.string(), "holds no .jpg or .png image");
   return out;
 }
-}  // namespace
+}  // namespace detect_objects_cmd
 
 void add_detect_objects(CLI::App& detect) {
+  using namespace detect_objects_cmd;
   struct Options {
     std::string model, images, out;
     int threads = 1;

@@ -19,7 +19,7 @@
 #include "detector_cli.hpp"
 
 namespace cropsight::cli {
-namespace {
+namespace train_detector_cmd {
 
 struct TrainDetectorOptions {
   DatasetOptions data;
@@ -107,9 +107,10 @@ void run(const TrainDetectorOptions& o) {
   else
     std::printf("trained on %zu images in %.1f s -> %s\n", train.size(), seconds, o.out.c_str());
 }
-}  // namespace
+}  // namespace train_detector_cmd
 
 void add_train_detector(CLI::App& train) {
+  using namespace train_detector_cmd;
   auto o = std::make_shared<TrainDetectorOptions>();
   auto* cmd = train.add_subcommand("detector", "Train the CenterNet 2D detector (boxes and masks) from scratch");
   add_dataset_options(cmd, o->data);
