@@ -46,9 +46,10 @@ void add_eval_potato(CLI::App& eval);  // the harvest loop against the simulator
 void add_harvest_potato(CLI::App& harvest);
 void add_bench_potato(CLI::App& bench);
 
-// Our own 2D detector (issue 24): train detector, export-detector, detect objects
+// Our own 2D detector (issue 24): train detector, export-detector, detect objects, eval detector
 void add_train_detector(CLI::App& train);
 void add_export_detector(CLI::App& app);
 void add_detect_objects(CLI::App& detect);
+void add_eval_detector(CLI::App& eval);
 
 }  // namespace cropsight::cli

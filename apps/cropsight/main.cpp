@@ -73,6 +73,7 @@ int main(int argc, char** argv) {
   add_train_detector(*train);
   add_export_detector(app);
   add_detect_objects(*detect);
+  add_eval_detector(*eval);
 
   // CLI11 reports a mistyped command as "A subcommand is required"; name it instead. Same one
   // level down (cropsight detect brocoli).

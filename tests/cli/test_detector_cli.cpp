@@ -1,5 +1,6 @@
 // train detector: a tiny VOC set trains end to end (model file, one progress line per epoch,
-// JSON with the held-out images), and bad sets are one line naming the file, exit 2.
+// JSON with the held-out images), eval detector scores the same held-out images, and bad sets are one line naming the
+// file, exit 2.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -57,6 +58,25 @@ TEST(DetectorCli, TrainsOnAVocSetWithAHeldOutSplit) {
     EXPECT_TRUE(fs::exists(t / (std::string(m) + ".out") / "detections.json"));
     EXPECT_TRUE(fs::exists(t / (std::string(m) + ".out") / "im0.txt"));
   }
+  // eval detector scores the images train detector held out (same fraction and seed), both models.
+  for (const char* m : {"det.pt", "det.onnx"}) {
+    const auto ev = run_cli("eval detector --voc " + shell_quoted(t / "ann") + " --images " + shell_quoted(t / "img") +
+                            " --model " + shell_quoted(t / m) + " --val-split 0.25 --json");
+    ASSERT_EQ(ev.exit_code, 0) << ev.err;
+    const auto k = nlohmann::json::parse(ev.out);
+    EXPECT_EQ(k["images"], 1);
+    EXPECT_EQ(k["image_names"], j["val_images"]);
+    ASSERT_EQ(k["classes"].size(), 1u);
+    EXPECT_EQ(k["classes"][0]["class"], "potato");
+    EXPECT_EQ(k["classes"][0]["truths"], 1);
+    EXPECT_TRUE(k["classes"][0].contains("box_ap50_95"));
+  }
+  write_text(t / "bad.json",
+             R"({"images": [{"id": 1, "file_name": "im0.png"}], "categories": [{"id": 1, "name": "potato"}]})");
+  const auto bad_ann = run_cli("eval detector --coco " + shell_quoted(t / "bad.json") + " --images " +
+                               shell_quoted(t / "img") + " --model " + shell_quoted(t / "det.onnx"));
+  EXPECT_EQ(bad_ann.exit_code, 2);
+  EXPECT_NE(bad_ann.err.find("bad.json"), std::string::npos) << bad_ann.err;
   const auto bad = run_cli("detect objects --model " + shell_quoted(t / "img" / "im0.png") + " --images " +
                            shell_quoted(t / "img") + " --out " + shell_quoted(t / "o"));
   EXPECT_EQ(bad.exit_code, 2);

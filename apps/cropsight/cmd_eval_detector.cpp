@@ -1,0 +1,96 @@
+// cropsight eval detector: scores the project's 2D detector (.pt or .onnx) on a labelled set
+// (issue 24): per class COCO box AP50 and AP50:95 and the mask head's pixel accuracy and IoU
+// (nn/detector_eval.hpp says how).
+//
+//   cropsight eval detector (--coco ANN.json | --voc DIR) --images DIR --model M(.pt|.onnx)
+//       [--classes a,b] [--val-split F --split-seed S] [--mask-threshold T] [--threads N] [--json]
+//
+// With --val-split only the held-out images of that split are scored: the same images `train
+// detector` held out with the same fraction and seed (split_indices of detector_cli.hpp).
+// --classes defaults to the model's class names, so class ids match the model's.
+#include <cmath>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "cropsight/core/error.hpp"
+#include "cropsight/nn/center_onnx.hpp"
+#include "cropsight/nn/detector_eval.hpp"
+#include "detector_cli.hpp"
+
+namespace cropsight::cli {
+namespace eval_detector_cmd {
+
+struct EvalDetectorOptions {
+  DatasetOptions data;
+  std::string model;
+  double val_split = 0, mask_threshold = 0.5;
+  std::uint64_t split_seed = 1;
+  int threads = 1;
+  CommonOptions common;
+};
+
+nlohmann::json number_or_null(double v) { return std::isnan(v) ? nlohmann::json() : json_number(v); }
+
+void run(EvalDetectorOptions o) {
+  auto det = nn::load_center_detector(o.model, o.threads);
+  if (o.data.classes.empty())
+    for (const auto& c : det->class_names()) o.data.classes += (o.data.classes.empty() ? "" : ",") + c;
+  nn::DetectionDataset set = load_dataset(o.data);
+  std::vector<nn::DetectionSample> scored;
+  nlohmann::json names = nlohmann::json::array();
+  if (o.val_split > 0) {
+    const Split split = split_indices(set.samples.size(), o.val_split, o.split_seed);
+    for (auto i : split.val) scored.push_back(std::move(set.samples[i]));
+  } else {
+    scored = std::move(set.samples);
+  }
+  for (const auto& s : scored) names.push_back(s.name);
+  double ms = 0;
+  const nn::DetectorScore score = nn::evaluate_detector(*det, scored, float(o.mask_threshold), &ms);
+  if (o.common.json) {
+    nlohmann::json classes = nlohmann::json::array();
+    for (const auto& c : score.classes)
+      classes.push_back({{"class", c.name},
+                         {"truths", c.truths},
+                         {"detections", c.detections},
+                         {"box_ap50", number_or_null(c.ap50)},
+                         {"box_ap50_95", number_or_null(c.ap50_95)},
+                         {"pixel_accuracy", number_or_null(c.pixel_accuracy)},
+                         {"iou", number_or_null(c.iou)},
+                         {"truth_pixels", c.truth_pixels},
+                         {"predicted_pixels", c.predicted_pixels}});
+    print_json({{"model", o.model},
+                {"images", score.images},
+                {"masked_images", score.masked_images},
+                {"image_names", names},
+                {"ap", "COCO bbox: greedy best-unmatched matching, 101-point interpolation"},
+                {"mask_threshold", o.mask_threshold},
+                {"ms_per_image", json_number(ms)},
+                {"classes", classes}});
+  } else {
+    std::printf("%d images (%d with masks)\n", score.images, score.masked_images);
+    for (const auto& c : score.classes)
+      std::printf("%-12s box AP50 %.3f  AP50:95 %.3f  pixel acc %.3f  IoU %.3f\n", c.name.c_str(), c.ap50, c.ap50_95,
+                  c.pixel_accuracy, c.iou);
+  }
+}
+}  // namespace eval_detector_cmd
+
+void add_eval_detector(CLI::App& eval) {
+  using namespace eval_detector_cmd;
+  auto o = std::make_shared<EvalDetectorOptions>();
+  auto* cmd =
+      eval.add_subcommand("detector", "Score the 2D detector: COCO box AP per class, mask pixel accuracy / IoU");
+  add_dataset_options(cmd, o->data);
+  cmd->add_option("--model", o->model, "Detector: .pt (libtorch) or .onnx (OpenCV DNN)")->required();
+  cmd->add_option("--val-split", o->val_split, "Score only the held-out images of this split (as train detector)");
+  cmd->add_option("--split-seed", o->split_seed, "Seed of the held-out split");
+  cmd->add_option("--mask-threshold", o->mask_threshold, "Mask head score a pixel needs")->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--threads", o->threads, "libtorch threads (.pt)")->check(CLI::Range(1, 256));
+  add_json_flag(cmd, o->common);
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace cropsight::cli

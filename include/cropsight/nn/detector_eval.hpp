@@ -1,0 +1,68 @@
+#pragma once
+// Scoring the 2D detector (nn::CenterNet, .pt or .onnx) on a labelled image set (issue 24,
+// `cropsight eval detector`): per class COCO box AP50 and AP50:95 (eval/coco_box_ap.hpp: COCO's
+// matching and 101-point interpolation) and the grape paper's Table 2 2D segmentation metrics of
+// the mask head, per class over the whole image set.
+//
+// Masks: the mask head (sigmoid, stride 4 of the letterboxed input) is mapped back to every image
+// pixel (the pixel centre through the letterbox, the nearest output cell) and thresholded at
+// mask_threshold. Per class c, pixels are counted over all images that carry truth masks
+// (DetectionSample::masks, COCO polygons filled): TP = in the truth and predicted, FN = in the
+// truth only, FP = predicted only. IoU = TP / (TP + FP + FN); pixel accuracy = TP / (TP + FN)
+// (the class's pixels labelled right, eval::ConfusionMatrix::class_accuracy). A pixel may belong
+// to two classes (the masks are per class, not exclusive). Images without truth masks count for
+// the box APs only.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cropsight/core/detection2d.hpp"
+#include "cropsight/core/image.hpp"
+#include "cropsight/nn/center_net.hpp"
+
+namespace cropsight::nn {
+
+struct DetectorClassScore {
+  std::string name;
+  std::int64_t truths = 0, detections = 0;  ///< boxes
+  double ap50 = 0, ap50_95 = 0;             ///< NaN without a truth box
+  std::int64_t truth_pixels = 0, predicted_pixels = 0, true_pixels = 0;
+  double pixel_accuracy = 0, iou = 0;  ///< NaN without truth masks (pixel_accuracy) or any pixel (iou)
+};
+
+struct DetectorScore {
+  std::vector<DetectorClassScore> classes;  ///< in class id order
+  int images = 0, masked_images = 0;        ///< all scored / those with truth masks
+};
+
+/// Accumulates images: truth (boxes, optional per-class masks) and predictions (boxes with
+/// class ids and scores, per-class predicted masks image-sized, non-zero = inside; empty = none).
+class DetectorEvaluator {
+ public:
+  explicit DetectorEvaluator(std::vector<std::string> classes);
+  void add(const DetectionSample& truth, const std::vector<Detection2D>& detections,
+           const std::vector<GrayImage>& predicted_masks);
+  DetectorScore score() const;
+
+ private:
+  std::vector<std::string> classes_;
+  struct Image {
+    std::vector<std::vector<Detection2D>> truth, dets;  // per class
+  };
+  std::vector<Image> images_;
+  std::vector<std::int64_t> tp_, fp_, fn_;
+  int masked_ = 0;
+};
+
+/// The mask head mapped back to a w x h image (see above): per class, 255 where the score >=
+/// threshold.
+std::vector<GrayImage> masks_from_heads(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w,
+                                        int image_h, float threshold = 0.5f);
+
+/// Runs `detector` (a CenterNet or CenterNetOnnx, as load_center_detector returns) on every
+/// sample and scores it. `ms_per_image` (may be null) gets the mean time of the network and the
+/// decoding per image. Throws Error for another kind of detector.
+DetectorScore evaluate_detector(Detector2D& detector, const std::vector<DetectionSample>& samples,
+                                float mask_threshold = 0.5f, double* ms_per_image = nullptr);
+
+}  // namespace cropsight::nn
