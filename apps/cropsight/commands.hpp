@@ -42,7 +42,8 @@ void add_simulate_seedling(CLI::App& simulate);
 void add_detect_potato(CLI::App& detect);
 void add_eval_potato_detection(CLI::App& eval);
 void add_eval_potato_orientation(CLI::App& eval);
-void add_eval_potato(CLI::App& eval);  // the harvest loop against the simulator's truth
+void add_eval_potato(CLI::App& eval);          // the harvest loop against the simulator's truth
+void add_eval_potato_tracker(CLI::App& eval);  // which visual tracker continues a missed target
 void add_harvest_potato(CLI::App& harvest);
 void add_bench_potato(CLI::App& bench);
 

@@ -64,6 +64,7 @@ int main(int argc, char** argv) {
   add_eval_potato_detection(*eval);
   add_eval_potato_orientation(*eval);
   add_eval_potato(*eval);
+  add_eval_potato_tracker(*eval);
   auto* harvest = app.add_subcommand("harvest", "Run a harvest loop: one target message per frame");
   harvest->require_subcommand(1);
   add_harvest_potato(*harvest);

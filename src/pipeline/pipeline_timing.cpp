@@ -1,7 +1,9 @@
-// Thread CPU clock for pipeline timing (see pipeline_timing.hpp).
+// Thread CPU clock and the one-OpenCV-thread guard for pipeline timing (see pipeline_timing.hpp).
 #include "cropsight/pipeline/pipeline_timing.hpp"
 
 #include <time.h>
+
+#include <opencv2/core/utility.hpp>
 
 namespace cropsight::pipeline {
 
@@ -10,5 +12,8 @@ double thread_cpu_ms() {
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return double(ts.tv_sec) * 1e3 + double(ts.tv_nsec) * 1e-6;
 }
+
+OneOpenCvThread::OneOpenCvThread() : before_(cv::getNumThreads()) { cv::setNumThreads(1); }
+OneOpenCvThread::~OneOpenCvThread() { cv::setNumThreads(before_); }
 
 }  // namespace cropsight::pipeline

@@ -8,7 +8,7 @@
 namespace cropsight::tracking {
 
 TargetTracker::TargetTracker(TargetTrackerConfig cfg, std::unique_ptr<VisualTracker> visual)
-    : cfg_(cfg), visual_(visual ? std::move(visual) : make_visual_tracker(cfg.visual_tracker)) {
+    : cfg_(cfg), visual_(visual ? std::move(visual) : make_visual_tracker(cfg.visual_tracker, cfg.csrt)) {
   check_config(cfg_, "target tracker");
 }
 

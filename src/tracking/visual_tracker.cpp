@@ -8,6 +8,8 @@
 #include <opencv2/tracking.hpp>
 #include <opencv2/video/tracking.hpp>
 
+#include "cropsight/core/error.hpp"
+
 namespace cropsight::tracking {
 namespace {
 
@@ -15,7 +17,7 @@ cv::Mat view(const ColorImage& im) { return cv::Mat(im.height, im.width, CV_8UC3
 
 class OpenCvTracker final : public VisualTracker {
  public:
-  explicit OpenCvTracker(VisualTrackerKind kind) : kind_(kind) {}
+  OpenCvTracker(VisualTrackerKind kind, const CsrtParams& csrt) : kind_(kind), csrt_(csrt) {}
 
   void init(const ColorImage& image, const Detection2D& box) override {
     tracker_ = create();
@@ -51,11 +53,16 @@ class OpenCvTracker final : public VisualTracker {
         return cv::TrackerKCF::create();
       case VisualTrackerKind::mil:
         return cv::TrackerMIL::create();
-      default:
-        return cv::TrackerCSRT::create();
+      default: {
+        cv::TrackerCSRT::Params p;
+        p.template_size = float(csrt_.template_size);
+        p.number_of_scales = csrt_.scales;
+        return cv::TrackerCSRT::create(p);
+      }
     }
   }
   VisualTrackerKind kind_;
+  CsrtParams csrt_;
   cv::Ptr<cv::Tracker> tracker_;
   int class_id_ = 0;
   float score_ = 0;
@@ -63,9 +70,11 @@ class OpenCvTracker final : public VisualTracker {
 
 }  // namespace
 
-std::unique_ptr<VisualTracker> make_visual_tracker(VisualTrackerKind kind) {
+std::unique_ptr<VisualTracker> make_visual_tracker(VisualTrackerKind kind, const CsrtParams& csrt) {
   if (kind == VisualTrackerKind::none) return nullptr;
-  return std::make_unique<OpenCvTracker>(kind);
+  if (csrt.template_size < 16 || csrt.scales < 1)
+    throw Error("visual tracker", "CSRT needs template_size >= 16 and scales >= 1");
+  return std::make_unique<OpenCvTracker>(kind, csrt);
 }
 
 }  // namespace cropsight::tracking

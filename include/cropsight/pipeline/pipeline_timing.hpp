@@ -28,6 +28,20 @@ struct PipelineTiming {
 /// itself used (single-threaded), so it is robust against other processes.
 double thread_cpu_ms();
 
+/// OpenCV's own thread pool on one thread for the lifetime of the object (timed figures are
+/// single-threaded), restored afterwards. Not thread-safe: cv::setNumThreads is process-wide, so
+/// use it from the one thread that times.
+class OneOpenCvThread {
+ public:
+  OneOpenCvThread();
+  ~OneOpenCvThread();
+  OneOpenCvThread(const OneOpenCvThread&) = delete;
+  OneOpenCvThread& operator=(const OneOpenCvThread&) = delete;
+
+ private:
+  int before_;
+};
+
 /// Adds the wall and CPU time of `work()` to `t`; returns what work() returned.
 template <class Work>
 auto timed(PipelineTiming& t, Work&& work) {

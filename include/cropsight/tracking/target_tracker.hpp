@@ -50,6 +50,7 @@ struct TargetTrackerConfig {
   int tracking_limit = 10;      ///< paper TRACKING_LIM: most consecutive frames tracked without detection
   TargetAssociation association = TargetAssociation::closest;
   VisualTrackerKind visual_tracker = VisualTrackerKind::csrt;
+  CsrtParams csrt;  ///< OpenCV's defaults (a smaller template was measured and not taken: potatoes.md)
 
   template <class V>
   void visit(V& v) {
@@ -79,7 +80,11 @@ struct TargetTrackerConfig {
       "nearest | closest; among detections within epsilon: the nearest to the camera (paper) or the one "
       "closest to the last target centre (ours)");
     v("visual_tracker", visual_tracker,
-      "csrt | kcf | mil | none; OpenCV tracker in place of the paper's dlib correlation tracker");
+      "csrt | kcf | mil | none; OpenCV tracker in place of the paper's dlib correlation tracker (chosen by `cropsight "
+      "eval potato-tracker`, docs/pipelines/potatoes.md)");
+    v("csrt_template_size", csrt.template_size,
+      "px; CSRT's template side (its cost per frame grows with its square; OpenCV's default 200)", Range::at_least(16));
+    v("csrt_scales", csrt.scales, "CSRT's scale-filter scales per frame (OpenCV's default 33)", Range::at_least(1));
   }
 };
 

@@ -27,7 +27,14 @@ class VisualTracker {
   virtual std::optional<Detection2D> update(const ColorImage& image) = 0;
 };
 
-/// An OpenCV tracker of `kind`; nullptr for VisualTrackerKind::none.
-std::unique_ptr<VisualTracker> make_visual_tracker(VisualTrackerKind kind);
+/// CSRT's cost per frame is set by its template (the padded box resized to about this many pixels
+/// a side) and by the scales its scale filter tries, not by the box's size in the image.
+struct CsrtParams {
+  int template_size = 200;  ///< px; OpenCV's default
+  int scales = 33;          ///< scale-filter scales; OpenCV's default
+};
+
+/// An OpenCV tracker of `kind`; nullptr for VisualTrackerKind::none. `csrt` applies to CSRT only.
+std::unique_ptr<VisualTracker> make_visual_tracker(VisualTrackerKind kind, const CsrtParams& csrt = {});
 
 }  // namespace cropsight::tracking

@@ -111,20 +111,47 @@ PotatoStageTimes stage_times(const std::vector<PotatoFrameResult>& run) {
   return t;
 }
 
-PotatoSequenceEvaluation evaluate_potato_sequence(PotatoPipeline& pipeline, const std::filesystem::path& seq,
-                                                  double min_iou) {
-  const io::SequenceReader reader(seq);
-  // The truth the evaluation needs: per-potato instances, the camera's path, the label images.
+namespace {
+
+// The truth the evaluations need: per-potato instances, the camera's path, the label images.
+void require_simulator_truth(const io::SequenceReader& reader, const std::filesystem::path& seq) {
   if (reader.groundtruth().instances.empty())
     throw Error((seq / "groundtruth.json").string(), "missing or without instances (not a simulated potato sequence)");
   if (!reader.info().has_poses) throw Error((seq / "poses.csv").string(), "missing (not a simulated sequence)");
   if (!reader.info().has_labels) throw Error((seq / "labels").string(), "missing (not a simulated sequence)");
+}
+
+std::vector<sim::PotatoFrameTruth> simulated_frame_truth(const io::SequenceReader& reader, const RgbdFrame& f,
+                                                         const std::filesystem::path& seq) {
+  if (!f.camera_position) throw Error((seq / "poses.csv").string(), "no pose for frame " + std::to_string(f.index));
+  return sim::potato_frame_truth(reader.groundtruth(), *f.camera_position, f.camera, f.labels);
+}
+
+}  // namespace
+
+SimulatedPotatoTruthSequence read_simulated_potato_truth(const std::filesystem::path& seq) {
+  const io::SequenceReader reader(seq);
+  require_simulator_truth(reader, seq);
+  if (!reader.info().has_color) throw Error((seq / "color").string(), "missing (the trackers follow the colour image)");
+  SimulatedPotatoTruthSequence out;
+  out.path = seq;
+  for (int i = 0; i < reader.size(); ++i) {
+    RgbdFrame f = reader.read(i);
+    out.truth.push_back(simulated_frame_truth(reader, f, seq));
+    out.colour.push_back(std::move(f.color));
+  }
+  return out;
+}
+
+PotatoSequenceEvaluation evaluate_potato_sequence(PotatoPipeline& pipeline, const std::filesystem::path& seq,
+                                                  double min_iou) {
+  const io::SequenceReader reader(seq);
+  require_simulator_truth(reader, seq);
   PotatoSequenceEvaluation out;
   pipeline.reset();
   for (int i = 0; i < reader.size(); ++i) {
     const RgbdFrame f = reader.read(i);
-    if (!f.camera_position) throw Error((seq / "poses.csv").string(), "no pose for frame " + std::to_string(i));
-    out.truth.push_back(sim::potato_frame_truth(reader.groundtruth(), *f.camera_position, f.camera, f.labels));
+    out.truth.push_back(simulated_frame_truth(reader, f, seq));
     out.run.push_back(pipeline.process(f));
   }
   out.figures = evaluate_potato_run(out.run, out.truth, min_iou);

@@ -15,19 +15,6 @@ void check(const std::vector<RgbdFrame>& frames, int repeat) {
   if (repeat < 1) throw Error("bench potato", "repeat must be at least 1");
 }
 
-// OpenCV's own thread pool on one thread while timing (the figures are single-threaded), restored
-// afterwards.
-class OneOpenCvThread {
- public:
-  OneOpenCvThread() : before_(cv::getNumThreads()) { cv::setNumThreads(1); }
-  ~OneOpenCvThread() { cv::setNumThreads(before_); }
-  OneOpenCvThread(const OneOpenCvThread&) = delete;
-  OneOpenCvThread& operator=(const OneOpenCvThread&) = delete;
-
- private:
-  int before_;
-};
-
 }  // namespace
 
 PipelineTiming time_potato_pipeline(PotatoPipeline& pipeline, const std::vector<RgbdFrame>& frames, int repeat) {

@@ -81,4 +81,15 @@ struct PotatoSequenceEvaluation {
 PotatoSequenceEvaluation evaluate_potato_sequence(PotatoPipeline& pipeline, const std::filesystem::path& seq,
                                                   double min_iou = 0.3);
 
+/// A simulated approach in memory: colour frames and the truth of every potato per frame.
+struct SimulatedPotatoTruthSequence {
+  std::filesystem::path path;
+  std::vector<ColorImage> colour;
+  std::vector<std::vector<sim::PotatoFrameTruth>> truth;  ///< per frame
+};
+
+/// Reads the colour frames and the per-frame truth of a `cropsight simulate potato` sequence.
+/// Throws Error(file, ...) when it is unreadable or lacks the simulator's truth.
+SimulatedPotatoTruthSequence read_simulated_potato_truth(const std::filesystem::path& seq);
+
 }  // namespace cropsight::pipeline::potato
