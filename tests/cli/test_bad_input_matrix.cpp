@@ -48,18 +48,30 @@ enum class Bad {
 };
 const char* name_of(Bad b) {
   switch (b) {
-    case Bad::Missing: return "missing";
-    case Bad::Empty: return "empty";
-    case Bad::Truncated: return "truncated";
-    case Bad::Directory: return "directory";
-    case Bad::WrongDepth: return "wrong-depth";
-    case Bad::WrongSize: return "wrong-size";
-    case Bad::NaN: return "nan";
-    case Bad::Inf: return "inf";
-    case Bad::WrongType: return "wrong-type";
-    case Bad::UnknownKey: return "unknown-key";
-    case Bad::OutOfRange: return "out-of-range";
-    case Bad::Unwritable: return "unwritable-output";
+    case Bad::Missing:
+      return "missing";
+    case Bad::Empty:
+      return "empty";
+    case Bad::Truncated:
+      return "truncated";
+    case Bad::Directory:
+      return "directory";
+    case Bad::WrongDepth:
+      return "wrong-depth";
+    case Bad::WrongSize:
+      return "wrong-size";
+    case Bad::NaN:
+      return "nan";
+    case Bad::Inf:
+      return "inf";
+    case Bad::WrongType:
+      return "wrong-type";
+    case Bad::UnknownKey:
+      return "unknown-key";
+    case Bad::OutOfRange:
+      return "out-of-range";
+    case Bad::Unwritable:
+      return "unwritable-output";
   }
   return "?";
 }
@@ -70,20 +82,26 @@ std::vector<Bad> classes_of(Kind k) {
   using B = Bad;
   switch (k) {
     case Kind::Yaml:
-      return {B::Missing, B::Empty, B::Truncated, B::Directory, B::NaN, B::Inf, B::WrongType, B::UnknownKey, B::OutOfRange};
+      return {B::Missing, B::Empty,     B::Truncated,  B::Directory, B::NaN,
+              B::Inf,     B::WrongType, B::UnknownKey, B::OutOfRange};
     // JSON files: model files and truth carry extra fields by design (docs/formats.md), so no
     // unknown-key cell; the YAML configs and --set carry that class.
     case Kind::Json:
       return {B::Missing, B::Empty, B::Truncated, B::Directory, B::NaN, B::Inf, B::WrongType, B::OutOfRange};
     case Kind::Csv:  // poses.csv is optional: no missing cell
       return {B::Empty, B::Truncated, B::Directory, B::NaN, B::Inf, B::WrongType, B::OutOfRange};
-    case Kind::Png: return {B::Missing, B::Empty, B::Truncated, B::Directory, B::WrongDepth, B::WrongSize};
+    case Kind::Png:
+      return {B::Missing, B::Empty, B::Truncated, B::Directory, B::WrongDepth, B::WrongSize};
     case Kind::Cloud:
       return {B::Missing, B::Empty, B::Truncated, B::Directory, B::NaN, B::Inf, B::WrongType, B::OutOfRange};
-    case Kind::Xml: return {B::Missing, B::Empty, B::Truncated, B::Directory, B::NaN, B::WrongType, B::OutOfRange};
-    case Kind::Binary: return {B::Missing, B::Empty, B::Truncated, B::Directory};
-    case Kind::Set: return {B::NaN, B::Inf, B::WrongType, B::UnknownKey, B::OutOfRange};
-    case Kind::Output: return {B::Unwritable};
+    case Kind::Xml:
+      return {B::Missing, B::Empty, B::Truncated, B::Directory, B::NaN, B::WrongType, B::OutOfRange};
+    case Kind::Binary:
+      return {B::Missing, B::Empty, B::Truncated, B::Directory};
+    case Kind::Set:
+      return {B::NaN, B::Inf, B::WrongType, B::UnknownKey, B::OutOfRange};
+    case Kind::Output:
+      return {B::Unwritable};
   }
   return {};
 }
@@ -118,11 +136,16 @@ void spit(const fs::path& p, const std::string& text) { cropsight::testing::writ
 std::string raw_value(Kind k, Bad b, const Input& in) {
   const bool yaml = k == Kind::Yaml || k == Kind::Set;
   switch (b) {
-    case Bad::NaN: return yaml ? ".nan" : k == Kind::Json ? "NaN" : "nan";
-    case Bad::Inf: return yaml ? ".inf" : k == Kind::Json ? "Infinity" : "inf";
-    case Bad::WrongType: return yaml ? "[1, 2]" : k == Kind::Json ? "\"text\"" : "abc";
-    case Bad::OutOfRange: return in.range;
-    default: return "";
+    case Bad::NaN:
+      return yaml ? ".nan" : k == Kind::Json ? "NaN" : "nan";
+    case Bad::Inf:
+      return yaml ? ".inf" : k == Kind::Json ? "Infinity" : "inf";
+    case Bad::WrongType:
+      return yaml ? "[1, 2]" : k == Kind::Json ? "\"text\"" : "abc";
+    case Bad::OutOfRange:
+      return in.range;
+    default:
+      return "";
   }
 }
 
@@ -190,17 +213,23 @@ std::string edit_cloud(const std::string& text, const std::string& key, const st
   return out;
 }
 std::string edit_xml(const std::string& text, const std::string& tag, const std::string& raw) {
-  return std::regex_replace(text, std::regex("<" + tag + ">[^<]*</" + tag + ">"), "<" + tag + ">" + raw + "</" + tag + ">",
-                            std::regex_constants::format_first_only);
+  return std::regex_replace(text, std::regex("<" + tag + ">[^<]*</" + tag + ">"),
+                            "<" + tag + ">" + raw + "</" + tag + ">", std::regex_constants::format_first_only);
 }
 
 // Breaks `p` (a copy, never the shared original) as `b` says.
 void make_bad(const fs::path& p, const Input& in, Bad b) {
   const std::string text = fs::is_regular_file(p) ? slurp(p) : "";
   switch (b) {
-    case Bad::Missing: fs::remove_all(p); return;
-    case Bad::Empty: spit(p, ""); return;
-    case Bad::Truncated: spit(p, text.substr(0, text.size() / 2)); return;
+    case Bad::Missing:
+      fs::remove_all(p);
+      return;
+    case Bad::Empty:
+      spit(p, "");
+      return;
+    case Bad::Truncated:
+      spit(p, text.substr(0, text.size() / 2));
+      return;
     case Bad::Directory:
       fs::remove_all(p);
       fs::create_directories(p);
@@ -217,18 +246,28 @@ void make_bad(const fs::path& p, const Input& in, Bad b) {
       cv::imwrite(p.string(), bad);
       return;
     }
-    default: break;
+    default:
+      break;
   }
   const std::string raw = raw_value(in.kind, b, in);
   switch (in.kind) {
     case Kind::Yaml:
       spit(p, b == Bad::UnknownKey ? text + "\nno_such_key_xyz: 1\n" : edit_yaml(text, in.key, raw));
       return;
-    case Kind::Json: spit(p, edit_json(text, in.key, raw)); return;
-    case Kind::Csv: spit(p, edit_csv(text, in.key, raw)); return;
-    case Kind::Cloud: spit(p, edit_cloud(text, in.key, raw)); return;
-    case Kind::Xml: spit(p, edit_xml(text, in.key, raw)); return;
-    default: FAIL() << "no " << name_of(b) << " for " << in.path;
+    case Kind::Json:
+      spit(p, edit_json(text, in.key, raw));
+      return;
+    case Kind::Csv:
+      spit(p, edit_csv(text, in.key, raw));
+      return;
+    case Kind::Cloud:
+      spit(p, edit_cloud(text, in.key, raw));
+      return;
+    case Kind::Xml:
+      spit(p, edit_xml(text, in.key, raw));
+      return;
+    default:
+      FAIL() << "no " << name_of(b) << " for " << in.path;
   }
 }
 
@@ -249,7 +288,8 @@ std::map<std::string, std::string> snapshot(const fs::path& dir) {
 }
 
 std::string replace_all(std::string s, const std::string& from, const std::string& to) {
-  for (size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size())) s.replace(at, from.size(), to);
+  for (size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
+    s.replace(at, from.size(), to);
   return s;
 }
 
@@ -317,9 +357,7 @@ const std::vector<Row>& rows() {
        {kCamera, kDepth, kColor, kOut}},
       {"simulate_broccoli", "simulate broccoli --frames 1 --out {c}/out/s", {set("camera.height_m", "-1"), kOut}},
       {"simulate_potato", "simulate potato --frames 1 --out {c}/out/s", {kOut}},
-      {"simulate_seedling",
-       "simulate seedling --pairs 1 --calib-pairs 0 --quiet --out {c}/out/s",
-       {kOut}},
+      {"simulate_seedling", "simulate seedling --pairs 1 --calib-pairs 0 --quiet --out {c}/out/s", {kOut}},
       {"segment_grape",
        "segment grape --model {c}/grape.json --input {c}/clouds/points/c0.txt --out {c}/out/s.txt --threads 1",
        {kGrapeCloud, kGrapeModel, kOut}},
@@ -341,7 +379,9 @@ const std::vector<Row>& rows() {
        "--out {c}/out/s.json",
        {kLeft, kRig, kOut}},
       {"eval_seedling", "eval seedling --data {c}/sd --no-opencv --quiet", {kLeft, kRig, kSeedTruth}},
-      {"detect_objects", "detect objects --model {c}/det.onnx --images {c}/images --out {c}/out/o", {kFolderImage, kOnnx, kOut}},
+      {"detect_objects",
+       "detect objects --model {c}/det.onnx --images {c}/images --out {c}/out/o",
+       {kFolderImage, kOnnx, kOut}},
       {"export_detector", "export-detector --model {c}/det.pt --out {c}/out/d.onnx", {kPt, kOut}},
       {"eval_detector",
        "eval detector --coco {c}/coco.json --images {c}/images --model {c}/det.onnx",
@@ -388,10 +428,11 @@ class BadInputMatrix : public ::testing::TestWithParam<Row> {
                "</object></annotation>\n");
       spit(b / "dets" / (std::string(stem) + ".txt"), "potato 0.9 10 10 30 30\n");
     }
-    spit(b / "coco.json",
-         R"({"images":[{"id":1,"file_name":"a.png","width":64,"height":64},{"id":2,"file_name":"b.png","width":64,"height":64}],)"
-         R"("annotations":[{"id":1,"image_id":1,"category_id":1,"bbox":[10,10,20,20],"area":400,"iscrowd":0}],)"
-         R"("categories":[{"id":1,"name":"bunch"},{"id":2,"name":"peduncle"}]})");
+    spit(
+        b / "coco.json",
+        R"({"images":[{"id":1,"file_name":"a.png","width":64,"height":64},{"id":2,"file_name":"b.png","width":64,"height":64}],)"
+        R"("annotations":[{"id":1,"image_id":1,"category_id":1,"bbox":[10,10,20,20],"area":400,"iscrowd":0}],)"
+        R"("categories":[{"id":1,"name":"bunch"},{"id":2,"name":"peduncle"}]})");
     spit(b / "roi.json", R"([{"image_id":0,"category_id":1,"bbox":[200,150,60,60],"score":0.9}])");
   }
   static void TearDownTestSuite() {
@@ -460,15 +501,16 @@ TEST_P(BadInputMatrix, Cells) {
       ++cells;
       std::string why;
       if (r.exit_code != 2) why += " exit " + std::to_string(r.exit_code) + ";";
-      if (std::count(r.err.begin(), r.err.end(), '\n') != 1) why += " stderr has " + std::to_string(std::count(r.err.begin(), r.err.end(), '\n')) + " lines;";
+      if (std::count(r.err.begin(), r.err.end(), '\n') != 1)
+        why += " stderr has " + std::to_string(std::count(r.err.begin(), r.err.end(), '\n')) + " lines;";
       if (r.err.rfind("cropsight: ", 0) != 0) why += " no 'cropsight: ' prefix;";
       if (r.err.find(names) == std::string::npos) why += " does not name '" + names + "';";
       if (before != after) why += " the folder changed;";
       if (!why.empty()) {
         ++failed;
         std::string first = r.err.substr(0, r.err.find('\n'));
-        failures += "  " + in.path + " / " + name_of(b) + ":" + why + " stderr: " +
-                    replace_all(first.substr(0, 300), cell.string(), "CELL") + "\n";
+        failures += "  " + in.path + " / " + name_of(b) + ":" + why +
+                    " stderr: " + replace_all(first.substr(0, 300), cell.string(), "CELL") + "\n";
       }
     }
   }
