@@ -44,21 +44,22 @@ void add_detect_objects(CLI::App& detect) {
   auto* cmd = detect.add_subcommand("objects", "Run the project's 2D detector (.pt or .onnx) on a folder of images");
   cmd->add_option("--model", o->model, "Detector: .pt (libtorch) or .onnx (OpenCV DNN)")->required();
   cmd->add_option("--images", o->images, "Folder of images")->required();
-  cmd->add_option("--out", o->out, "Output folder (per-image .txt and detections.json)")->required();
+  cmd->add_option("--out", o->out, "Output folder, replaced whole (per-image .txt and detections.json)")->required();
   cmd->add_option("--threads", o->threads, "libtorch threads (.pt)")->check(CLI::Range(1, 256));
   add_json_flag(cmd, o->common);
   cmd->callback([o] {
     const auto files = list_images(o->images);
     auto det = nn::load_center_detector(o->model, o->threads);
     const auto names = det->class_names();
-    std::filesystem::create_directories(o->out);
+    // Written whole or not at all: a bad image half-way leaves no folder of partial results.
+    io::TempDirectory out(o->out);
     nlohmann::json results = nlohmann::json::array();
     std::size_t boxes = 0;
     const Stopwatch clock;
     for (std::size_t i = 0; i < files.size(); ++i) {
       const ColorImage im = io::read_color(files[i]);
       const auto d = det->detect({&im, nullptr});
-      io::write_detection_text(std::filesystem::path(o->out) / (files[i].stem().string() + ".txt"), d, names);
+      io::write_detection_text(out.path() / (files[i].stem().string() + ".txt"), d, names);
       for (const auto& b : d)
         results.push_back({{"file_name", files[i].filename().string()},
                            {"image_id", i},
@@ -68,8 +69,9 @@ void add_detect_objects(CLI::App& detect) {
       boxes += d.size();
     }
     const double seconds = clock.seconds();
-    io::write_atomic_with(std::filesystem::path(o->out) / "detections.json",
+    io::write_atomic_with(out.path() / "detections.json",
                           [&](const std::filesystem::path& tmp) { std::ofstream(tmp) << results.dump() << "\n"; });
+    out.commit("detections");
     if (o->common.json)
       print_json({{"images", files.size()},
                   {"boxes", boxes},

@@ -28,6 +28,7 @@ void run(const Options& o) {
   namespace pp = pipeline::potato;
   pp::PotatoPipeline pipeline(potato_config(o.common), o.common.config.empty() ? "potato" : o.common.config);
   const io::SequenceReader seq(o.data);
+  if (!o.out.empty()) io::check_can_create(o.out);  // before the loop prints progress
   std::ostringstream lines;
   Progress progress("harvest potato", seq.size(), o.quiet || o.out.empty());
   double ms = 0;

@@ -10,6 +10,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/files.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/report/broccoli_report_data.hpp"
 #include "cropsight/report/html_page.hpp"
@@ -62,6 +63,7 @@ void run(const ReportOptions& o) {
   const io::SequenceReader reader(o.data);
   const report::SequenceSummary summary = report::summarize_sequence(reader);
   const std::string name = std::filesystem::path(o.data).lexically_normal().filename().string();
+  io::check_can_create(o.out);  // before the broccoli pass prints progress
   report::HtmlPage page(o.title.empty() ? "cropsight: sequence " + name : o.title);
   report::SequencePageOptions po;
   po.frames_shown = o.frames;

@@ -9,6 +9,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
+#include "io/decode_image.hpp"
 
 namespace cropsight::io {
 
@@ -27,15 +28,23 @@ std::string describe(const cv::Mat& m) {
   return std::string(bits) + " " + std::to_string(m.channels()) + "-channel";
 }
 
+// True when `b` starts as a PNG and its chunks (4-byte big-endian length, type, data, CRC) run
+// to an IEND chunk inside the file. CRCs are left to libpng.
+bool png_complete(const std::string& b) {
+  static const char kSig[] = "\x89PNG\r\n\x1a\n";
+  if (b.compare(0, 8, kSig, 8) != 0) return true;  // not a PNG: its decoder decides
+  std::size_t at = 8;
+  while (at + 12 <= b.size()) {
+    const auto byte = [&](std::size_t i) { return std::uint32_t(static_cast<unsigned char>(b[at + i])); };
+    const std::uint64_t len = (byte(0) << 24) | (byte(1) << 16) | (byte(2) << 8) | byte(3);
+    if (b.compare(at + 4, 4, "IEND") == 0) return true;
+    at += 12 + len;
+  }
+  return false;
+}
+
 cv::Mat load_image(const fs::path& path) {
-  if (!fs::exists(path)) throw Error(path.string(), "file not found");
-  // Checked before imread, which gives an empty Mat for every failure (and logs a warning line of
-  // its own for a file it cannot open): a permission or directory problem is fixed differently
-  // from a damaged file.
-  if (fs::is_directory(path)) throw Error(path.string(), "is a directory, not an image");
-  if (std::ifstream probe(path, std::ios::binary); !probe)
-    throw Error(path.string(), std::string("cannot open: ") + std::strerror(errno));
-  cv::Mat m = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+  const cv::Mat m = decode_image_file(path, cv::IMREAD_UNCHANGED);
   if (m.empty()) throw Error(path.string(), "cannot decode image (damaged, truncated or not an image file)");
   return m;
 }
@@ -82,6 +91,16 @@ void check_size(const std::string& where, int w, int h, std::size_t n) {
 }
 
 }  // namespace
+
+std::string read_image_file(const fs::path& path) {
+  if (!fs::exists(path)) throw Error(path.string(), "file not found");
+  // Named before reading: a permission or directory problem is fixed differently from a damaged file.
+  if (fs::is_directory(path)) throw Error(path.string(), "is a directory, not an image");
+  std::string bytes = read_file(path);
+  if (bytes.empty()) throw Error(path.string(), "empty file, not an image");
+  if (!png_complete(bytes)) throw Error(path.string(), "truncated PNG (its chunks end before IEND)");
+  return bytes;
+}
 
 Image<std::uint16_t> read_u16(const fs::path& path) {
   const cv::Mat m = load_image(path);

@@ -8,6 +8,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/files.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/voc.hpp"
 
@@ -45,11 +46,10 @@ int class_of(const std::vector<std::string>& classes, const std::string& name) {
 DetectionDataset read_coco_detection(const std::filesystem::path& annotations, const std::filesystem::path& images_dir,
                                      const std::vector<std::string>& classes) {
   const std::string file = annotations.string();
-  std::ifstream in(annotations);
-  if (!in) throw Error(file, "cannot open the COCO annotation file");
+  const std::string text = io::read_file(annotations);  // names a missing file or a folder
   json root;
   try {
-    root = json::parse(in);
+    root = json::parse(text);
   } catch (const json::exception& e) {
     throw Error(file, std::string("not JSON: ") + e.what());
   }

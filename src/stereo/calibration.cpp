@@ -12,6 +12,7 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #include "cv_convert.hpp"
+#include "io/decode_image.hpp"
 
 namespace cropsight::stereo {
 
@@ -135,7 +136,7 @@ StereoCalibration calibrate_stereo_folder(const fs::path& dir, const Checkerboar
   for (const auto& lp : lefts) {
     fs::path rp = lp.parent_path() / ("right" + lp.filename().string().substr(4));
     if (!fs::exists(rp)) throw Error(lp.string(), "no matching right image " + rp.filename().string());
-    cv::Mat l = cv::imread(lp.string(), cv::IMREAD_GRAYSCALE), r = cv::imread(rp.string(), cv::IMREAD_GRAYSCALE);
+    cv::Mat l = io::decode_image_file(lp, cv::IMREAD_GRAYSCALE), r = io::decode_image_file(rp, cv::IMREAD_GRAYSCALE);
     if (l.empty()) throw Error(lp.string(), "cannot decode image");
     if (r.empty()) throw Error(rp.string(), "cannot decode image");
     if (l.size() != r.size()) throw Error(rp.string(), "size differs from the left image");

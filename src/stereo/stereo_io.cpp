@@ -14,6 +14,7 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #include "cv_convert.hpp"
+#include "io/decode_image.hpp"
 
 namespace cropsight::stereo {
 
@@ -23,9 +24,7 @@ namespace {
 
 // The file as stored (depth and channels untouched), or Error(path, ...).
 cv::Mat read_unchanged(const fs::path& path, const char* what) {
-  if (!fs::exists(path)) throw Error(path.string(), "file not found");
-  if (fs::is_directory(path)) throw Error(path.string(), "is a folder, expected an image file");
-  cv::Mat m = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+  const cv::Mat m = io::decode_image_file(path, cv::IMREAD_UNCHANGED);  // names missing, folder, truncated
   if (m.empty()) throw Error(path.string(), std::string("cannot decode ") + what);
   return m;
 }

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "cropsight/core/config.hpp"
 #include "cropsight/core/organized_cloud.hpp"
 
 namespace cropsight::geometry {
@@ -13,8 +14,11 @@ struct DepthRangeConfig {
 
   template <class V>
   void visit(V& v) {
-    v("min_depth", min_depth, "m; points nearer than this become NaN (paper: 0.5 m, Kusumam et al. 2017 §4.1)");
-    v("max_depth", max_depth, "m; points farther than this become NaN (paper: 1.0 m, Kusumam et al. 2017 §4.1)");
+    // Ranges declared here so that check_config names the file the value came from.
+    v("min_depth", min_depth, "m; points nearer than this become NaN (paper: 0.5 m, Kusumam et al. 2017 §4.1)",
+      Range::at_least(0, "metres"));
+    v("max_depth", max_depth, "m; points farther than this become NaN (paper: 1.0 m, Kusumam et al. 2017 §4.1)",
+      Range::above(0, "metres"));
   }
   /// Throws Error("depth.min_depth" / "depth.max_depth" / "depth range", ...) unless
   /// 0 <= min_depth <= max_depth, both finite.

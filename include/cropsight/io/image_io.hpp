@@ -13,6 +13,12 @@
 
 namespace cropsight::io {
 
+/// An image file's bytes, checked before any decoder sees them: Error(path, ...) when it is
+/// missing, a directory, unreadable or empty, or a PNG whose chunk list is cut short (libpng
+/// prints its own "libpng error" line on stderr for a truncated file before OpenCV returns an
+/// empty image, which broke the one-line error contract). Decode with cv::imdecode.
+std::string read_image_file(const std::filesystem::path& path);
+
 /// 16-bit single-channel PNG; throws Error(path, ...) on other bit depths/channels.
 Image<std::uint16_t> read_u16(const std::filesystem::path& path);
 /// 8-bit colour (3 channels; grey is expanded); throws Error(path, ...) on 16-bit images or

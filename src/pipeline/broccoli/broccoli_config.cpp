@@ -9,8 +9,8 @@ namespace cropsight::pipeline {
 void BroccoliDetectorConfig::validate(const std::string& where) const {
   features::FeatureSet::parse(features, where);
   classifier.validate(where);
-  depth.validate();
-  check_config(*this, where);  // the ranges declared in visit()
+  check_config(*this, where);  // the ranges declared in visit(), naming `where` (the file or --set)
+  depth.validate();            // min <= max
 }
 
 void BroccoliTruthRules::validate(const std::string& where) const { check_config(*this, where, "detection."); }
