@@ -97,11 +97,12 @@ DetectionDataset read_coco_detection(const std::filesystem::path& annotations, c
     const auto img = image_index.find(image_id);
     if (img == image_index.end())
       throw Error(file, where + ": 'image_id' " + std::to_string(image_id) + " names no image");
+    // A malformed box is an error even in a class the model does not detect.
+    const float x = bbox[0].get<float>(), y = bbox[1].get<float>(), w = bbox[2].get<float>(), h = bbox[3].get<float>();
+    if (w < 0 || h < 0) throw Error(file, where + ": 'bbox' has a negative size");
     const auto cls = category_class.find(cat);
     if (cls == category_class.end()) continue;  // a class not detected
     DetectionSample& s = out.samples[img->second];
-    const float x = bbox[0].get<float>(), y = bbox[1].get<float>(), w = bbox[2].get<float>(), h = bbox[3].get<float>();
-    if (w < 0 || h < 0) throw Error(file, where + ": 'bbox' has a negative size");
     s.boxes.push_back({x, y, x + w, y + h, cls->second, 1.f});
     // Polygons (a list of [x0, y0, x1, y1, ...]); RLE masks (crowds) give a box only.
     if (a.contains("segmentation") && a["segmentation"].is_array() && !a["segmentation"].empty()) {
