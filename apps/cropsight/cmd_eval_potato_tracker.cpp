@@ -81,7 +81,8 @@ void add_eval_potato_tracker(CLI::App& eval) {
   cmd->add_option("--min-visible-pixels", o->trial.min_visible_pixels,
                   "visible pixels of the target for a start and a scored update")
       ->check(CLI::Range(1, 10000000));
-  cmd->add_option("--csrt-template-size", o->trial.csrt.template_size, "px; CSRT's template side (tracking.csrt_template_size)")
+  cmd->add_option("--csrt-template-size", o->trial.csrt.template_size,
+                  "px; CSRT's template side (tracking.csrt_template_size)")
       ->check(CLI::Range(16, 1000));
   cmd->add_option("--csrt-scales", o->trial.csrt.scales, "CSRT's scale-filter scales (tracking.csrt_scales)")
       ->check(CLI::Range(1, 200));

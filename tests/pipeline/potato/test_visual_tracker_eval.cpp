@@ -53,8 +53,12 @@ TEST(VisualTrackerEval, ABoxOffTheTargetScoresLow) {
     for (auto& p : seq.truth[f])
       if (p.target) {
         const float w = p.box.width(), h = p.box.height();
-        p.box = {float(seq.colour[f].width) - 3 - w, float(seq.colour[f].height) - 3 - h,
-                 float(seq.colour[f].width) - 3, float(seq.colour[f].height) - 3, 0, 1};
+        p.box = {float(seq.colour[f].width) - 3 - w,
+                 float(seq.colour[f].height) - 3 - h,
+                 float(seq.colour[f].width) - 3,
+                 float(seq.colour[f].height) - 3,
+                 0,
+                 1};
       }
   VisualTrackerTrialConfig trial;
   trial.horizon = 3;
