@@ -134,7 +134,6 @@ SimulatedPotatoTruthSequence read_simulated_potato_truth(const std::filesystem::
   require_simulator_truth(reader, seq);
   if (!reader.info().has_color) throw Error((seq / "color").string(), "missing (the trackers follow the colour image)");
   SimulatedPotatoTruthSequence out;
-  out.path = seq;
   for (int i = 0; i < reader.size(); ++i) {
     RgbdFrame f = reader.read(i);
     out.truth.push_back(simulated_frame_truth(reader, f, seq));

@@ -93,8 +93,7 @@ TEST(VisualTrackerEval, ASequenceWithoutColourIsAnErrorNamingTheFolder) {
   }
 }
 
-TEST(VisualTrackerEval, CsrtParametersReachTheTracker) {
-  // A template smaller than the minimum is refused by make_visual_tracker (the parameters are used).
+TEST(VisualTrackerEval, ATooSmallCsrtTemplateIsRefused) {
   tracking::CsrtParams p;
   p.template_size = 8;
   EXPECT_THROW(tracking::make_visual_tracker(tracking::VisualTrackerKind::csrt, p), Error);

@@ -83,7 +83,6 @@ PotatoSequenceEvaluation evaluate_potato_sequence(PotatoPipeline& pipeline, cons
 
 /// A simulated approach in memory: colour frames and the truth of every potato per frame.
 struct SimulatedPotatoTruthSequence {
-  std::filesystem::path path;
   std::vector<ColorImage> colour;
   std::vector<std::vector<sim::PotatoFrameTruth>> truth;  ///< per frame
 };
