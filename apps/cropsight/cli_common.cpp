@@ -14,14 +14,7 @@
 namespace cropsight::cli {
 
 ConfigMap CommonOptions::config_map(const std::string& default_preset) const {
-  ConfigMap m;
-  const std::string preset = config.empty() ? default_preset : config;
-  if (!preset.empty()) m = io::load_config_map(io::find_preset(preset));
-  for (const auto& s : sets) {
-    auto [k, v] = parse_assignment(s);
-    m[k] = v;
-  }
-  return m;
+  return io::load_preset_with_overrides(config.empty() ? default_preset : config, sets);
 }
 
 void add_json_flag(CLI::App* cmd, CommonOptions& o) {

@@ -11,6 +11,7 @@
 #include <optional>
 #include <system_error>
 
+#include "bag_cli.hpp"
 #include "broccoli_cli.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -27,7 +28,8 @@ namespace fs = std::filesystem;
 namespace detect_broccoli_cmd {
 struct DetectOptions {
   CommonOptions common;
-  std::string data, model, out, masks;
+  std::string data, bag, model, out, masks;
+  BagTopicOptions topics;
   bool quiet = false;
   TrackOptions track;  // --track, --map (issue 4)
 };
@@ -67,7 +69,10 @@ void run(const DetectOptions& o) {
   if (!o.track.map.empty() && !o.track.track) throw Error("--map", "needs --track");
   const LoadedBroccoli b = load_broccoli(o.model, o.common, o.track.track);
   pipeline::BroccoliPipeline pipe(b.config, b.model, o.model);
-  io::SequenceReader reader(o.data);
+  if (o.data.empty() == o.bag.empty()) throw Error("--data", "give a sequence folder (--data) or a bag (--bag)");
+  std::optional<BagSequence> bag;
+  if (!o.bag.empty()) bag.emplace(o.bag, o.topics);
+  io::SequenceReader reader(bag ? bag->path() : o.data);
   const fs::path masks_dir = mask_directory(o.masks);
   std::optional<io::TempDirectory> masks_tmp;
   if (!o.masks.empty()) masks_tmp.emplace(masks_dir);
@@ -75,7 +80,7 @@ void run(const DetectOptions& o) {
   std::string lines;
   long total = 0;
   double ms = 0;
-  Progress progress("detect broccoli: " + o.data, reader.size(), o.quiet || o.common.json);
+  Progress progress("detect broccoli: " + (o.bag.empty() ? o.data : o.bag), reader.size(), o.quiet || o.common.json);
   for (int i = 0; i < reader.size(); ++i) {
     const RgbdFrame frame = reader.read(i);
     const pipeline::BroccoliFrameResult& r = pipe.process(frame);
@@ -91,7 +96,7 @@ void run(const DetectOptions& o) {
     progress.update(i + 1);
   }
   progress.finish();
-  nlohmann::json summary{{"data", o.data},
+  nlohmann::json summary{{"data", o.bag.empty() ? o.data : o.bag},
                          {"model", o.model},
                          {"out", o.out},
                          {"frames", reader.size()},
@@ -126,7 +131,9 @@ void add_detect_broccoli(CLI::App& detect) {
   using namespace detect_broccoli_cmd;
   auto o = std::make_shared<DetectOptions>();
   auto* cmd = detect.add_subcommand("broccoli", "Detect broccoli heads in a sequence with a trained model");
-  cmd->add_option("--data", o->data, "Sequence directory")->required();
+  cmd->add_option("--data", o->data, "Sequence directory");
+  cmd->add_option("--bag", o->bag, "A ROS bag in place of --data (depth, camera_info, colour topics below)");
+  add_bag_topic_options(cmd, o->topics);
   cmd->add_option("--model", o->model, "Model file (cropsight train broccoli)")->required();
   cmd->add_option("--out", o->out, "Detections, one JSON line per frame")->required();
   cmd->add_option("--masks", o->masks, "Directory for 16-bit detection-number PNGs (optional)");

@@ -3,8 +3,10 @@
 #include <cstdio>
 #include <memory>
 
+#include "bag_cli.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "cropsight/core/error.hpp"
 #include "cropsight/core/organized_cloud.hpp"
 #include "cropsight/io/cloud_io.hpp"
 #include "cropsight/io/sequence.hpp"
@@ -14,12 +16,30 @@ namespace cropsight::cli {
 namespace export_cmd {
 struct ExportOptions {
   CommonOptions common;
-  std::string seq, out;
-  int frame = 0;
-  bool ascii = false;
+  std::string seq, out, bag;
+  int frame = -1;
+  bool ascii = false, overwrite = false;
+  double fps = 30;
+  BagTopicOptions topics;
 };
 
+// The whole sequence as a ROS bag (issue 25).
+void run_bag(const ExportOptions& o) {
+  const BagExportResult r = export_bag(o.seq, o.bag, o.topics, o.fps, o.overwrite);
+  if (o.common.json) {
+    print_json({{"out", o.bag}, {"frames", r.frames}, {"messages", r.messages}, {"color", r.color}});
+  } else {
+    std::printf("wrote %s: %d frames, %ld messages%s\n", o.bag.c_str(), r.frames, r.messages,
+                r.color ? " (depth, camera_info, colour)" : " (depth, camera_info)");
+  }
+}
+
 void run(const ExportOptions& o) {
+  if (!o.bag.empty()) {
+    if (!o.out.empty() || o.frame >= 0) throw Error("--bag", "exports the whole sequence: leave out --frame and --out");
+    return run_bag(o);
+  }
+  if (o.out.empty() || o.frame < 0) throw Error("--out", "give --frame I --out FILE.pcd|.ply, or --bag OUT.bag");
   const io::SequenceReader reader(o.seq);
   const RgbdFrame f = reader.read(o.frame);
   const OrganizedCloud cloud = to_organized_cloud(f);
@@ -43,11 +63,16 @@ void run(const ExportOptions& o) {
 void add_export(CLI::App& app) {
   using namespace export_cmd;
   auto o = std::make_shared<ExportOptions>();
-  auto* cmd = app.add_subcommand("export", "Export one frame as an organised point cloud (.pcd or .ply)");
+  auto* cmd = app.add_subcommand(
+      "export", "Export one frame as an organised point cloud (.pcd or .ply), or the sequence as a ROS bag");
   cmd->add_option("SEQ", o->seq, "Sequence directory")->required();
-  cmd->add_option("--frame", o->frame, "Frame index (from 0)")->required();
-  cmd->add_option("--out", o->out, "Output file, .pcd or .ply")->required();
+  cmd->add_option("--frame", o->frame, "Frame index (from 0)");
+  cmd->add_option("--out", o->out, "Output file, .pcd or .ply");
   cmd->add_flag("--ascii", o->ascii, "Write ASCII instead of binary");
+  cmd->add_option("--bag", o->bag, "Write every frame to this ROS bag instead (depth 16UC1, camera_info, rgb8)");
+  cmd->add_option("--fps", o->fps, "--bag: frame rate for sequences without timestamps")->capture_default_str();
+  cmd->add_flag("--overwrite", o->overwrite, "--bag: replace an existing bag");
+  add_bag_topic_options(cmd, o->topics);
   add_json_flag(cmd, o->common);
   cmd->callback([o] { run(*o); });
 }

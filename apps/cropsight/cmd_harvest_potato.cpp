@@ -4,8 +4,10 @@
 // pipeline::potato::PotatoPipeline; this file parses options, reads frames, writes the lines.
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 #include <sstream>
 
+#include "bag_cli.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
@@ -20,14 +22,18 @@ namespace harvest_potato_cmd {
 
 struct Options {
   CommonOptions common;
-  std::string data, out;
+  std::string data, bag, out;
+  BagTopicOptions topics;
   bool quiet = false;
 };
 
 void run(const Options& o) {
   namespace pp = pipeline::potato;
   pp::PotatoPipeline pipeline(potato_config(o.common), o.common.config.empty() ? "potato" : o.common.config);
-  const io::SequenceReader seq(o.data);
+  if (o.data.empty() == o.bag.empty()) throw Error("--data", "give a sequence folder (--data) or a bag (--bag)");
+  std::optional<BagSequence> bag;
+  if (!o.bag.empty()) bag.emplace(o.bag, o.topics);
+  const io::SequenceReader seq(bag ? bag->path() : o.data);
   if (!o.out.empty()) io::check_can_create(o.out);  // before the loop prints progress
   std::ostringstream lines;
   Progress progress("harvest potato", seq.size(), o.quiet || o.out.empty());
@@ -65,7 +71,9 @@ void add_harvest_potato(CLI::App& harvest) {
   auto o = std::make_shared<Options>();
   auto* cmd =
       harvest.add_subcommand("potato", "The potato harvest loop on an RGB-D sequence: one harvest message per frame");
-  cmd->add_option("--data", o->data, "RGB-D sequence folder (docs/formats.md); colour required")->required();
+  cmd->add_option("--data", o->data, "RGB-D sequence folder (docs/formats.md); colour required");
+  cmd->add_option("--bag", o->bag, "A ROS bag in place of --data (depth, camera_info, colour topics below)");
+  add_bag_topic_options(cmd, o->topics);
   cmd->add_option("--out", o->out, "JSON-lines file of the messages (default: stdout)");
   cmd->add_flag("--quiet", o->quiet, "no progress line");
   add_config_options(cmd, o->common);

@@ -2,8 +2,10 @@
 // with a camera.yaml) becomes a sequence that detect broccoli reads (io/recording_import.hpp).
 #include <iostream>
 
+#include "bag_cli.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "cropsight/core/error.hpp"
 #include "cropsight/io/recording_import.hpp"
 
 namespace cropsight::cli {
@@ -12,9 +14,28 @@ namespace import_cmd {
 struct ImportCliOptions {
   io::ImportOptions io;
   bool json = false;
+  std::string bag;
+  BagTopicOptions topics;
 };
 
+// A ROS bag (issue 25): depth, camera_info and colour topics.
+void run_bag(const ImportCliOptions& o) {
+  if (!o.io.depth_dir.empty() || !o.io.pcd_dir.empty() || !o.io.camera_yaml.empty())
+    throw Error("--bag", "reads depth and camera info from the bag: leave out --depth, --pcd and --camera");
+  const BagImportResult r = import_bag(o.bag, o.io.out.string(), o.topics, o.io.overwrite);
+  if (o.json) {
+    print_json(
+        {{"out", o.io.out.string()}, {"frames", r.frames}, {"color", r.color}, {"unmatched_color", r.unmatched_color}});
+  } else {
+    std::cout << "wrote " << o.io.out.string() << ": " << r.frames << " frames" << (r.color ? " with colour" : "")
+              << (r.unmatched_color ? ", " + std::to_string(r.unmatched_color) + " colour images without depth" : "")
+              << "\n";
+  }
+}
+
 void run_import(const ImportCliOptions& o) {
+  if (!o.bag.empty()) return run_bag(o);
+  if (o.io.camera_yaml.empty()) throw Error("--camera", "is required (or give --bag)");
   const io::ImportSummary s = io::import_recording(o.io);
   if (o.json) {
     print_json({{"out", o.io.out.string()},
@@ -36,7 +57,9 @@ void add_import(CLI::App& app) {
   cmd->add_option("--depth", o->io.depth_dir, "Folder of 16-bit depth PNGs (Kinect v2 / RealSense recorder layouts)");
   cmd->add_option("--color", o->io.color_dir, "Folder of 8-bit colour PNGs registered to depth (optional)");
   cmd->add_option("--pcd", o->io.pcd_dir, "Folder of organised .pcd files instead of --depth (metres)");
-  cmd->add_option("--camera", o->io.camera_yaml, "camera.yaml of the depth camera (docs/formats.md)")->required();
+  cmd->add_option("--camera", o->io.camera_yaml, "camera.yaml of the depth camera (docs/formats.md)");
+  cmd->add_option("--bag", o->bag, "A ROS bag instead (depth 16UC1/32FC1, camera_info, colour; no master needed)");
+  add_bag_topic_options(cmd, o->topics);
   cmd->add_option("--out", o->io.out, "Output sequence directory")->required();
   cmd->add_option("--fps", o->io.fps, "Frame rate for frame-numbered files (timestamps = index / fps; default 0)");
   cmd->add_flag("--force", o->io.overwrite, "Replace an existing output directory");

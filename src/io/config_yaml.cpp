@@ -70,4 +70,14 @@ fs::path find_preset(const std::string& name_or_path) {
   throw Error(name_or_path, "no such preset or file (looked in configs/)");
 }
 
+ConfigMap load_preset_with_overrides(const std::string& preset, const std::vector<std::string>& sets) {
+  ConfigMap m;
+  if (!preset.empty()) m = load_config_map(find_preset(preset));
+  for (const auto& s : sets) {
+    auto [k, v] = parse_assignment(s);
+    m[k] = v;
+  }
+  return m;
+}
+
 }  // namespace cropsight::io

@@ -2,6 +2,8 @@
 // YAML presets (configs/*.yaml) as flat ConfigMaps: nested maps become dotted keys
 // ("oes.depth_tolerance"), sequences become "[a, b, c]" text.
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "cropsight/core/config.hpp"
 
@@ -12,5 +14,8 @@ ConfigMap load_config_map(const std::filesystem::path& path);
 /// Resolves a preset name ("broccoli-uk") to configs/<name>.yaml under the source or install
 /// tree, or returns `name_or_path` itself when it names an existing file.
 std::filesystem::path find_preset(const std::string& name_or_path);
+/// The values of `preset` (find_preset; none when empty) overlaid with `sets` ("key=value", the
+/// CLI's --set and the ROS nodes' ~set). Throws Error(file, ...) or Error("--set", ...).
+ConfigMap load_preset_with_overrides(const std::string& preset, const std::vector<std::string>& sets);
 
 }  // namespace cropsight::io

@@ -1,0 +1,91 @@
+#include "bag_cli.hpp"
+
+#include <filesystem>
+#include <random>
+
+#include "cropsight/core/error.hpp"
+#if CROPSIGHT_HAS_ROS
+#include "cropsight_ros/bag_io.hpp"
+#endif
+
+namespace fs = std::filesystem;
+
+namespace cropsight::cli {
+
+void add_bag_topic_options(CLI::App* cmd, BagTopicOptions& o) {
+  cmd->add_option("--depth-topic", o.depth, "Bag topic of the 16UC1 depth images")->capture_default_str();
+  cmd->add_option("--info-topic", o.camera_info, "Bag topic of the depth camera_info")->capture_default_str();
+  cmd->add_option("--color-topic", o.color, "Bag topic of the colour images (registered to depth)")
+      ->capture_default_str();
+}
+
+#if CROPSIGHT_HAS_ROS
+namespace {
+ros_io::BagTopics topics_of(const BagTopicOptions& o) {
+  ros_io::BagTopics t;
+  t.depth = o.depth;
+  t.camera_info = o.camera_info;
+  t.color = o.color;
+  return t;
+}
+}  // namespace
+
+BagSequence::BagSequence(const std::string& bag, const BagTopicOptions& topics) {
+  std::random_device rd;
+  root_ = (fs::temp_directory_path() / ("cropsight-bag-" + std::to_string(rd()))).string();
+  fs::create_directories(root_);
+  path_ = (fs::path(root_) / "sequence").string();
+  ros_io::BagImportOptions o;
+  o.bag = bag;
+  o.out = path_;
+  o.topics = topics_of(topics);
+  try {
+    ros_io::import_bag_sequence(o);
+  } catch (...) {
+    std::error_code ec;
+    fs::remove_all(root_, ec);
+    throw;
+  }
+}
+
+BagExportResult export_bag(const std::string& seq, const std::string& bag, const BagTopicOptions& topics, double fps,
+                           bool overwrite) {
+  ros_io::BagExportOptions o;
+  o.sequence = seq;
+  o.bag = bag;
+  o.topics = topics_of(topics);
+  o.fps = fps;
+  o.overwrite = overwrite;
+  const auto s = ros_io::export_sequence_bag(o);
+  return {s.frames, s.messages, s.color};
+}
+
+BagImportResult import_bag(const std::string& bag, const std::string& out, const BagTopicOptions& topics,
+                           bool overwrite) {
+  ros_io::BagImportOptions o;
+  o.bag = bag;
+  o.out = out;
+  o.topics = topics_of(topics);
+  o.overwrite = overwrite;
+  const auto s = ros_io::import_bag_sequence(o);
+  return {s.frames, s.color, s.unmatched_color};
+}
+#else
+namespace {
+[[noreturn]] void no_ros(const std::string& bag) {
+  throw Error(bag, "this build has no ROS support (scripts/install-deps.sh installs ROS 1, then rebuild)");
+}
+}  // namespace
+BagSequence::BagSequence(const std::string& bag, const BagTopicOptions&) { no_ros(bag); }
+BagExportResult export_bag(const std::string&, const std::string& bag, const BagTopicOptions&, double, bool) {
+  no_ros(bag);
+}
+BagImportResult import_bag(const std::string& bag, const std::string&, const BagTopicOptions&, bool) { no_ros(bag); }
+#endif
+
+BagSequence::~BagSequence() {
+  std::error_code ec;
+  if (!root_.empty()) fs::remove_all(root_, ec);
+}
+
+}  // namespace cropsight::cli

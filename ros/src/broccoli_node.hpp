@@ -1,0 +1,62 @@
+#pragma once
+// The broccoli node: depth (+ colour) + camera_info → heads (vision_msgs/Detection3DArray), the
+// online field map (visualization_msgs/MarkerArray), a debug image and input diagnostics. The
+// pipeline is the library's BroccoliPipeline (through bridge::BroccoliRunner); the map CSV is
+// written on shutdown when ~map_file is set. One callback thread (ros::spin).
+//
+// Topics (relative, remap them): in  depth/image_raw, depth/camera_info, [color/image_raw]
+//                                out heads, field_map, debug_image, diagnostics
+// Parameters (~): model, preset, set, track (true), use_color (false), depth_scale (0.001 m per
+// 16UC1 unit), map_file (""), lazy (true), queue_size (5), slop_s (0.02).
+#include <message_filters/subscriber.h>
+#include <message_filters/sync_policies/approximate_time.h>
+#include <message_filters/synchronizer.h>
+#include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+
+#include <memory>
+#include <optional>
+
+#include "cropsight/bridge/broccoli_runner.hpp"
+#include "node_support.hpp"
+
+namespace cropsight::ros_io {
+
+class BroccoliNode {
+ public:
+  /// Reads the parameters and loads the model; throws cropsight::Error on a bad model/preset.
+  BroccoliNode(ros::NodeHandle nh, ros::NodeHandle pnh);
+  ~BroccoliNode();  ///< writes ~map_file when set
+
+ private:
+  using Image = sensor_msgs::Image;
+  using Info = sensor_msgs::CameraInfo;
+  using DepthPolicy = message_filters::sync_policies::ApproximateTime<Image, Info>;
+  using ColorPolicy = message_filters::sync_policies::ApproximateTime<Image, Info, Image>;
+
+  void connect();
+  void disconnect();
+  // message_filters' registerCallback takes member functions (boost::bind), not lambdas.
+  void on_depth_frame(const sensor_msgs::ImageConstPtr& depth, const sensor_msgs::CameraInfoConstPtr& info);
+  void on_frame(const sensor_msgs::ImageConstPtr& depth, const sensor_msgs::CameraInfoConstPtr& info,
+                const sensor_msgs::ImageConstPtr& color);
+  void publish_map(const std_msgs::Header& header);
+
+  ros::NodeHandle nh_, pnh_;
+  std::unique_ptr<bridge::BroccoliRunner> runner_;
+  bool use_color_ = false;
+  double depth_scale_ = 0.001, slop_s_ = 0.02;
+  int queue_ = 5;
+  std::string map_file_;
+  int frame_ = 0;
+  message_filters::Subscriber<Image> depth_sub_, color_sub_;
+  message_filters::Subscriber<Info> info_sub_;
+  std::unique_ptr<message_filters::Synchronizer<DepthPolicy>> depth_sync_;
+  std::unique_ptr<message_filters::Synchronizer<ColorPolicy>> color_sync_;
+  ros::Publisher heads_pub_, map_pub_, debug_pub_;
+  std::unique_ptr<InputHealth> health_;
+  std::unique_ptr<LazyInputs> lazy_;
+};
+
+}  // namespace cropsight::ros_io

@@ -1,0 +1,82 @@
+#include "cropsight/bridge/broccoli_runner.hpp"
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/io/config_yaml.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
+#include "cropsight/tracking/field_map_io.hpp"
+#include "frame_conversion.hpp"
+
+namespace cropsight::bridge {
+
+namespace {
+pipeline::BroccoliPipelineConfig runner_config(const BroccoliRunnerOptions& o, const learning::Model& model) {
+  auto cfg = pipeline::broccoli_config_for_model(model, io::load_preset_with_overrides(o.preset, o.sets), o.model,
+                                                 o.preset.empty() ? "--set" : o.preset);
+  cfg.track = o.track;
+  return cfg;
+}
+
+BroccoliMapHead map_head(const tracking::TrackedHead& h) {
+  return {h.id, h.position.x(), h.position.y(), h.position.z(), h.diameter_mm, h.frames_seen, h.harvestable};
+}
+}  // namespace
+
+// The pipeline is neither copyable nor movable: built in place from the model and the config.
+struct BroccoliRunner::Impl {
+  std::shared_ptr<const learning::Model> model;
+  pipeline::BroccoliPipelineConfig cfg;
+  pipeline::BroccoliPipeline pipe;
+  explicit Impl(const BroccoliRunnerOptions& o)
+      : model(pipeline::load_broccoli_model(o.model)), cfg(runner_config(o, *model)), pipe(cfg, model, o.model) {}
+};
+
+BroccoliRunner::BroccoliRunner(const BroccoliRunnerOptions& options) : impl_(std::make_unique<Impl>(options)) {}
+BroccoliRunner::~BroccoliRunner() = default;
+
+BroccoliFrameOut BroccoliRunner::process(const FrameBuffers& frame) {
+  if (frame.depth.empty()) throw Error("frame " + std::to_string(frame.index), "has no depth image");
+  const pipeline::BroccoliFrameResult& r = impl_->pipe.process(to_rgbd_frame(frame));
+  BroccoliFrameOut out;
+  out.frame = r.frame;
+  out.detect_ms = r.detect_ms;
+  out.track_ms = r.track_ms;
+  for (std::size_t k = 0; k < r.detections.size(); ++k) {
+    const Detection& d = r.detections[k];
+    BroccoliHead h;
+    h.id = int(k) + 1;
+    h.score = d.score;
+    h.x = d.centroid.x();
+    h.y = d.centroid.y();
+    h.z = d.centroid.z();
+    h.box_x = d.box.x;
+    h.box_y = d.box.y;
+    h.box_w = d.box.width;
+    h.box_h = d.box.height;
+    h.points = int(d.indices.size());
+    h.size_m = d.size_m;
+    h.track_id = d.track_id;
+    out.heads.push_back(h);
+  }
+  return out;
+}
+
+std::vector<BroccoliMapHead> BroccoliRunner::current_map() const {
+  std::vector<BroccoliMapHead> out;
+  if (!impl_->pipe.config().track) return out;
+  const tracking::TemporalFilter& filter = impl_->pipe.mapper().filter();
+  for (const auto& h : filter.all_heads())
+    if (filter.confirmed_now(h)) out.push_back(map_head(h));
+  return out;
+}
+
+void BroccoliRunner::finish_and_write_map(const std::string& csv_path) {
+  if (!impl_->pipe.config().track) throw Error(csv_path, "the field map needs tracking (track = true)");
+  tracking::write_field_map(csv_path, impl_->pipe.finish());
+  impl_->pipe.start_pass();
+}
+
+bool BroccoliRunner::tracking() const { return impl_->pipe.config().track; }
+
+std::string BroccoliRunner::pipeline_name() const { return config_name(impl_->pipe.config().detector.pipeline); }
+
+}  // namespace cropsight::bridge
