@@ -110,6 +110,7 @@ void run(const DetectGrapeOptions& o) {
                       {"outside_image", r.outside.size()},
                       {"segmenter", scfg.model},
                       {"bunches", bunches}};
+  GrapeSegmenterOptions::describe(scfg, j);  // votes, and the ensemble partner when there is one
   io::TempDirectory tmp(out_dir);
   for (std::size_t i = 0; i < r.bunches.size(); ++i)
     io::write_cloud(tmp.path() / bunches[i]["file"].get<std::string>(), r.bunches[i].cloud);
