@@ -3,6 +3,8 @@
 // detector (skipped until the CLI is built).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "cropsight/io/cloud_io.hpp"
@@ -69,6 +71,25 @@ TEST(DetectGrapeCli, BoxesFileGivesLabelledBunchesAndCutPoints) {
       EXPECT_GE(cut["confidence"].get<int>(), 10);
     }
   }
+  // The shipped models label no peduncle on this frame; taking the label they give most points
+  // of bunch A (1-5) as "peduncle" exercises the cut point's JSON: a region of a few hundred
+  // neighbouring pixels (5 mm apart at 0.8 m) is one cluster at 1 cm.
+  const auto counts = file["bunches"][0]["label_counts"].get<std::vector<long>>();
+  const long most = std::max_element(counts.begin() + 1, counts.end()) - counts.begin();
+  ASSERT_GE(counts[std::size_t(most)], 100) << "the model labels bunch A almost all 0";
+  r = run_cli(to + shell_quoted(t / "out-l") + " --json --set cut_point.peduncle_label=" + std::to_string(most));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto cut = nlohmann::json::parse(r.out)["bunches"][0]["cut_point"];
+  ASSERT_TRUE(cut.is_object()) << cut;
+  const auto dir = cut["direction"].get<std::vector<double>>();
+  ASSERT_EQ(dir.size(), 3u);
+  EXPECT_NEAR(std::hypot(dir[0], dir[1], dir[2]), 1.0, 1e-5);
+  EXPECT_LE(dir[1], 0.0);
+  EXPECT_GE(cut["confidence"].get<long>(), 10);
+  EXPECT_LE(cut["confidence"].get<long>(), counts[std::size_t(most)]);
+  const auto pos = cut["position_m"].get<std::vector<double>>();
+  ASSERT_EQ(pos.size(), 3u);
+  EXPECT_TRUE(pos[2] > 0.6 && pos[2] < 1.51) << pos[2];  // metres, in front of the camera
   // A second run replaces the folder; one with another tool's file in it is refused, untouched.
   r = run_cli(args);
   ASSERT_EQ(r.exit_code, 0) << r.err;
