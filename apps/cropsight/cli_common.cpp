@@ -30,6 +30,21 @@ nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(
 
 void print_json(const nlohmann::json& j) { std::cout << j.dump() << std::endl; }
 
+std::filesystem::path replaceable_output_folder(const std::string& out,
+                                                const std::function<bool(const std::string& name)>& own,
+                                                const std::string& own_files) {
+  namespace fs = std::filesystem;
+  fs::path dir = fs::absolute(out).lexically_normal();
+  if (dir.filename().empty()) dir = dir.parent_path();
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) return dir;
+  if (!fs::is_directory(dir)) throw Error(out, "exists and is not a folder");
+  for (const auto& e : fs::directory_iterator(dir))
+    if (!e.is_regular_file() || !own(e.path().filename().string()))
+      throw Error(out, "holds files other than " + own_files + "; give an empty or new folder");
+  return dir;
+}
+
 std::vector<RgbdFrame> read_bench_frames(const std::string& dir, int max_frames) {
   const io::SequenceReader reader(dir);
   if (max_frames < 0) throw Error("--frames", "must be >= 0 (0: every frame)");

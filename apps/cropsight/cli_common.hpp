@@ -1,6 +1,8 @@
 #pragma once
 // Options and output helpers shared by every sub-command.
 #include <CLI/CLI.hpp>
+#include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -36,6 +38,15 @@ void print_json(const nlohmann::json& j);
 /// and without their label images (a robot's frames carry no truth). Throws Error("--frames", ...)
 /// when `max_frames` is negative or more than `dir` holds, Error(dir, ...) when it has none.
 std::vector<RgbdFrame> read_bench_frames(const std::string& dir, int max_frames);
+
+/// The output folder `out` of a command that replaces a folder whole (io::TempDirectory), as an
+/// absolute path without a trailing separator (the temporary sibling needs its name). Throws
+/// Error(out, ...) when it exists and is not a folder, or holds an entry that is not a regular
+/// file `own(name)` accepts: replacing it would delete another tool's files. `own_files` says
+/// what is accepted, for the message ("a previous roi-cloud run's (rois.json, roi_NNN.txt)").
+std::filesystem::path replaceable_output_folder(const std::string& out,
+                                                const std::function<bool(const std::string& name)>& own,
+                                                const std::string& own_files);
 
 /// "a,b,c" → {"a", "b", "c"}; throws Error(option, ...) when empty or a part is empty.
 std::vector<std::string> split_list(const std::string& text, const std::string& option);

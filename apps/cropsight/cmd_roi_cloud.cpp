@@ -24,9 +24,8 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/grape_text.hpp"
-#include "cropsight/io/image_io.hpp"
-#include "cropsight/io/sequence.hpp"
 #include "cropsight/pipeline/grape/grape_roi.hpp"
+#include "grape_cli.hpp"
 
 namespace cropsight::cli {
 namespace roi_cloud_cmd {
@@ -38,44 +37,22 @@ struct RoiCloudOptions {
   long image_id = -1;
 };
 
-// True when `dir` holds only what a run writes (rois.json, roi_NNN.txt): safe to replace.
-bool is_previous_output(const fs::path& dir) {
+// What a run writes (rois.json, roi_NNN.txt): a folder of only these may be replaced.
+bool is_own_file(const std::string& name) {
   static const std::regex roi_file(R"(roi_\d{3,}\.txt)");
-  for (const auto& e : fs::directory_iterator(dir)) {
-    const std::string name = e.path().filename().string();
-    if (!e.is_regular_file() || (name != "rois.json" && !std::regex_match(name, roi_file))) return false;
-  }
-  return true;
-}
-
-// The output folder as an absolute path without a trailing separator (its name is needed for the
-// temporary sibling); throws Error when it exists and is not a folder we may replace.
-fs::path output_folder(const std::string& out) {
-  fs::path dir = fs::absolute(out).lexically_normal();
-  if (dir.filename().empty()) dir = dir.parent_path();
-  std::error_code ec;
-  if (fs::exists(dir, ec)) {
-    if (!fs::is_directory(dir)) throw Error(out, "exists and is not a folder");
-    if (!is_previous_output(dir))
-      throw Error(out,
-                  "holds files other than a previous roi-cloud run's (rois.json, roi_NNN.txt); give an "
-                  "empty or new folder");
-  }
-  return dir;
+  return name == "rois.json" || std::regex_match(name, roi_file);
 }
 
 void run(const RoiCloudOptions& o) {
   pipeline::GrapeRoiConfig cfg;
   apply_config(cfg, o.common.config_map(o.common.config.empty() ? "grape-roi" : ""), "--config/--set");
   cfg.validate("--config/--set");
-  const fs::path out_dir = output_folder(o.out);
-  const CameraIntrinsics cam = io::read_camera_yaml(o.camera);
-  const DepthImage depth = io::read_u16(o.depth);
-  const ColorImage color = io::read_color(o.color);
-  if (color.width != depth.width || color.height != depth.height)
-    throw Error(o.color, "colour image size differs from the depth image");
-  if (cam.width != depth.width || cam.height != depth.height)
-    throw Error(o.camera, "camera size differs from the depth image");
+  const fs::path out_dir =
+      replaceable_output_folder(o.out, is_own_file, "a previous roi-cloud run's (rois.json, roi_NNN.txt)");
+  const RgbdFrame f = read_grape_frame(o.color, o.depth, o.camera);
+  const CameraIntrinsics& cam = f.camera;
+  const DepthImage& depth = f.depth;
+  const ColorImage& color = f.color;
   const auto dets = pipeline::read_coco_detections(o.detections, o.image_id);
   // Compute everything first (the library's stages 1-3), then write: no partial output on a
   // failure half-way.

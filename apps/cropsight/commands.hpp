@@ -23,11 +23,12 @@ void add_detect_broccoli(CLI::App& detect);
 void add_eval_broccoli(CLI::App& eval);
 void add_bench_broccoli(CLI::App& bench);
 
-// Grape bunches (issue 6): train / segment / eval grape, roi-cloud
+// Grape bunches (issue 6): train / segment / eval grape, roi-cloud; detect grape (issue 24)
 void add_train_grape(CLI::App& train);
 void add_segment_grape(CLI::App& segment);
 void add_eval_grape(CLI::App& eval);
 void add_roi_cloud(CLI::App& app);
+void add_detect_grape(CLI::App& detect);
 
 // Broccoli seedlings from stereo (issue 5): stereo calibrate|disparity, detect / eval / simulate seedling, eval stereo
 void add_stereo(CLI::App& app);

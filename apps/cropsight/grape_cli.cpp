@@ -1,6 +1,9 @@
 #include "grape_cli.hpp"
 
 #include "cli_common.hpp"
+#include "cropsight/core/error.hpp"
+#include "cropsight/io/image_io.hpp"
+#include "cropsight/io/sequence.hpp"
 
 namespace cropsight::cli {
 
@@ -22,6 +25,18 @@ nlohmann::json grape_evaluation_json(const pipeline::GrapeEvaluation& e) {
   for (const auto& p : pipeline::grape_protocols(e))
     j["protocols"][p.name] = {{"classes", p.classes}, {"miou", json_number(p.miou)}};
   return j;
+}
+
+RgbdFrame read_grape_frame(const std::string& color, const std::string& depth, const std::string& camera) {
+  RgbdFrame f;
+  f.camera = io::read_camera_yaml(camera);
+  f.depth = io::read_u16(depth);
+  f.color = io::read_color(color);
+  if (f.color.width != f.depth.width || f.color.height != f.depth.height)
+    throw Error(color, "colour image size differs from the depth image");
+  if (f.camera.width != f.depth.width || f.camera.height != f.depth.height)
+    throw Error(camera, "camera size differs from the depth image");
+  return f;
 }
 
 }  // namespace cropsight::cli

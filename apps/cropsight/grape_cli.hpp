@@ -1,7 +1,10 @@
 #pragma once
-// What the grape sub-commands (train grape, eval grape) share: the JSON form of an evaluation.
+// What the grape sub-commands share: the JSON form of an evaluation (train grape, eval grape) and
+// one RGB-D frame from its three files (roi-cloud, detect grape).
 #include <nlohmann/json.hpp>
+#include <string>
 
+#include "cropsight/core/rgbd_frame.hpp"
 #include "cropsight/pipeline/grape/grape_eval.hpp"
 
 namespace cropsight::cli {
@@ -11,5 +14,10 @@ namespace cropsight::cli {
 /// "per_cloud_named_classes", "per_cloud_all_labels": {"classes": [...], "miou"}}}; undefined
 /// figures are null.
 nlohmann::json grape_evaluation_json(const pipeline::GrapeEvaluation& e);
+
+/// The frame of a colour image, a 16-bit depth image and its camera.yaml (intrinsics and
+/// depth_scale). Throws Error naming the file: unreadable, depth not 16-bit, colour not 8-bit,
+/// colour or camera size not the depth image's.
+RgbdFrame read_grape_frame(const std::string& color, const std::string& depth, const std::string& camera);
 
 }  // namespace cropsight::cli

@@ -1,14 +1,20 @@
 #include "grape_segmenter_options.hpp"
 
+#include <filesystem>
+
+#include "cropsight/core/error.hpp"
 #include "cropsight/io/config_yaml.hpp"
 
 namespace cropsight::cli {
 
-void GrapeSegmenterOptions::add_options(CLI::App* cmd, const std::string& default_preset) {
+void GrapeSegmenterOptions::add_options(CLI::App* cmd, const std::string& default_preset,
+                                        const std::string& preset_flag) {
   default_preset_ = default_preset;
-  cmd->add_option("--config", preset_,
+  preset_flag_ = preset_flag;
+  cmd->add_option(preset_flag, preset_,
                   "Segmenter preset (configs/<name>.yaml or a YAML file), e.g. grape-best: model, sampled, votes, "
-                  "ensemble; the flags below override its keys" +
+                  "ensemble; or a model file (.pt, .json) with the default settings; the flags below override its "
+                  "keys" +
                       (default_preset.empty() ? std::string() : " (default without --model: " + default_preset + ")"));
   // Each flag fills one key of pipeline::GrapeSegmenterConfig; only the flags given override.
   auto option = [&](const std::string& flag, const std::string& key, const std::string& help) {
@@ -36,9 +42,15 @@ void GrapeSegmenterOptions::add_options(CLI::App* cmd, const std::string& defaul
 
 pipeline::GrapeSegmenterConfig GrapeSegmenterOptions::config() const {
   const std::string preset = !preset_.empty() ? preset_ : flags_.count("model") ? "" : default_preset_;
-  if (preset.empty()) {
+  const std::string ext = std::filesystem::path(preset).extension().string();
+  if (preset.empty() || ext == ".pt" || ext == ".json") {
+    ConfigMap flags = flags_;
+    if (!preset.empty()) {  // a model file where a preset goes: that model, default settings
+      if (flags.count("model")) throw Error(preset_flag_, "names a model file; give it or --model, not both");
+      flags["model"] = preset;
+    }
     pipeline::GrapeSegmenterConfig cfg;
-    apply_config(cfg, flags_, "command line");
+    apply_config(cfg, flags, "command line");
     return cfg;
   }
   return pipeline::load_grape_segmenter_config(io::find_preset(preset), flags_, "command line");

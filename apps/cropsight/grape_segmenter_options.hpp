@@ -1,7 +1,8 @@
 #pragma once
-// The options that `eval grape` and `segment grape` share: a preset of the segmenter
-// (--config, pipeline::GrapeSegmenterConfig) and flags that override its keys one by one
-// (--model → model, --sampled → sampled, --carry-k → carry_k, ...). Errors name the keys.
+// The options that `eval grape`, `segment grape` and `detect grape` share: a preset of the
+// segmenter (--config, or the flag the command names, pipeline::GrapeSegmenterConfig) and flags
+// that override its keys one by one (--model → model, --sampled → sampled, --carry-k → carry_k,
+// ...). Errors name the keys.
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -12,8 +13,11 @@ namespace cropsight::cli {
 
 class GrapeSegmenterOptions {
  public:
-  /// `default_preset`: the preset used when neither --config nor --model is given ("" = none).
-  void add_options(CLI::App* cmd, const std::string& default_preset = "");
+  /// `default_preset`: the preset used when neither the preset flag nor --model is given ("" =
+  /// none). `preset_flag`: the preset's option ("--config"; detect grape, whose --config is the
+  /// pipeline's, says "--segmenter"). The preset flag also takes a model file (.pt, .json): that
+  /// model with the default settings, as --model alone.
+  void add_options(CLI::App* cmd, const std::string& default_preset = "", const std::string& preset_flag = "--config");
   /// The preset (if any) with the given flags applied; Error names the preset file or
   /// "command line" and the key. --threads stays the command's own option (set cfg.threads).
   pipeline::GrapeSegmenterConfig config() const;
@@ -21,7 +25,7 @@ class GrapeSegmenterOptions {
   static void describe(const pipeline::GrapeSegmenterConfig& cfg, nlohmann::json& j);
 
  private:
-  std::string preset_, default_preset_;
+  std::string preset_, default_preset_, preset_flag_ = "--config";
   ConfigMap flags_;  // key → value text of the flags given
 };
 

@@ -51,6 +51,7 @@ int main(int argc, char** argv) {
   add_segment_grape(*segment);
   add_eval_grape(*eval);
   add_roi_cloud(app);
+  add_detect_grape(*detect);  // issue 24: the whole grape pipeline from the camera
 
   // Broccoli seedlings from stereo (issue 5)
   add_stereo(app);

@@ -370,6 +370,10 @@ const std::vector<Row>& rows() {
        "roi-cloud --color {c}/seq/color/000000.png --depth {c}/seq/depth/000000.png --camera {c}/seq/camera.yaml "
        "--detections {c}/roi.json --out {c}/out/roi",
        {kCamera, kDepth, kColor, kRoiDet, kOut}},
+      {"detect_grape",
+       "detect grape --color {c}/seq/color/000000.png --depth {c}/seq/depth/000000.png --camera {c}/seq/camera.yaml "
+       "--detections {c}/roi.json --segmenter {c}/grape.json --threads 1 --out {c}/out/g",
+       {kCamera, kDepth, kColor, kRoiDet, kGrapeModel, set("cut_point.min_points", "1"), kOut}},
       {"stereo_disparity",
        "stereo disparity --left {c}/sd/pair_000/left.png --right {c}/sd/pair_000/right.png --calib {c}/sd/rig.yaml "
        "--max-disp 64 --out {c}/out/d.png",

@@ -8,7 +8,12 @@
 
 namespace {
 using namespace cropsight;
-using namespace cropsight::pipeline;
+// Declarations, not `using namespace cropsight::pipeline`: the tests compile as unity batches,
+// where a using-directive in the shared anonymous namespace reaches the next files (the potato
+// tests' helper potato() then clashes with namespace pipeline::potato).
+using cropsight::pipeline::GrapeSegmenter;
+using cropsight::pipeline::GrapeSegmenterConfig;
+using cropsight::pipeline::load_grape_segmenter_config;
 namespace fs = std::filesystem;
 
 std::string error_of(const std::function<void()>& f) {

@@ -1,0 +1,164 @@
+// cropsight detect grape: the grape pipeline from the camera on one RGB-D frame
+// (pipeline::GrapePipeline): bunch and peduncle boxes (the project's detector, or a COCO file)
+// → ROIs (Eq. 1, overlapping ones merged) → coloured ROI clouds → normals → the grape segmenter →
+// per bunch a labelled cloud in metres (camera frame) and a cut point on its peduncle.
+//
+//   cropsight detect grape --color C.png --depth D.png --camera camera.yaml
+//       (--detector DET.onnx|DET.pt | --detections COCO.json [--image-id N])
+//       [--segmenter PRESET|MODEL] --out DIR [--config PRESET] [--set key=value] [--json]
+//
+// DIR gets bunch_NNN.ply (points in metres with colour, normal and label) and cut_points.json
+// (per bunch: its file, ROI, label counts and cut point, null when the bunch shows no peduncle
+// cluster of cut_point.min_points points). DIR is replaced whole (a temporary sibling renamed),
+// so it never mixes two runs' files; an existing DIR must be empty or a previous run's output.
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <regex>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "cropsight/core/error.hpp"
+#include "cropsight/core/threads.hpp"
+#include "cropsight/core/timer.hpp"
+#include "cropsight/io/cloud_io.hpp"
+#include "cropsight/io/files.hpp"
+#include "cropsight/nn/center_onnx.hpp"
+#include "cropsight/pipeline/grape/grape_pipeline.hpp"
+#include "grape_cli.hpp"
+#include "grape_segmenter_options.hpp"
+
+namespace cropsight::cli {
+namespace detect_grape_cmd {
+namespace fs = std::filesystem;
+
+struct DetectGrapeOptions {
+  CommonOptions common;
+  std::string color, depth, camera, detector, detections, out;
+  long image_id = -1;
+  int threads = 2;
+  GrapeSegmenterOptions segmenter;
+};
+
+// What a run writes: a folder of only these may be replaced.
+bool is_own_file(const std::string& name) {
+  static const std::regex bunch_file(R"(bunch_\d{3,}\.ply)");
+  return name == "cut_points.json" || std::regex_match(name, bunch_file);
+}
+
+nlohmann::json vec3(const Eigen::Vector3f& v) { return {v.x(), v.y(), v.z()}; }
+
+nlohmann::json bunch_json(const pipeline::GrapeBunch& b, const std::string& file) {
+  std::vector<long> counts(6, 0);  // the dataset's labels 0-5
+  for (int l : b.cloud.labels)
+    if (l >= 0 && l < 6) ++counts[std::size_t(l)];
+  nlohmann::json cut = nullptr;
+  if (b.cut_point)
+    cut = {{"position_m", vec3(b.cut_point->position)},
+           {"direction", vec3(b.cut_point->direction)},
+           {"confidence", b.cut_point->confidence}};
+  return {{"file", file},
+          {"roi", {b.roi.x, b.roi.y, b.roi.width, b.roi.height}},
+          {"points", b.cloud.size()},
+          {"label_counts", counts},
+          {"cut_point", cut}};
+}
+
+void run(const DetectGrapeOptions& o) {
+  check_thread_count(o.threads, "--threads");
+  pipeline::GrapePipelineConfig cfg;
+  apply_config(cfg, o.common.config_map(o.common.config.empty() ? "grape-camera" : ""), "--config/--set");
+  cfg.validate("--config/--set");
+  // Before any model loads: a bad --out costs nothing and names the folder.
+  io::check_can_create(o.out);
+  const fs::path out_dir =
+      replaceable_output_folder(o.out, is_own_file, "a previous detect grape run's (cut_points.json, bunch_NNN.ply)");
+  const RgbdFrame frame = read_grape_frame(o.color, o.depth, o.camera);
+  std::vector<pipeline::GrapeDetection> given;
+  if (!o.detections.empty()) given = pipeline::read_coco_detections(o.detections, o.image_id);
+  auto scfg = o.segmenter.config();
+  scfg.threads = o.threads;
+  pipeline::GrapeSegmenter segmenter(scfg, "command line");
+  std::unique_ptr<Detector2D> detector;
+  if (!o.detector.empty()) detector = nn::load_center_detector(o.detector, o.threads);
+  pipeline::GrapePipeline pipe(cfg, std::move(segmenter), std::move(detector), "--config/--set");
+
+  // Everything is computed before anything is written: no partial output on a failure.
+  const Stopwatch clock;
+  const pipeline::GrapeFrameResult r = o.detections.empty() ? pipe.process(frame) : pipe.process(frame, given);
+  const double ms = clock.ms();
+  const std::string source = o.detections.empty() ? o.detector : o.detections;
+  for (const auto& d : r.outside) {
+    const Box2D& b = d.box;
+    std::fprintf(stderr,
+                 "cropsight: warning: %s: detection %ld: box [%d, %d, %d, %d] lies outside the %dx%d image; skipped\n",
+                 source.c_str(), d.annotation, b.x, b.y, b.width, b.height, frame.depth.width, frame.depth.height);
+  }
+  nlohmann::json bunches = nlohmann::json::array();
+  std::size_t with_cut = 0;
+  for (std::size_t i = 0; i < r.bunches.size(); ++i) {
+    char name[32];
+    std::snprintf(name, sizeof name, "bunch_%03zu.ply", i);
+    bunches.push_back(bunch_json(r.bunches[i], name));
+    with_cut += r.bunches[i].cut_point.has_value();
+  }
+  nlohmann::json j = {{"color", o.color},
+                      {"depth", o.depth},
+                      {"boxes_from", o.detections.empty() ? "detector" : "detections"},
+                      {"boxes_file", source},
+                      {"detections", r.detections.size()},
+                      {"outside_image", r.outside.size()},
+                      {"segmenter", scfg.model},
+                      {"bunches", bunches}};
+  GrapeSegmenterOptions::describe(scfg, j);  // votes, and the ensemble partner when there is one
+  io::TempDirectory tmp(out_dir);
+  for (std::size_t i = 0; i < r.bunches.size(); ++i)
+    io::write_cloud(tmp.path() / bunches[i]["file"].get<std::string>(), r.bunches[i].cloud);
+  io::write_file_atomic(tmp.path() / "cut_points.json", j.dump(2) + "\n");
+  tmp.commit("grape bunches");
+  if (o.common.json) {
+    j["out"] = o.out;
+    j["ms"] = json_number(ms);
+    print_json(j);
+  } else {
+    std::printf("%zu detections -> %zu bunches (%zu with a cut point) in %.0f ms -> %s\n", r.detections.size(),
+                r.bunches.size(), with_cut, ms, o.out.c_str());
+  }
+}
+}  // namespace detect_grape_cmd
+
+void add_detect_grape(CLI::App& detect) {
+  using namespace detect_grape_cmd;
+  auto o = std::make_shared<DetectGrapeOptions>();
+  auto* cmd = detect.add_subcommand(
+      "grape", "Grape bunches from one RGB-D frame: boxes, ROI cloud, segmentation, a cut point per bunch");
+  cmd->add_option("--color", o->color, "Colour image (8-bit, registered to depth)")->required();
+  cmd->add_option("--depth", o->depth, "16-bit depth image")->required();
+  cmd->add_option("--camera", o->camera, "camera.yaml (intrinsics, depth_scale) of the depth image")->required();
+  auto* det = cmd->add_option("--detector", o->detector,
+                              "The project's grape detector (.onnx or .pt, classes grape and peduncle), e.g. "
+                              "models/detector-grape.onnx");
+  auto* dets = cmd->add_option("--detections", o->detections,
+                               "Boxes instead of a detector: COCO-style JSON (bunch = 1, peduncle = 2; an "
+                               "\"annotations\" file or a results array)");
+  det->excludes(dets);
+  dets->excludes(det);
+  cmd->add_option("--image-id", o->image_id, "With --detections: keep only this COCO image_id's boxes")->needs(dets);
+  cmd->add_option("--out", o->out,
+                  "Output folder, replaced whole: bunch_NNN.ply (labelled, metres, camera frame), cut_points.json")
+      ->required();
+  cmd->add_option("--threads", o->threads,
+                  "Threads of the segmenter and the .pt detector, 1.." + std::to_string(kMaxThreads) + " (default 2)");
+  o->segmenter.add_options(cmd, "grape-best", "--segmenter");
+  add_json_flag(cmd, o->common);
+  cmd->add_option("--config", o->common.config,
+                  "Pipeline preset (configs/<name>.yaml or a YAML file; default grape-camera): roi.*, cut_point.*");
+  cmd->add_option("--set", o->common.sets, "Override a pipeline parameter: key=value (repeatable)")->take_all();
+  cmd->callback([o] {
+    if (o->detector.empty() && o->detections.empty())
+      throw Error("detect grape", "give --detector (a model) or --detections (a COCO file) for the boxes");
+    run(*o);
+  });
+}
+
+}  // namespace cropsight::cli
