@@ -1,0 +1,148 @@
+// Sequence folder <-> bag (ros/src/bag_io.cpp): byte-exact depth and colour, the same camera,
+// the poses through /tf; bad bags are one Error naming the file and leave no output.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "cropsight/bridge/sequence_io.hpp"
+#include "cropsight/core/error.hpp"
+#include "cropsight_ros/bag_io.hpp"
+#include "ros_test_support.hpp"
+
+namespace fs = std::filesystem;
+
+namespace cropsight::ros_io {
+namespace {
+
+// A 3-frame sequence with depth, colour and poses, every pixel distinct.
+fs::path make_sequence(const fs::path& dir, bool poses = true) {
+  bridge::CameraModel cam;
+  cam.width = 8;
+  cam.height = 6;
+  cam.fx = 50;
+  cam.fy = 51;
+  cam.cx = 3.5;
+  cam.cy = 2.5;
+  cam.distortion = {0.01, -0.02, 0, 0, 0.003};
+  bridge::SequenceSink sink(dir.string(), cam);
+  for (int i = 0; i < 3; ++i) {
+    bridge::FrameBuffers f;
+    f.index = i;
+    f.timestamp = 0.25 * i;
+    f.camera = cam;
+    for (int p = 0; p < 48; ++p) {
+      f.depth.push_back(std::uint16_t(p == 5 ? 0 : 500 + 97 * p + i));
+      for (int c = 0; c < 3; ++c) f.rgb.push_back(std::uint8_t(p * 5 + c * 60 + i));
+    }
+    if (poses) {
+      f.has_camera_position = true;
+      f.camera_position[0] = 0.1 * i;
+      f.camera_position[1] = -0.01;
+      f.camera_position[2] = 1.25;
+    }
+    sink.write(f);
+  }
+  sink.finish();
+  return dir;
+}
+
+TEST(BagIo, RoundTripIsExactForDepthColourCameraAndPoses) {
+  const fs::path d = ros_test::scratch_dir("bag_round_trip");
+  make_sequence(d / "seq");
+  BagExportOptions e;
+  e.sequence = (d / "seq").string();
+  e.bag = (d / "s.bag").string();
+  const BagExportSummary s = export_sequence_bag(e);
+  EXPECT_EQ(s.frames, 3);
+  EXPECT_EQ(s.messages, 3 * 4);  // depth, camera_info, colour, /tf
+  EXPECT_FALSE(fs::exists(e.bag + ".partial"));
+  BagImportOptions i;
+  i.bag = e.bag;
+  i.out = (d / "back").string();
+  const BagImportSummary r = import_bag_sequence(i);
+  EXPECT_EQ(r.frames, 3);
+  EXPECT_TRUE(r.color);
+  bridge::SequenceSource a((d / "seq").string()), b((d / "back").string());
+  ASSERT_EQ(b.size(), 3);
+  EXPECT_EQ(b.camera().fx, a.camera().fx);
+  EXPECT_EQ(b.camera().cy, a.camera().cy);
+  EXPECT_EQ(b.camera().distortion, a.camera().distortion);
+  for (int k = 0; k < 3; ++k) {
+    const auto fa = a.read(k), fb = b.read(k);
+    EXPECT_EQ(fb.depth, fa.depth) << "frame " << k;
+    EXPECT_EQ(fb.rgb, fa.rgb) << "frame " << k;
+    ASSERT_TRUE(fb.has_camera_position);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(fb.camera_position[c], fa.camera_position[c]);
+    EXPECT_NEAR(fb.timestamp, fa.timestamp, 1e-9);  // ROS time has nanoseconds
+  }
+  // The PNG files themselves are byte-identical too.
+  for (const char* f : {"depth/000001.png", "color/000002.png"}) {
+    std::ifstream x(d / "seq" / f, std::ios::binary), y(d / "back" / f, std::ios::binary);
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(x), {}), std::string(std::istreambuf_iterator<char>(y), {}))
+        << f;
+  }
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(BagIo, BadBagsAreOneErrorNamingTheFileAndLeaveNoSequence) {
+  const fs::path d = ros_test::scratch_dir("bag_bad");
+  make_sequence(d / "seq", /*poses=*/false);
+  BagExportOptions e;
+  e.sequence = (d / "seq").string();
+  e.bag = (d / "s.bag").string();
+  export_sequence_bag(e);
+  // An existing bag is not replaced without overwrite.
+  EXPECT_NE(error_of([&] { export_sequence_bag(e); }).find("exists"), std::string::npos);
+
+  BagImportOptions i;
+  i.out = (d / "out").string();
+  i.bag = (d / "missing.bag").string();
+  EXPECT_EQ(error_of([&] { import_bag_sequence(i); }), i.bag + ": no such file");
+  // Truncated in the middle.
+  const std::string whole = [&] {
+    std::ifstream in(e.bag, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  std::ofstream(d / "cut.bag", std::ios::binary) << whole.substr(0, whole.size() / 2);
+  i.bag = (d / "cut.bag").string();
+  EXPECT_EQ(error_of([&] { import_bag_sequence(i); }).rfind(i.bag + ": ", 0), 0u);
+  std::ofstream(d / "text.bag") << "not a bag\n";
+  i.bag = (d / "text.bag").string();
+  EXPECT_NE(error_of([&] { import_bag_sequence(i); }).find(i.bag + ": not a readable ROS bag"), std::string::npos);
+  // A topic that is not there.
+  i.bag = e.bag;
+  i.topics.depth = "/kinect2/sd/image_depth_rect";
+  EXPECT_NE(error_of([&] { import_bag_sequence(i); }).find("has no message on the depth topic /kinect2"),
+            std::string::npos);
+  EXPECT_FALSE(fs::exists(i.out));
+  // A depth scale that 16UC1 cannot carry.
+  fs::create_directories(d / "scaled");
+  bridge::CameraModel cam;
+  cam.width = cam.height = 2;
+  cam.fx = cam.fy = 10;
+  cam.depth_scale = 0.000125;
+  {
+    bridge::SequenceSink sink((d / "scaled/seq").string(), cam);
+    bridge::FrameBuffers f;
+    f.camera = cam;
+    f.depth = {1, 2, 3, 4};
+    sink.write(f);
+    sink.finish();
+  }
+  e.sequence = (d / "scaled/seq").string();
+  e.bag = (d / "scaled.bag").string();
+  EXPECT_NE(error_of([&] { export_sequence_bag(e); }).find("depth_scale"), std::string::npos);
+  EXPECT_FALSE(fs::exists(e.bag));
+}
+
+}  // namespace
+}  // namespace cropsight::ros_io
