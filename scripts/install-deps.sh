@@ -24,6 +24,10 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev python3-onnx
   # report rendering test (headless browser)
   chromium
+  # ROS 1 nodes, bag files and their tests against a real roscore (issue 25; ros/CMakeLists.txt)
+  libroscpp-dev librosbag-storage-dev libmessage-filters-dev libstd-msgs-dev libgeometry-msgs-dev
+  libsensor-msgs-dev libvisualization-msgs-dev libdiagnostic-msgs-dev libtf2-msgs-dev
+  python3-roslaunch python3-gencpp python3-genmsg python3-rosbag
 )
 
 missing=()
