@@ -23,6 +23,7 @@ BroccoliNode::BroccoliNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), p
   map_file_ = pnh_.param<std::string>("map_file", "");
   queue_ = std::max(1, pnh_.param("queue_size", 5));
   slop_s_ = pnh_.param("slop_s", 0.02);
+  exact_sync_ = pnh_.param("exact_sync", false);
   if (!(depth_scale_ > 0)) throw Error("~depth_scale", "must be > 0 (metres per 16UC1 unit)");
   runner_ = std::make_unique<bridge::BroccoliRunner>(o);
   health_ = std::make_unique<InputHealth>(nh_, ros::this_node::getName());
@@ -52,7 +53,18 @@ BroccoliNode::~BroccoliNode() {
 void BroccoliNode::connect() {
   depth_sub_.subscribe(nh_, "depth/image_raw", queue_);
   info_sub_.subscribe(nh_, "depth/camera_info", queue_);
-  if (use_color_) {
+  if (exact_sync_) {
+    if (use_color_) {
+      color_sub_.subscribe(nh_, "color/image_raw", queue_);
+      color_exact_ = std::make_unique<message_filters::Synchronizer<ColorExact>>(ColorExact(queue_), depth_sub_,
+                                                                                 info_sub_, color_sub_);
+      color_exact_->registerCallback(&BroccoliNode::on_frame, this);
+    } else {
+      depth_exact_ =
+          std::make_unique<message_filters::Synchronizer<DepthExact>>(DepthExact(queue_), depth_sub_, info_sub_);
+      depth_exact_->registerCallback(&BroccoliNode::on_depth_frame, this);
+    }
+  } else if (use_color_) {
     color_sub_.subscribe(nh_, "color/image_raw", queue_);
     color_sync_ = std::make_unique<message_filters::Synchronizer<ColorPolicy>>(ColorPolicy(queue_), depth_sub_,
                                                                                info_sub_, color_sub_);
@@ -97,14 +109,17 @@ void BroccoliNode::on_frame(const sensor_msgs::ImageConstPtr& depth, const senso
   f.index = frame_;
   f.timestamp = depth->header.stamp.toSec();
   bridge::BroccoliFrameOut out;
+  double pipeline_ms = 0;
   try {
+    const ros::WallTime start = ros::WallTime::now();
     out = runner_->process(f);
+    pipeline_ms = (ros::WallTime::now() - start).toSec() * 1e3;
   } catch (const std::exception& e) {
     health_->skipped(depth_topic, e.what());
     return;
   }
   ++frame_;
-  health_->processed();
+  health_->processed(pipeline_ms);
 
   vision_msgs::Detection3DArray arr;
   arr.header = depth->header;

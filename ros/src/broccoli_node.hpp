@@ -7,9 +7,13 @@
 // Topics (relative, remap them): in  depth/image_raw, depth/camera_info, [color/image_raw]
 //                                out heads, field_map, debug_image, diagnostics
 // Parameters (~): model, preset, set, track (true), use_color (false), depth_scale (0.001 m per
-// 16UC1 unit), map_file (""), lazy (true), queue_size (5), slop_s (0.02).
+// 16UC1 unit), map_file (""), lazy (true), queue_size (5), exact_sync (false), slop_s (0.02).
+// Synchronisation: message_filters ApproximateTime within slop_s (default), or with
+// exact_sync = true ExactTime (equal stamps only, as drivers stamp an image and its camera_info);
+// the two measured the same latency (docs/ros.md).
 #include <message_filters/subscriber.h>
 #include <message_filters/sync_policies/approximate_time.h>
+#include <message_filters/sync_policies/exact_time.h>
 #include <message_filters/synchronizer.h>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
@@ -34,6 +38,8 @@ class BroccoliNode {
   using Info = sensor_msgs::CameraInfo;
   using DepthPolicy = message_filters::sync_policies::ApproximateTime<Image, Info>;
   using ColorPolicy = message_filters::sync_policies::ApproximateTime<Image, Info, Image>;
+  using DepthExact = message_filters::sync_policies::ExactTime<Image, Info>;
+  using ColorExact = message_filters::sync_policies::ExactTime<Image, Info, Image>;
 
   void connect();
   void disconnect();
@@ -54,6 +60,9 @@ class BroccoliNode {
   message_filters::Subscriber<Info> info_sub_;
   std::unique_ptr<message_filters::Synchronizer<DepthPolicy>> depth_sync_;
   std::unique_ptr<message_filters::Synchronizer<ColorPolicy>> color_sync_;
+  std::unique_ptr<message_filters::Synchronizer<DepthExact>> depth_exact_;
+  std::unique_ptr<message_filters::Synchronizer<ColorExact>> color_exact_;
+  bool exact_sync_ = false;
   ros::Publisher heads_pub_, map_pub_, debug_pub_;
   std::unique_ptr<InputHealth> health_;
   std::unique_ptr<LazyInputs> lazy_;

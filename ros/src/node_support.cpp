@@ -41,6 +41,25 @@ void InputHealth::skipped(const std::string& topic, const std::string& problem) 
   }
 }
 
+void InputHealth::processed(double pipeline_ms) {
+  ++processed_;
+  if (pipeline_ms_.size() < kWindow) {
+    pipeline_ms_.push_back(pipeline_ms);
+  } else {
+    pipeline_ms_[next_] = pipeline_ms;
+    next_ = (next_ + 1) % kWindow;
+  }
+}
+
+namespace {
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  const std::size_t k = std::min(v.size() - 1, std::size_t(q * double(v.size() - 1) + 0.5));
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
+  return v[k];
+}
+}  // namespace
+
 long InputHealth::skipped_total() const {
   long n = 0;
   for (const auto& [k, v] : counts_) n += v;
@@ -62,6 +81,12 @@ void InputHealth::publish() {
   st.values.push_back(kv);
   kv.key = "skipped";
   kv.value = std::to_string(bad);
+  st.values.push_back(kv);
+  kv.key = "pipeline_ms_p50";
+  kv.value = std::to_string(percentile(pipeline_ms_, 0.5));
+  st.values.push_back(kv);
+  kv.key = "pipeline_ms_p99";
+  kv.value = std::to_string(percentile(pipeline_ms_, 0.99));
   st.values.push_back(kv);
   for (const auto& [problem, n] : counts_) {
     kv.key = problem;

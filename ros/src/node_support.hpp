@@ -24,10 +24,13 @@ class InputHealth {
   InputHealth(ros::NodeHandle& nh, std::string node_name);
   /// Logs "TOPIC: PROBLEM (message skipped)" at most every 5 s per topic and counts it.
   void skipped(const std::string& topic, const std::string& problem);
-  void processed() { ++processed_; }
+  /// One message processed, the pipeline taking `pipeline_ms` (wall clock) on it.
+  void processed(double pipeline_ms);
   long skipped_total() const;
   long processed_total() const { return processed_; }
-  /// Publishes a diagnostic_msgs/DiagnosticArray (also called by a 1 Hz timer).
+  /// Publishes a diagnostic_msgs/DiagnosticArray (also called by a 1 Hz timer): processed and
+  /// skipped counts, each problem's count, and pipeline_ms_p50 / pipeline_ms_p99 over the last
+  /// 1000 messages (the pipeline alone, without ROS transport and conversion).
   void publish();
 
  private:
@@ -37,6 +40,9 @@ class InputHealth {
   std::map<std::string, long> counts_;  // "topic: problem" -> messages
   std::map<std::string, ros::Time> last_log_;
   long processed_ = 0;
+  std::vector<double> pipeline_ms_;  // last kWindow messages, for the p50 / p99 on diagnostics
+  std::size_t next_ = 0;
+  static constexpr std::size_t kWindow = 1000;
 };
 
 /// Calls `connect` when the first subscriber of any of the node's outputs appears and `disconnect`

@@ -41,6 +41,7 @@ PotatoNode::PotatoNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(
   depth_scale_ = pnh_.param("depth_scale", 0.001);
   queue_ = std::max(1, pnh_.param("queue_size", 5));
   slop_s_ = pnh_.param("slop_s", 0.02);
+  exact_sync_ = pnh_.param("exact_sync", false);
   if (!(rate_hz_ >= 0)) throw Error("~rate", "must be >= 0 Hz (0 = every frame)");
   if (!(depth_scale_ > 0)) throw Error("~depth_scale", "must be > 0 (metres per 16UC1 unit)");
   runner_ = std::make_unique<bridge::PotatoRunner>(o);
@@ -62,8 +63,16 @@ PotatoNode::PotatoNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(
 void PotatoNode::connect() {
   color_sub_.subscribe(nh_, "color/image_raw", queue_);
   info_sub_.subscribe(nh_, use_depth_ ? "depth/camera_info" : "color/camera_info", queue_);
-  if (use_depth_) {
-    depth_sub_.subscribe(nh_, "depth/image_raw", queue_);
+  if (use_depth_) depth_sub_.subscribe(nh_, "depth/image_raw", queue_);
+  if (exact_sync_ && use_depth_) {
+    rgbd_exact_ = std::make_unique<message_filters::Synchronizer<RgbdExact>>(RgbdExact(queue_), color_sub_, depth_sub_,
+                                                                             info_sub_);
+    rgbd_exact_->registerCallback(&PotatoNode::on_frame, this);
+  } else if (exact_sync_) {
+    color_exact_ =
+        std::make_unique<message_filters::Synchronizer<ColorExact>>(ColorExact(queue_), color_sub_, info_sub_);
+    color_exact_->registerCallback(&PotatoNode::on_color_frame, this);
+  } else if (use_depth_) {
     rgbd_sync_ = std::make_unique<message_filters::Synchronizer<RgbdPolicy>>(RgbdPolicy(queue_), color_sub_, depth_sub_,
                                                                              info_sub_);
     rgbd_sync_->setMaxIntervalDuration(ros::Duration(slop_s_));
@@ -105,14 +114,17 @@ void PotatoNode::on_frame(const sensor_msgs::ImageConstPtr& color, const sensor_
   f.index = frame_;
   f.timestamp = color->header.stamp.toSec();
   bridge::PotatoFrameOut out;
+  double pipeline_ms = 0;
   try {
+    const ros::WallTime start = ros::WallTime::now();
     out = runner_->process(f);
+    pipeline_ms = (ros::WallTime::now() - start).toSec() * 1e3;
   } catch (const std::exception& e) {
     health_->skipped(color_sub_.getTopic(), e.what());
     return;
   }
   ++frame_;
-  health_->processed();
+  health_->processed(pipeline_ms);
 
   vision_msgs::Detection2DArray arr;
   arr.header = color->header;

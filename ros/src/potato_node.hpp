@@ -9,9 +9,10 @@
 // Topics (relative, remap them): in  color/image_raw, depth/image_raw, depth/camera_info
 //                                out harvest_target, detections, markers, debug_image, diagnostics
 // Parameters (~): preset (potato), set, rate (3.0), use_depth (true), depth_scale (0.001),
-// lazy (true), queue_size (5), slop_s (0.02).
+// lazy (true), queue_size (5), exact_sync (false), slop_s (0.02); exact_sync as in broccoli_node.hpp.
 #include <message_filters/subscriber.h>
 #include <message_filters/sync_policies/approximate_time.h>
+#include <message_filters/sync_policies/exact_time.h>
 #include <message_filters/synchronizer.h>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
@@ -33,6 +34,8 @@ class PotatoNode {
   using Info = sensor_msgs::CameraInfo;
   using RgbdPolicy = message_filters::sync_policies::ApproximateTime<Image, Image, Info>;
   using ColorPolicy = message_filters::sync_policies::ApproximateTime<Image, Info>;
+  using RgbdExact = message_filters::sync_policies::ExactTime<Image, Image, Info>;
+  using ColorExact = message_filters::sync_policies::ExactTime<Image, Info>;
 
   void connect();
   void disconnect();
@@ -53,6 +56,9 @@ class PotatoNode {
   message_filters::Subscriber<Info> info_sub_;
   std::unique_ptr<message_filters::Synchronizer<RgbdPolicy>> rgbd_sync_;
   std::unique_ptr<message_filters::Synchronizer<ColorPolicy>> color_sync_;
+  std::unique_ptr<message_filters::Synchronizer<RgbdExact>> rgbd_exact_;
+  std::unique_ptr<message_filters::Synchronizer<ColorExact>> color_exact_;
+  bool exact_sync_ = false;
   ros::Publisher target_pub_, det_pub_, marker_pub_, debug_pub_;
   std::unique_ptr<InputHealth> health_;
   std::unique_ptr<LazyInputs> lazy_;

@@ -1,0 +1,166 @@
+// bench_ros_latency: plays a bag's frames into a running cropsight node at a fixed rate, each
+// stamped with the wall-clock time it is published, and measures per message the latency
+// (output received − input stamp: conversion, pipeline, transport both ways) and the input
+// frames that never produced an output (dropped). It reads the node's own pipeline time
+// (pipeline_ms_p50 / _p99 on `diagnostics`) at the end, so both come from the same run.
+// scripts/bench-ros.sh starts the master and the node (pinned to one core) and runs this.
+//
+// Usage: bench_ros_latency --bag B --ns /camera --node broccoli|potato [--rate 30] [--frames 300]
+//        [--warmup 20]
+#include <cropsight_msgs/HarvestTarget.h>
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <ros/ros.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+#include <vision_msgs/Detection2DArray.h>
+#include <vision_msgs/Detection3DArray.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace {
+
+struct Frame {
+  sensor_msgs::Image depth, color;
+  sensor_msgs::CameraInfo info;
+  bool has_color = false;
+};
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, std::size_t(q * double(v.size() - 1) + 0.5))];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "cropsight_latency_bench", ros::init_options::AnonymousName);
+  std::string bag_path, ns = "/camera", node = "broccoli";
+  double rate = 30;
+  int frames = 300, warmup = 20;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string k = argv[i], v = argv[i + 1];
+    if (k == "--bag")
+      bag_path = v;
+    else if (k == "--ns")
+      ns = v;
+    else if (k == "--node")
+      node = v;
+    else if (k == "--rate")
+      rate = std::stod(v);
+    else if (k == "--frames")
+      frames = std::stoi(v);
+    else if (k == "--warmup")
+      warmup = std::stoi(v);
+    else {
+      std::fprintf(stderr, "bench_ros_latency: unknown option %s\n", k.c_str());
+      return 2;
+    }
+  }
+  if (bag_path.empty() || (node != "broccoli" && node != "potato") || !(rate > 0) || frames <= warmup) {
+    std::fprintf(stderr,
+                 "usage: bench_ros_latency --bag B --ns NS --node broccoli|potato [--rate 30] [--frames 300]\n");
+    return 2;
+  }
+  std::vector<Frame> bag_frames;
+  try {
+    rosbag::Bag bag(bag_path, rosbag::bagmode::Read);
+    std::map<ros::Time, Frame> by_time;
+    for (const rosbag::MessageInstance& m : rosbag::View(bag)) {
+      Frame& f = by_time[m.getTime()];
+      if (m.getTopic() == "/camera/depth/image_raw") f.depth = *m.instantiate<sensor_msgs::Image>();
+      if (m.getTopic() == "/camera/depth/camera_info") f.info = *m.instantiate<sensor_msgs::CameraInfo>();
+      if (m.getTopic() == "/camera/color/image_raw") f.color = *m.instantiate<sensor_msgs::Image>(), f.has_color = true;
+    }
+    for (auto& [t, f] : by_time) bag_frames.push_back(f);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: %s\n", bag_path.c_str(), e.what());
+    return 2;
+  }
+  if (bag_frames.empty()) {
+    std::fprintf(stderr, "%s: no frames\n", bag_path.c_str());
+    return 2;
+  }
+  ros::NodeHandle nh;
+  auto depth_pub = nh.advertise<sensor_msgs::Image>(ns + "/depth/image_raw", 100);
+  auto info_pub = nh.advertise<sensor_msgs::CameraInfo>(ns + "/depth/camera_info", 100);
+  auto color_pub = nh.advertise<sensor_msgs::Image>(ns + "/color/image_raw", 100);
+  std::map<double, double> received;  // input stamp (s) -> latency (ms)
+  auto on_output = [&](const std_msgs::Header& h) {
+    received[h.stamp.toSec()] = (ros::Time::now() - h.stamp).toSec() * 1e3;
+  };
+  ros::Subscriber out_sub =
+      node == "broccoli"
+          ? nh.subscribe<vision_msgs::Detection3DArray>(
+                ns + "/heads", 100, [&](const vision_msgs::Detection3DArray::ConstPtr& m) { on_output(m->header); })
+          : nh.subscribe<vision_msgs::Detection2DArray>(
+                ns + "/detections", 100,
+                [&](const vision_msgs::Detection2DArray::ConstPtr& m) { on_output(m->header); });
+  double node_p50 = 0, node_p99 = 0;
+  ros::Subscriber diag = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
+      ns + "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+        for (const auto& st : m->status)
+          for (const auto& kv : st.values) {
+            if (kv.key == "pipeline_ms_p50") node_p50 = std::stod(kv.value);
+            if (kv.key == "pipeline_ms_p99") node_p99 = std::stod(kv.value);
+          }
+      });
+  const bool color = node == "potato";
+  const ros::WallTime wait_end = ros::WallTime::now() + ros::WallDuration(60);
+  while (ros::ok() && ros::WallTime::now() < wait_end &&
+         (depth_pub.getNumSubscribers() == 0 || info_pub.getNumSubscribers() == 0 ||
+          (color && color_pub.getNumSubscribers() == 0))) {
+    ros::spinOnce();
+    ros::WallDuration(0.01).sleep();
+  }
+  if (depth_pub.getNumSubscribers() == 0) {
+    std::fprintf(stderr, "bench_ros_latency: no node subscribed to %s/depth/image_raw within 60 s\n", ns.c_str());
+    return 1;
+  }
+  std::vector<double> stamps;
+  // Outputs are taken as they arrive (callbacks served every 0.2 ms between publications), so a
+  // latency is not rounded up to the next publication.
+  const ros::WallDuration period(1.0 / rate);
+  ros::WallTime next = ros::WallTime::now();
+  for (int i = 0; i < frames && ros::ok(); ++i) {
+    Frame f = bag_frames[std::size_t(i) % bag_frames.size()];
+    const ros::Time now = ros::Time::now();
+    f.depth.header.stamp = f.info.header.stamp = f.color.header.stamp = now;
+    if (color) color_pub.publish(f.color);
+    depth_pub.publish(f.depth);
+    info_pub.publish(f.info);
+    stamps.push_back(now.toSec());
+    next += period;
+    while (ros::ok() && ros::WallTime::now() < next) {
+      ros::spinOnce();
+      ros::WallDuration(0.0002).sleep();
+    }
+  }
+  const ros::WallTime drain = ros::WallTime::now() + ros::WallDuration(3.0);
+  while (ros::ok() && ros::WallTime::now() < drain) {
+    ros::spinOnce();
+    ros::WallDuration(0.01).sleep();
+  }
+  std::vector<double> lat;
+  int dropped = 0;
+  for (int i = warmup; i < int(stamps.size()); ++i) {
+    auto it = received.find(stamps[std::size_t(i)]);
+    if (it == received.end())
+      ++dropped;
+    else
+      lat.push_back(it->second);
+  }
+  std::printf(
+      "{\"node\":\"%s\",\"rate_hz\":%.1f,\"frames\":%d,\"measured\":%d,\"dropped\":%d,"
+      "\"latency_ms_p50\":%.2f,\"latency_ms_p99\":%.2f,\"pipeline_ms_p50\":%.2f,\"pipeline_ms_p99\":%.2f,"
+      "\"overhead_ms_p99\":%.2f}\n",
+      node.c_str(), rate, frames, int(stamps.size()) - warmup, dropped, percentile(lat, 0.5), percentile(lat, 0.99),
+      node_p50, node_p99, percentile(lat, 0.99) - node_p99);
+  return 0;
+}
