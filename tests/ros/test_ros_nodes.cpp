@@ -19,6 +19,8 @@
 #include <functional>
 #include <map>
 
+#include "cropsight/bridge/seedling_runner.hpp"
+#include "ros_conversions.hpp"
 #include "ros_test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -244,6 +246,66 @@ TEST_F(RosNodes, PotatoNodeHarvestTargetsEqualTheCliAndTheRateThrottles) {
     }
     EXPECT_EQ(node.stop(), 0);
   }
+}
+
+TEST_F(RosNodes, SeedlingNodeEnvelopeEqualsTheCli) {
+  const fs::path d = scratch_dir("seedling_node");
+  ASSERT_EQ(run(cli() + " simulate seedling --pairs 2 --calib-pairs 0 --seed 4245 --quiet --out " +
+                (d / "data").string() + " >/dev/null"),
+            0);
+  NodeProcess node(kBin + "/cropsight_seedling_node", {"__ns:=/s1", "__name:=seedling"}, (d / "node.log").string());
+  ros::NodeHandle nh;
+  std::map<double, vision_msgs::Detection3DArray> got;
+  ros::Subscriber sub = nh.subscribe<vision_msgs::Detection3DArray>(
+      "/s1/seedlings", 10,
+      [&](const vision_msgs::Detection3DArray::ConstPtr& m) { got[m->header.stamp.toSec()] = *m; });
+  auto left_pub = nh.advertise<sensor_msgs::Image>("/s1/left/image_rect_color", 5);
+  auto right_pub = nh.advertise<sensor_msgs::Image>("/s1/right/image_rect_color", 5);
+  auto left_info_pub = nh.advertise<sensor_msgs::CameraInfo>("/s1/left/camera_info", 5);
+  auto right_info_pub = nh.advertise<sensor_msgs::CameraInfo>("/s1/right/camera_info", 5);
+  ASSERT_TRUE(
+      spin_until([&] { return right_info_pub.getNumSubscribers() > 0 && left_pub.getNumSubscribers() > 0; }, 30));
+  int found = 0;
+  for (int k = 0; k < 2; ++k) {
+    const fs::path pair = d / "data" / ("pair_00" + std::to_string(k));
+    const std::string calib = (d / "data/rig.yaml").string(), l = (pair / "left.png").string(),
+                      r = (pair / "right.png").string();
+    ASSERT_EQ(run(cli() + " detect seedling --left " + l + " --right " + r + " --calib " + calib + " --out " +
+                  (pair / "cli.json").string() + " >/dev/null"),
+              0);
+    std::ifstream in(pair / "cli.json");
+    const nlohmann::json e = nlohmann::json::parse(in);
+    // What the node receives: the pair rectified as the CLI rectifies it, and camera_infos whose
+    // P matrices carry the rectified geometry (as stereo_image_proc publishes).
+    const auto rect = cropsight::bridge::read_rectified_pair(calib, l, r);
+    const auto& g = rect.geometry;
+    sensor_msgs::CameraInfo li, ri;
+    li.width = ri.width = std::uint32_t(g.width);
+    li.height = ri.height = std::uint32_t(g.height);
+    li.P = {g.f, 0, g.cx, 0, 0, g.f, g.cy, 0, 0, 0, 1, 0};
+    ri.P = {g.f, 0, g.cx_right, -g.f * g.baseline, 0, g.f, g.cy, 0, 0, 0, 1, 0};
+    sensor_msgs::Image lm = cropsight::ros_io::image_from_rgb(rect.left.rgb, g.width, g.height);
+    sensor_msgs::Image rm = cropsight::ros_io::image_from_rgb(rect.right.rgb, g.width, g.height);
+    const ros::Time t(20 + k);
+    lm.header.stamp = rm.header.stamp = li.header.stamp = ri.header.stamp = t;
+    lm.header.frame_id = "left_optical";
+    left_pub.publish(lm);
+    right_pub.publish(rm);
+    left_info_pub.publish(li);
+    right_info_pub.publish(ri);
+    ASSERT_TRUE(spin_until([&] { return got.count(t.toSec()) > 0; }, 30)) << "pair " << k;
+    const auto& msg = got[t.toSec()];
+    EXPECT_EQ(msg.header.frame_id, "left_optical");
+    ASSERT_EQ(msg.detections.size(), e["found"].get<bool>() ? 1u : 0u) << "pair " << k;
+    if (!msg.detections.empty()) {
+      ++found;
+      EXPECT_NEAR(msg.detections[0].bbox.size.x, e["envelope"]["length_m"].get<double>(), 1e-9);
+      EXPECT_NEAR(msg.detections[0].bbox.size.y, e["envelope"]["width_m"].get<double>(), 1e-9);
+      EXPECT_NEAR(msg.detections[0].bbox.size.z, e["envelope"]["height_m"].get<double>(), 1e-9);
+    }
+  }
+  EXPECT_GT(found, 0) << "the simulated pairs hold seedlings";
+  EXPECT_EQ(node.stop(), 0);
 }
 
 }  // namespace

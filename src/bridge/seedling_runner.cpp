@@ -1,0 +1,105 @@
+#include "cropsight/bridge/seedling_runner.hpp"
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/io/config_yaml.hpp"
+#include "cropsight/pipeline/seedling/seedling_config.hpp"
+#include "cropsight/pipeline/seedling/seedling_pipeline.hpp"
+#include "cropsight/stereo/calibration.hpp"
+#include "cropsight/stereo/rectification.hpp"
+#include "cropsight/stereo/stereo_io.hpp"
+
+namespace cropsight::bridge {
+
+namespace {
+
+pipeline::SeedlingConfig runner_config(const std::string& preset, const std::vector<std::string>& sets) {
+  const std::string name = preset.empty() ? "seedling" : preset;
+  pipeline::SeedlingConfig cfg = pipeline::load_seedling_config(name);
+  if (!sets.empty()) {
+    apply_config(cfg, io::load_preset_with_overrides("", sets), "--set");
+    pipeline::validate_seedling_config(cfg, "--set");
+  }
+  return cfg;
+}
+
+ColorImage to_color(const RgbImage& im, const std::string& where) {
+  if (im.rgb.size() != 3 * std::size_t(im.width) * std::size_t(im.height))
+    throw Error(where, "colour buffer does not hold width x height x 3 bytes");
+  ColorImage c(im.width, im.height);
+  for (std::size_t i = 0; i < c.size(); ++i) c.data[i] = {im.rgb[3 * i], im.rgb[3 * i + 1], im.rgb[3 * i + 2]};
+  return c;
+}
+
+RgbImage to_rgb(const ColorImage& c) {
+  RgbImage im;
+  im.width = c.width;
+  im.height = c.height;
+  im.rgb.resize(3 * c.size());
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    im.rgb[3 * i] = c.data[i].r;
+    im.rgb[3 * i + 1] = c.data[i].g;
+    im.rgb[3 * i + 2] = c.data[i].b;
+  }
+  return im;
+}
+
+}  // namespace
+
+struct SeedlingRunner::Impl {
+  pipeline::SeedlingPipeline pipe;
+};
+
+SeedlingRunner::SeedlingRunner(const std::string& preset, const std::vector<std::string>& sets)
+    : impl_(std::make_unique<Impl>(
+          Impl{pipeline::SeedlingPipeline(runner_config(preset, sets), preset.empty() ? "seedling" : preset)})) {}
+SeedlingRunner::~SeedlingRunner() = default;
+
+SeedlingOut SeedlingRunner::process(const RgbImage& left, const RgbImage& right, const StereoGeometry& g,
+                                    const std::string& where) const {
+  stereo::RectifiedGeometry geo;
+  geo.width = g.width;
+  geo.height = g.height;
+  geo.f = g.f;
+  geo.cx = g.cx;
+  geo.cy = g.cy;
+  geo.cx_right = g.cx_right;
+  geo.baseline = g.baseline;
+  if (!(g.f > 0) || !(g.baseline > 0)) throw Error(where, "stereo geometry needs a focal length and a baseline > 0");
+  const pipeline::SeedlingDetection d = impl_->pipe.process(to_color(left, where), to_color(right, where), geo, where);
+  SeedlingOut out;
+  out.found = d.found;
+  out.length = d.envelope.length;
+  out.width = d.envelope.width;
+  out.height = d.envelope.height;
+  out.ms_total = d.timer.total_ms();
+  out.points.reserve(3 * d.points.size());
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const auto& p : d.points) {
+    out.points.insert(out.points.end(), {p.x(), p.y(), p.z()});
+    sum += p.cast<double>();
+  }
+  if (!d.points.empty()) {
+    sum /= double(d.points.size());
+    out.cx = sum.x();
+    out.cy = sum.y();
+    out.cz = sum.z();
+  }
+  return out;
+}
+
+RectifiedPairBuffers read_rectified_pair(const std::string& calib_yaml, const std::string& left_png,
+                                         const std::string& right_png) {
+  const auto calib = stereo::load_calibration(calib_yaml);
+  auto [l, r] = stereo::read_color_pair(left_png, right_png);
+  if (l.width != calib.width || l.height != calib.height)
+    throw Error(left_png, "image size differs from the calibration " + calib_yaml);
+  const auto pair = stereo::rectify_pair(calib, std::move(l), std::move(r), left_png);
+  RectifiedPairBuffers out;
+  out.left = to_rgb(pair.left);
+  out.right = to_rgb(pair.right);
+  out.geometry = {pair.geometry.width, pair.geometry.height,   pair.geometry.f,       pair.geometry.cx,
+                  pair.geometry.cy,    pair.geometry.cx_right, pair.geometry.baseline};
+  return out;
+}
+
+}  // namespace cropsight::bridge
