@@ -209,7 +209,7 @@ nlohmann::json run_broccoli(const Options& o) {
       detections += long(r.detections.size());
       if (!broccoli_result_finite(r)) ++nonfinite;
       if (j < short_frames && broccoli_result_hash(r) != short_hash[std::size_t(j)]) ++short_mismatch;
-      if (detections_hash(r.detections) != source_dets[std::size_t(i % n)]) ++detection_mismatch;
+      if (detections_hash(r.detections) != source_dets[std::size_t(j % n)]) ++detection_mismatch;
     } catch (const std::exception& e) {
       if (errors++ == 0) first_error = e.what();
     }

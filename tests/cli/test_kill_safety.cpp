@@ -177,7 +177,7 @@ TEST_P(KillSafety, NothingPartialUnderAFinalNameAndTheRerunSucceeds) {
   // took longer than that), at a seeded random point within the slice.
   std::mt19937 rng(26 + std::hash<std::string>{}(c.name) % 1000);
   const double from = std::min(startup_s_, 0.5 * run_s);
-  int killed = 0, left_temporaries = 0;
+  int kills = 0, killed = 0, left_temporaries = 0;
   // A busy machine can make a killed run faster than the clean one, so that every kill comes after
   // the end: then one more, in the middle of start-up, so that at least one kill hit a running
   // command (kill k == c.kills).
@@ -186,6 +186,7 @@ TEST_P(KillSafety, NothingPartialUnderAFinalNameAndTheRerunSucceeds) {
                             ? from + (run_s - from) * (k + std::uniform_real_distribution<double>(0, 1)(rng)) / c.kills
                             : 0.5 * std::min(startup_s_, run_s);
     const bool replacing = k % 2 == 1;
+    ++kills;
     const fs::path dir = work / ("kill-" + std::to_string(k));
     fs::create_directories(dir);
     if (replacing)
@@ -198,6 +199,7 @@ TEST_P(KillSafety, NothingPartialUnderAFinalNameAndTheRerunSucceeds) {
     ::kill(pid, SIGKILL);  // a child that already exited is a zombie until waited for: no other process
     const int status = wait_for(pid);
     if (WIFSIGNALED(status)) {
+      EXPECT_EQ(WTERMSIG(status), SIGKILL) << what << ": died of another signal before the kill";
       ++killed;
     } else {
       EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
@@ -245,7 +247,7 @@ TEST_P(KillSafety, NothingPartialUnderAFinalNameAndTheRerunSucceeds) {
   // Temporaries left show that kills landed while outputs were being written, not only during
   // start-up.
   std::printf("kill: %s: run %.2f s (start-up %.2f s), %d kills, %d while running, %d temporaries left\n",
-              c.name.c_str(), run_s, startup_s_, c.kills, killed, left_temporaries);
+              c.name.c_str(), run_s, startup_s_, kills, killed, left_temporaries);
   EXPECT_GE(killed, 1) << c.name << ": every run finished before its kill";
 }
 
