@@ -1,14 +1,6 @@
 // SequenceWriter: everything is written into a hidden temporary sibling directory, which
-// finish() renames onto the final name, so a sequence directory either is complete or does
-// not exist (a crashed or abandoned writer leaves no half sequence behind).
-#include <signal.h>
-#include <unistd.h>
-
-#include <algorithm>
-#include <cerrno>
-#include <cstdlib>
-#include <random>
-#include <vector>
+// finish() puts in place of the final name (io::replace_directory), so a sequence directory either
+// is complete or does not exist (a crashed or abandoned writer leaves no half sequence behind).
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
@@ -22,44 +14,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path hidden_sibling(const fs::path& dir, const std::string& tag) {
-  std::random_device rd;
-  const fs::path parent = dir.parent_path().empty() ? fs::path(".") : dir.parent_path();
-  return parent / ("." + dir.filename().string() + "." + tag + "-" + std::to_string(::getpid()) + "-" +
-                   std::to_string(rd() % 1000000000u));
-}
-
 /// Replacing an existing directory is allowed only when it is empty or looks like a sequence,
 /// so that a wrong --out never deletes unrelated data.
 bool replaceable(const fs::path& dir) {
   if (!fs::is_directory(dir)) return false;
   return fs::is_empty(dir) || fs::exists(dir / "camera.yaml") || fs::exists(dir / "depth");
-}
-
-// A run killed by a signal cannot unwind, so its temporary directory stays behind. The next
-// writer of the same sequence removes such leftovers: `.NAME.tmp-PID-RANDOM` (or `.old-`) whose
-// process no longer exists. A live writer's directory is left alone.
-void remove_stale_siblings(const fs::path& dir) {
-  const fs::path parent = dir.parent_path().empty() ? fs::path(".") : dir.parent_path();
-  const std::string prefix = "." + dir.filename().string() + ".";
-  std::error_code ec;
-  std::vector<fs::path> stale;
-  for (const auto& e : fs::directory_iterator(parent, ec)) {
-    const std::string name = e.path().filename().string();
-    if (name.rfind(prefix, 0) != 0) continue;
-    const std::string rest = name.substr(prefix.size());
-    if (rest.rfind("tmp-", 0) != 0 && rest.rfind("old-", 0) != 0) continue;
-    const std::size_t at = 4;  // after "tmp-" / "old-"
-    const std::size_t dash = rest.find('-', at);
-    if (dash == std::string::npos || dash == at) continue;
-    const std::string pid_text = rest.substr(at, dash - at);
-    if (!std::all_of(pid_text.begin(), pid_text.end(), [](char c) { return c >= '0' && c <= '9'; })) continue;
-    const long pid = std::strtol(pid_text.c_str(), nullptr, 10);
-    if (pid <= 0 || pid == long(::getpid())) continue;
-    if (::kill(pid_t(pid), 0) == 0 || errno != ESRCH) continue;  // alive, or not ours to judge
-    stale.push_back(e.path());
-  }
-  for (const auto& p : stale) fs::remove_all(p, ec);
 }
 
 }  // namespace
@@ -79,8 +38,8 @@ SequenceWriter::SequenceWriter(fs::path dir, CameraIntrinsics camera, bool overw
     fs::create_directories(dir_.parent_path(), ec);
     if (ec) throw Error(dir_.string(), "cannot create parent directory: " + ec.message());
   }
-  remove_stale_siblings(dir_);
-  tmp_ = hidden_sibling(dir_, "tmp");
+  remove_stale_temporaries(dir_);  // what killed writers of this sequence left
+  tmp_ = temporary_sibling(dir_);
   fs::create_directory(tmp_, ec);
   if (ec) throw Error(dir_.string(), "cannot create temporary directory: " + ec.message());
   try {
@@ -142,25 +101,13 @@ void SequenceWriter::finish() {
   if (!poses_.empty()) write_file_atomic(tmp_ / "poses.csv", detail::format_poses_csv(poses_));
   if (truth_) write_file_atomic(tmp_ / "groundtruth.json", detail::format_groundtruth_json(*truth_, dir_.string()));
 
-  std::error_code ec;
-  fs::path old;
   if (fs::exists(dir_)) {
     if (!overwrite_) throw Error(dir_.string(), "already exists (refusing to overwrite)");
     if (!replaceable(dir_))
       throw Error(dir_.string(), "exists and is not a sequence directory; refusing to replace it");
-    // Move the old sequence aside first: rename() cannot replace a non-empty directory.
-    old = hidden_sibling(dir_, "old");
-    fs::rename(dir_, old, ec);
-    if (ec) throw Error(dir_.string(), "cannot replace existing directory: " + ec.message());
   }
-  fs::rename(tmp_, dir_, ec);
-  if (ec) {
-    std::error_code ec2;
-    if (!old.empty()) fs::rename(old, dir_, ec2);  // put the previous sequence back
-    throw Error(dir_.string(), "cannot move the finished sequence into place: " + ec.message());
-  }
+  replace_directory(tmp_, dir_, "sequence");  // a previous sequence is swapped out in one step
   finished_ = true;
-  if (!old.empty()) fs::remove_all(old, ec);
 }
 
 }  // namespace cropsight::io

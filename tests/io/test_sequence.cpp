@@ -158,6 +158,41 @@ TEST(Sequence, LeftoversOfAKilledWriterAreRemovedByTheNext) {
   EXPECT_TRUE(fs::exists(tmp / "seq" / "depth" / "000000.png"));
 }
 
+// io::TempDirectory (detect --masks, detect potato, simulate seedling ...) cleans up after killed
+// runs like SequenceWriter does.
+TEST(Files, TempDirectoryRemovesWhatKilledRunsLeft) {
+  TempDir tmp;
+  const fs::path dead = tmp / ".masks.tmp-999999999-42", dead_old = tmp / ".masks.tmp-999999999-43.old",
+                 live = tmp / ".masks.tmp-1-7", other = tmp / ".other.tmp-999999999-1";
+  for (const auto& d : {dead, dead_old, live, other}) fs::create_directories(d);
+  write_file_atomic(dead / "000000.png", "partial");
+  {
+    TempDirectory t(tmp / "masks");
+    EXPECT_FALSE(fs::exists(dead));
+    EXPECT_FALSE(fs::exists(dead_old));
+    EXPECT_TRUE(fs::exists(live));
+    EXPECT_TRUE(fs::exists(other));
+    write_file_atomic(t.path() / "000000.png", "new");
+    t.commit("masks");
+  }
+  EXPECT_EQ(read_file(tmp / "masks" / "000000.png"), "new");
+}
+
+// A previous folder is swapped out in one step and removed: only the new contents remain.
+TEST(Files, ReplaceDirectoryLeavesOnlyTheNewContents) {
+  TempDir tmp;
+  write_file_atomic(tmp / "out" / "a.txt", "old");
+  write_file_atomic(tmp / "out" / "only-old.txt", "old");
+  {
+    TempDirectory t(tmp / "out");
+    write_file_atomic(t.path() / "a.txt", "new");
+    t.commit();
+  }
+  EXPECT_EQ(entries(tmp.path()), std::vector<std::string>{"out"});
+  EXPECT_EQ(entries(tmp / "out"), std::vector<std::string>{"a.txt"});
+  EXPECT_EQ(read_file(tmp / "out" / "a.txt"), "new");
+}
+
 TEST(Files, DirectoriesAreNamedAsSuch) {
   TempDir tmp;
   fs::create_directories(tmp / "d");
