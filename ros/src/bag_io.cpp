@@ -32,13 +32,13 @@ struct TempFile {
 // rosbag throws its own exceptions (and pluginlib's when the encryptor plugin cannot be loaded);
 // the CLI's contract is one line naming the file.
 template <class F>
-auto with_bag_errors(const std::string& bag, F&& f) -> decltype(f()) {
+auto with_bag_errors(const std::string& bag, const std::string& failure, F&& f) -> decltype(f()) {
   try {
     return f();
   } catch (const Error&) {
     throw;
   } catch (const rosbag::BagException& e) {
-    throw Error(bag, std::string("not a readable ROS bag: ") + e.what());
+    throw Error(bag, failure + ": " + e.what());
   } catch (const std::exception& e) {
     const std::string what = e.what();
     if (what.find("plugin") != std::string::npos || what.find("class_loader") != std::string::npos)
@@ -69,7 +69,7 @@ BagExportSummary export_sequence_bag(const BagExportOptions& o) {
   if (fs::is_directory(o.bag)) throw Error(o.bag, "is a directory");
   TempFile tmp{fs::path(o.bag + ".partial")};
   BagExportSummary s;
-  with_bag_errors(o.bag, [&] {
+  with_bag_errors(o.bag, "cannot write the bag", [&] {
     rosbag::Bag bag;
     bag.open(tmp.path.string(), rosbag::bagmode::Write);
     sensor_msgs::CameraInfo info = info_from_camera(cam);
@@ -117,7 +117,7 @@ BagExportSummary export_sequence_bag(const BagExportOptions& o) {
 BagImportSummary import_bag_sequence(const BagImportOptions& o) {
   if (!fs::exists(o.bag)) throw Error(o.bag, "no such file");
   if (fs::is_directory(o.bag)) throw Error(o.bag, "is a directory, not a bag file");
-  return with_bag_errors(o.bag, [&] {
+  return with_bag_errors(o.bag, "not a readable ROS bag", [&] {
     rosbag::Bag bag;
     bag.open(o.bag, rosbag::bagmode::Read);
     // Pass 1: camera info and the depth frames' stamps; colour matched to depth by stamp.

@@ -328,74 +328,84 @@ const Input kRoiDet{"roi.json", Kind::Json, "/0/bbox/2", "-50"};
 // One annotation file fewer (or a sub-folder) in the folder is a valid set: images without truth.
 const Input kVoc{"voc/a.xml", Kind::Xml, "xmin", "1000", {Bad::Missing, Bad::Directory}};
 const Input kOut{"out", Kind::Output, "", ""};
+// A ROS bag of the sequence (cropsight export --bag), in builds with ROS (issue 25).
+const Input kBag{"s.bag", Kind::Binary, "", ""};
 Input set(const std::string& key, const std::string& range) { return {key, Kind::Set, key, range}; }
 
 const std::vector<Row>& rows() {
   static const std::vector<Row> r = {
-      {"info", "info {c}/seq", {kCamera, kDepth, kColor, kLabels, kPoses, kTruth}},
-      {"export", "export {c}/seq --frame 0 --out {c}/out/f.pcd", {kCamera, kDepth, kOut}},
-      {"render", "render {c}/seq --frame 0 --out {c}/out/f.png --what labels", {kCamera, kDepth, kLabels, kOut}},
-      {"report",
-       "report --data {c}/seq --out {c}/out/r.html --frames 1 --model {c}/broccoli.json",
-       {kCamera, kDepth, kBroccoliModel, kOut}},
-      {"train_broccoli",
-       "train broccoli --data {c}/seq --out {c}/out/m.json --quiet --config {c}/preset.yaml",
-       {kCamera, kDepth, kLabels, kTruth, kPreset, set("depth.min_depth", "-5"), kOut}},
-      {"detect_broccoli",
-       "detect broccoli --data {c}/seq --model {c}/broccoli.json --out {c}/out/d.jsonl --quiet --track",
-       {kCamera, kDepth, kPoses, kBroccoliModel, set("tracking.max_distance", "-5"), kOut}},
-      {"eval_broccoli",
-       "eval broccoli --data {c}/seq --model {c}/broccoli.json --quiet",
-       {kCamera, kDepth, kLabels, kTruth, kBroccoliModel, set("depth.min_depth", "-5")}},
-      {"bench_broccoli",
-       "bench broccoli --data {c}/seq --model {c}/broccoli.json --frames 1 --pipelines oes",
-       {kCamera, kDepth, kBroccoliModelBench}},
-      {"detect_potato", "detect potato --data {c}/seq --out {c}/out/p", {kCamera, kDepth, kColor, kOut}},
-      {"harvest_potato", "harvest potato --data {c}/seq --out {c}/out/h.jsonl", {kCamera, kDepth, kColor, kOut}},
-      {"import",
-       "import --depth {c}/seq/depth --color {c}/seq/color --camera {c}/seq/camera.yaml --out {c}/out/imp",
-       {kCamera, kDepth, kColor, kOut}},
-      {"simulate_broccoli", "simulate broccoli --frames 1 --out {c}/out/s", {set("camera.height_m", "-1"), kOut}},
-      {"simulate_potato", "simulate potato --frames 1 --out {c}/out/s", {kOut}},
-      {"simulate_seedling", "simulate seedling --pairs 1 --calib-pairs 0 --quiet --out {c}/out/s", {kOut}},
-      {"segment_grape",
-       "segment grape --model {c}/grape.json --input {c}/clouds/points/c0.txt --out {c}/out/s.txt --threads 1",
-       {kGrapeCloud, kGrapeModel, kOut}},
-      {"train_grape",
-       "train grape --data {c}/clouds --model gbdt --out {c}/out/g.json --set gbdt.rounds=2 --set points_per_cloud=100 "
-       "--threads 1",
-       {kGrapeCloud, set("gbdt.rounds", "-2"), kOut}},
-      {"eval_grape", "eval grape --data {c}/clouds --model {c}/grape.json --threads 1", {kGrapeCloud, kGrapeModel}},
-      {"roi_cloud",
-       "roi-cloud --color {c}/seq/color/000000.png --depth {c}/seq/depth/000000.png --camera {c}/seq/camera.yaml "
-       "--detections {c}/roi.json --out {c}/out/roi",
-       {kCamera, kDepth, kColor, kRoiDet, kOut}},
-      {"detect_grape",
-       "detect grape --color {c}/seq/color/000000.png --depth {c}/seq/depth/000000.png --camera {c}/seq/camera.yaml "
-       "--detections {c}/roi.json --segmenter {c}/grape.json --threads 1 --out {c}/out/g",
-       {kCamera, kDepth, kColor, kRoiDet, kGrapeModel, set("cut_point.min_points", "1"), kOut}},
-      {"stereo_disparity",
-       "stereo disparity --left {c}/sd/pair_000/left.png --right {c}/sd/pair_000/right.png --calib {c}/sd/rig.yaml "
-       "--max-disp 64 --out {c}/out/d.png",
-       {kLeft, kRig, kOut}},
-      {"detect_seedling",
-       "detect seedling --left {c}/sd/pair_000/left.png --right {c}/sd/pair_000/right.png --calib {c}/sd/rig.yaml "
-       "--out {c}/out/s.json",
-       {kLeft, kRig, kOut}},
-      {"eval_seedling", "eval seedling --data {c}/sd --no-opencv --quiet", {kLeft, kRig, kSeedTruth}},
-      {"detect_objects",
-       "detect objects --model {c}/det.onnx --images {c}/images --out {c}/out/o",
-       {kFolderImage, kOnnx, kOut}},
-      {"export_detector", "export-detector --model {c}/det.pt --out {c}/out/d.onnx", {kPt, kOut}},
-      {"eval_detector",
-       "eval detector --coco {c}/coco.json --images {c}/images --model {c}/det.onnx",
-       {kCocoGt, kImage, kOnnx}},
-      {"train_detector",
-       "train detector --coco {c}/coco.json --images {c}/images --out {c}/out/t.pt --epochs 1 --input 64x64",
-       {kCocoGt, kImage, kOut}},
-      {"eval_potato_detection",
-       "eval potato-detection --images {c}/images --annotations {c}/voc --detections {c}/dets",
-       {kVoc}},
+    {"info", "info {c}/seq", {kCamera, kDepth, kColor, kLabels, kPoses, kTruth}},
+    {"export", "export {c}/seq --frame 0 --out {c}/out/f.pcd", {kCamera, kDepth, kOut}},
+    {"render", "render {c}/seq --frame 0 --out {c}/out/f.png --what labels", {kCamera, kDepth, kLabels, kOut}},
+    {"report",
+     "report --data {c}/seq --out {c}/out/r.html --frames 1 --model {c}/broccoli.json",
+     {kCamera, kDepth, kBroccoliModel, kOut}},
+    {"train_broccoli",
+     "train broccoli --data {c}/seq --out {c}/out/m.json --quiet --config {c}/preset.yaml",
+     {kCamera, kDepth, kLabels, kTruth, kPreset, set("depth.min_depth", "-5"), kOut}},
+    {"detect_broccoli",
+     "detect broccoli --data {c}/seq --model {c}/broccoli.json --out {c}/out/d.jsonl --quiet --track",
+     {kCamera, kDepth, kPoses, kBroccoliModel, set("tracking.max_distance", "-5"), kOut}},
+    {"eval_broccoli",
+     "eval broccoli --data {c}/seq --model {c}/broccoli.json --quiet",
+     {kCamera, kDepth, kLabels, kTruth, kBroccoliModel, set("depth.min_depth", "-5")}},
+    {"bench_broccoli",
+     "bench broccoli --data {c}/seq --model {c}/broccoli.json --frames 1 --pipelines oes",
+     {kCamera, kDepth, kBroccoliModelBench}},
+    {"detect_potato", "detect potato --data {c}/seq --out {c}/out/p", {kCamera, kDepth, kColor, kOut}},
+    {"harvest_potato", "harvest potato --data {c}/seq --out {c}/out/h.jsonl", {kCamera, kDepth, kColor, kOut}},
+    {"import",
+     "import --depth {c}/seq/depth --color {c}/seq/color --camera {c}/seq/camera.yaml --out {c}/out/imp",
+     {kCamera, kDepth, kColor, kOut}},
+    {"simulate_broccoli", "simulate broccoli --frames 1 --out {c}/out/s", {set("camera.height_m", "-1"), kOut}},
+    {"simulate_potato", "simulate potato --frames 1 --out {c}/out/s", {kOut}},
+    {"simulate_seedling", "simulate seedling --pairs 1 --calib-pairs 0 --quiet --out {c}/out/s", {kOut}},
+    {"segment_grape",
+     "segment grape --model {c}/grape.json --input {c}/clouds/points/c0.txt --out {c}/out/s.txt --threads 1",
+     {kGrapeCloud, kGrapeModel, kOut}},
+    {"train_grape",
+     "train grape --data {c}/clouds --model gbdt --out {c}/out/g.json --set gbdt.rounds=2 --set points_per_cloud=100 "
+     "--threads 1",
+     {kGrapeCloud, set("gbdt.rounds", "-2"), kOut}},
+    {"eval_grape", "eval grape --data {c}/clouds --model {c}/grape.json --threads 1", {kGrapeCloud, kGrapeModel}},
+    {"roi_cloud",
+     "roi-cloud --color {c}/seq/color/000000.png --depth {c}/seq/depth/000000.png --camera {c}/seq/camera.yaml "
+     "--detections {c}/roi.json --out {c}/out/roi",
+     {kCamera, kDepth, kColor, kRoiDet, kOut}},
+    {"detect_grape",
+     "detect grape --color {c}/seq/color/000000.png --depth {c}/seq/depth/000000.png --camera {c}/seq/camera.yaml "
+     "--detections {c}/roi.json --segmenter {c}/grape.json --threads 1 --out {c}/out/g",
+     {kCamera, kDepth, kColor, kRoiDet, kGrapeModel, set("cut_point.min_points", "1"), kOut}},
+    {"stereo_disparity",
+     "stereo disparity --left {c}/sd/pair_000/left.png --right {c}/sd/pair_000/right.png --calib {c}/sd/rig.yaml "
+     "--max-disp 64 --out {c}/out/d.png",
+     {kLeft, kRig, kOut}},
+    {"detect_seedling",
+     "detect seedling --left {c}/sd/pair_000/left.png --right {c}/sd/pair_000/right.png --calib {c}/sd/rig.yaml "
+     "--out {c}/out/s.json",
+     {kLeft, kRig, kOut}},
+    {"eval_seedling", "eval seedling --data {c}/sd --no-opencv --quiet", {kLeft, kRig, kSeedTruth}},
+    {"detect_objects",
+     "detect objects --model {c}/det.onnx --images {c}/images --out {c}/out/o",
+     {kFolderImage, kOnnx, kOut}},
+    {"export_detector", "export-detector --model {c}/det.pt --out {c}/out/d.onnx", {kPt, kOut}},
+    {"eval_detector",
+     "eval detector --coco {c}/coco.json --images {c}/images --model {c}/det.onnx",
+     {kCocoGt, kImage, kOnnx}},
+    {"train_detector",
+     "train detector --coco {c}/coco.json --images {c}/images --out {c}/out/t.pt --epochs 1 --input 64x64",
+     {kCocoGt, kImage, kOut}},
+    {"eval_potato_detection",
+     "eval potato-detection --images {c}/images --annotations {c}/voc --detections {c}/dets",
+     {kVoc}},
+#if CROPSIGHT_HAS_ROS
+    {"export_bag", "export {c}/seq --bag {c}/out/s.bag", {kCamera, kDepth, kColor, kOut}},
+    {"import_bag", "import --bag {c}/s.bag --out {c}/out/imp", {kBag, kOut}},
+    {"detect_broccoli_bag",
+     "detect broccoli --bag {c}/s.bag --model {c}/broccoli.json --out {c}/out/d.jsonl --quiet",
+     {kBag, kBroccoliModel, kOut}},
+    {"harvest_potato_bag", "harvest potato --bag {c}/s.bag --out {c}/out/h.jsonl", {kBag, kOut}},
+#endif
   };
   return r;
 }
@@ -414,6 +424,9 @@ class BadInputMatrix : public ::testing::TestWithParam<Row> {
     fs::copy_file(src / "models/grape-gbdt-fast.json", b / "grape.json");
     fs::copy_file(src / "models/detector-grape.onnx", b / "det.onnx");
     fs::copy_file(src / "models/detector-grape.pt", b / "det.pt");
+#if CROPSIGHT_HAS_ROS
+    ok_ = ok_ && run_cli("export " + shell_quoted(b / "seq") + " --bag " + shell_quoted(b / "s.bag")).exit_code == 0;
+#endif
     fs::create_directories(b / "clouds/points");
     for (int i = 0; i < 3; ++i)
       cropsight::io::write_grape_text(b / "clouds/points" / ("c" + std::to_string(i) + ".txt"),
