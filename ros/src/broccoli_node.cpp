@@ -91,35 +91,15 @@ void BroccoliNode::on_depth_frame(const sensor_msgs::ImageConstPtr& depth,
 
 void BroccoliNode::on_frame(const sensor_msgs::ImageConstPtr& depth, const sensor_msgs::CameraInfoConstPtr& info,
                             const sensor_msgs::ImageConstPtr& color) {
-  const std::string depth_topic = depth_sub_.getTopic(), info_topic = info_sub_.getTopic();
   bridge::FrameBuffers f;
-  std::string topic = info_topic;
-  try {
-    f.camera = camera_from_info(*info, depth_scale_, info_topic);
-    topic = depth_topic;
-    f.depth = depth_from_image(*depth, f.camera, depth_topic);
-    if (color) {
-      topic = color_sub_.getTopic();
-      f.rgb = rgb_from_image(*color, f.camera, topic);
-    }
-  } catch (const Error& e) {
-    health_->skipped(topic, e.problem());
+  if (!assemble_frame(*info, depth.get(), color.get(), depth_scale_,
+                      {info_sub_.getTopic(), depth_sub_.getTopic(), color_sub_.getTopic()}, *health_, f))
     return;
-  }
   f.index = frame_;
   f.timestamp = depth->header.stamp.toSec();
   bridge::BroccoliFrameOut out;
-  double pipeline_ms = 0;
-  try {
-    const ros::WallTime start = ros::WallTime::now();
-    out = runner_->process(f);
-    pipeline_ms = (ros::WallTime::now() - start).toSec() * 1e3;
-  } catch (const std::exception& e) {
-    health_->skipped(depth_topic, e.what());
-    return;
-  }
+  if (!run_pipeline(*health_, depth_sub_.getTopic(), [&] { out = runner_->process(f); })) return;
   ++frame_;
-  health_->processed(pipeline_ms);
 
   vision_msgs::Detection3DArray arr;
   arr.header = depth->header;

@@ -4,6 +4,9 @@
 #include <filesystem>
 #include <sstream>
 
+#include "cropsight/core/error.hpp"
+#include "ros_conversions.hpp"
+
 namespace fs = std::filesystem;
 
 namespace cropsight::ros_io {
@@ -95,6 +98,27 @@ void InputHealth::publish() {
   }
   arr.status.push_back(st);
   pub_.publish(arr);
+}
+
+bool assemble_frame(const sensor_msgs::CameraInfo& info, const sensor_msgs::Image* depth,
+                    const sensor_msgs::Image* color, double depth_scale, const InputTopics& topics, InputHealth& health,
+                    bridge::FrameBuffers& frame) {
+  const std::string* topic = &topics.info;
+  try {
+    frame.camera = camera_from_info(info, depth_scale, topics.info);
+    if (depth) {
+      topic = &topics.depth;
+      frame.depth = depth_from_image(*depth, frame.camera, topics.depth);
+    }
+    if (color) {
+      topic = &topics.color;
+      frame.rgb = rgb_from_image(*color, frame.camera, topics.color);
+    }
+  } catch (const Error& e) {
+    health.skipped(*topic, e.problem());
+    return false;
+  }
+  return true;
 }
 
 LazyInputs::LazyInputs(bool lazy, std::function<void()> connect, std::function<void()> disconnect)

@@ -3,12 +3,15 @@
 // `diagnostics` and logged with a throttled ROS_ERROR, lazy subscription, and the debug image.
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <ros/ros.h>
+#include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
 
 #include <functional>
 #include <map>
 #include <string>
 #include <vector>
+
+#include "cropsight/bridge/frame_buffers.hpp"
 
 namespace cropsight::ros_io {
 
@@ -44,6 +47,31 @@ class InputHealth {
   std::size_t next_ = 0;
   static constexpr std::size_t kWindow = 1000;
 };
+
+/// The frame of one synchronised set: camera from `info` (depth_scale: metres per 16UC1 unit),
+/// depth and colour when given (null: absent). On a malformed message: health.skipped(its topic,
+/// the problem) and false.
+struct InputTopics {
+  std::string info, depth, color;
+};
+bool assemble_frame(const sensor_msgs::CameraInfo& info, const sensor_msgs::Image* depth,
+                    const sensor_msgs::Image* color, double depth_scale, const InputTopics& topics, InputHealth& health,
+                    bridge::FrameBuffers& frame);
+
+/// Runs one pipeline call `run()`, records its wall time with health.processed(); an exception
+/// (a frame the pipeline rejects) is health.skipped(topic, what) and false.
+template <class F>
+bool run_pipeline(InputHealth& health, const std::string& topic, F&& run) {
+  try {
+    const ros::WallTime start = ros::WallTime::now();
+    run();
+    health.processed((ros::WallTime::now() - start).toSec() * 1e3);
+    return true;
+  } catch (const std::exception& e) {
+    health.skipped(topic, e.what());
+    return false;
+  }
+}
 
 /// Calls `connect` when the first subscriber of any of the node's outputs appears and `disconnect`
 /// when the last one leaves (lazy subscription, as image_proc's nodelets do). With lazy = false

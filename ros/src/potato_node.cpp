@@ -98,33 +98,14 @@ void PotatoNode::on_color_frame(const sensor_msgs::ImageConstPtr& color, const s
 void PotatoNode::on_frame(const sensor_msgs::ImageConstPtr& color, const sensor_msgs::ImageConstPtr& depth,
                           const sensor_msgs::CameraInfoConstPtr& info) {
   bridge::FrameBuffers f;
-  std::string topic = info_sub_.getTopic();
-  try {
-    f.camera = camera_from_info(*info, depth_scale_, topic);
-    topic = color_sub_.getTopic();
-    f.rgb = rgb_from_image(*color, f.camera, topic);
-    if (depth) {
-      topic = depth_sub_.getTopic();
-      f.depth = depth_from_image(*depth, f.camera, topic);
-    }
-  } catch (const Error& e) {
-    health_->skipped(topic, e.problem());
+  if (!assemble_frame(*info, depth.get(), color.get(), depth_scale_,
+                      {info_sub_.getTopic(), depth_sub_.getTopic(), color_sub_.getTopic()}, *health_, f))
     return;
-  }
   f.index = frame_;
   f.timestamp = color->header.stamp.toSec();
   bridge::PotatoFrameOut out;
-  double pipeline_ms = 0;
-  try {
-    const ros::WallTime start = ros::WallTime::now();
-    out = runner_->process(f);
-    pipeline_ms = (ros::WallTime::now() - start).toSec() * 1e3;
-  } catch (const std::exception& e) {
-    health_->skipped(color_sub_.getTopic(), e.what());
-    return;
-  }
+  if (!run_pipeline(*health_, color_sub_.getTopic(), [&] { out = runner_->process(f); })) return;
   ++frame_;
-  health_->processed(pipeline_ms);
 
   vision_msgs::Detection2DArray arr;
   arr.header = color->header;

@@ -87,13 +87,9 @@ void SeedlingNode::on_pair(const sensor_msgs::ImageConstPtr& left, const sensor_
     return;
   }
   bridge::SeedlingOut out;
-  try {
-    out = runner_->process(l, r, g, left_sub_.getTopic());
-  } catch (const std::exception& e) {
-    health_->skipped(left_sub_.getTopic(), e.what());
+  // The pipeline's own stage timer would leave out the copies; run_pipeline times the whole call.
+  if (!run_pipeline(*health_, left_sub_.getTopic(), [&] { out = runner_->process(l, r, g, left_sub_.getTopic()); }))
     return;
-  }
-  health_->processed(out.ms_total);
   vision_msgs::Detection3DArray arr;
   arr.header = left->header;
   if (out.found) {
