@@ -21,6 +21,7 @@ BroccoliNode::BroccoliNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), p
   use_color_ = pnh_.param("use_color", false);
   depth_scale_ = pnh_.param("depth_scale", 0.001);
   map_file_ = pnh_.param<std::string>("map_file", "");
+  field_frame_ = pnh_.param<std::string>("field_frame", "field");
   queue_ = std::max(1, pnh_.param("queue_size", 5));
   slop_s_ = pnh_.param("slop_s", 0.02);
   exact_sync_ = pnh_.param("exact_sync", false);
@@ -141,7 +142,7 @@ void BroccoliNode::publish_map(const std_msgs::Header& header) {
   for (const bridge::BroccoliMapHead& h : runner_->current_map()) {
     visualization_msgs::Marker m;
     m.header.stamp = header.stamp;
-    m.header.frame_id = pnh_.param<std::string>("field_frame", "field");
+    m.header.frame_id = field_frame_;
     m.ns = "broccoli_heads";
     m.id = h.id;
     m.type = visualization_msgs::Marker::SPHERE;

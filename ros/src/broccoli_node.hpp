@@ -54,7 +54,7 @@ class BroccoliNode {
   bool use_color_ = false;
   double depth_scale_ = 0.001, slop_s_ = 0.02;
   int queue_ = 5;
-  std::string map_file_;
+  std::string map_file_, field_frame_;
   int frame_ = 0;
   message_filters::Subscriber<Image> depth_sub_, color_sub_;
   message_filters::Subscriber<Info> info_sub_;

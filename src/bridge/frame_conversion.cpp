@@ -4,6 +4,22 @@
 
 namespace cropsight::bridge {
 
+ColorImage color_from_rgb(const std::vector<std::uint8_t>& rgb, int width, int height) {
+  ColorImage c(width, height);
+  for (std::size_t i = 0; i < c.size(); ++i) c.data[i] = {rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]};
+  return c;
+}
+
+std::vector<std::uint8_t> rgb_from_color(const ColorImage& color) {
+  std::vector<std::uint8_t> rgb(3 * color.size());
+  for (std::size_t i = 0; i < color.size(); ++i) {
+    rgb[3 * i] = color.data[i].r;
+    rgb[3 * i + 1] = color.data[i].g;
+    rgb[3 * i + 2] = color.data[i].b;
+  }
+  return rgb;
+}
+
 CameraIntrinsics to_intrinsics(const CameraModel& c) {
   CameraIntrinsics k;
   k.width = c.width;
@@ -52,8 +68,7 @@ RgbdFrame to_rgbd_frame(const FrameBuffers& f) {
     if (f.rgb.size() != 3 * pixels)
       throw Error(where, "colour has " + std::to_string(f.rgb.size() / 3) + " pixels, the camera " +
                              std::to_string(f.camera.width) + "x" + std::to_string(f.camera.height));
-    r.color = ColorImage(f.camera.width, f.camera.height);
-    for (std::size_t i = 0; i < pixels; ++i) r.color.data[i] = {f.rgb[3 * i], f.rgb[3 * i + 1], f.rgb[3 * i + 2]};
+    r.color = color_from_rgb(f.rgb, f.camera.width, f.camera.height);
   }
   if (f.has_camera_position)
     r.camera_position = Eigen::Vector3d(f.camera_position[0], f.camera_position[1], f.camera_position[2]);
@@ -66,14 +81,7 @@ FrameBuffers to_frame_buffers(const RgbdFrame& r) {
   f.timestamp = r.timestamp;
   f.camera = to_camera_model(r.camera);
   f.depth = r.depth.data;
-  if (!r.color.empty()) {
-    f.rgb.resize(3 * r.color.size());
-    for (std::size_t i = 0; i < r.color.size(); ++i) {
-      f.rgb[3 * i] = r.color.data[i].r;
-      f.rgb[3 * i + 1] = r.color.data[i].g;
-      f.rgb[3 * i + 2] = r.color.data[i].b;
-    }
-  }
+  if (!r.color.empty()) f.rgb = rgb_from_color(r.color);
   if (r.camera_position) {
     f.has_camera_position = true;
     for (int k = 0; k < 3; ++k) f.camera_position[k] = (*r.camera_position)[k];

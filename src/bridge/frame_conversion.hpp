@@ -7,6 +7,10 @@
 
 namespace cropsight::bridge {
 
+/// R G B bytes (width*height*3) <-> the library's colour image.
+ColorImage color_from_rgb(const std::vector<std::uint8_t>& rgb, int width, int height);
+std::vector<std::uint8_t> rgb_from_color(const ColorImage& color);
+
 CameraIntrinsics to_intrinsics(const CameraModel& c);
 CameraModel to_camera_model(const CameraIntrinsics& c);
 /// Validates the camera and the buffer sizes; throws Error("frame N", ...) naming the problem.

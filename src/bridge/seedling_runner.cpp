@@ -7,6 +7,7 @@
 #include "cropsight/stereo/calibration.hpp"
 #include "cropsight/stereo/rectification.hpp"
 #include "cropsight/stereo/stereo_io.hpp"
+#include "frame_conversion.hpp"
 
 namespace cropsight::bridge {
 
@@ -25,23 +26,10 @@ pipeline::SeedlingConfig runner_config(const std::string& preset, const std::vec
 ColorImage to_color(const RgbImage& im, const std::string& where) {
   if (im.rgb.size() != 3 * std::size_t(im.width) * std::size_t(im.height))
     throw Error(where, "colour buffer does not hold width x height x 3 bytes");
-  ColorImage c(im.width, im.height);
-  for (std::size_t i = 0; i < c.size(); ++i) c.data[i] = {im.rgb[3 * i], im.rgb[3 * i + 1], im.rgb[3 * i + 2]};
-  return c;
+  return color_from_rgb(im.rgb, im.width, im.height);
 }
 
-RgbImage to_rgb(const ColorImage& c) {
-  RgbImage im;
-  im.width = c.width;
-  im.height = c.height;
-  im.rgb.resize(3 * c.size());
-  for (std::size_t i = 0; i < c.size(); ++i) {
-    im.rgb[3 * i] = c.data[i].r;
-    im.rgb[3 * i + 1] = c.data[i].g;
-    im.rgb[3 * i + 2] = c.data[i].b;
-  }
-  return im;
-}
+RgbImage to_rgb(const ColorImage& c) { return {c.width, c.height, rgb_from_color(c)}; }
 
 }  // namespace
 
