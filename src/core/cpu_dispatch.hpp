@@ -36,7 +36,13 @@
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define CROPSIGHT_X86_DISPATCH 1
+#if defined(__clang__)
+// Clang 14 refuses target_clones on function templates (compute_links_impl); Clang builds the
+// fuzz harnesses (fuzz/), where speed does not matter, so they get the baseline loop only.
+#define CROPSIGHT_AVX2_CLONES
+#else
 #define CROPSIGHT_AVX2_CLONES __attribute__((target_clones("avx2", "default")))
+#endif
 #define CROPSIGHT_TARGET_AVX2 __attribute__((target("avx2,popcnt")))
 #else
 #define CROPSIGHT_X86_DISPATCH 0

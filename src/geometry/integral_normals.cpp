@@ -30,7 +30,6 @@ constexpr int kSums = 10;  // n, x, y, z, xx, xy, xz, yy, yz, zz
 constexpr int kCell = 12;  // doubles per integral-image cell: the 10 sums + 2 padding (three 4-lane vectors)
 
 typedef double v4d __attribute__((vector_size(32)));
-typedef long long v4di __attribute__((vector_size(32)));
 
 // One integral row: out[u + 1] = up[u + 1] + (sums over columns <= u of image row (xr, yr, zr)),
 // out[0] = 0. Three 4-lane vectors per cell (AVX2 clone at run time; SSE pairs otherwise): each
@@ -80,7 +79,7 @@ CROPSIGHT_AVX2_CLONES void scatter_row(int count, const int* __restrict cols, co
     // w[0] = n, x, y, z; w[1] = xx, xy, xz, yy; w[2] = yz, zz, -, -.
     const double ic = 1.0 / w[0][0];
     const v4d icv = {ic, ic, ic, ic};
-    const v4d l = __builtin_shuffle(w[0], (v4di){1, 1, 1, 2}), r = __builtin_shuffle(w[0], (v4di){1, 2, 3, 2});
+    const v4d l = __builtin_shufflevector(w[0], w[0], 1, 1, 1, 2), r = __builtin_shufflevector(w[0], w[0], 1, 2, 3, 2);
     const v4d c = w[1] - l * r * icv;
     m[k] = float(c[0]), m[stride + k] = float(c[1]), m[2 * stride + k] = float(c[2]), m[3 * stride + k] = float(c[3]);
     m[4 * stride + k] = float(w[2][0] - w[0][2] * w[0][3] * ic);

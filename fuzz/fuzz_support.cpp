@@ -1,0 +1,54 @@
+#include "fuzz_support.hpp"
+
+#include <unistd.h>
+
+#include <fstream>
+#include <system_error>
+
+namespace cropsight::fuzz {
+namespace {
+
+// Owns the folder so that it goes when the fuzzer exits normally (a crash leaves it in $TMPDIR,
+// beside the saved input, which helps reproduce it).
+struct Scratch {
+  std::filesystem::path dir;
+  Scratch() {
+    const char* tmp = std::getenv("TMPDIR");
+    std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/cropsight-fuzz-XXXXXX";
+    if (!mkdtemp(pattern.data())) {
+      std::perror("cropsight fuzz: mkdtemp");
+      std::abort();
+    }
+    dir = pattern;
+  }
+  ~Scratch() {
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
+  }
+};
+
+}  // namespace
+
+const std::filesystem::path& scratch_dir() {
+  static Scratch scratch;  // one per process: the harness's working folder
+  return scratch.dir;
+}
+
+std::filesystem::path write_input(std::string_view bytes, const std::string& name) {
+  const std::filesystem::path path = scratch_dir() / name;
+  std::filesystem::create_directories(path.parent_path());
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), std::streamsize(bytes.size()));
+  if (!out) {
+    std::fprintf(stderr, "cropsight fuzz: cannot write %s\n", path.c_str());
+    std::abort();
+  }
+  return path;
+}
+
+void remove_input(const std::string& name) {
+  std::error_code ec;
+  std::filesystem::remove_all(scratch_dir() / name, ec);
+}
+
+}  // namespace cropsight::fuzz
