@@ -7,6 +7,8 @@
 #   make build   build only (Release, portable flags)
 #   make bench   micro-benchmarks and end-to-end benchmarks
 #   make asan    ASan+UBSan build in build-asan/ and its tests
+#   make fuzz    libFuzzer harnesses (Clang, build-fuzz/): replay the seeds and past findings, then
+#                fuzz every parser FUZZ_SECONDS (default 15) each; scripts/fuzz.sh for one harness
 #   make format  clang-format every source file (format-check: only check)
 
 BUILD      ?= build
@@ -21,12 +23,13 @@ GENERATOR  ?= $(if $(shell command -v ninja),Ninja,Unix Makefiles)
 CTEST_ARGS ?=
 # make asan: the test executables to build (default: all); .ci/run names the fast modules' ones.
 ASAN_TARGETS ?=
+FUZZ_SECONDS ?= 15
 
 # ccache: rewrite absolute paths under the checkout so that caches are shared between clones.
 export CCACHE_BASEDIR := $(CURDIR)
 export CCACHE_NOHASHDIR := 1
 
-.PHONY: all deps configure build test demo bench asan format format-check clean
+.PHONY: all deps configure build test demo bench asan fuzz format format-check clean
 
 all: build
 
@@ -56,11 +59,17 @@ demo: configure
 bench: build
 	@scripts/bench.sh $(BUILD)
 
+# -O1 -g1: ASan's usual optimisation, line tables for the reports; compiles faster than -O2 -g.
 asan:
 	@scripts/install-deps.sh
-	cmake -S . -B build-asan $(if $(wildcard build-asan/CMakeCache.txt),,-G "$(GENERATOR)") -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCROPSIGHT_SANITIZE=ON -DCROPSIGHT_BUILD_BENCH=OFF $(CMAKE_ARGS)
+	cmake -S . -B build-asan $(if $(wildcard build-asan/CMakeCache.txt),,-G "$(GENERATOR)") -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DCROPSIGHT_SANITIZE=ON -DCROPSIGHT_BUILD_BENCH=OFF $(CMAKE_ARGS)
 	cmake --build build-asan -j $(JOBS) $(if $(ASAN_TARGETS),--target $(ASAN_TARGETS))
 	cd build-asan && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
+
+# The network-archive harness loads $(BUILD)'s libtorch plugin (scripts/fuzz.sh builds it if missing).
+fuzz: configure
+	@scripts/fuzz.sh replay
+	@scripts/fuzz.sh all $(FUZZ_SECONDS)
 
 format:
 	git ls-files '*.cpp' '*.hpp' | xargs clang-format -i
@@ -69,4 +78,4 @@ format-check:
 	git ls-files '*.cpp' '*.hpp' | xargs clang-format --dry-run --Werror
 
 clean:
-	rm -rf $(BUILD) build-asan
+	rm -rf $(BUILD) build-asan build-fuzz

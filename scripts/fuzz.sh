@@ -3,6 +3,7 @@
 #
 #   scripts/fuzz.sh NAME SECONDS     one harness (fuzz/fuzz_NAME.cpp) for SECONDS of wall time
 #   scripts/fuzz.sh all SECONDS      every harness in turn, SECONDS each
+#   scripts/fuzz.sh replay           every harness once over its seeds and past findings (ctest -L fuzz)
 #   scripts/fuzz.sh list             the harness names
 #
 # Configures and builds build-fuzz/ (Clang 14, -fsanitize=fuzzer,address,undefined) on first use.
@@ -27,9 +28,14 @@ harnesses() { ls fuzz/fuzz_*.cpp | sed 's|fuzz/fuzz_||; s|\.cpp$||' | grep -v '^
 
 [ $# -ge 1 ] || usage
 if [ "$1" = list ]; then harnesses; exit 0; fi
-[ $# -eq 2 ] || usage
-name=$1 seconds=$2
-[[ "$seconds" =~ ^[0-9]+$ ]] && [ "$seconds" -ge 1 ] || { echo "scripts/fuzz.sh: SECONDS must be a positive integer, got '$seconds'" >&2; exit 2; }
+if [ "$1" = replay ]; then
+  [ $# -eq 1 ] || usage
+  name=all seconds=0
+else
+  [ $# -eq 2 ] || usage
+  name=$1 seconds=$2
+  [[ "$seconds" =~ ^[0-9]+$ ]] && [ "$seconds" -ge 1 ] || { echo "scripts/fuzz.sh: SECONDS must be a positive integer, got '$seconds'" >&2; exit 2; }
+fi
 if [ "$name" != all ] && ! harnesses | grep -qx "$name"; then
   echo "scripts/fuzz.sh: no harness '$name' (scripts/fuzz.sh list)" >&2; exit 2
 fi
@@ -59,6 +65,11 @@ need_plugin() {
 # LeakSanitizer stays on: a parser that leaks on bad input is a finding too.
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+if [ "$1" = replay ]; then
+  need_plugin || echo "scripts/fuzz.sh: no libtorch plugin (make build): fuzz_network_archive_replay will fail" >&2
+  cd "$build" && exec ctest -L fuzz --output-on-failure -j "$(nproc)"
+fi
+
 failed=0
 run_one() {
   local h=$1

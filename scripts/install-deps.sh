@@ -22,6 +22,7 @@ PACKAGES=(
   libopenblas0-pthread
   # tests and benchmarks (python3-onnx: the tiny ONNX graphs of tests/nn/test_onnx_detector.cpp)
   libgtest-dev libgmock-dev libbenchmark-dev python3-onnx
+  clang-14 libclang-rt-14-dev llvm-14
   # report rendering test (headless browser)
   chromium
   # ROS 1 nodes, bag files and their tests against a real roscore (issue 25; ros/CMakeLists.txt)

@@ -7,6 +7,7 @@
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "number_text.hpp"
+#include "yaml_key.hpp"
 
 namespace cropsight::io {
 
@@ -66,7 +67,7 @@ CameraIntrinsics read_camera_yaml(const fs::path& path) {
                                               "cy",    "depth_scale", "distortion", "sensor"};
   std::set<std::string> seen;
   for (const auto& kv : root) {
-    const std::string key = kv.first.as<std::string>();
+    const std::string key = detail::yaml_key(kv.first, where);
     if (!known.count(key)) throw Error(where, "unknown key '" + key + "'");
     // yaml-cpp keeps both entries and a lookup takes the first: a second fx would be ignored
     if (!seen.insert(key).second) throw Error(where, "duplicate key '" + key + "'");

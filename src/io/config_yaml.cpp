@@ -7,6 +7,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
+#include "yaml_key.hpp"
 
 namespace cropsight::io {
 
@@ -18,7 +19,7 @@ void flatten(const YAML::Node& node, const std::string& prefix, ConfigMap& out, 
     case YAML::NodeType::Map: {
       std::set<std::string> seen;  // yaml-cpp keeps duplicate keys and lookups take the first: refuse them
       for (const auto& kv : node) {
-        const std::string key = kv.first.as<std::string>();
+        const std::string key = detail::yaml_key(kv.first, path.string());
         const std::string full = prefix.empty() ? key : prefix + "." + key;
         if (!seen.insert(key).second) throw Error(path.string(), "duplicate key '" + full + "'");
         flatten(kv.second, full, out, path);

@@ -13,6 +13,7 @@
 #include "cropsight/io/files.hpp"
 #include "cv_convert.hpp"
 #include "io/decode_image.hpp"
+#include "io/yaml_key.hpp"
 
 namespace cropsight::stereo {
 
@@ -225,7 +226,7 @@ StereoCalibration load_calibration(const fs::path& path) {
   static const char* const kKeys[] = {"image_width", "image_height", "K1",   "D1", "K2", "D2", "R", "T", "E",
                                       "F",           "rms",          "views"};
   for (const auto& kv : root) {
-    const std::string key = kv.first.Scalar();
+    const std::string key = io::detail::yaml_key(kv.first, where);
     if (std::find_if(std::begin(kKeys), std::end(kKeys), [&](const char* k) { return key == k; }) == std::end(kKeys))
       throw Error(where, "unknown key '" + key + "'");
   }

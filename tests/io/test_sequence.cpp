@@ -223,6 +223,21 @@ TEST(Files, DuplicateConfigKeysAreAnError) {
   }
 }
 
+// The preset reader had camera.yaml's bug (fuzz_camera_yaml): a key that is a mapping escaped as
+// YAML::TypedBadConversion.
+TEST(Sequence, ConfigKeyThatIsAMappingIsAnError) {
+  TempDir tmp;
+  write_file_atomic(tmp / "c.yaml", "oes:\n  {a: 1}: 300\n");
+  try {
+    load_config_map(tmp / "c.yaml");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.where(), (tmp / "c.yaml").string());
+    EXPECT_NE(std::string(e.what()).find("line 2: a key must be a plain name, not a mapping"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Sequence, FailedWriteLeavesNothing) {
   TempDir tmp;
   const CameraIntrinsics cam = fixture_camera();

@@ -66,6 +66,15 @@ TEST_F(SequenceValidation, CameraYamlNotAMapping) {
   expect_error(seq / "camera.yaml", "mapping");
 }
 
+// fuzz_camera_yaml's first finding: a key that is a mapping or a list escaped as
+// YAML::TypedBadConversion (exit 1, "internal error"); fuzz/regressions/camera_yaml/ keeps it.
+TEST_F(SequenceValidation, CameraYamlKeyThatIsAMappingOrAList) {
+  put("camera.yaml", "{{}}");
+  expect_error(seq / "camera.yaml", "line 1: a key must be a plain name, not a mapping");
+  put("camera.yaml", "width: 16\n[a, b]: 1\n");
+  expect_error(seq / "camera.yaml", "line 2: a key must be a plain name, not a list");
+}
+
 TEST_F(SequenceValidation, CameraYamlMissingKey) {
   put("camera.yaml", "width: 16\nheight: 12\nfx: 10\ncx: 7.5\ncy: 5.5\ndepth_scale: 0.001\n");
   expect_error(seq / "camera.yaml", "'fy'");

@@ -133,6 +133,19 @@ TEST(Calibration, RecoversKnownRig) {
   EXPECT_NEAR((back.F - c.F).norm(), 0, 1e-9 * c.F.norm() + 1e-15);
 }
 
+// A key that is a list was read as "" ("unknown key ''"); now it names the line (io::detail::yaml_key).
+TEST(Calibration, KeyThatIsAListNamesItsLine) {
+  cropsight::testing::TempDir tmp;
+  std::ofstream(tmp / "c.yaml") << "image_width: 640\n[K1]: 1\n";
+  try {
+    load_calibration(tmp / "c.yaml");
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("line 2: a key must be a plain name, not a list"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Calibration, TooFewViewsIsAClearError) {
   Eigen::Matrix3d K;
   K << 420, 0, 320, 0, 420, 240, 0, 0, 1;
