@@ -7,6 +7,7 @@
 #   make build   build only (Release, portable flags)
 #   make bench   micro-benchmarks and end-to-end benchmarks
 #   make asan    ASan+UBSan build in build-asan/ and its tests
+#   make tsan    ThreadSanitizer build in build-tsan/ and the thread-safety test (label threads)
 #   make fuzz    libFuzzer harnesses (Clang, build-fuzz/): replay the seeds and past findings, then
 #                fuzz every parser FUZZ_SECONDS (default 15) each; scripts/fuzz.sh for one harness
 #   make format  clang-format every source file (format-check: only check)
@@ -29,7 +30,7 @@ FUZZ_SECONDS ?= 15
 export CCACHE_BASEDIR := $(CURDIR)
 export CCACHE_NOHASHDIR := 1
 
-.PHONY: all deps configure build test demo bench asan fuzz format format-check clean
+.PHONY: all deps configure build test demo bench asan tsan fuzz format format-check clean
 
 all: build
 
@@ -66,6 +67,13 @@ asan:
 	cmake --build build-asan -j $(JOBS) $(if $(ASAN_TARGETS),--target $(ASAN_TARGETS))
 	cd build-asan && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
 
+# Pipelines in parallel threads under TSan (tests/threads/): only that test and the libraries.
+tsan:
+	@scripts/install-deps.sh
+	cmake -S . -B build-tsan $(if $(wildcard build-tsan/CMakeCache.txt),,-G "$(GENERATOR)") -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DCROPSIGHT_TSAN=ON -DCROPSIGHT_BUILD_BENCH=OFF -DCROPSIGHT_BUILD_EXAMPLES=OFF -DCROPSIGHT_ROS=OFF $(CMAKE_ARGS)
+	cmake --build build-tsan -j $(JOBS) --target test_threads
+	cd build-tsan && ctest --output-on-failure -L threads
+
 # The network-archive harness loads $(BUILD)'s libtorch plugin (scripts/fuzz.sh builds it if missing).
 fuzz: configure
 	@scripts/fuzz.sh replay
@@ -78,4 +86,4 @@ format-check:
 	git ls-files '*.cpp' '*.hpp' | xargs clang-format --dry-run --Werror
 
 clean:
-	rm -rf $(BUILD) build-asan build-fuzz
+	rm -rf $(BUILD) build-asan build-tsan build-fuzz

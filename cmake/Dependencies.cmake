@@ -10,6 +10,8 @@ find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs calib3d video m
 find_package(Threads REQUIRED)
 # Pascal VOC XML annotations (potato detection, issue 22): used only inside src/io/voc.cpp.
 find_package(tinyxml2 REQUIRED)
+# zlib: inflating the deflated entries of libtorch archives to check their CRC-32 (src/io/zip_check.cpp).
+find_package(ZLIB REQUIRED)
 
 # PCL: only the component libraries we use, found directly. PCL's own CMake config pulls in
 # VTK (and through it MPI and Qt), which we never use and which slows configuration down.

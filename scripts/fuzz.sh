@@ -79,18 +79,18 @@ run_one() {
   [ "$h" != bag ] || [ -x "$build/bin/fuzz_bag" ] || { echo "fuzz bag: skipped (built without ROS)"; return 0; }
   local corpus=$build/fuzz-corpus/$h artifacts=$build/fuzz-artifacts/$h log=$build/fuzz-logs/$h.log
   mkdir -p "$corpus" "$artifacts" "$(dirname "$log")"
-  local status=0 fork=
+  local status=0 fork= t0=$SECONDS
   [ "$jobs" -le 1 ] || fork=-fork=$jobs
   CROPSIGHT_NN_BACKEND=$plugin "$build/bin/fuzz_$h" -max_total_time="$seconds" -timeout=30 -rss_limit_mb=2560 \
     -print_final_stats=1 -artifact_prefix="$artifacts/" $fork ${FUZZ_ARGS:-} \
     "$corpus" "fuzz/corpus/$h" >"$log" 2>&1 || status=$?
-  local execs cov result
+  local execs cov result elapsed=$((SECONDS - t0))
   execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | awk '{s += $2} END {if (NR) print s}')
   [ -n "$execs" ] || execs=$(grep -o '^#[0-9]*' "$log" | tail -1 | tr -d '#')
   cov=$(grep -o 'cov: [0-9]*' "$log" | tail -1 | grep -o '[0-9]*' || echo "?")
   if [ "$status" -eq 0 ]; then result=ok; else result="FINDING (exit $status; input in $artifacts/, log $log)"; failed=1; fi
-  echo "fuzz $h: ${seconds} s, ${execs:-?} executions, coverage ${cov:-?} edges: $result"
-  printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$(date -u +%FT%TZ)" "$h" "$seconds" "${execs:-?}" "${cov:-?}" "$result" >>"$build/fuzz-runs.tsv"
+  echo "fuzz $h: ${elapsed} s (of $seconds), ${execs:-?} executions, coverage ${cov:-?} edges: $result"
+  printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$(date -u +%FT%TZ)" "$h" "$elapsed" "${execs:-?}" "${cov:-?}" "$result" >>"$build/fuzz-runs.tsv"
   if [ "$status" -ne 0 ]; then grep -m5 -E 'ERROR|escaped|runtime error|SUMMARY' "$log" >&2 || tail -5 "$log" >&2; fi
 }
 

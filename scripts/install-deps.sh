@@ -13,7 +13,7 @@ PACKAGES=(
   libeigen3-dev libopencv-dev libopencv-dnn-dev libpcl-dev libnanoflann-dev libtbb-dev libsvm-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
   # Pascal VOC XML annotations (potato detection)
-  libtinyxml2-dev
+  libtinyxml2-dev zlib1g-dev
   # neural networks and gradient-boosted trees
   libtorch-dev libxgboost-dev
   # the detector's ONNX export writes onnx::ModelProto (issue 24)

@@ -8,12 +8,14 @@
 #include <pcl/console/print.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
+#include <cmath>
 
 #include <cstring>
 #include <limits>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
+#include "ply_check.hpp"
 
 namespace cropsight::io {
 
@@ -122,6 +124,7 @@ pcl::PCLPointCloud2 load(const fs::path& path) {
       blob = pcl::PCLPointCloud2();
       rc = reader.read(path.string(), blob);
     } else {
+      detail::check_ply(read_file(path), path.string());  // PCL's PLY reader asserts on malformed files
       rc = pcl::io::loadPLYFile(path.string(), blob);
     }
   } catch (const Error&) {
@@ -346,7 +349,15 @@ Cloud read_cloud(const fs::path& path) {
       out.colors.emplace_back(float((c >> 16) & 0xff) / 255.0f, float((c >> 8) & 0xff) / 255.0f,
                               float(c & 0xff) / 255.0f);
     }
-    if (label) out.labels.push_back(int(r.value(i, *label)));
+    if (label) {
+      // A float label field may hold NaN or 1e30 (fuzz_pcd found it): converting those to int is
+      // undefined behaviour, so anything but an integer in int's range is an error.
+      const double l = r.value(i, *label);
+      if (!(l >= double(std::numeric_limits<int>::min()) && l <= double(std::numeric_limits<int>::max())) ||
+          l != std::floor(l))
+        throw Error(path.string(), "label of point " + std::to_string(i) + " is not an integer");
+      out.labels.push_back(int(l));
+    }
   }
   return out;
 }

@@ -327,9 +327,16 @@ Gbdt Gbdt::load(const std::filesystem::path& path, int nthread) {
   std::ostringstream ss;
   ss << in.rdbuf();
   const std::string text = ss.str();
+  // Only XGBoost's JSON format is a cropsight model (save() writes it). Anything else went to
+  // XGBoost's binary loader, which trusts the lengths stored in the file: a corrupt one asked for
+  // 4e18 bytes (fuzz_gbdt_model; fuzz/regressions/gbdt_model/), std::bad_alloc at best and an
+  // out-of-memory kill for a length of a few GB. XGBoost takes a buffer as JSON when it starts
+  // with '{', so the check is that plus well-formed JSON.
+  if (text.empty() || text[0] != '{' || !nlohmann::json::accept(text))
+    throw Error(where, "not an XGBoost JSON model (cropsight reads the JSON models that train grape writes)");
   // XGBoost's JSON models hold a "learner" object; another JSON file (a broccoli model, say)
   // would only get XGBoost's complaint about its version field.
-  if (text.rfind('{', 0) == 0 && text.find("\"learner\"") == std::string::npos)
+  if (text.find("\"learner\"") == std::string::npos)
     throw Error(where, "not an XGBoost model (a JSON file without a \"learner\" object)");
   Gbdt g;
   check(XGBoosterCreate(nullptr, 0, &g.booster_), where);

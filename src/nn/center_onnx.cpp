@@ -7,6 +7,7 @@
 #include "cropsight/core/error.hpp"
 #include "nn/center_codec.hpp"
 #include "nn/center_onnx_writer.hpp"
+#include "nn/onnx_check.hpp"
 
 namespace cropsight::nn {
 
@@ -71,6 +72,7 @@ CenterNetOnnx::CenterNetOnnx(const std::filesystem::path& path) : impl_(std::mak
   for (const auto& o : kOutputs)
     if (std::find(info.outputs.begin(), info.outputs.end(), o) == info.outputs.end())
       throw Error(m.where, "has no output '" + o + "' (a foreign ONNX layout)");
+  check_onnx_tensors(path);  // OpenCV's importer trusts the tensors' shapes (nn/onnx_check.hpp)
   const auto level = cv::utils::logging::getLogLevel();
   cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_SILENT);
   try {

@@ -7,6 +7,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/nn/center_net.hpp"
+#include "nn/onnx_check.hpp"
 #include "nn/onnx_decode.hpp"
 
 namespace cropsight::nn {
@@ -94,6 +95,7 @@ OnnxDetector::OnnxDetector(OnnxDetectorConfig cfg) : cfg_(std::move(cfg)), impl_
   if (path.empty()) throw Error("detector.onnx.model", "no ONNX model given");
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw Error(path, "no such ONNX file");
+  check_onnx_tensors(path);  // OpenCV's importer trusts the tensors' shapes (nn/onnx_check.hpp)
   QuietOpenCv quiet;
   try {
     impl_->net = cv::dnn::readNetFromONNX(path);

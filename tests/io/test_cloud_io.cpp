@@ -7,6 +7,7 @@
 #include <pcl/point_types.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/cloud_io.hpp"
@@ -177,6 +178,51 @@ TEST(CloudIo, ErrorsNameTheFile) {
       EXPECT_EQ(e.where(), (tmp / name).string());
     }
   }
+}
+
+// What fuzz_pcd and fuzz_ply found (fuzz/regressions/): a label that is NaN was converted to int
+// (undefined behaviour), and PCL's PLY reader asserted (abort) on a property line with extra
+// tokens; io::detail::check_ply now refuses malformed headers and short bodies first.
+TEST(CloudIo, FuzzFindingsAreErrors) {
+  TempDir tmp;
+  const std::string ply_head = "ply\nformat ascii 1.0\nelement vertex 2\n";
+  const std::vector<std::tuple<std::string, std::string, std::string>> bad = {
+      {"nan_label.pcd",
+       "VERSION .7\nFIELDS x y z label\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH 1\nHEIGHT 1\n"
+       "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS 1\nDATA ascii\n0.1 0.2 0.3 nan\n",
+       "label of point 0 is not an integer"},
+      {"extra_tokens.ply",
+       ply_head + "property float x\nproperty float y\nproperty float z\nproperty uchar red+property uchar green\n"
+                  "end_header\n0 0 1 5\n0 1 1 6\n",
+       "line 7: expected 'property TYPE NAME'"},
+      {"unknown_type.ply", ply_head + "property float x\nproperty flot y\nend_header\n", "line 5"},
+      {"too_few_lines.ply", ply_head + "property float x\nproperty float y\nproperty float z\nend_header\n0 0 1\n",
+       "PLY data ends early"},
+      {"values_per_line.ply",
+       ply_head + "property float x\nproperty float y\nproperty float z\nend_header\n0 0 1\n0 1\n",
+       "2 values where element 'vertex' has 3"},
+      {"huge_count.ply",
+       "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\nproperty float x\nproperty float y\n"
+       "property float z\nend_header\n0123456789ab",
+       "PLY data ends early"},
+      {"no_end.ply", ply_head + "property float x\n", "no 'end_header'"},
+  };
+  for (const auto& [name, text, words] : bad) {
+    write_file_atomic(tmp / name, text);
+    try {
+      read_cloud(tmp / name);
+      ADD_FAILURE() << "no error for " << name;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.where(), (tmp / name).string());
+      EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << name << ": " << e.what();
+    }
+  }
+  // A well-formed ascii PLY with a list element (faces) still reads.
+  write_file_atomic(tmp / "faces.ply", ply_head +
+                                           "property float x\nproperty float y\nproperty float z\n"
+                                           "element face 1\nproperty list uchar int vertex_indices\n"
+                                           "end_header\n0 0 1\n0 1 1\n2 0 1\n");
+  EXPECT_EQ(read_cloud(tmp / "faces.ply").size(), 2u);
 }
 
 TEST(CloudIo, FailedWriteLeavesNothing) {

@@ -108,6 +108,23 @@ TEST(Gbdt, BadInputsThrow) {
   std::ofstream(t / "junk.json") << "not a model";
   EXPECT_THROW(Gbdt::load(t / "junk.json"), cropsight::Error);
 }
+// fuzz_gbdt_model's finding (fuzz/regressions/gbdt_model/): a file that is not JSON went to
+// XGBoost's binary loader, which trusted a string length of 4e18 bytes from the file. Only
+// well-formed JSON reaches XGBoost now; the same bytes are one clear Error.
+TEST(Gbdt, OnlyJsonReachesXgboost) {
+  cropsight::testing::TempDir t;
+  const std::string binary_header("\0\0\0\0\0\0\0(r\":{\"attributes\":{}}", 27);
+  for (const std::string& text : {binary_header, std::string(" {\"learner\": {}}"), std::string("{\"learner\": {")}) {
+    std::ofstream(t / "m.json", std::ios::binary) << text;
+    try {
+      Gbdt::load(t / "m.json");
+      ADD_FAILURE() << "loaded: " << text;
+    } catch (const cropsight::Error& e) {
+      EXPECT_NE(e.problem().find("not an XGBoost JSON model"), std::string::npos) << e.what();
+    }
+  }
+}
+
 // Parameters out of range are named before XGBoost runs (rounds 0 used to blame the output file);
 // XGBoost's own errors come back as one line; a save into a folder leaves no temporary.
 TEST(Gbdt, ParamsValidatedAndErrorsOneLine) {

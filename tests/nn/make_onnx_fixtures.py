@@ -195,6 +195,12 @@ def main():
     onnx.save(table_graph("ssd", np.asarray(SSD, dtype=np.float32), [1, 1, len(SSD), 7]), f"{out}/ssd.onnx")
     # Foreign: an output of three columns matches no layout.
     onnx.save(table_graph("foreign", np.zeros((4, 3), dtype=np.float32), [1, 4, 3]), f"{out}/foreign.onnx")
+    # Damaged: the convolution's weights shorter than their shape (OpenCV 4.6 read past them;
+    # found by fuzz_onnx_model). cropsight refuses the file before OpenCV reads it.
+    short = table_graph("yolov5", y5, [1, len(YOLOV5), 7])
+    weights = next(t for t in short.graph.initializer if len(t.dims) == 4)
+    weights.raw_data = weights.raw_data[: len(weights.raw_data) // 3]
+    onnx.save(short, f"{out}/short_weights.onnx")
     onnx.save(channel_means(), f"{out}/channel_means.onnx")
     onnx.save(yolov8_head(False), f"{out}/yolov8_head.onnx")
     onnx.save(yolov8_head(True), f"{out}/yolov8_head_full_strides.onnx")

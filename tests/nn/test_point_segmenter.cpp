@@ -9,6 +9,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/threads.hpp"
+#include "cropsight/io/files.hpp"
 #include "cropsight/nn/point_segmenter.hpp"
 #include "testing/testing.hpp"
 
@@ -110,6 +111,44 @@ TEST(PointSegmenter, SaveLoadGivesIdenticalPredictions) {
   EXPECT_EQ(net.segment_sampled(big).size(), big.size());
   EXPECT_EQ(back.config().arch, "pointresnet");
   EXPECT_EQ(back.parameter_count(), net.parameter_count());
+}
+
+// fuzz_network_archive's finding (fuzz/regressions/network_archive/): libtorch does not check
+// its archives' CRC-32s, and its TorchScript parser crashed (SIGSEGV) on a damaged one. Every
+// entry is checked first (io/zip_check.hpp): a flipped byte anywhere, in the deflated code or
+// in the stored weights, and a truncated file are one clear Error.
+TEST(PointSegmenter, DamagedArchivesAreErrorsNotCrashes) {
+  cropsight::testing::TempDir t;
+  PointSegmenter(tiny_config("pointresnet")).save(t / "m.pt");
+  const std::string good = cropsight::io::read_file(t / "m.pt");
+  // The first byte of an entry's data: after its local header (30 bytes), name and extra field.
+  const auto data_of = [&](const std::string& name_part) {
+    const std::size_t name = good.find(name_part), header = good.rfind(std::string("PK\3\4", 4), name);
+    const auto u16 = [&](std::size_t at) {
+      return std::size_t(std::uint8_t(good[at])) | std::size_t(std::uint8_t(good[at + 1])) << 8;
+    };
+    return header + 30 + u16(header + 26) + u16(header + 28);
+  };
+  const auto flipped = [&](std::size_t at, char mask) {
+    std::string b = good;
+    b[at] = char(b[at] ^ mask);
+    return b;
+  };
+  const std::vector<std::pair<std::string, std::string>> damaged = {
+      {"flipped_code", flipped(data_of("code/") + 3, 0x20)},      // deflated TorchScript
+      {"flipped_weights", flipped(data_of("data/0") + 5, 0x01)},  // stored tensor bytes
+      {"truncated", good.substr(0, good.size() / 2)},
+  };
+  for (const auto& [name, bytes] : damaged) {
+    cropsight::io::write_file_atomic(t / (name + ".pt"), bytes);
+    try {
+      (void)PointSegmenter::load(t / (name + ".pt"), 1);
+      ADD_FAILURE() << name << " loaded";
+    } catch (const cropsight::Error& e) {
+      EXPECT_EQ(e.where(), (t / (name + ".pt")).string());
+      EXPECT_NE(std::string(e.what()).find("damaged model archive"), std::string::npos) << name << ": " << e.what();
+    }
+  }
 }
 
 // Test-time augmentation: votes = 1 is the plain cover; votes = N covers the cloud N times

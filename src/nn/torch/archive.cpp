@@ -7,6 +7,7 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/threads.hpp"
 #include "cropsight/io/files.hpp"
+#include "io/zip_check.hpp"
 #include "nn/torch/segmenter_impl.hpp"
 
 namespace cropsight::nn {
@@ -53,6 +54,7 @@ void open_model_archive(torch::serialize::InputArchive& a, const std::filesystem
   const std::string where = path.string();
   if (!std::filesystem::exists(path)) throw Error(where, "no such model file");
   if (!std::filesystem::is_regular_file(path)) throw Error(where, "not a model file (a directory?)");
+  io::detail::check_zip(io::read_file(path), where);  // libtorch trusts damaged archives (io/zip_check.hpp)
   try {
     a.load_from(where);
   } catch (const std::exception& e) {
@@ -85,6 +87,7 @@ int read_checkpoint(const std::string& where, torch::nn::Module& net, torch::opt
   if (!std::filesystem::is_regular_file(where)) throw Error(where, "not a checkpoint file (a directory?)");
   torch::serialize::InputArchive a, m, o;
   torch::Tensor e;
+  io::detail::check_zip(io::read_file(where), where);  // libtorch trusts damaged archives
   try {
     a.load_from(where);
     a.read("model", m);
