@@ -56,7 +56,7 @@ Scene two_planes(int w, int h) {
       float t = in_square(x, y) ? float(dfg) : float(dbg);
       // Background left pixels hidden behind the square in the right view are occluded.
       if (!in_square(x, y) && in_square(x - dbg + dfg, y)) t = std::nanf("");
-      if (x - int(t) < 0) t = std::nanf("");
+      if (!std::isnan(t) && x - int(t) < 0) t = std::nanf("");  // int(NaN) is undefined (UBSan)
       s.truth.at<float>(y, x) = t;
     }
   return s;
