@@ -25,6 +25,9 @@ CTEST_ARGS ?=
 # make asan: the test executables to build (default: all); .ci/run names the fast modules' ones.
 ASAN_TARGETS ?=
 FUZZ_SECONDS ?= 15
+# make fuzz: libFuzzer's random seed. Fixed, so that a CI run repeats (on a fresh build-fuzz/)
+# what the same command did here; the long exploratory runs (scripts/fuzz.sh) draw a new one.
+FUZZ_SEED ?= 1
 
 # ccache: rewrite absolute paths under the checkout so that caches are shared between clones.
 export CCACHE_BASEDIR := $(CURDIR)
@@ -77,7 +80,7 @@ tsan:
 # The network-archive harness loads $(BUILD)'s libtorch plugin (scripts/fuzz.sh builds it if missing).
 fuzz: configure
 	@scripts/fuzz.sh replay
-	@scripts/fuzz.sh all $(FUZZ_SECONDS)
+	@FUZZ_ARGS="-seed=$(FUZZ_SEED) $(FUZZ_ARGS)" scripts/fuzz.sh all $(FUZZ_SECONDS)
 
 format:
 	git ls-files '*.cpp' '*.hpp' | xargs clang-format -i

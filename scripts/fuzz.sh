@@ -64,6 +64,8 @@ need_plugin() {
 
 # LeakSanitizer stays on: a parser that leaks on bad input is a finding too.
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=0}
+# Leaks inside third-party libraries that cropsight cannot free are listed, with reasons, in fuzz/lsan.supp.
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$root/fuzz/lsan.supp:print_suppressions=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 if [ "$1" = replay ]; then
   need_plugin || echo "scripts/fuzz.sh: no libtorch plugin (make build): fuzz_network_archive_replay will fail" >&2

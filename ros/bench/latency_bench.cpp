@@ -4,6 +4,11 @@
 // frames that never produced an output (dropped). It reads the node's own pipeline time
 // (pipeline_ms_p50 / _p99 on `diagnostics`) at the end, so both come from the same run.
 // scripts/bench-ros.sh starts the master and the node (pinned to one core) and runs this.
+// It also checks that the node's output does not drift: the bag's frames are played in a loop,
+// and every output's detections (count, positions to 0.1 mm, scores to 1e-4; not the sizes or
+// ids, which depend on the track's history by design) must equal those of the first output for
+// the same bag frame ("differing" counts those that do not). scripts/ros-long-run.sh uses this
+// for the 30-minute run.
 //
 // Usage: bench_ros_latency --bag B --ns /camera --node broccoli|potato [--rate 30] [--frames 300]
 //        [--warmup 20]
@@ -18,6 +23,7 @@
 #include <vision_msgs/Detection3DArray.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <string>
@@ -91,17 +97,40 @@ int main(int argc, char** argv) {
   auto depth_pub = nh.advertise<sensor_msgs::Image>(ns + "/depth/image_raw", 100);
   auto info_pub = nh.advertise<sensor_msgs::CameraInfo>(ns + "/depth/camera_info", 100);
   auto color_pub = nh.advertise<sensor_msgs::Image>(ns + "/color/image_raw", 100);
-  std::map<double, double> received;  // input stamp (s) -> latency (ms)
-  auto on_output = [&](const std_msgs::Header& h) {
+  std::map<double, double> received;             // input stamp (s) -> latency (ms)
+  std::map<double, std::size_t> source_of;       // input stamp (s) -> bag frame index
+  std::map<std::size_t, std::string> first_out;  // bag frame index -> its first output's signature
+  int differing = 0;
+  auto on_output = [&](const std_msgs::Header& h, const std::string& signature) {
     received[h.stamp.toSec()] = (ros::Time::now() - h.stamp).toSec() * 1e3;
+    const auto src = source_of.find(h.stamp.toSec());
+    if (src == source_of.end()) return;
+    const auto [first, inserted] = first_out.emplace(src->second, signature);
+    if (!inserted && first->second != signature) ++differing;
   };
-  ros::Subscriber out_sub =
-      node == "broccoli"
-          ? nh.subscribe<vision_msgs::Detection3DArray>(
-                ns + "/heads", 100, [&](const vision_msgs::Detection3DArray::ConstPtr& m) { on_output(m->header); })
-          : nh.subscribe<vision_msgs::Detection2DArray>(
-                ns + "/detections", 100,
-                [&](const vision_msgs::Detection2DArray::ConstPtr& m) { on_output(m->header); });
+  auto rounded = [](double v, double unit) { return std::to_string(std::llround(v / unit)) + ","; };
+  ros::Subscriber out_sub = node == "broccoli"
+                                ? nh.subscribe<vision_msgs::Detection3DArray>(
+                                      ns + "/heads", 100,
+                                      [&](const vision_msgs::Detection3DArray::ConstPtr& m) {
+                                        std::string sig = std::to_string(m->detections.size()) + ":";
+                                        for (const auto& d : m->detections)
+                                          for (const auto& r : d.results)
+                                            sig += rounded(r.pose.pose.position.x, 1e-4) +
+                                                   rounded(r.pose.pose.position.y, 1e-4) +
+                                                   rounded(r.pose.pose.position.z, 1e-4) + rounded(r.score, 1e-4);
+                                        on_output(m->header, sig);
+                                      })
+                                : nh.subscribe<vision_msgs::Detection2DArray>(
+                                      ns + "/detections", 100, [&](const vision_msgs::Detection2DArray::ConstPtr& m) {
+                                        std::string sig = std::to_string(m->detections.size()) + ":";
+                                        for (const auto& d : m->detections) {
+                                          sig += rounded(d.bbox.center.x, 0.01) + rounded(d.bbox.center.y, 0.01) +
+                                                 rounded(d.bbox.size_x, 0.01) + rounded(d.bbox.size_y, 0.01);
+                                          for (const auto& r : d.results) sig += rounded(r.score, 1e-4);
+                                        }
+                                        on_output(m->header, sig);
+                                      });
   double node_p50 = 0, node_p99 = 0;
   ros::Subscriber diag = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
       ns + "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
@@ -136,6 +165,7 @@ int main(int argc, char** argv) {
     depth_pub.publish(f.depth);
     info_pub.publish(f.info);
     stamps.push_back(now.toSec());
+    source_of[now.toSec()] = std::size_t(i) % bag_frames.size();
     next += period;
     while (ros::ok() && ros::WallTime::now() < next) {
       ros::spinOnce();
@@ -159,8 +189,8 @@ int main(int argc, char** argv) {
   std::printf(
       "{\"node\":\"%s\",\"rate_hz\":%.1f,\"frames\":%d,\"measured\":%d,\"dropped\":%d,"
       "\"latency_ms_p50\":%.2f,\"latency_ms_p99\":%.2f,\"pipeline_ms_p50\":%.2f,\"pipeline_ms_p99\":%.2f,"
-      "\"overhead_ms_p99\":%.2f}\n",
+      "\"overhead_ms_p99\":%.2f,\"differing\":%d}\n",
       node.c_str(), rate, frames, int(stamps.size()) - warmup, dropped, percentile(lat, 0.5), percentile(lat, 0.99),
-      node_p50, node_p99, percentile(lat, 0.99) - node_p99);
+      node_p50, node_p99, percentile(lat, 0.99) - node_p99, differing);
   return 0;
 }

@@ -9,6 +9,7 @@
 #include <map>
 #include <optional>
 
+#include "bag_check.hpp"
 #include "cropsight/bridge/sequence_io.hpp"
 #include "cropsight/core/error.hpp"
 #include "ros_conversions.hpp"
@@ -46,6 +47,18 @@ auto with_bag_errors(const std::string& bag, const std::string& failure, F&& f) 
                            "); is Debian's librosbag-storage4d installed with its plugins?");
     throw Error(bag, what);
   }
+}
+
+// m.instantiate<T>() after checking the message's lengths (check_message): roscpp's
+// deserialiser allocates the lengths it reads before it checks them.
+template <class T>
+boost::shared_ptr<T> instantiate_checked(const rosbag::MessageInstance& m, const std::string& bag) {
+  if (m.getDataType() != ros::message_traits::datatype<T>()) return nullptr;  // the caller names the topic
+  std::vector<std::uint8_t> bytes(m.size());
+  ros::serialization::OStream out(bytes.data(), std::uint32_t(bytes.size()));
+  m.write(out);
+  detail::check_message(m.getDataType(), bytes.data(), bytes.size(), bag);
+  return m.instantiate<T>();
 }
 
 std_msgs::Header header_at(const ros::Time& t, const std::string& frame_id, std::uint32_t seq) {
@@ -117,6 +130,7 @@ BagExportSummary export_sequence_bag(const BagExportOptions& o) {
 BagImportSummary import_bag_sequence(const BagImportOptions& o) {
   if (!fs::exists(o.bag)) throw Error(o.bag, "no such file");
   if (fs::is_directory(o.bag)) throw Error(o.bag, "is a directory, not a bag file");
+  detail::check_bag_file(o.bag);  // rosbag trusts the lengths a bag declares
   return with_bag_errors(o.bag, "not a readable ROS bag", [&] {
     rosbag::Bag bag;
     bag.open(o.bag, rosbag::bagmode::Read);
@@ -128,18 +142,18 @@ BagImportSummary import_bag_sequence(const BagImportOptions& o) {
                                                                        o.topics.color, o.topics.tf}));
     for (const rosbag::MessageInstance& m : view) {
       if (m.getTopic() == o.topics.tf) {
-        auto tf = m.instantiate<tf2_msgs::TFMessage>();
+        auto tf = instantiate_checked<tf2_msgs::TFMessage>(m, o.bag);
         if (!tf) throw Error(o.bag, o.topics.tf + " is not tf2_msgs/TFMessage");
         for (const auto& x : tf->transforms)
           if (x.header.frame_id == o.topics.field_frame) poses[x.header.stamp] = x.transform.translation;
       } else if (m.getTopic() == o.topics.camera_info) {
-        auto ci = m.instantiate<sensor_msgs::CameraInfo>();
+        auto ci = instantiate_checked<sensor_msgs::CameraInfo>(m, o.bag);
         if (!ci) throw Error(o.bag, o.topics.camera_info + " is not sensor_msgs/CameraInfo");
         if (info && (info->width != ci->width || info->height != ci->height || info->K != ci->K || info->D != ci->D))
           throw Error(o.bag, o.topics.camera_info + " changes within the bag (a sequence has one camera)");
         if (!info) info = *ci;
       } else {
-        auto im = m.instantiate<sensor_msgs::Image>();
+        auto im = instantiate_checked<sensor_msgs::Image>(m, o.bag);
         if (!im) throw Error(o.bag, m.getTopic() + " is not sensor_msgs/Image");
         (m.getTopic() == o.topics.depth ? depth : color)[im->header.stamp] = im;
       }

@@ -15,6 +15,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
+#include "pcd_check.hpp"
 #include "ply_check.hpp"
 
 namespace cropsight::io {
@@ -112,6 +113,8 @@ pcl::PCLPointCloud2 load(const fs::path& path) {
     if (format == Format::kPcd) {
       // PCL 1.13's PCDReader::read crashes on some malformed headers (no fields, no points), so
       // the header is read and checked on its own first.
+      // PCL sizes its buffer from the header before reading any data (fuzz_pcd: 21 GB).
+      detail::check_pcd_header(read_file(path), path.string());
       pcl::PCDReader reader;
       Eigen::Vector4f origin;
       Eigen::Quaternionf orientation;
@@ -133,8 +136,16 @@ pcl::PCLPointCloud2 load(const fs::path& path) {
     throw Error(path.string(), std::string("cannot read point cloud: ") + e.what());
   }
   if (rc < 0) throw Error(path.string(), "cannot read point cloud (malformed or unsupported file)");
-  if (std::size_t(blob.width) * blob.height * blob.point_step > blob.data.size())
-    throw Error(path.string(), "point data is shorter than its header says");
+  const unsigned __int128 need = (unsigned __int128)blob.width * blob.height * blob.point_step;  // no overflow
+  if (need > blob.data.size()) throw Error(path.string(), "point data is shorter than its header says");
+  // Every field must lie inside its point (fuzz_pcd: an offset past point_step read past the data).
+  for (const auto& f : blob.fields) {
+    const std::size_t size = pcl::getFieldSize(f.datatype);
+    if (size == 0) throw Error(path.string(), "field '" + f.name + "' has an unknown type");
+    if (std::uint64_t(f.offset) + std::uint64_t(size) * std::max<std::uint32_t>(f.count, 1) > blob.point_step)
+      throw Error(path.string(),
+                  "field '" + f.name + "' does not fit in a point of " + std::to_string(blob.point_step) + " bytes");
+  }
   return blob;
 }
 

@@ -28,6 +28,7 @@ struct Property {
   int size = 0;        // scalar bytes, or the list items' bytes
   int count_size = 0;  // list only: bytes of the item count
   bool is_signed_count = false;
+  std::string type;  // scalar only: the PLY type name
 };
 struct Element {
   std::string name;
@@ -113,7 +114,7 @@ void check_ply(const std::string& bytes, const std::string& where) {
         p = {t[4], type_size(t[3]), type_size(t[2]), t[2][0] != 'u'};
       } else {
         if (t.size() != 3 || type_size(t[1]) == 0) fail("expected 'property TYPE NAME' with a PLY scalar type");
-        p = {t[2], type_size(t[1]), 0, false};
+        p = {t[2], type_size(t[1]), 0, false, t[1]};
       }
       for (const auto& q : elements.back().properties)
         if (q.name == p.name) fail("property '" + p.name + "' declared twice");
@@ -124,6 +125,26 @@ void check_ply(const std::string& bytes, const std::string& where) {
   }
   if (!ended) throw Error(where, "malformed PLY header: no 'end_header' line");
   if (format.empty()) throw Error(where, "malformed PLY header: no format line");
+  // PCL packs a vertex's red, green and blue into one rgb field created at "red" and filled by
+  // all three: a green or blue without the red before it wrote past the point and hit an assert
+  // (fuzz_ply; fuzz/regressions/ply/). So colour comes as red, green, blue (uchar, in that
+  // order, one after the other), and alpha only right after blue.
+  for (const auto& e : elements) {
+    if (e.name != "vertex") continue;
+    const auto& ps = e.properties;
+    for (std::size_t i = 0; i < ps.size(); ++i) {
+      const std::string& n = ps[i].name;
+      if (n != "red" && n != "green" && n != "blue" && n != "alpha") continue;
+      const auto is = [&](std::size_t k, const char* name) {
+        return k < ps.size() && ps[k].name == name && ps[k].count_size == 0 &&
+               (ps[k].type == "uchar" || ps[k].type == "uint8");
+      };
+      if (!(is(i, "red") && is(i + 1, "green") && is(i + 2, "blue")))
+        throw Error(where, "malformed PLY header: vertex colour must be uchar red, green, blue in that order");
+      i += 2;
+      if (is(i + 1, "alpha")) ++i;
+    }
+  }
 
   // The body: every element instance in declaration order.
   if (format == "ascii") {

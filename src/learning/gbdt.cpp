@@ -318,6 +318,67 @@ void Gbdt::save(const std::filesystem::path& path) const {
   io::write_file_atomic(path, std::string(buf, len));
 }
 
+namespace {
+
+// XGBoost 1.7 trusts a JSON model's tree structure: two trees with the same "id" made its
+// parallel loader free one tree twice (fuzz_gbdt_model; fuzz/regressions/gbdt_model/), and a
+// child index out of range or pointing back up would send compile() out of bounds or round a
+// cycle. So the gbtree model is checked first: tree ids 0..n-1 each once, tree_info of n
+// entries, every per-node array of num_nodes entries, every child after its parent and in range.
+void check_tree_model(const nlohmann::json& j, const std::string& where) {
+  const auto fail = [&](const std::string& problem) { throw Error(where, "not a valid XGBoost model: " + problem); };
+  const auto* learner = j.contains("learner") && j["learner"].is_object() ? &j["learner"] : nullptr;
+  if (!learner) fail("no \"learner\" object");
+  const auto gb = learner->find("gradient_booster");
+  if (gb == learner->end() || !gb->is_object() || gb->value("name", std::string()) != "gbtree")
+    fail("the gradient booster is not a gbtree (cropsight trains and reads gbtree models)");
+  const auto model = gb->find("model");
+  if (model == gb->end() || !model->is_object()) fail("gbtree without its model");
+  const auto trees = model->find("trees");
+  const auto info = model->find("tree_info");
+  if (trees == model->end() || !trees->is_array() || info == model->end() || !info->is_array() ||
+      info->size() != trees->size())
+    fail("\"trees\" and \"tree_info\" must be arrays of the same length");
+  const std::size_t n = trees->size();
+  std::vector<char> seen(n, 0);
+  for (const auto& t : *trees) {
+    const auto id = t.find("id");
+    if (!t.is_object() || id == t.end() || !id->is_number_integer() || id->get<std::int64_t>() < 0 ||
+        id->get<std::int64_t>() >= std::int64_t(n) || seen[std::size_t(id->get<std::int64_t>())]++)
+      fail("tree ids must be 0.." + std::to_string(n) + "-1, each once");
+    const auto param = t.find("tree_param");
+    std::int64_t nodes = 0;
+    if (param == t.end() || !param->is_object() || !param->contains("num_nodes") || !(*param)["num_nodes"].is_string())
+      fail("a tree without tree_param.num_nodes");
+    try {
+      std::size_t used = 0;
+      const std::string text = (*param)["num_nodes"].get<std::string>();
+      nodes = std::stoll(text, &used);
+      if (used != text.size()) nodes = 0;
+    } catch (const std::exception&) {
+      nodes = 0;
+    }
+    if (nodes < 1 || nodes > (std::int64_t(1) << 31)) fail("a tree's num_nodes is not a positive count");
+    for (const char* key : {"left_children", "right_children", "parents", "split_indices", "split_conditions",
+                            "default_left", "base_weights", "loss_changes", "sum_hessian"}) {
+      const auto a = t.find(key);
+      if (a == t.end() || !a->is_array() || std::int64_t(a->size()) != nodes)
+        fail(std::string("a tree's \"") + key + "\" does not hold num_nodes entries");
+    }
+    for (const char* key : {"left_children", "right_children"}) {
+      const auto& a = t[key];
+      for (std::int64_t i = 0; i < nodes; ++i) {
+        const auto& c = a[std::size_t(i)];
+        if (!c.is_number_integer()) fail(std::string("a tree's \"") + key + "\" holds a non-integer");
+        const std::int64_t v = c.get<std::int64_t>();
+        if (v != -1 && (v <= i || v >= nodes)) fail("a tree node's child is not a later node of the same tree");
+      }
+    }
+  }
+}
+
+}  // namespace
+
 Gbdt Gbdt::load(const std::filesystem::path& path, int nthread) {
   const std::string where = path.string();
   std::ifstream in(path, std::ios::binary);
@@ -338,6 +399,7 @@ Gbdt Gbdt::load(const std::filesystem::path& path, int nthread) {
   // would only get XGBoost's complaint about its version field.
   if (text.find("\"learner\"") == std::string::npos)
     throw Error(where, "not an XGBoost model (a JSON file without a \"learner\" object)");
+  check_tree_model(nlohmann::json::parse(text), where);
   Gbdt g;
   check(XGBoosterCreate(nullptr, 0, &g.booster_), where);
   if (XGBoosterLoadModelFromBuffer(g.booster_, text.data(), bst_ulong(text.size())) != 0)

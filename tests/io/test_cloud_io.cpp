@@ -206,6 +206,11 @@ TEST(CloudIo, FuzzFindingsAreErrors) {
        "property float z\nend_header\n0123456789ab",
        "PLY data ends early"},
       {"no_end.ply", ply_head + "property float x\n", "no 'end_header'"},
+      // Second sweep: green and blue without red wrote past PCL's point (assert).
+      {"green_without_red.ply",
+       ply_head + "property float x\nproperty float y\nproperty float z\nproperty uchar green\nproperty uchar blue\n"
+                  "end_header\n0 0 1 5 6\n0 1 1 6 7\n",
+       "vertex colour must be uchar red, green, blue"},
   };
   for (const auto& [name, text, words] : bad) {
     write_file_atomic(tmp / name, text);
@@ -216,6 +221,16 @@ TEST(CloudIo, FuzzFindingsAreErrors) {
       EXPECT_EQ(e.where(), (tmp / name).string());
       EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << name << ": " << e.what();
     }
+  }
+  // The second sweep's PCD: a second SIZE line gave fields sizes that do not fit the point, and
+  // reading them went past the data (SEGV). Read straight from fuzz/regressions/.
+  const std::string pcd = std::string(CROPSIGHT_SOURCE_DIR) + "/fuzz/regressions/pcd/crash-7f9a3e374ca9";
+  try {
+    fs::copy_file(pcd, tmp / "sizes.pcd");  // the reader picks the format by extension
+    read_cloud(tmp / "sizes.pcd");
+    ADD_FAILURE() << "no error for " << pcd;
+  } catch (const Error& e) {
+    EXPECT_EQ(e.where(), (tmp / "sizes.pcd").string()) << e.what();
   }
   // A well-formed ascii PLY with a list element (faces) still reads.
   write_file_atomic(tmp / "faces.ply", ply_head +

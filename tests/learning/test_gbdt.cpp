@@ -125,6 +125,36 @@ TEST(Gbdt, OnlyJsonReachesXgboost) {
   }
 }
 
+// The second fuzz sweep: two trees with the same id made XGBoost's parallel loader free a tree
+// twice (fuzz/regressions/gbdt_model/crash-*); a child index that points back up would loop
+// compile(). Both are refused before XGBoost sees the file; the shipped models still load.
+TEST(Gbdt, BrokenTreeStructureIsAnError) {
+  cropsight::testing::TempDir t;
+  const std::string src = std::string(CROPSIGHT_SOURCE_DIR) + "/fuzz/regressions/gbdt_model/crash-3b074794d353";
+  try {
+    Gbdt::load(src);
+    ADD_FAILURE() << "loaded " << src;
+  } catch (const cropsight::Error& e) {
+    EXPECT_NE(e.problem().find("tree ids must be 0..4-1, each once"), std::string::npos) << e.what();
+  }
+  std::ifstream in(std::string(CROPSIGHT_SOURCE_DIR) + "/models/grape-gbdt-fast.json");
+  std::string model((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NO_THROW(Gbdt::load(std::string(CROPSIGHT_SOURCE_DIR) + "/models/grape-gbdt-fast.json"));
+  // The first tree's root becomes its own left child.
+  const std::string key = "\"left_children\":[";
+  const auto start = model.find(key);
+  ASSERT_NE(start, std::string::npos);
+  const auto first = start + key.size();
+  model.replace(first, model.find(',', first) - first, "0");
+  std::ofstream(t / "cycle.json") << model;
+  try {
+    Gbdt::load(t / "cycle.json");
+    ADD_FAILURE() << "loaded a tree whose root is its own child";
+  } catch (const cropsight::Error& e) {
+    EXPECT_NE(e.problem().find("child is not a later node"), std::string::npos) << e.what();
+  }
+}
+
 // Parameters out of range are named before XGBoost runs (rounds 0 used to blame the output file);
 // XGBoost's own errors come back as one line; a save into a folder leaves no temporary.
 TEST(Gbdt, ParamsValidatedAndErrorsOneLine) {

@@ -144,5 +144,34 @@ TEST(BagIo, BadBagsAreOneErrorNamingTheFileAndLeaveNoSequence) {
   EXPECT_FALSE(fs::exists(e.bag));
 }
 
+// Found by fuzz_bag (fuzz/regressions/bag/): a connection record's header length of 4 GB that
+// rosbag allocated, and a CameraInfo whose D length (14 GB) roscpp's deserialiser allocated.
+// The record walk (bag_check.cpp) and the message check refuse both, naming the file; a record
+// length past the end of a valid bag is caught the same way.
+TEST(BagIo, DamagedLengthsAreErrorsNotAllocations) {
+  const fs::path d = ros_test::scratch_dir("bag_lengths");
+  BagImportOptions i;
+  i.out = (d / "out").string();
+  for (const char* name : {"oom-12d08eb90082", "oom-2c461aaa3cac"}) {
+    i.bag = std::string(CROPSIGHT_SOURCE_DIR) + "/fuzz/regressions/bag/" + name;
+    const std::string e = error_of([&] { import_bag_sequence(i); });
+    EXPECT_EQ(e.rfind(i.bag + ": damaged", 0), 0u) << e;
+  }
+  make_sequence(d / "seq", /*poses=*/false);
+  BagExportOptions x;
+  x.sequence = (d / "seq").string();
+  x.bag = (d / "s.bag").string();
+  export_sequence_bag(x);
+  std::string bytes = [&] {
+    std::ifstream in(x.bag, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  bytes[13] = bytes[14] = bytes[15] = '\xff';  // the bag header record's header length
+  std::ofstream(d / "long.bag", std::ios::binary) << bytes;
+  i.bag = (d / "long.bag").string();
+  EXPECT_NE(error_of([&] { import_bag_sequence(i); }).find("runs past the end of the file"), std::string::npos);
+  EXPECT_FALSE(fs::exists(i.out));
+}
+
 }  // namespace
 }  // namespace cropsight::ros_io

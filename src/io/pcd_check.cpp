@@ -1,0 +1,105 @@
+#include "pcd_check.hpp"
+
+#include <cstdint>
+#include <sstream>
+#include <vector>
+
+#include "cropsight/core/error.hpp"
+
+namespace cropsight::io::detail {
+
+namespace {
+
+std::vector<std::string> words(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> out;
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
+
+// A plain decimal integer in [lo, hi]; false for anything else (signs, exponents, overflow).
+bool integer(const std::string& s, std::uint64_t lo, std::uint64_t hi, std::uint64_t& v) {
+  if (s.empty() || s.size() > 19) return false;
+  v = 0;
+  for (const char c : s) {
+    if (c < '0' || c > '9') return false;
+    v = v * 10 + std::uint64_t(c - '0');
+  }
+  return v >= lo && v <= hi;
+}
+
+}  // namespace
+
+void check_pcd_header(const std::string& bytes, const std::string& where) {
+  const auto fail = [&](int line, const std::string& problem) {
+    throw Error(where, "malformed PCD header, line " + std::to_string(line) + ": " + problem);
+  };
+  std::size_t fields = 0, pos = 0;
+  std::vector<std::uint64_t> sizes, counts;
+  std::uint64_t width = 0, height = 0, points = 0;
+  bool have_fields = false, have_width = false, have_height = false, have_points = false;
+  std::string data;
+  int line_no = 0;
+  while (pos < bytes.size() && data.empty()) {
+    const std::size_t end = std::min(bytes.find('\n', pos), bytes.size());
+    const std::string line = bytes.substr(pos, end - pos);
+    pos = end + 1;
+    ++line_no;
+    const auto w = words(line);
+    if (w.empty() || w[0][0] == '#') continue;
+    const std::string& key = w[0];
+    const std::size_t n = w.size() - 1;
+    std::uint64_t v = 0;
+    if (key == "FIELDS" || key == "COLUMNS") {
+      if (have_fields) fail(line_no, "FIELDS given twice");
+      if (n == 0) fail(line_no, "FIELDS names no field");
+      fields = n;
+      have_fields = true;
+    } else if (key == "SIZE" || key == "TYPE" || key == "COUNT") {
+      if (!have_fields) fail(line_no, key + " before FIELDS");
+      if (n != fields)
+        fail(line_no, key + " has " + std::to_string(n) + " entries for " + std::to_string(fields) + " fields");
+      std::vector<std::uint64_t>* out = key == "SIZE" ? &sizes : key == "COUNT" ? &counts : nullptr;
+      if (out && !out->empty()) fail(line_no, key + " given twice");
+      for (std::size_t i = 1; i <= n; ++i) {
+        if (key == "TYPE") {
+          if (w[i] != "I" && w[i] != "U" && w[i] != "F") fail(line_no, "TYPE '" + w[i] + "' is not I, U or F");
+        } else if (key == "SIZE") {
+          if (!integer(w[i], 1, 8, v) || (v != 1 && v != 2 && v != 4 && v != 8))
+            fail(line_no, "SIZE '" + w[i] + "' is not 1, 2, 4 or 8");
+          out->push_back(v);
+        } else {
+          if (!integer(w[i], 1, 1u << 20, v)) fail(line_no, "COUNT '" + w[i] + "' is not 1 to 1048576");
+          out->push_back(v);
+        }
+      }
+    } else if (key == "WIDTH" || key == "HEIGHT" || key == "POINTS") {
+      if (n != 1 || !integer(w[1], 0, 0xffffffffu, v)) fail(line_no, key + " is not one non-negative integer");
+      (key == "WIDTH" ? width : key == "HEIGHT" ? height : points) = v;
+      (key == "WIDTH" ? have_width : key == "HEIGHT" ? have_height : have_points) = true;
+    } else if (key == "DATA") {
+      if (n != 1) fail(line_no, "DATA takes one word (ascii, binary or binary_compressed)");
+      data = w[1];
+      if (data != "ascii" && data != "binary" && data != "binary_compressed")
+        fail(line_no, "DATA '" + data + "' is not ascii, binary or binary_compressed");
+    }
+    // VERSION and VIEWPOINT are PCL's to check.
+  }
+  if (data.empty()) throw Error(where, "malformed PCD header: no DATA line");
+  if (!have_fields || sizes.size() != fields || !have_width || !have_points)
+    throw Error(where, "malformed PCD header (needs FIELDS, SIZE, TYPE, COUNT, WIDTH, HEIGHT, POINTS, DATA)");
+  if (counts.empty()) counts.assign(fields, 1);  // COUNT is optional: 1 each
+  if (!have_height) height = 1;
+  if (points != width * height)
+    throw Error(where, "malformed PCD header: POINTS " + std::to_string(points) + " is not WIDTH x HEIGHT");
+  std::uint64_t values = 0, step = 0;
+  for (std::size_t i = 0; i < fields; ++i) values += counts[i], step += counts[i] * sizes[i];
+  const unsigned __int128 body = bytes.size() - std::min(pos, bytes.size());
+  const unsigned __int128 need = data == "ascii"    ? (unsigned __int128)points * values * 2
+                                 : data == "binary" ? (unsigned __int128)points * step
+                                                    : 0;
+  if (need > body || (data == "binary_compressed" && (unsigned __int128)points * step > ((unsigned __int128)1 << 30)))
+    throw Error(where, "PCD header declares " + std::to_string(points) + " points, more than the file can hold");
+}
+
+}  // namespace cropsight::io::detail

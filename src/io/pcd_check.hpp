@@ -1,0 +1,16 @@
+#pragma once
+// Internal to io: a PCD header checked before PCL reads it. PCL 1.13's PCDReader::readHeader
+// sizes the point buffer from WIDTH x HEIGHT x (the SIZE x COUNT sum) before it reads any data,
+// so a COUNT or WIDTH of 2^40 made it allocate 21 GB (fuzz_pcd; fuzz/regressions/pcd/). The
+// header lines PCL reads are checked here: FIELDS, SIZE, TYPE and COUNT with one entry per
+// field (SIZE 1, 2, 4 or 8; TYPE I, U or F; COUNT 1 to 2^20), WIDTH, HEIGHT and POINTS plain
+// integers with POINTS = WIDTH x HEIGHT, and a body that can hold them: an ascii value takes at
+// least two bytes, a binary point its full size, a compressed body at most 1 GiB.
+#include <string>
+
+namespace cropsight::io::detail {
+
+/// Throws Error(where, ...) naming the first problem of PCD file contents `bytes`.
+void check_pcd_header(const std::string& bytes, const std::string& where);
+
+}  // namespace cropsight::io::detail
