@@ -71,6 +71,8 @@ asan:
 	cd build-asan && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
 
 # Pipelines in parallel threads under TSan (tests/threads/): only that test and the libraries.
+# The suppressions also while building: gtest_discover_tests runs test_threads to list its tests.
+tsan: export TSAN_OPTIONS = suppressions=$(CURDIR)/tests/threads/tsan.supp
 tsan:
 	@scripts/install-deps.sh
 	cmake -S . -B build-tsan $(if $(wildcard build-tsan/CMakeCache.txt),,-G "$(GENERATOR)") -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DCROPSIGHT_TSAN=ON -DCROPSIGHT_BUILD_BENCH=OFF -DCROPSIGHT_BUILD_EXAMPLES=OFF -DCROPSIGHT_ROS=OFF $(CMAKE_ARGS)
@@ -80,7 +82,7 @@ tsan:
 # The network-archive harness loads $(BUILD)'s libtorch plugin (scripts/fuzz.sh builds it if missing).
 fuzz: configure
 	@scripts/fuzz.sh replay
-	@FUZZ_ARGS="-seed=$(FUZZ_SEED) $(FUZZ_ARGS)" scripts/fuzz.sh all $(FUZZ_SECONDS)
+	@FUZZ_FRESH=1 FUZZ_ARGS="-seed=$(FUZZ_SEED) $(FUZZ_ARGS)" scripts/fuzz.sh all $(FUZZ_SECONDS)
 
 format:
 	git ls-files '*.cpp' '*.hpp' | xargs clang-format -i

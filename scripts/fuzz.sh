@@ -15,7 +15,9 @@
 # missing): Clang cannot compile libtorch's headers as C++20.
 #
 # Environment: FUZZ_BUILD (default build-fuzz), MAIN_BUILD (default build), FUZZ_JOBS (default 1:
-# parallel libFuzzer workers; each counts its own CPU time), FUZZ_ARGS (extra libFuzzer flags).
+# parallel libFuzzer workers; each counts its own CPU time), FUZZ_ARGS (extra libFuzzer flags),
+# FUZZ_FRESH (non-empty: start from the committed seeds only, in build-fuzz/fuzz-corpus-fresh/,
+# not from what earlier runs found; make fuzz sets it so that a run here starts where CI does).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -80,6 +82,11 @@ run_one() {
   fi
   [ "$h" != bag ] || [ -x "$build/bin/fuzz_bag" ] || { echo "fuzz bag: skipped (built without ROS)"; return 0; }
   local corpus=$build/fuzz-corpus/$h artifacts=$build/fuzz-artifacts/$h log=$build/fuzz-logs/$h.log
+  if [ -n "${FUZZ_FRESH:-}" ]; then
+    # Only the committed seeds: what a fresh clone (CI) starts from, so a run here repeats CI's.
+    corpus=$build/fuzz-corpus-fresh/$h
+    rm -rf "$corpus"
+  fi
   mkdir -p "$corpus" "$artifacts" "$(dirname "$log")"
   local status=0 fork= t0=$SECONDS
   [ "$jobs" -le 1 ] || fork=-fork=$jobs

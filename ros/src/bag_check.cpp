@@ -51,23 +51,35 @@ class Walker {
       r.offset = p;
       const std::size_t header_size = length_at(p, end, "record header", inside, base);
       const std::size_t h = p + 4;
-      std::size_t q = h;
-      while (q < h + header_size) {
-        const std::size_t field_size = length_at(q, h + header_size, "header field", "its record header", base);
-        const std::string field = b_.substr(q + 4, field_size);
-        const std::size_t eq = field.find('=');
-        if (eq == std::string::npos) fail(base + q, "header field without '='");
-        r.fields[field.substr(0, eq)] = field.substr(eq + 1);
-        q += 4 + field_size;
-      }
+      r.fields = fields(h, header_size, base, "its record header");
       const auto op = r.fields.find("op");
       if (op == r.fields.end() || op->second.size() != 1) fail(base + p, "record without a one-byte op field");
       r.op = static_cast<unsigned char>(op->second[0]);
       const std::size_t d = h + header_size;
       r.data_size = length_at(d, end, "record data", inside, base);
       r.data = d + 4;
+      // A connection record's data is a header too (the topic's connection header: type,
+      // md5sum, message_definition), parsed by roscpp's ros::Header, which checks a field's
+      // length against 1 MB but not against the bytes left (a read past the buffer, fuzz_bag).
+      if (r.op == kConnection) fields(r.data, r.data_size, base, "its connection header");
       out.push_back(r);
       p = r.data + r.data_size;
+    }
+    return out;
+  }
+
+  // The name=value fields, each with a 4-byte length, filling [h, h + size) exactly.
+  std::map<std::string, std::string> fields(std::size_t h, std::size_t size, std::size_t base,
+                                            const char* inside) const {
+    std::map<std::string, std::string> out;
+    std::size_t q = h;
+    while (q < h + size) {
+      const std::size_t field_size = length_at(q, h + size, "header field", inside, base);
+      const std::string field = b_.substr(q + 4, field_size);
+      const std::size_t eq = field.find('=');
+      if (eq == std::string::npos) fail(base + q, "header field without '='");
+      out[field.substr(0, eq)] = field.substr(eq + 1);
+      q += 4 + field_size;
     }
     return out;
   }

@@ -5,7 +5,8 @@
 // walk checks the format 2.0 framing rosbag relies on, so a truncated or damaged bag is an Error
 // naming the file and the offset instead of an out-of-memory kill or a read past a buffer:
 // - every record (length-prefixed header of name=value fields, length-prefixed data) lies inside
-//   the file, and every record inside an uncompressed chunk inside its chunk;
+//   the file, and every record inside an uncompressed chunk inside its chunk; a connection
+//   record's data (its connection header) is name=value fields that fill it exactly;
 // - the bag header's index_pos, and each chunk info's chunk_pos, point at a record (a chunk);
 //   the index section holds the connection and chunk info records the bag header counts;
 // - an uncompressed chunk's declared size is its data's; a compressed one declares at most 1 GiB

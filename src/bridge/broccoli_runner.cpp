@@ -27,7 +27,11 @@ struct BroccoliRunner::Impl {
   pipeline::BroccoliPipelineConfig cfg;
   pipeline::BroccoliPipeline pipe;
   explicit Impl(const BroccoliRunnerOptions& o)
-      : model(pipeline::load_broccoli_model(o.model)), cfg(runner_config(o, *model)), pipe(cfg, model, o.model) {}
+      : model(pipeline::load_broccoli_model(o.model)), cfg(runner_config(o, *model)), pipe(cfg, model, o.model) {
+    // A node runs for hours and never scores a pass offline: keeping every measured detection
+    // would grow its memory with the frames (docs/reliability.md, "Long runs").
+    pipe.set_record_detections(false);
+  }
 };
 
 BroccoliRunner::BroccoliRunner(const BroccoliRunnerOptions& options) : impl_(std::make_unique<Impl>(options)) {}

@@ -36,9 +36,11 @@
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
 #define CROPSIGHT_X86_DISPATCH 1
-#if defined(__clang__)
+#if defined(__clang__) || defined(__SANITIZE_THREAD__)
 // Clang 14 refuses target_clones on function templates (compute_links_impl); Clang builds the
 // fuzz harnesses (fuzz/), where speed does not matter, so they get the baseline loop only.
+// Under ThreadSanitizer (make tsan) the clones' ifunc resolver is instrumented and runs while
+// the loader relocates, before TSan's runtime is up: SIGSEGV at start. Baseline loop there too.
 #define CROPSIGHT_AVX2_CLONES
 #else
 #define CROPSIGHT_AVX2_CLONES __attribute__((target_clones("avx2", "default")))

@@ -13,6 +13,10 @@ namespace cropsight::detail {
 /// One call of the loop body on rows [begin, end) (ctx: the caller's callable).
 using RangeBody = void (*)(const void* ctx, std::size_t begin, std::size_t end);
 
+/// The threads a loop with no limit of its own uses: TBB's default concurrency (the cores this
+/// process may run on).
+int all_threads();
+
 /// parallel_for() without the template (defined in parallel_for.cpp).
 void parallel_for_ranges(std::size_t n, int threads, std::size_t grain, RangeBody body, const void* ctx);
 
@@ -29,6 +33,14 @@ void parallel_for(std::size_t n, int threads, std::size_t grain, const Fn& fn) {
   parallel_for_ranges(
       n, threads, grain, [](const void* ctx, std::size_t b, std::size_t e) { (*static_cast<const Fn*>(ctx))(b, e); },
       std::addressof(fn));
+}
+
+/// fn(i) for every i in [0, n), on all_threads() threads; the same contract as parallel_for.
+template <class Fn>
+void parallel_for_each_index(std::size_t n, const Fn& fn) {
+  parallel_for(n, all_threads(), 1, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) fn(i);
+  });
 }
 
 }  // namespace cropsight::detail

@@ -28,6 +28,19 @@ bool integer(const std::string& s, std::uint64_t lo, std::uint64_t hi, std::uint
   return v >= lo && v <= hi;
 }
 
+// The header keyword PCL 1.13's PCDReader::readHeader takes a line's first word for: it compares
+// prefixes ("FIELDSX" is FIELDS, "COLUMNS" is FIELDS too). Empty when it is none (PCL stops).
+std::string pcl_keyword(const std::string& first) {
+  if (first[0] == '#') return "#";
+  static const char* const keys[][2] = {{"VERSION", "VERSION"}, {"FIELDS", "FIELDS"}, {"COLUMNS", "FIELDS"},
+                                        {"SIZE", "SIZE"},       {"TYPE", "TYPE"},     {"COUNT", "COUNT"},
+                                        {"WIDTH", "WIDTH"},     {"HEIGHT", "HEIGHT"}, {"VIEWPOINT", "VIEWPOINT"},
+                                        {"POINTS", "POINTS"},   {"DATA", "DATA"}};
+  for (const auto& k : keys)
+    if (first.rfind(k[0], 0) == 0) return k[1];
+  return {};
+}
+
 }  // namespace
 
 void check_pcd_header(const std::string& bytes, const std::string& where) {
@@ -37,20 +50,39 @@ void check_pcd_header(const std::string& bytes, const std::string& where) {
   std::size_t fields = 0, pos = 0;
   std::vector<std::uint64_t> sizes, counts;
   std::uint64_t width = 0, height = 0, points = 0;
-  bool have_fields = false, have_width = false, have_height = false, have_points = false;
+  bool have_fields = false, have_types = false, have_width = false, have_height = false, have_points = false;
   std::string data;
+  std::size_t body_start = 0;
   int line_no = 0;
-  while (pos < bytes.size() && data.empty()) {
+  // PCL's loop: every line is read as a header line until one whose first word is not a keyword,
+  // and that includes the lines after DATA (DATA only records where the body starts), so bytes
+  // of the body that read as "COLUMNS ..." or "SIZE ..." redefine the fields after our checks.
+  while (pos < bytes.size()) {
     const std::size_t end = std::min(bytes.find('\n', pos), bytes.size());
     const std::string line = bytes.substr(pos, end - pos);
     pos = end + 1;
     ++line_no;
+    if (line.empty()) continue;  // PCL skips only empty lines; a line of blanks ends its header
     const auto w = words(line);
-    if (w.empty() || w[0][0] == '#') continue;
-    const std::string& key = w[0];
+    if (w.empty()) break;
+    const std::string key = pcl_keyword(w[0]);
+    if (key.empty()) {  // where PCL stops reading the header: the body, or a line it does not know
+      if (data.empty()) fail(line_no, "'" + w[0].substr(0, 40) + "' is not a PCD header keyword (before DATA)");
+      break;
+    }
+    if (key == "#" || key == "VERSION") continue;
+    if (!data.empty())
+      fail(line_no, "a line after DATA that PCL reads as header ('" + key + "'): a damaged or concatenated file");
+    // PCL splits the words on spaces, tabs and CRs, and reads the numbers from a stream, which
+    // also splits on vertical tabs and form feeds: with those the two would disagree.
+    if (line.find_first_of("\v\f") != std::string::npos) fail(line_no, "vertical tab or form feed in a header line");
     const std::size_t n = w.size() - 1;
     std::uint64_t v = 0;
-    if (key == "FIELDS" || key == "COLUMNS") {
+    // PCL sizes the point buffer when it reads POINTS, from the point size known then: fields
+    // defined after it would be written past the buffer (readBodyASCII; fuzz_pcd).
+    if (have_points && (key == "FIELDS" || key == "SIZE" || key == "TYPE" || key == "COUNT"))
+      fail(line_no, key + " after POINTS (PCL sizes the points at POINTS)");
+    if (key == "FIELDS") {
       if (have_fields) fail(line_no, "FIELDS given twice");
       if (n == 0) fail(line_no, "FIELDS names no field");
       fields = n;
@@ -60,7 +92,8 @@ void check_pcd_header(const std::string& bytes, const std::string& where) {
       if (n != fields)
         fail(line_no, key + " has " + std::to_string(n) + " entries for " + std::to_string(fields) + " fields");
       std::vector<std::uint64_t>* out = key == "SIZE" ? &sizes : key == "COUNT" ? &counts : nullptr;
-      if (out && !out->empty()) fail(line_no, key + " given twice");
+      if (key == "TYPE" ? have_types : !out->empty()) fail(line_no, key + " given twice");
+      if (key == "TYPE") have_types = true;
       for (std::size_t i = 1; i <= n; ++i) {
         if (key == "TYPE") {
           if (w[i] != "I" && w[i] != "U" && w[i] != "F") fail(line_no, "TYPE '" + w[i] + "' is not I, U or F");
@@ -74,16 +107,19 @@ void check_pcd_header(const std::string& bytes, const std::string& where) {
         }
       }
     } else if (key == "WIDTH" || key == "HEIGHT" || key == "POINTS") {
-      if (n != 1 || !integer(w[1], 0, 0xffffffffu, v)) fail(line_no, key + " is not one non-negative integer");
+      bool& have = key == "WIDTH" ? have_width : key == "HEIGHT" ? have_height : have_points;
+      if (have) fail(line_no, key + " given twice");
+      if (n != 1 || !integer(w[1], 0, 0x7fffffffu, v)) fail(line_no, key + " is not one integer from 0 to 2^31 - 1");
       (key == "WIDTH" ? width : key == "HEIGHT" ? height : points) = v;
-      (key == "WIDTH" ? have_width : key == "HEIGHT" ? have_height : have_points) = true;
+      have = true;
     } else if (key == "DATA") {
       if (n != 1) fail(line_no, "DATA takes one word (ascii, binary or binary_compressed)");
       data = w[1];
       if (data != "ascii" && data != "binary" && data != "binary_compressed")
         fail(line_no, "DATA '" + data + "' is not ascii, binary or binary_compressed");
+      body_start = std::min(pos, bytes.size());
     }
-    // VERSION and VIEWPOINT are PCL's to check.
+    // VIEWPOINT is PCL's to check.
   }
   if (data.empty()) throw Error(where, "malformed PCD header: no DATA line");
   if (!have_fields || sizes.size() != fields || !have_width || !have_points)
@@ -94,7 +130,7 @@ void check_pcd_header(const std::string& bytes, const std::string& where) {
     throw Error(where, "malformed PCD header: POINTS " + std::to_string(points) + " is not WIDTH x HEIGHT");
   std::uint64_t values = 0, step = 0;
   for (std::size_t i = 0; i < fields; ++i) values += counts[i], step += counts[i] * sizes[i];
-  const unsigned __int128 body = bytes.size() - std::min(pos, bytes.size());
+  const unsigned __int128 body = bytes.size() - body_start;
   const unsigned __int128 need = data == "ascii"    ? (unsigned __int128)points * values * 2
                                  : data == "binary" ? (unsigned __int128)points * step
                                                     : 0;

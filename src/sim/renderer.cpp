@@ -1,10 +1,11 @@
 #include "cropsight/sim/renderer.hpp"
 
-#include <tbb/parallel_for.h>
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
+
+#include "core/parallel_for.hpp"
 
 namespace cropsight::sim {
 
@@ -82,7 +83,7 @@ void render(const std::vector<const Mesh*>& meshes, const Eigen::Vector3d& C, co
   std::vector<ProjectedVertex> pv(offset.back());
   std::vector<Eigen::Vector3f> pcolor(opt.attributes ? offset.back() : 0);
   std::vector<float> pnir(opt.attributes ? offset.back() : 0);
-  tbb::parallel_for(std::size_t(0), meshes.size(), [&](std::size_t m) {
+  cropsight::detail::parallel_for_each_index(meshes.size(), [&](std::size_t m) {
     const Mesh& mesh = *meshes[m];
     for (std::size_t i = 0; i < mesh.position.size(); ++i) {
       const Eigen::Vector3d p = R * (mesh.position[i].cast<double>() - C);
@@ -143,7 +144,8 @@ void render(const std::vector<const Mesh*>& meshes, const Eigen::Vector3d& C, co
 
   // 3. Rasterise bands in parallel; each band owns its rows, triangles in fixed order.
   constexpr double kEps = -1e-9;  // inclusive edges: shared edges leave no cracks
-  tbb::parallel_for(0, bands, [&](int band) {
+  cropsight::detail::parallel_for_each_index(std::size_t(bands), [&](std::size_t band_index) {
+    const int band = int(band_index);
     const int r0 = band * kBand, r1 = std::min(cam.height - 1, r0 + kBand - 1);
     for (std::uint32_t id : band_tris[std::size_t(band)]) {
       const TriSetup& s = tris[id];

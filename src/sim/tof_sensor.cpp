@@ -1,11 +1,10 @@
 #include "cropsight/sim/tof_sensor.hpp"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
+#include "core/parallel_for.hpp"
 #include "cropsight/sim/random.hpp"
 #include "sim/value_noise.hpp"
 
@@ -55,7 +54,8 @@ SensorStats apply_tof_sensor(const SampleBuffers& S, int f, const CameraIntrinsi
   const int n = f * f;
   const bool stereo = cfg.model == "stereo";
   const std::vector<std::uint8_t> holes = stereo_holes(cfg, W, H, frame_seed);
-  tbb::parallel_for(0, H, [&](int v) {
+  cropsight::detail::parallel_for_each_index(std::size_t(H), [&](std::size_t row) {
+    const int v = int(row);
     SensorStats& st = row_stats[std::size_t(v)];
     float z[16], a[16];
     std::uint16_t lab[16];

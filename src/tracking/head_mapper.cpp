@@ -65,6 +65,7 @@ FrameAssociation HeadMapper::add_frame(int frame, const OrganizedCloud& cloud, s
   FrameAssociation a = filter_.update(frame, obs, camera_position);
   for (std::size_t k = 0; k < detections.size(); ++k) {
     detections[k].track_id = a.track_ids[k];
+    if (!record_) continue;
     MeasuredDetection m;
     m.frame = frame;
     m.index = int(k);

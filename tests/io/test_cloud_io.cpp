@@ -211,6 +211,24 @@ TEST(CloudIo, FuzzFindingsAreErrors) {
        ply_head + "property float x\nproperty float y\nproperty float z\nproperty uchar green\nproperty uchar blue\n"
                   "end_header\n0 0 1 5 6\n0 1 1 6 7\n",
        "vertex colour must be uchar red, green, blue"},
+      // Third sweep: PCL reads header lines by prefix and goes on after DATA, so body bytes that
+      // read as "COLUMNS ..." redefined the fields after the checks (a read 2 GB past the data).
+      {"columns_after_data.pcd",
+       "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1\nHEIGHT 1\nPOINTS 1\n"
+       "DATA binary\nCOLUMNS a b c d\nSIZE 4 4 4 4\n",
+       "line 10: a line after DATA that PCL reads as header ('FIELDS')"},
+      {"prefix_keyword.pcd",
+       "VERSION .7\nFIELDS x y z\nFIELDSX a\nSIZE 4 4 4\nTYPE F F F\nWIDTH 1\nPOINTS 1\nDATA ascii\n0 0 1\n",
+       "line 3: FIELDS given twice"},
+      {"unknown_keyword.pcd",
+       "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nLENGTH 3\nWIDTH 1\nPOINTS 1\nDATA ascii\n0 0 1\n",
+       "line 5: 'LENGTH' is not a PCD header keyword"},
+      // PCL sized the points at POINTS (12 bytes each here), then wrote 24-byte points.
+      {"points_before_size.pcd",
+       "VERSION .7\nFIELDS x y z\nPOINTS 2\nSIZE 8 8 8\nTYPE F F F\nWIDTH 2\nDATA ascii\n1 2 3\n4 5 6\n",
+       "line 4: SIZE after POINTS"},
+      {"blank_line_ends_header.pcd",
+       "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n  \nWIDTH 1\nPOINTS 1\nDATA ascii\n0 0 1\n", "no DATA line"},
   };
   for (const auto& [name, text, words] : bad) {
     write_file_atomic(tmp / name, text);
@@ -224,13 +242,18 @@ TEST(CloudIo, FuzzFindingsAreErrors) {
   }
   // The second sweep's PCD: a second SIZE line gave fields sizes that do not fit the point, and
   // reading them went past the data (SEGV). Read straight from fuzz/regressions/.
-  const std::string pcd = std::string(CROPSIGHT_SOURCE_DIR) + "/fuzz/regressions/pcd/crash-7f9a3e374ca9";
-  try {
-    fs::copy_file(pcd, tmp / "sizes.pcd");  // the reader picks the format by extension
-    read_cloud(tmp / "sizes.pcd");
-    ADD_FAILURE() << "no error for " << pcd;
-  } catch (const Error& e) {
-    EXPECT_EQ(e.where(), (tmp / "sizes.pcd").string()) << e.what();
+  // The third sweep's: header lines after DATA (a read past the data, and in an earlier input a
+  // write that broke ASan's heap).
+  for (const char* name : {"crash-7f9a3e374ca9", "crash-204537d87fe2", "crash-6a1579ca9f15"}) {
+    const std::string pcd = std::string(CROPSIGHT_SOURCE_DIR) + "/fuzz/regressions/pcd/" + name;
+    const fs::path copy = tmp / (std::string(name) + ".pcd");  // the reader picks the format by extension
+    try {
+      fs::copy_file(pcd, copy);
+      read_cloud(copy);
+      ADD_FAILURE() << "no error for " << pcd;
+    } catch (const Error& e) {
+      EXPECT_EQ(e.where(), copy.string()) << e.what();
+    }
   }
   // A well-formed ascii PLY with a list element (faces) still reads.
   write_file_atomic(tmp / "faces.ply", ply_head +

@@ -152,7 +152,7 @@ TEST(BagIo, DamagedLengthsAreErrorsNotAllocations) {
   const fs::path d = ros_test::scratch_dir("bag_lengths");
   BagImportOptions i;
   i.out = (d / "out").string();
-  for (const char* name : {"oom-12d08eb90082", "oom-2c461aaa3cac"}) {
+  for (const char* name : {"oom-12d08eb90082", "oom-2c461aaa3cac", "crash-4177f5308a73"}) {
     i.bag = std::string(CROPSIGHT_SOURCE_DIR) + "/fuzz/regressions/bag/" + name;
     const std::string e = error_of([&] { import_bag_sequence(i); });
     EXPECT_EQ(e.rfind(i.bag + ": damaged", 0), 0u) << e;

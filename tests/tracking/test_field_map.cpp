@@ -82,6 +82,10 @@ TEST(HeadMapper, SizesTracksAndRescores) {
   ConfigMap m{{"sizing.compute_hull", "false"}, {"tracking.min_track_score", "3"}, {"detector.other", "1"}};
   cfg.apply(m, "test");
   EXPECT_FALSE(cfg.sizing.compute_hull);
+  // Without recording (the ROS node's setting) the sizes, ids and map are the same and nothing
+  // is kept per detection.
+  HeadMapper quiet(cfg);
+  quiet.set_record_detections(false);
   HeadMapper mapper(cfg);
   for (int f = 0; f < 5; ++f) {
     std::vector<Detection> d(1);
@@ -97,11 +101,21 @@ TEST(HeadMapper, SizesTracksAndRescores) {
       x.box = {32, 32, 6, 6};
       d.push_back(x);
     }
+    std::vector<Detection> q = d;
     mapper.add_frame(f, c, d, Eigen::Vector3d(0, 0, 0.8));
+    quiet.add_frame(f, c, q, Eigen::Vector3d(0, 0, 0.8));
     EXPECT_NEAR(d[0].size_m, 0.100, 1e-5);
     EXPECT_EQ(d[0].track_id, 1);
+    for (std::size_t k = 0; k < d.size(); ++k) {
+      EXPECT_EQ(q[k].size_m, d[k].size_m);
+      EXPECT_EQ(q[k].track_id, d[k].track_id);
+    }
   }
+  EXPECT_TRUE(quiet.detections().empty());
+  ASSERT_EQ(quiet.finish().size(), 1u);
   const auto& map = mapper.finish();
+  EXPECT_EQ(quiet.map()[0].position, map[0].position);
+  EXPECT_EQ(quiet.map()[0].frames_seen, map[0].frames_seen);
   ASSERT_EQ(map.size(), 1u);
   EXPECT_EQ(map[0].frames_seen, 5);
   EXPECT_NEAR(map[0].position.z(), 0.1, 1e-6);

@@ -93,7 +93,14 @@ class HeadMapper {
   const std::vector<TrackedHead>& finish();
 
   const std::vector<TrackedHead>& map() const { return map_; }
+  /// Every detection add_frame() measured, for per-frame size metrics and the filtered scores
+  /// (empty when recording is off).
   const std::vector<MeasuredDetection>& detections() const { return measured_; }
+  /// Whether add_frame() keeps a MeasuredDetection per detection (default on). A live consumer
+  /// that never asks for offline scores (the ROS node) turns it off, so that memory does not
+  /// grow with the frames (~110 bytes a detection); the map and the filter are unchanged.
+  void set_record_detections(bool on) { record_ = on; }
+  bool records_detections() const { return record_; }
   bool confirmed(int track_id) const { return confirmed_.count(track_id) > 0; }
   /// Score of a recorded detection after the temporal filter (valid after finish()).
   float filtered_score(const MeasuredDetection& d) const;
@@ -118,6 +125,7 @@ class HeadMapper {
   std::vector<float> depth_scratch_;   // top_centroid's depths, reused across detections
   std::vector<float> select_scratch_;  // top_centroid's order-statistic bucket, reused
   bool finished_ = false;
+  bool record_ = true;
 };
 
 }  // namespace cropsight::tracking

@@ -44,7 +44,14 @@ BroccoliPipeline::BroccoliPipeline(const BroccoliPipelineConfig& cfg, std::share
 }
 
 void BroccoliPipeline::start_pass() {
-  if (cfg_.track) mapper_.emplace(cfg_.mapping());
+  if (!cfg_.track) return;
+  mapper_.emplace(cfg_.mapping());
+  mapper_->set_record_detections(record_detections_);
+}
+
+void BroccoliPipeline::set_record_detections(bool on) {
+  record_detections_ = on;
+  if (mapper_) mapper_->set_record_detections(on);
 }
 
 const BroccoliFrameResult& BroccoliPipeline::process(const RgbdFrame& frame) {

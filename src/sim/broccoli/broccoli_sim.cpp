@@ -1,7 +1,5 @@
 #include "cropsight/sim/broccoli/broccoli_sim.hpp"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -9,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/parallel_for.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/timer.hpp"
 #include "cropsight/sim/random.hpp"
@@ -90,8 +89,8 @@ std::vector<const Mesh*> BroccoliSimulator::scene_for(const Eigen::Vector3d& C) 
       if (!plant_cache_.count(k)) missing.push_back(k);
     }
   std::vector<std::shared_ptr<const Mesh>> built(missing.size());
-  tbb::parallel_for(std::size_t(0), missing.size(),
-                    [&](std::size_t i) { built[i] = field_.build_plant(plants_[missing[i]]); });
+  cropsight::detail::parallel_for_each_index(
+      missing.size(), [&](std::size_t i) { built[i] = field_.build_plant(plants_[missing[i]]); });
   std::map<std::size_t, std::shared_ptr<const Mesh>> plants;
   for (std::size_t i = 0; i < missing.size(); ++i) plants[missing[i]] = built[i];
   for (std::size_t k : needed)
@@ -105,8 +104,8 @@ std::vector<const Mesh*> BroccoliSimulator::scene_for(const Eigen::Vector3d& C) 
   for (int t = t0; t <= t1; ++t)
     if (!tile_cache_.count(t)) tmissing.push_back(t);
   std::vector<std::shared_ptr<const Mesh>> tbuilt(tmissing.size());
-  tbb::parallel_for(std::size_t(0), tmissing.size(),
-                    [&](std::size_t i) { tbuilt[i] = field_.build_tile(tmissing[i], soil_half_width_); });
+  cropsight::detail::parallel_for_each_index(
+      tmissing.size(), [&](std::size_t i) { tbuilt[i] = field_.build_tile(tmissing[i], soil_half_width_); });
   std::map<int, std::shared_ptr<const Mesh>> tiles;
   for (std::size_t i = 0; i < tmissing.size(); ++i) tiles[tmissing[i]] = tbuilt[i];
   for (int t = t0; t <= t1; ++t)

@@ -97,6 +97,9 @@ class BroccoliPipeline {
   BroccoliDetector& detector() { return detector_; }
   /// The sizing + temporal filter state of the current pass (tracking only; throws otherwise).
   const tracking::HeadMapper& mapper() const;
+  /// Whether this pass and the next keep every measured detection (HeadMapper::set_record_detections;
+  /// default on: the evaluators and `detect broccoli --track` need them). Off for a live node.
+  void set_record_detections(bool on);
   const BroccoliFrameResult& last() const { return result_; }
 
  private:
@@ -105,6 +108,7 @@ class BroccoliPipeline {
   std::optional<tracking::HeadMapper> mapper_;
   BroccoliFrameResult result_;
   std::vector<tracking::TrackedHead> no_map_;
+  bool record_detections_ = true;
 };
 
 }  // namespace cropsight::pipeline
