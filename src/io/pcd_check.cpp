@@ -97,6 +97,12 @@ void check_pcd_header(const std::string& bytes, const std::string& where) {
       for (std::size_t i = 1; i <= n; ++i) {
         if (key == "TYPE") {
           if (w[i] != "I" && w[i] != "U" && w[i] != "F") fail(line_no, "TYPE '" + w[i] + "' is not I, U or F");
+          // PCL copies a value of its type's size: F of SIZE 1 or 2 has none, and a missing TYPE
+          // line leaves every field a 4-byte float whatever its SIZE.
+          if (sizes.empty()) fail(line_no, "TYPE before SIZE");
+          if (w[i] == "F" && sizes[i - 1] != 4 && sizes[i - 1] != 8)
+            fail(line_no,
+                 "TYPE F of field " + std::to_string(i) + " needs SIZE 4 or 8, not " + std::to_string(sizes[i - 1]));
         } else if (key == "SIZE") {
           if (!integer(w[i], 1, 8, v) || (v != 1 && v != 2 && v != 4 && v != 8))
             fail(line_no, "SIZE '" + w[i] + "' is not 1, 2, 4 or 8");
@@ -122,7 +128,7 @@ void check_pcd_header(const std::string& bytes, const std::string& where) {
     // VIEWPOINT is PCL's to check.
   }
   if (data.empty()) throw Error(where, "malformed PCD header: no DATA line");
-  if (!have_fields || sizes.size() != fields || !have_width || !have_points)
+  if (!have_fields || sizes.size() != fields || !have_types || !have_width || !have_points)
     throw Error(where, "malformed PCD header (needs FIELDS, SIZE, TYPE, COUNT, WIDTH, HEIGHT, POINTS, DATA)");
   if (counts.empty()) counts.assign(fields, 1);  // COUNT is optional: 1 each
   if (!have_height) height = 1;
@@ -136,6 +142,23 @@ void check_pcd_header(const std::string& bytes, const std::string& where) {
                                                     : 0;
   if (need > body || (data == "binary_compressed" && (unsigned __int128)points * step > ((unsigned __int128)1 << 30)))
     throw Error(where, "PCD header declares " + std::to_string(points) + " points, more than the file can hold");
+  if (data == "binary_compressed") {
+    // PCL resizes the points to the uncompressed size the body declares, then writes every point
+    // the header declares into them: the two must agree.
+    if (body < 8) throw Error(where, "binary_compressed PCD body shorter than its 8-byte size header");
+    const auto u32 = [&](std::size_t at) {
+      std::uint64_t v = 0;
+      for (int k = 3; k >= 0; --k) v = v << 8 | static_cast<unsigned char>(bytes[at + std::size_t(k)]);
+      return v;
+    };
+    const std::uint64_t compressed = u32(body_start), uncompressed = u32(body_start + 4);
+    if (uncompressed != points * step)
+      throw Error(where, "binary_compressed PCD declares " + std::to_string(uncompressed) +
+                             " bytes uncompressed; its header's points take " + std::to_string(points * step));
+    if (compressed > body - 8)
+      throw Error(where, "binary_compressed PCD declares " + std::to_string(compressed) +
+                             " compressed bytes, more than the file holds");
+  }
 }
 
 }  // namespace cropsight::io::detail

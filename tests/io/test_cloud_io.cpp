@@ -118,6 +118,29 @@ TEST(CloudIo, PclTypedReaderAgreesOnPly) {
   }
 }
 
+// PCL's own compressed PCD passes the header checks; the same file with another uncompressed
+// size (PCL would resize the points to it and write past them) does not.
+TEST(CloudIo, PclBinaryCompressedPcdReads) {
+  TempDir tmp;
+  pcl::PointCloud<pcl::PointXYZ> pc;
+  for (int i = 0; i < 30; ++i) pc.push_back(pcl::PointXYZ(0.1f * float(i), -0.2f, 1.0f + 0.01f * float(i)));
+  ASSERT_EQ(pcl::PCDWriter().writeBinaryCompressed((tmp / "c.pcd").string(), pc), 0);
+  const Cloud r = read_cloud(tmp / "c.pcd");
+  ASSERT_EQ(r.points.size(), 30u);
+  EXPECT_TRUE(same_float(r.points[29].x(), pc[29].x));
+  std::string bytes = read_file(tmp / "c.pcd");
+  const std::size_t body = bytes.find("DATA binary_compressed\n") + 23;
+  bytes[body + 4] = char(bytes[body + 4] - 12);  // uncompressed size: one point less
+  write_file_atomic(tmp / "short.pcd", bytes);
+  try {
+    read_cloud(tmp / "short.pcd");
+    ADD_FAILURE() << "no error for a compressed PCD of the wrong uncompressed size";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("bytes uncompressed; its header's points take 360"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(CloudIo, UnorganisedRoundTrip) {
   TempDir tmp;
   Cloud c;
@@ -227,6 +250,11 @@ TEST(CloudIo, FuzzFindingsAreErrors) {
       {"points_before_size.pcd",
        "VERSION .7\nFIELDS x y z\nPOINTS 2\nSIZE 8 8 8\nTYPE F F F\nWIDTH 2\nDATA ascii\n1 2 3\n4 5 6\n",
        "line 4: SIZE after POINTS"},
+      {"float_of_two_bytes.pcd",
+       "VERSION .7\nFIELDS x y z\nSIZE 4 4 2\nTYPE F F F\nWIDTH 1\nPOINTS 1\nDATA ascii\n0 0 1\n",
+       "line 4: TYPE F of field 3 needs SIZE 4 or 8, not 2"},
+      {"no_type.pcd", "VERSION .7\nFIELDS x y z\nSIZE 4 4 2\nWIDTH 1\nPOINTS 1\nDATA ascii\n0 0 1\n",
+       "malformed PCD header (needs"},
       {"blank_line_ends_header.pcd",
        "VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n  \nWIDTH 1\nPOINTS 1\nDATA ascii\n0 0 1\n", "no DATA line"},
   };
