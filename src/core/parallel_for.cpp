@@ -24,12 +24,6 @@ void parallel_for_ranges(std::size_t n, int threads, std::size_t grain, RangeBod
     body(ctx, 0, n);
     return;
   }
-  // The arena caps the concurrency at t (the calling thread joins it); TBB's own pool supplies
-  // the workers, so no thread is started per call and nested loops do not oversubscribe. One
-  // arena per calling thread and size, kept: a fresh arena per call made the caller spin while
-  // TBB attached a worker to it (measured on bench_grape's 1024-row GBDT prediction: twice the
-  // caller's CPU time, and slower), and per calling thread so that two callers still get
-  // `threads` each, as with threads of their own.
 #if defined(__SANITIZE_THREAD__)
   // ThreadSanitizer build (make tsan): TBB's library is not instrumented, so TSan cannot see its
   // synchronisation and reports every loop as a race inside TBB's inlined headers. Plain threads,
@@ -38,7 +32,7 @@ void parallel_for_ranges(std::size_t n, int threads, std::size_t grain, RangeBod
   std::vector<std::thread> workers;
   std::vector<std::exception_ptr> errors(t);
   const std::size_t piece = (n + t - 1) / t;
-  for (std::size_t k = 1; k < t; ++k)
+  for (std::size_t k = 1; k < t && k * piece < n; ++k)  // no empty piece
     workers.emplace_back([&, k] {
       try {
         body(ctx, std::min(n, k * piece), std::min(n, (k + 1) * piece));
@@ -56,6 +50,12 @@ void parallel_for_ranges(std::size_t n, int threads, std::size_t grain, RangeBod
     if (e) std::rethrow_exception(e);
   return;
 #endif
+  // The arena caps the concurrency at t (the calling thread joins it); TBB's own pool supplies
+  // the workers, so no thread is started per call and nested loops do not oversubscribe. One
+  // arena per calling thread and size, kept: a fresh arena per call made the caller spin while
+  // TBB attached a worker to it (measured on bench_grape's 1024-row GBDT prediction: twice the
+  // caller's CPU time, and slower), and per calling thread so that two callers still get
+  // `threads` each, as with threads of their own.
   thread_local std::map<std::size_t, std::unique_ptr<tbb::task_arena>> arenas;
   std::unique_ptr<tbb::task_arena>& arena = arenas[t];
   if (!arena) arena = std::make_unique<tbb::task_arena>(static_cast<int>(t));

@@ -229,6 +229,9 @@ TEST(CloudIo, FuzzFindingsAreErrors) {
        "property float z\nend_header\n0123456789ab",
        "PLY data ends early"},
       {"no_end.ply", ply_head + "property float x\n", "no 'end_header'"},
+      // A 30-minute run: a CR inside an obj_info line made PCL's callback assert.
+      {"cr_in_obj_info.ply", "ply\nobj_info\r<\rply\n" + ply_head.substr(4) + "property float x\nend_header\n",
+       "line 2: a control character in a header line"},
       // Second sweep: green and blue without red wrote past PCL's point (assert).
       {"green_without_red.ply",
        ply_head + "property float x\nproperty float y\nproperty float z\nproperty uchar green\nproperty uchar blue\n"
