@@ -98,9 +98,8 @@ class HeadMapper {
   const std::vector<MeasuredDetection>& detections() const { return measured_; }
   /// Whether add_frame() keeps a MeasuredDetection per detection (default on). A live consumer
   /// that never asks for offline scores (the ROS node) turns it off, so that memory does not
-  /// grow with the frames (~110 bytes a detection); the map and the filter are unchanged.
+  /// grow with the frames (112 bytes a detection); the map and the filter are unchanged.
   void set_record_detections(bool on) { record_ = on; }
-  bool records_detections() const { return record_; }
   bool confirmed(int track_id) const { return confirmed_.count(track_id) > 0; }
   /// Score of a recorded detection after the temporal filter (valid after finish()).
   float filtered_score(const MeasuredDetection& d) const;
