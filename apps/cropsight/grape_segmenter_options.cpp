@@ -3,7 +3,6 @@
 #include <filesystem>
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/io/config_yaml.hpp"
 
 namespace cropsight::cli {
 
@@ -43,17 +42,9 @@ void GrapeSegmenterOptions::add_options(CLI::App* cmd, const std::string& defaul
 pipeline::GrapeSegmenterConfig GrapeSegmenterOptions::config() const {
   const std::string preset = !preset_.empty() ? preset_ : flags_.count("model") ? "" : default_preset_;
   const std::string ext = std::filesystem::path(preset).extension().string();
-  if (preset.empty() || ext == ".pt" || ext == ".json") {
-    ConfigMap flags = flags_;
-    if (!preset.empty()) {  // a model file where a preset goes: that model, default settings
-      if (flags.count("model")) throw Error(preset_flag_, "names a model file; give it or --model, not both");
-      flags["model"] = preset;
-    }
-    pipeline::GrapeSegmenterConfig cfg;
-    apply_config(cfg, flags, "command line");
-    return cfg;
-  }
-  return pipeline::load_grape_segmenter_config(io::find_preset(preset), flags_, "command line");
+  if ((ext == ".pt" || ext == ".json") && flags_.count("model"))
+    throw Error(preset_flag_, "names a model file; give it or --model, not both");
+  return pipeline::grape_segmenter_config(preset, flags_, "command line");
 }
 
 void GrapeSegmenterOptions::describe(const pipeline::GrapeSegmenterConfig& cfg, nlohmann::json& j) {

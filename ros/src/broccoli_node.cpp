@@ -3,6 +3,7 @@
 #include <vision_msgs/Detection3DArray.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include "cloud_conversions.hpp"
 #include "cropsight/core/error.hpp"
 #include "ros_conversions.hpp"
 
@@ -19,6 +20,9 @@ BroccoliNode::BroccoliNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), p
   o.sets = read_set_param(pnh_);
   o.track = pnh_.param("track", true);
   use_color_ = pnh_.param("use_color", false);
+  const std::string input = pnh_.param<std::string>("input", "depth");
+  if (input != "depth" && input != "cloud") throw Error("~input", "must be depth or cloud, got '" + input + "'");
+  cloud_input_ = input == "cloud";
   depth_scale_ = pnh_.param("depth_scale", 0.001);
   map_file_ = pnh_.param<std::string>("map_file", "");
   field_frame_ = pnh_.param<std::string>("field_frame", "field");
@@ -37,8 +41,8 @@ BroccoliNode::BroccoliNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), p
   lazy_->add_output(&map_pub_);
   lazy_->add_output(&debug_pub_);
   lazy_->update();
-  ROS_INFO("cropsight broccoli node: model %s (%s), tracking %s, colour %s", o.model.c_str(),
-           runner_->pipeline_name().c_str(), o.track ? "on" : "off", use_color_ ? "on" : "off");
+  ROS_INFO("cropsight broccoli node: model %s (%s), input %s, tracking %s, colour %s", o.model.c_str(),
+           runner_->pipeline_name().c_str(), input.c_str(), o.track ? "on" : "off", use_color_ ? "on" : "off");
 }
 
 BroccoliNode::~BroccoliNode() {
@@ -52,6 +56,10 @@ BroccoliNode::~BroccoliNode() {
 }
 
 void BroccoliNode::connect() {
+  if (cloud_input_) {
+    cloud_sub_ = nh_.subscribe("points", std::uint32_t(queue_), &BroccoliNode::on_cloud, this);
+    return;
+  }
   depth_sub_.subscribe(nh_, "depth/image_raw", queue_);
   info_sub_.subscribe(nh_, "depth/camera_info", queue_);
   if (exact_sync_) {
@@ -80,6 +88,7 @@ void BroccoliNode::connect() {
 }
 
 void BroccoliNode::disconnect() {
+  cloud_sub_.shutdown();
   depth_sub_.unsubscribe();
   info_sub_.unsubscribe();
   color_sub_.unsubscribe();
@@ -96,17 +105,34 @@ void BroccoliNode::on_frame(const sensor_msgs::ImageConstPtr& depth, const senso
   if (!assemble_frame(*info, depth.get(), color.get(), depth_scale_,
                       {info_sub_.getTopic(), depth_sub_.getTopic(), color_sub_.getTopic()}, *health_, f))
     return;
+  run_frame(f, depth->header, depth_sub_.getTopic(), color != nullptr);
+}
+
+void BroccoliNode::on_cloud(const sensor_msgs::PointCloud2ConstPtr& cloud) {
+  const std::string topic = cloud_sub_.getTopic();
+  bridge::FrameBuffers f;
+  try {
+    f = frame_from_organised_cloud(*cloud, depth_scale_, use_color_, topic);
+  } catch (const Error& e) {
+    health_->skipped(topic, e.problem());
+    return;
+  }
+  run_frame(f, cloud->header, topic, use_color_);
+}
+
+void BroccoliNode::run_frame(bridge::FrameBuffers& f, const std_msgs::Header& header, const std::string& topic,
+                             bool color) {
   f.index = frame_;
-  f.timestamp = depth->header.stamp.toSec();
+  f.timestamp = header.stamp.toSec();
   bridge::BroccoliFrameOut out;
-  if (!run_pipeline(*health_, depth_sub_.getTopic(), [&] { out = runner_->process(f); })) return;
+  if (!run_pipeline(*health_, topic, [&] { out = runner_->process(f); })) return;
   ++frame_;
 
   vision_msgs::Detection3DArray arr;
-  arr.header = depth->header;
+  arr.header = header;
   for (const bridge::BroccoliHead& h : out.heads) {
     vision_msgs::Detection3D d;
-    d.header = depth->header;
+    d.header = header;
     vision_msgs::ObjectHypothesisWithPose hyp;
     hyp.id = 1;  // the broccoli head class
     hyp.score = h.score;
@@ -121,11 +147,11 @@ void BroccoliNode::on_frame(const sensor_msgs::ImageConstPtr& depth, const senso
     arr.detections.push_back(d);
   }
   heads_pub_.publish(arr);
-  if (map_pub_.getNumSubscribers() > 0) publish_map(depth->header);
+  if (map_pub_.getNumSubscribers() > 0) publish_map(header);
   if (debug_pub_.getNumSubscribers() > 0) {
     sensor_msgs::Image im = color ? image_from_rgb(f.rgb, f.camera.width, f.camera.height)
                                   : depth_preview(f.depth, f.camera.width, f.camera.height);
-    im.header = depth->header;
+    im.header = header;
     for (const bridge::BroccoliHead& h : out.heads)
       draw_box(im, h.box_x, h.box_y, h.box_x + h.box_w - 1, h.box_y + h.box_h - 1, kHeadColour);
     debug_pub_.publish(im);

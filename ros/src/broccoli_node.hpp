@@ -5,9 +5,16 @@
 // written on shutdown when ~map_file is set. One callback thread (ros::spin).
 //
 // Topics (relative, remap them): in  depth/image_raw, depth/camera_info, [color/image_raw]
+//                                    or, with ~input = cloud, points (an organised PointCloud2)
 //                                out heads, field_map, debug_image, diagnostics
-// Parameters (~): model, preset, set, track (true), use_color (false), depth_scale (0.001 m per
-// 16UC1 unit), map_file (""), lazy (true), queue_size (5), exact_sync (false), slop_s (0.02).
+// Parameters (~): model, preset, set, track (true), input (depth | cloud), use_color (false),
+// depth_scale (0.001 m per 16UC1 unit), map_file (""), lazy (true), queue_size (5), exact_sync
+// (false), slop_s (0.02).
+// Organised clouds (~input = cloud; depth_image_proc's point_cloud_xyz / xyzrgb, a driver's
+// depth/points): one point per pixel in the camera optical frame. The node turns the cloud back
+// into a depth image (z / depth_scale) with the intrinsics fitted to the points, so that the
+// pipeline runs exactly as on the depth image (cloud_conversions.hpp); colour, with use_color,
+// comes from the cloud's rgb field.
 // Synchronisation: message_filters ApproximateTime within slop_s (default), or with
 // exact_sync = true ExactTime (equal stamps only, as drivers stamp an image and its camera_info);
 // the two measured the same latency (docs/ros.md).
@@ -18,6 +25,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
+#include <sensor_msgs/PointCloud2.h>
 
 #include <memory>
 #include <optional>
@@ -47,17 +55,21 @@ class BroccoliNode {
   void on_depth_frame(const sensor_msgs::ImageConstPtr& depth, const sensor_msgs::CameraInfoConstPtr& info);
   void on_frame(const sensor_msgs::ImageConstPtr& depth, const sensor_msgs::CameraInfoConstPtr& info,
                 const sensor_msgs::ImageConstPtr& color);
+  void on_cloud(const sensor_msgs::PointCloud2ConstPtr& cloud);
+  // One assembled frame through the pipeline and out on every topic.
+  void run_frame(bridge::FrameBuffers& f, const std_msgs::Header& header, const std::string& topic, bool color);
   void publish_map(const std_msgs::Header& header);
 
   ros::NodeHandle nh_, pnh_;
   std::unique_ptr<bridge::BroccoliRunner> runner_;
-  bool use_color_ = false;
+  bool use_color_ = false, cloud_input_ = false;
   double depth_scale_ = 0.001, slop_s_ = 0.02;
   int queue_ = 5;
   std::string map_file_, field_frame_;
   int frame_ = 0;
   message_filters::Subscriber<Image> depth_sub_, color_sub_;
   message_filters::Subscriber<Info> info_sub_;
+  ros::Subscriber cloud_sub_;
   std::unique_ptr<message_filters::Synchronizer<DepthPolicy>> depth_sync_;
   std::unique_ptr<message_filters::Synchronizer<ColorPolicy>> color_sync_;
   std::unique_ptr<message_filters::Synchronizer<DepthExact>> depth_exact_;

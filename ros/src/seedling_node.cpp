@@ -4,8 +4,8 @@
 #include <vision_msgs/Detection3DArray.h>
 
 #include <cmath>
-#include <cstring>
 
+#include "cloud_conversions.hpp"
 #include "cropsight/core/error.hpp"
 #include "ros_conversions.hpp"
 
@@ -113,23 +113,8 @@ void SeedlingNode::on_pair(const sensor_msgs::ImageConstPtr& left, const sensor_
   }
   det_pub_.publish(arr);
   if (points_pub_.getNumSubscribers() > 0) {
-    sensor_msgs::PointCloud2 pc;
+    sensor_msgs::PointCloud2 pc = make_cloud(out.points);
     pc.header = left->header;
-    pc.height = 1;
-    pc.width = std::uint32_t(out.points.size() / 3);
-    for (const char* name : {"x", "y", "z"}) {
-      sensor_msgs::PointField f;
-      f.name = name;
-      f.offset = std::uint32_t(4 * pc.fields.size());
-      f.datatype = sensor_msgs::PointField::FLOAT32;
-      f.count = 1;
-      pc.fields.push_back(f);
-    }
-    pc.point_step = 12;
-    pc.row_step = 12 * pc.width;
-    pc.is_dense = true;
-    pc.data.resize(out.points.size() * 4);
-    std::memcpy(pc.data.data(), out.points.data(), pc.data.size());
     points_pub_.publish(pc);
   }
 }

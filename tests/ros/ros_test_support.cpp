@@ -10,6 +10,8 @@
 #include <fstream>
 #include <thread>
 
+#include "cropsight/core/error.hpp"
+
 namespace fs = std::filesystem;
 
 namespace cropsight::ros_test {
@@ -17,6 +19,15 @@ namespace cropsight::ros_test {
 int run(const std::string& command) {
   const int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
 }
 
 std::string cli() { return CROPSIGHT_CLI; }

@@ -3,6 +3,7 @@
 #include <sys/types.h>
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,8 @@ namespace cropsight::ros_test {
 
 /// Runs a shell command; returns its exit status (-1 when it did not exit normally).
 int run(const std::string& command);
+/// The message of the cropsight::Error that `f` throws; "" when it throws none.
+std::string error_of(const std::function<void()>& f);
 /// The cropsight CLI built beside the tests.
 std::string cli();
 /// An empty folder under the build tree for one test.

@@ -15,6 +15,8 @@ namespace fs = std::filesystem;
 namespace cropsight::ros_io {
 namespace {
 
+using ros_test::error_of;
+
 // A 3-frame sequence with depth, colour and poses, every pixel distinct.
 fs::path make_sequence(const fs::path& dir, bool poses = true) {
   bridge::CameraModel cam;
@@ -82,15 +84,6 @@ TEST(BagIo, RoundTripIsExactForDepthColourCameraAndPoses) {
     EXPECT_EQ(std::string(std::istreambuf_iterator<char>(x), {}), std::string(std::istreambuf_iterator<char>(y), {}))
         << f;
   }
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(BagIo, BadBagsAreOneErrorNamingTheFileAndLeaveNoSequence) {

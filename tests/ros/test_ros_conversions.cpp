@@ -7,9 +7,12 @@
 
 #include "cropsight/core/error.hpp"
 #include "ros_conversions.hpp"
+#include "ros_test_support.hpp"
 
 namespace cropsight::ros_io {
 namespace {
+
+using ros_test::error_of;
 
 bridge::CameraModel camera(int w, int h) {
   bridge::CameraModel c;
@@ -19,15 +22,6 @@ bridge::CameraModel camera(int w, int h) {
   c.cx = w / 2.0;
   c.cy = h / 2.0;
   return c;
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(RosConversions, Depth16uc1RoundTripsWithPaddedRows) {

@@ -14,12 +14,21 @@
 #include <vision_msgs/Detection3DArray.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
 
+#include <cropsight_msgs/GrapeBunchArray.h>
+#include <sensor_msgs/PointCloud2.h>
+
+#include "cloud_conversions.hpp"
 #include "cropsight/bridge/seedling_runner.hpp"
+#include "cropsight/bridge/sequence_io.hpp"
 #include "ros_conversions.hpp"
 #include "ros_test_support.hpp"
 
@@ -72,6 +81,22 @@ std::vector<BagFrame> read_bag(const fs::path& bag_path) {
   return out;
 }
 
+// A simulated broccoli pass of `n` frames in d/seq, as a bag (its frames) and as `detect
+// broccoli`'s output with `model` (one JSON per frame).
+void simulated_broccoli_pass(const fs::path& d, int n, int seed, const std::string& model,
+                             std::vector<BagFrame>& frames, std::vector<nlohmann::json>& expected) {
+  ASSERT_EQ(run(cli() + " simulate broccoli --frames " + std::to_string(n) + " --seed " + std::to_string(seed) +
+                " --out " + (d / "seq").string() + " >/dev/null 2>&1"),
+            0);
+  ASSERT_EQ(run(cli() + " export " + (d / "seq").string() + " --bag " + (d / "s.bag").string() + " >/dev/null"), 0);
+  ASSERT_EQ(run(cli() + " detect broccoli --data " + (d / "seq").string() + " --model " + model + " --out " +
+                (d / "cli.jsonl").string() + " --quiet >/dev/null"),
+            0);
+  expected = read_lines(d / "cli.jsonl");
+  frames = read_bag(d / "s.bag");
+  ASSERT_EQ(frames.size(), expected.size());
+}
+
 // Publishers of a node's inputs in namespace `ns`, and a wait until the node subscribed to them.
 struct Inputs {
   ros::Publisher depth, info, color;
@@ -90,6 +115,23 @@ struct Inputs {
   }
 };
 
+// The node's heads of one frame against the CLI's detections of it (score, centroid in m).
+void expect_heads_equal(const vision_msgs::Detection3DArray& msg, const nlohmann::json& cli_dets, double score_tol,
+                        double position_tol, std::size_t frame) {
+  ASSERT_EQ(msg.detections.size(), cli_dets.size()) << "frame " << frame;
+  for (std::size_t j = 0; j < msg.detections.size(); ++j) {
+    const auto& r = msg.detections[j].results.at(0);
+    EXPECT_NEAR(r.score, cli_dets[j]["score"].get<double>(), score_tol) << "frame " << frame;
+    const auto& p = r.pose.pose.position;
+    for (int a = 0; a < 3; ++a)
+      EXPECT_NEAR(a == 0   ? p.x
+                  : a == 1 ? p.y
+                           : p.z,
+                  cli_dets[j]["centroid"][a].get<double>(), position_tol)
+          << "frame " << frame << " head " << j;
+  }
+}
+
 class RosNodes : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -100,15 +142,9 @@ class RosNodes : public ::testing::Test {
 TEST_F(RosNodes, BroccoliNodeDetectionsEqualTheCli) {
   const fs::path d = scratch_dir("broccoli_node");
   const std::string model = kSource + "/models/broccoli-oes-uk.json";
-  ASSERT_EQ(run(cli() + " simulate broccoli --frames 8 --seed 4242 --out " + (d / "seq").string() + " >/dev/null 2>&1"),
-            0);
-  ASSERT_EQ(run(cli() + " export " + (d / "seq").string() + " --bag " + (d / "s.bag").string() + " >/dev/null"), 0);
-  ASSERT_EQ(run(cli() + " detect broccoli --data " + (d / "seq").string() + " --model " + model + " --out " +
-                (d / "cli.jsonl").string() + " --quiet >/dev/null"),
-            0);
-  const auto expected = read_lines(d / "cli.jsonl");
-  const auto frames = read_bag(d / "s.bag");
-  ASSERT_EQ(frames.size(), expected.size());
+  std::vector<BagFrame> frames;
+  std::vector<nlohmann::json> expected;
+  ASSERT_NO_FATAL_FAILURE(simulated_broccoli_pass(d, 8, 4242, model, frames, expected));
 
   NodeProcess node(kBin + "/cropsight_broccoli_node",
                    {"__ns:=/b1", "__name:=broccoli", "_model:=" + model, "_map_file:=" + (d / "map.csv").string()},
@@ -125,16 +161,8 @@ TEST_F(RosNodes, BroccoliNodeDetectionsEqualTheCli) {
   }
   for (std::size_t k = 0; k < frames.size(); ++k) {
     const auto& msg = got[frames[k].stamp.toSec()];
-    const auto& cli_dets = expected[k]["detections"];
     EXPECT_EQ(msg.header.frame_id, frames[k].depth->header.frame_id) << "headers are copied from the input";
-    ASSERT_EQ(msg.detections.size(), cli_dets.size()) << "frame " << k;
-    for (std::size_t j = 0; j < msg.detections.size(); ++j) {
-      const auto& r = msg.detections[j].results.at(0);
-      EXPECT_NEAR(r.score, cli_dets[j]["score"].get<double>(), 1e-6);
-      EXPECT_NEAR(r.pose.pose.position.x, cli_dets[j]["centroid"][0].get<double>(), 1e-6);
-      EXPECT_NEAR(r.pose.pose.position.y, cli_dets[j]["centroid"][1].get<double>(), 1e-6);
-      EXPECT_NEAR(r.pose.pose.position.z, cli_dets[j]["centroid"][2].get<double>(), 1e-6);
-    }
+    expect_heads_equal(msg, expected[k]["detections"], 1e-6, 1e-6, k);
   }
   EXPECT_EQ(node.stop(), 0);
   EXPECT_TRUE(fs::exists(d / "map.csv")) << "the field map is saved on shutdown";
@@ -306,6 +334,189 @@ TEST_F(RosNodes, SeedlingNodeEnvelopeEqualsTheCli) {
   }
   EXPECT_GT(found, 0) << "the simulated pairs hold seedlings";
   EXPECT_EQ(node.stop(), 0);
+}
+
+TEST_F(RosNodes, BroccoliNodeOnOrganisedCloudsEqualsTheCli) {
+  // The frames of a simulated pass as organised clouds (what depth_image_proc publishes): the
+  // node turns them back into depth with fitted intrinsics, so its heads equal the CLI's on the
+  // depth images (to float precision of the fit).
+  const fs::path d = scratch_dir("broccoli_cloud");
+  const std::string model = kSource + "/models/broccoli-oes-uk.json";
+  std::vector<BagFrame> frames;
+  std::vector<nlohmann::json> expected;
+  ASSERT_NO_FATAL_FAILURE(simulated_broccoli_pass(d, 4, 4246, model, frames, expected));
+  NodeProcess node(kBin + "/cropsight_broccoli_node",
+                   {"__ns:=/b3", "__name:=broccoli", "_model:=" + model, "_input:=cloud"}, (d / "node.log").string());
+  ros::NodeHandle nh;
+  std::map<double, vision_msgs::Detection3DArray> got;
+  ros::Subscriber sub = nh.subscribe<vision_msgs::Detection3DArray>(
+      "/b3/heads", 10, [&](const vision_msgs::Detection3DArray::ConstPtr& m) { got[m->header.stamp.toSec()] = *m; });
+  ros::Publisher points = nh.advertise<sensor_msgs::PointCloud2>("/b3/points", 10);
+  ASSERT_TRUE(spin_until([&] { return points.getNumSubscribers() > 0; }, 30)) << "the node did not subscribe";
+  int heads = 0;
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const BagFrame& f = frames[k];
+    cropsight::bridge::FrameBuffers fb;
+    fb.camera = cropsight::ros_io::camera_from_info(*f.info, 0.001, "info");
+    fb.depth = cropsight::ros_io::depth_from_image(*f.depth, fb.camera, "depth");
+    sensor_msgs::PointCloud2 pc = cropsight::ros_io::organised_cloud_from_frame(fb);
+    pc.header = f.depth->header;
+    points.publish(pc);
+    ASSERT_TRUE(spin_until([&] { return got.count(f.stamp.toSec()) > 0; }, 30)) << "no heads for frame " << k;
+    const auto& msg = got[f.stamp.toSec()];
+    EXPECT_EQ(msg.header.frame_id, f.depth->header.frame_id);
+    expect_heads_equal(msg, expected[k]["detections"], 1e-4, 1e-5, k);
+    heads += int(msg.detections.size());
+  }
+  EXPECT_GT(heads, 0) << "the simulated frames hold heads";
+  // An unorganised cloud is skipped, counted, and the node lives.
+  sensor_msgs::PointCloud2 flat = cropsight::ros_io::make_cloud({0.f, 0.f, 1.f});
+  flat.header.stamp = ros::Time(99);
+  points.publish(flat);
+  spin_until([] { return false; }, 0.5);
+  EXPECT_TRUE(node.alive());
+  EXPECT_EQ(got.count(99.0), 0u);
+  EXPECT_EQ(node.stop(), 0);
+}
+
+// A 160x120 RGB-D frame of a vine for the grape node: a wall at 1.5 m, a purple bunch bulging
+// toward the camera at ~0.8 m under a brown peduncle, and a second, smaller bunch; colour is
+// registered to depth. `boxes`: their COCO boxes (1 bunch, 2 peduncle) as x, y, w, h.
+cropsight::bridge::FrameBuffers grape_frame(std::vector<std::array<int, 5>>& boxes) {
+  cropsight::bridge::FrameBuffers f;
+  f.camera.width = 160, f.camera.height = 120;
+  f.camera.fx = f.camera.fy = 150, f.camera.cx = 80, f.camera.cy = 60;
+  f.depth.assign(160 * 120, 1500);
+  f.rgb.resize(3 * 160 * 120);
+  auto paint = [&](int u, int v, std::uint16_t z, std::array<std::uint8_t, 3> c) {
+    f.depth[std::size_t(v * 160 + u)] = z;
+    for (int k = 0; k < 3; ++k) f.rgb[std::size_t(3 * (v * 160 + u) + k)] = c[std::size_t(k)];
+  };
+  for (int v = 0; v < 120; ++v)
+    for (int u = 0; u < 160; ++u) paint(u, v, 1500, {60, 140, 50});
+  auto bunch = [&](int cu, int cv, int r, int z) {
+    for (int v = cv - r; v <= cv + r; ++v)
+      for (int u = cu - r; u <= cu + r; ++u) {
+        const int d2 = (u - cu) * (u - cu) + (v - cv) * (v - cv);
+        if (d2 <= r * r) paint(u, v, std::uint16_t(z - int(std::sqrt(double(r * r - d2)) * 5)), {90, 30, 110});
+      }
+  };
+  bunch(80, 75, 20, 800);
+  for (int v = 35; v < 55; ++v)
+    for (int u = 78; u <= 81; ++u) paint(u, v, 780, {120, 90, 40});
+  bunch(130, 80, 10, 900);
+  boxes = {{60, 55, 41, 41, 1}, {76, 33, 8, 22, 2}, {120, 70, 21, 21, 1}};
+  return f;
+}
+
+TEST_F(RosNodes, GrapeNodeBunchesEqualTheCli) {
+  const fs::path d = scratch_dir("grape_node");
+  std::vector<std::array<int, 5>> boxes;
+  cropsight::bridge::FrameBuffers frame = grape_frame(boxes);
+  {
+    cropsight::bridge::SequenceSink sink((d / "seq").string(), frame.camera, true);
+    sink.write(frame);
+    sink.finish();
+  }
+  nlohmann::json coco = nlohmann::json::array();
+  vision_msgs::Detection2DArray det_msg;
+  for (const auto& b : boxes) {
+    coco.push_back({{"image_id", 0}, {"category_id", b[4]}, {"bbox", {b[0], b[1], b[2], b[3]}}, {"score", 0.9}});
+    vision_msgs::Detection2D det;
+    vision_msgs::ObjectHypothesisWithPose hyp;
+    hyp.id = b[4];
+    hyp.score = 0.9;
+    det.results.push_back(hyp);
+    det.bbox.center.x = b[0] + 0.5 * b[2];
+    det.bbox.center.y = b[1] + 0.5 * b[3];
+    det.bbox.size_x = b[2];
+    det.bbox.size_y = b[3];
+    det_msg.detections.push_back(det);
+  }
+  std::ofstream(d / "boxes.json") << coco.dump();
+  const std::string segmenter = kSource + "/models/grape-gbdt-fast.json";
+  const std::string files = " --color " + (d / "seq/color/000000.png").string() + " --depth " +
+                            (d / "seq/depth/000000.png").string() + " --camera " + (d / "seq/camera.yaml").string() +
+                            " --segmenter " + segmenter + " --threads 1";
+  // Boxes from the user's detector (`detections`), and from the project's detector; then the
+  // boxes again with the label the model gives most points of bunch A taken as "peduncle" (the
+  // shipped models label no peduncle on this frame), so that a cut point is compared too.
+  std::string set;
+  for (const std::string tag : {"boxes", "detector", "cut"}) {
+    const bool own_detector = tag == "detector";
+    const fs::path out = d / ("cli_" + tag);
+    ASSERT_EQ(run(cli() + " detect grape" + files +
+                  (own_detector ? " --detector " + kSource + "/models/detector-grape.onnx"
+                                : " --detections " + (d / "boxes.json").string()) +
+                  (set.empty() ? "" : " --set " + set) + " --out " + out.string() + " >/dev/null"),
+              0);
+    std::ifstream file(out / "cut_points.json");
+    const nlohmann::json e = nlohmann::json::parse(file);
+    const std::string ns = "/g_" + tag;
+    NodeProcess node(
+        kBin + "/cropsight_grape_node",
+        {"__ns:=" + ns, "__name:=grape", "_segmenter:=" + segmenter, "_threads:=1",
+         "_detector:=" + (own_detector ? std::string("models/detector-grape.onnx") : "none"), "_set:=" + set},
+        (d / ("node_" + tag + ".log")).string());
+    ros::NodeHandle nh;
+    std::map<double, cropsight_msgs::GrapeBunchArray> got;
+    ros::Subscriber sub = nh.subscribe<cropsight_msgs::GrapeBunchArray>(
+        ns + "/bunches", 5,
+        [&](const cropsight_msgs::GrapeBunchArray::ConstPtr& m) { got[m->header.stamp.toSec()] = *m; });
+    Inputs in(nh, ns, true);
+    ros::Publisher dets = nh.advertise<vision_msgs::Detection2DArray>(ns + "/detections", 5);
+    ASSERT_TRUE(spin_until([&] { return in.connected() && (own_detector || dets.getNumSubscribers() > 0); }, 30))
+        << "the node did not subscribe";
+    const ros::Time t(30);
+    sensor_msgs::Image depth = cropsight::ros_io::image_from_depth(frame.depth, 160, 120);
+    sensor_msgs::Image color = cropsight::ros_io::image_from_rgb(frame.rgb, 160, 120);
+    sensor_msgs::CameraInfo info = cropsight::ros_io::info_from_camera(frame.camera);
+    depth.header.stamp = color.header.stamp = info.header.stamp = det_msg.header.stamp = t;
+    color.header.frame_id = depth.header.frame_id = info.header.frame_id = "vine_optical";
+    in.color.publish(color);
+    in.depth.publish(depth);
+    in.info.publish(info);
+    if (!own_detector) dets.publish(det_msg);
+    ASSERT_TRUE(spin_until([&] { return got.count(t.toSec()) > 0; }, 60)) << tag << ": no bunches";
+    const auto& msg = got[t.toSec()];
+    EXPECT_EQ(msg.header.frame_id, "vine_optical");
+    const auto& bunches = e["bunches"];
+    ASSERT_EQ(msg.bunches.size(), bunches.size()) << tag;
+    if (!own_detector) {
+      EXPECT_EQ(bunches.size(), 2u) << "two bunch boxes, apart";
+    }
+    for (std::size_t k = 0; k < bunches.size(); ++k) {
+      const auto& m = msg.bunches[k];
+      const auto& b = bunches[k];
+      EXPECT_EQ(std::vector<int>({m.roi_x, m.roi_y, m.roi_width, m.roi_height}), b["roi"].get<std::vector<int>>());
+      ASSERT_EQ(std::size_t(m.cloud.width), b["points"].get<std::size_t>()) << tag << " bunch " << k;
+      ASSERT_EQ(m.cloud.fields.size(), 5u);
+      ASSERT_EQ(m.cloud.fields[4].name, "label");
+      std::vector<long> counts(6, 0);
+      for (std::size_t i = 0; i < m.cloud.width; ++i) {
+        std::int32_t label;
+        std::memcpy(&label, m.cloud.data.data() + i * m.cloud.point_step + m.cloud.fields[4].offset, 4);
+        if (label >= 0 && label < 6) ++counts[std::size_t(label)];
+      }
+      EXPECT_EQ(counts, b["label_counts"].get<std::vector<long>>()) << tag << " bunch " << k;
+      EXPECT_EQ(bool(m.has_cut_point), !b["cut_point"].is_null());
+      if (m.has_cut_point) {
+        EXPECT_NEAR(m.cut_position.x, b["cut_point"]["position_m"][0].get<double>(), 1e-6);
+        EXPECT_NEAR(m.cut_position.z, b["cut_point"]["position_m"][2].get<double>(), 1e-6);
+        EXPECT_NEAR(m.cut_direction.y, b["cut_point"]["direction"][1].get<double>(), 1e-6);
+        EXPECT_EQ(m.cut_confidence, b["cut_point"]["confidence"].get<int>());
+      }
+    }
+    if (tag == "cut") {
+      EXPECT_FALSE(e["bunches"][0]["cut_point"].is_null()) << "the label with most points of A gives a cut point";
+    }
+    EXPECT_EQ(node.stop(), 0);
+    if (tag == "boxes") {
+      const auto counts = bunches[0]["label_counts"].get<std::vector<long>>();
+      set = "cut_point.peduncle_label=" +
+            std::to_string(std::max_element(counts.begin() + 1, counts.end()) - counts.begin());
+    }
+  }
 }
 
 }  // namespace

@@ -27,6 +27,21 @@ GrapeSegmenterConfig load_grape_segmenter_config(const std::filesystem::path& pr
   return cfg;
 }
 
+GrapeSegmenterConfig grape_segmenter_config(const std::string& preset_or_model, const ConfigMap& overrides,
+                                            const std::string& overrides_where) {
+  const std::string ext = std::filesystem::path(preset_or_model).extension().string();
+  if (!preset_or_model.empty() && ext != ".pt" && ext != ".json")
+    return load_grape_segmenter_config(io::find_preset(preset_or_model), overrides, overrides_where);
+  ConfigMap values = overrides;
+  if (!preset_or_model.empty()) {  // a model file where a preset goes: that model, default settings
+    if (values.count("model")) throw Error(preset_or_model, "is a model file; give it or a 'model' override, not both");
+    values["model"] = preset_or_model;
+  }
+  GrapeSegmenterConfig cfg;
+  apply_config(cfg, values, overrides_where);
+  return cfg;
+}
+
 namespace {
 // Checks `cfg` before any model is loaded (a bad value costs no model load), then loads it.
 GrapeModel load_model(const GrapeSegmenterConfig& cfg, const std::string& where) {

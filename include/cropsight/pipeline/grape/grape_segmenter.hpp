@@ -49,6 +49,14 @@ struct GrapeSegmenterConfig {
 GrapeSegmenterConfig load_grape_segmenter_config(const std::filesystem::path& preset, const ConfigMap& overrides = {},
                                                  const std::string& overrides_where = "overrides");
 
+/// What a user names as "the segmenter" (the CLI's --segmenter / --config, the grape node's
+/// ~segmenter): a preset (a name under configs/ or a YAML file, load_grape_segmenter_config) or a
+/// model file (.pt, .json: that model with the default settings; `overrides` must then not set
+/// `model`). Empty: the defaults with `overrides` (which must set `model`). Errors name the preset
+/// file or `overrides_where` and the key.
+GrapeSegmenterConfig grape_segmenter_config(const std::string& preset_or_model, const ConfigMap& overrides = {},
+                                            const std::string& overrides_where = "overrides");
+
 class GrapeSegmenter {
  public:
   /// Loads cfg.model (and cfg.ensemble) and sets how it runs. Throws Error(where, ...) naming the

@@ -1,0 +1,72 @@
+#pragma once
+// The grape pipeline from the camera (pipeline::GrapePipeline, Luo et al.) behind a C++17 header,
+// for the ROS node: bunch and peduncle boxes (the project's detector, or boxes given per frame)
+// → ROI (Eq. 1, overlapping bunches merged) → coloured ROI cloud → normals → the grape segmenter
+// → per bunch a labelled cloud and a cut point on its peduncle. One runner per camera; not
+// thread-safe. Errors: cropsight::Error naming the file or input.
+//
+// Pixels: x = column, y = row, origin top-left. Points: camera frame (x right, y down, z forward),
+// metres.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cropsight/bridge/frame_buffers.hpp"
+
+namespace cropsight::bridge {
+
+struct GrapeRunnerOptions {
+  std::string config;                    ///< pipeline preset (name under configs/ or YAML); "" = grape-camera
+  std::vector<std::string> sets;         ///< "key=value" overrides of the pipeline preset (roi.*, cut_point.*)
+  std::string segmenter = "grape-best";  ///< segmenter preset (name or YAML) or model file (.pt, .json)
+  std::string detector;                  ///< the project's grape detector (.onnx or .pt); "" = boxes given to process()
+  int threads = 2;                       ///< threads of the segmenter and a .pt detector
+};
+
+/// A bunch (category 1) or peduncle (category 2) box, the dataset's COCO categories.
+struct GrapeBox {
+  int x = 0, y = 0, width = 0, height = 0;  ///< pixels
+  int category = 1;
+  float score = 1;
+};
+
+struct GrapeBunchOut {
+  GrapeBox roi;                         ///< the bunch's ROI (Eq. 1, merged, clipped); category 1
+  std::vector<float> xyz;               ///< 3 per point, m, camera frame
+  std::vector<std::uint8_t> rgb;        ///< 3 per point
+  std::vector<int> labels;              ///< segmenter label per point (the dataset's 0-5)
+  bool has_cut_point = false;           ///< false: no peduncle cluster of cut_point.min_points
+  float cut_position[3] = {0, 0, 0};    ///< m, centroid of the peduncle cluster
+  float cut_direction[3] = {0, -1, 0};  ///< unit principal axis, pointing up in the image
+  int cut_confidence = 0;               ///< points of the peduncle cluster
+};
+
+struct GrapeFrameOut {
+  std::vector<GrapeBox> detections;    ///< the boxes used
+  std::vector<GrapeBunchOut> bunches;  ///< one per ROI with at least 3 points, in ROI order
+  double ms = 0;                       ///< wall clock of the whole pipeline call
+};
+
+class GrapeRunner {
+ public:
+  /// Loads and validates the presets and the models. Throws Error(file or "--set", ...).
+  explicit GrapeRunner(const GrapeRunnerOptions& options);
+  ~GrapeRunner();
+  GrapeRunner(const GrapeRunner&) = delete;
+  GrapeRunner& operator=(const GrapeRunner&) = delete;
+
+  /// One frame (colour required, registered to depth), boxes from the detector. Throws Error
+  /// when the runner has no detector or the frame is malformed.
+  GrapeFrameOut process(const FrameBuffers& frame);
+  /// One frame on the boxes given (a detector of the user's).
+  GrapeFrameOut process(const FrameBuffers& frame, const std::vector<GrapeBox>& boxes);
+  bool has_detector() const;
+  /// The segmenter's model file, for logs.
+  std::string segmenter_model() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace cropsight::bridge

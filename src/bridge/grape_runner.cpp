@@ -1,0 +1,98 @@
+#include "cropsight/bridge/grape_runner.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/core/timer.hpp"
+#include "cropsight/io/config_yaml.hpp"
+#include "cropsight/nn/center_onnx.hpp"
+#include "cropsight/pipeline/grape/grape_pipeline.hpp"
+#include "frame_conversion.hpp"
+
+namespace cropsight::bridge {
+
+namespace {
+
+pipeline::GrapePipeline make_pipeline(const GrapeRunnerOptions& o) {
+  const std::string preset = o.config.empty() ? std::string("grape-camera") : o.config;
+  const std::string where = o.sets.empty() ? preset : preset + " / --set";
+  pipeline::GrapePipelineConfig cfg;
+  apply_config(cfg, io::load_preset_with_overrides(preset, o.sets), where);
+  cfg.validate(where);
+  pipeline::GrapeSegmenterConfig scfg = pipeline::grape_segmenter_config(o.segmenter, {}, "segmenter");
+  scfg.threads = o.threads;
+  pipeline::GrapeSegmenter segmenter(scfg, o.segmenter);
+  std::unique_ptr<Detector2D> detector;
+  if (!o.detector.empty()) detector = nn::load_center_detector(o.detector, o.threads);
+  return pipeline::GrapePipeline(cfg, std::move(segmenter), std::move(detector), where);
+}
+
+GrapeBox box_of(const Box2D& b, int category, float score) { return {b.x, b.y, b.width, b.height, category, score}; }
+
+GrapeBunchOut bunch_of(const pipeline::GrapeBunch& b) {
+  GrapeBunchOut out;
+  out.roi = box_of(b.roi, 1, 1.f);
+  const Cloud& c = b.cloud;
+  out.xyz.reserve(3 * c.size());
+  for (const auto& p : c.points) out.xyz.insert(out.xyz.end(), {p.x(), p.y(), p.z()});
+  if (c.has_colors()) {
+    out.rgb.reserve(3 * c.size());
+    for (const auto& col : c.colors)
+      for (int k = 0; k < 3; ++k) out.rgb.push_back(std::uint8_t(std::lround(std::clamp(col[k], 0.f, 1.f) * 255.f)));
+  }
+  out.labels = c.labels;
+  if (b.cut_point) {
+    out.has_cut_point = true;
+    for (int k = 0; k < 3; ++k) {
+      out.cut_position[k] = b.cut_point->position[k];
+      out.cut_direction[k] = b.cut_point->direction[k];
+    }
+    out.cut_confidence = b.cut_point->confidence;
+  }
+  return out;
+}
+
+GrapeFrameOut frame_out(const pipeline::GrapeFrameResult& r, double ms) {
+  GrapeFrameOut out;
+  out.ms = ms;
+  for (const auto& d : r.detections) out.detections.push_back(box_of(d.box, d.category, d.score));
+  for (const auto& b : r.bunches) out.bunches.push_back(bunch_of(b));
+  return out;
+}
+
+}  // namespace
+
+// The pipeline owns its segmenter and detector (models loaded once, here).
+struct GrapeRunner::Impl {
+  pipeline::GrapePipeline pipe;
+  explicit Impl(const GrapeRunnerOptions& o) : pipe(make_pipeline(o)) {}
+};
+
+GrapeRunner::GrapeRunner(const GrapeRunnerOptions& options) : impl_(std::make_unique<Impl>(options)) {}
+GrapeRunner::~GrapeRunner() = default;
+
+GrapeFrameOut GrapeRunner::process(const FrameBuffers& frame) {
+  if (frame.rgb.empty()) throw Error("frame " + std::to_string(frame.index), "has no colour image");
+  const Stopwatch clock;
+  const pipeline::GrapeFrameResult r = impl_->pipe.process(to_rgbd_frame(frame));
+  return frame_out(r, clock.ms());
+}
+
+GrapeFrameOut GrapeRunner::process(const FrameBuffers& frame, const std::vector<GrapeBox>& boxes) {
+  if (frame.rgb.empty()) throw Error("frame " + std::to_string(frame.index), "has no colour image");
+  std::vector<pipeline::GrapeDetection> given;
+  for (std::size_t k = 0; k < boxes.size(); ++k) {
+    const GrapeBox& b = boxes[k];
+    given.push_back({Box2D{b.x, b.y, b.width, b.height}, b.category, b.score, long(k)});
+  }
+  const Stopwatch clock;
+  const pipeline::GrapeFrameResult r = impl_->pipe.process(to_rgbd_frame(frame), given);
+  return frame_out(r, clock.ms());
+}
+
+bool GrapeRunner::has_detector() const { return impl_->pipe.has_detector(); }
+
+std::string GrapeRunner::segmenter_model() const { return impl_->pipe.segmenter().config().model; }
+
+}  // namespace cropsight::bridge
