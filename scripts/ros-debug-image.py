@@ -8,7 +8,25 @@ import sys
 import zlib
 
 import rospy
-from sensor_msgs.msg import Image
+
+# Debian ships no python3 sensor_msgs: the message is read as rospy.AnyMsg and decoded here
+# (the ROS 1 wire format of sensor_msgs/Image: header, height, width, encoding, is_bigendian,
+# step, data; little-endian, strings and arrays prefixed by a uint32 length).
+
+
+class RawImage:
+    def __init__(self, buff):
+        off = 12  # header: seq, stamp.secs, stamp.nsecs
+        n, = struct.unpack_from('<I', buff, off)
+        off += 4 + n  # frame_id
+        self.height, self.width = struct.unpack_from('<II', buff, off)
+        off += 8
+        n, = struct.unpack_from('<I', buff, off)
+        self.encoding = bytes(buff[off + 4:off + 4 + n]).decode()
+        off += 4 + n + 1  # encoding, is_bigendian
+        self.step, n = struct.unpack_from('<II', buff, off)
+        off += 8
+        self.data = bytes(buff[off:off + n])
 
 
 def write_png(path, width, height, rows):
@@ -31,7 +49,8 @@ def main():
     rospy.init_node('cropsight_debug_image', anonymous=True)
     seen = [0]
 
-    def on_image(m):
+    def on_image(raw):
+        m = RawImage(raw._buff)
         seen[0] += 1
         if seen[0] != want:
             return
@@ -49,7 +68,7 @@ def main():
         print('%s: message %d (%dx%d) -> %s' % (topic, want, m.width, m.height, out))
         rospy.signal_shutdown('done')
 
-    rospy.Subscriber(topic, Image, on_image, queue_size=10)
+    rospy.Subscriber(topic, rospy.AnyMsg, on_image, queue_size=10)
     deadline = rospy.Time.now() + rospy.Duration(timeout)
     while not rospy.is_shutdown() and rospy.Time.now() < deadline:
         rospy.sleep(0.1)
