@@ -109,6 +109,7 @@ int main(int argc, char** argv) {
     if (!inserted && first->second != signature) ++differing;
   };
   auto rounded = [](double v, double unit) { return std::to_string(std::llround(v / unit)) + ","; };
+  // The outputs with TCP_NODELAY, as a latency-sensitive consumer (an arm's controller) subscribes.
   ros::Subscriber out_sub = node == "broccoli"
                                 ? nh.subscribe<vision_msgs::Detection3DArray>(
                                       ns + "/heads", 100,
@@ -120,9 +121,11 @@ int main(int argc, char** argv) {
                                                    rounded(r.pose.pose.position.y, 1e-4) +
                                                    rounded(r.pose.pose.position.z, 1e-4) + rounded(r.score, 1e-4);
                                         on_output(m->header, sig);
-                                      })
+                                      },
+                                      ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay())
                                 : nh.subscribe<vision_msgs::Detection2DArray>(
-                                      ns + "/detections", 100, [&](const vision_msgs::Detection2DArray::ConstPtr& m) {
+                                      ns + "/detections", 100,
+                                      [&](const vision_msgs::Detection2DArray::ConstPtr& m) {
                                         std::string sig = std::to_string(m->detections.size()) + ":";
                                         for (const auto& d : m->detections) {
                                           sig += rounded(d.bbox.center.x, 0.01) + rounded(d.bbox.center.y, 0.01) +
@@ -130,7 +133,8 @@ int main(int argc, char** argv) {
                                           for (const auto& r : d.results) sig += rounded(r.score, 1e-4);
                                         }
                                         on_output(m->header, sig);
-                                      });
+                                      },
+                                      ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
   double node_p50 = 0, node_p99 = 0;
   ros::Subscriber diag = nh.subscribe<diagnostic_msgs::DiagnosticArray>(
       ns + "/diagnostics", 10, [&](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {

@@ -27,6 +27,7 @@ BroccoliNode::BroccoliNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), p
   map_file_ = pnh_.param<std::string>("map_file", "");
   field_frame_ = pnh_.param<std::string>("field_frame", "field");
   queue_ = std::max(1, pnh_.param("queue_size", 5));
+  hints_ = input_transport(pnh_);
   slop_s_ = pnh_.param("slop_s", 0.02);
   exact_sync_ = pnh_.param("exact_sync", false);
   if (!(depth_scale_ > 0)) throw Error("~depth_scale", "must be > 0 (metres per 16UC1 unit)");
@@ -57,14 +58,14 @@ BroccoliNode::~BroccoliNode() {
 
 void BroccoliNode::connect() {
   if (cloud_input_) {
-    cloud_sub_ = nh_.subscribe("points", std::uint32_t(queue_), &BroccoliNode::on_cloud, this);
+    cloud_sub_ = nh_.subscribe("points", std::uint32_t(queue_), &BroccoliNode::on_cloud, this, hints_);
     return;
   }
-  depth_sub_.subscribe(nh_, "depth/image_raw", queue_);
-  info_sub_.subscribe(nh_, "depth/camera_info", queue_);
+  depth_sub_.subscribe(nh_, "depth/image_raw", queue_, hints_);
+  info_sub_.subscribe(nh_, "depth/camera_info", queue_, hints_);
   if (exact_sync_) {
     if (use_color_) {
-      color_sub_.subscribe(nh_, "color/image_raw", queue_);
+      color_sub_.subscribe(nh_, "color/image_raw", queue_, hints_);
       color_exact_ = std::make_unique<message_filters::Synchronizer<ColorExact>>(ColorExact(queue_), depth_sub_,
                                                                                  info_sub_, color_sub_);
       color_exact_->registerCallback(&BroccoliNode::on_frame, this);
@@ -74,7 +75,7 @@ void BroccoliNode::connect() {
       depth_exact_->registerCallback(&BroccoliNode::on_depth_frame, this);
     }
   } else if (use_color_) {
-    color_sub_.subscribe(nh_, "color/image_raw", queue_);
+    color_sub_.subscribe(nh_, "color/image_raw", queue_, hints_);
     color_sync_ = std::make_unique<message_filters::Synchronizer<ColorPolicy>>(ColorPolicy(queue_), depth_sub_,
                                                                                info_sub_, color_sub_);
     color_sync_->setMaxIntervalDuration(ros::Duration(slop_s_));

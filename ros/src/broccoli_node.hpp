@@ -65,6 +65,7 @@ class BroccoliNode {
   bool use_color_ = false, cloud_input_ = false;
   double depth_scale_ = 0.001, slop_s_ = 0.02;
   int queue_ = 5;
+  ros::TransportHints hints_;
   std::string map_file_, field_frame_;
   int frame_ = 0;
   message_filters::Subscriber<Image> depth_sub_, color_sub_;

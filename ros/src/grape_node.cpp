@@ -61,6 +61,7 @@ GrapeNode::GrapeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pn
   o.threads = pnh_.param("threads", 2);
   depth_scale_ = pnh_.param("depth_scale", 0.001);
   queue_ = std::max(1, pnh_.param("queue_size", 5));
+  hints_ = input_transport(pnh_);
   slop_s_ = pnh_.param("slop_s", 0.02);
   exact_sync_ = pnh_.param("exact_sync", false);
   if (!(depth_scale_ > 0)) throw Error("~depth_scale", "must be > 0 (metres per 16UC1 unit)");
@@ -80,11 +81,11 @@ GrapeNode::GrapeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pn
 }
 
 void GrapeNode::connect() {
-  color_sub_.subscribe(nh_, "color/image_raw", queue_);
-  depth_sub_.subscribe(nh_, "depth/image_raw", queue_);
-  info_sub_.subscribe(nh_, "depth/camera_info", queue_);
+  color_sub_.subscribe(nh_, "color/image_raw", queue_, hints_);
+  depth_sub_.subscribe(nh_, "depth/image_raw", queue_, hints_);
+  info_sub_.subscribe(nh_, "depth/camera_info", queue_, hints_);
   const bool boxes = !runner_->has_detector();
-  if (boxes) boxes_sub_.subscribe(nh_, "detections", queue_);
+  if (boxes) boxes_sub_.subscribe(nh_, "detections", queue_, hints_);
   if (exact_sync_ && boxes) {
     boxes_exact_ = std::make_unique<message_filters::Synchronizer<BoxesExact>>(BoxesExact(queue_), color_sub_,
                                                                                depth_sub_, info_sub_, boxes_sub_);

@@ -64,6 +64,7 @@ class GrapeNode {
   std::unique_ptr<bridge::GrapeRunner> runner_;
   double depth_scale_ = 0.001, slop_s_ = 0.02;
   int queue_ = 5;
+  ros::TransportHints hints_;
   int frame_ = 0;
   bool exact_sync_ = false;
   message_filters::Subscriber<Image> color_sub_, depth_sub_;

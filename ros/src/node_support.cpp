@@ -23,6 +23,11 @@ std::vector<std::string> read_set_param(const ros::NodeHandle& pnh) {
   return sets;
 }
 
+ros::TransportHints input_transport(const ros::NodeHandle& pnh) {
+  ros::TransportHints hints;
+  return pnh.param("tcp_nodelay", true) ? hints.tcpNoDelay() : hints;
+}
+
 std::string resolve_project_path(const std::string& path) {
   if (path.empty() || fs::path(path).is_absolute() || fs::exists(path)) return path;
   const fs::path in_source = fs::path(CROPSIGHT_SOURCE_DIR) / path;

@@ -17,6 +17,10 @@ namespace cropsight::ros_io {
 
 /// ~set as a list of "key=value" strings, or one string of them separated by ';'.
 std::vector<std::string> read_set_param(const ros::NodeHandle& pnh);
+/// The transport of a node's inputs: TCP with TCP_NODELAY unless ~tcp_nodelay is false. Without
+/// it, Nagle's algorithm may hold a small message (a camera_info sent right after its image) until
+/// the image's data is acknowledged, which showed as a latency tail (docs/ros.md, "Latency").
+ros::TransportHints input_transport(const ros::NodeHandle& pnh);
 /// A model or preset path: absolute, relative to the working directory, or to the source tree.
 std::string resolve_project_path(const std::string& path);
 

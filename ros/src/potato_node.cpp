@@ -40,6 +40,7 @@ PotatoNode::PotatoNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(
   use_depth_ = pnh_.param("use_depth", true);
   depth_scale_ = pnh_.param("depth_scale", 0.001);
   queue_ = std::max(1, pnh_.param("queue_size", 5));
+  hints_ = input_transport(pnh_);
   slop_s_ = pnh_.param("slop_s", 0.02);
   exact_sync_ = pnh_.param("exact_sync", false);
   if (!(rate_hz_ >= 0)) throw Error("~rate", "must be >= 0 Hz (0 = every frame)");
@@ -61,9 +62,9 @@ PotatoNode::PotatoNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(
 }
 
 void PotatoNode::connect() {
-  color_sub_.subscribe(nh_, "color/image_raw", queue_);
-  info_sub_.subscribe(nh_, use_depth_ ? "depth/camera_info" : "color/camera_info", queue_);
-  if (use_depth_) depth_sub_.subscribe(nh_, "depth/image_raw", queue_);
+  color_sub_.subscribe(nh_, "color/image_raw", queue_, hints_);
+  info_sub_.subscribe(nh_, use_depth_ ? "depth/camera_info" : "color/camera_info", queue_, hints_);
+  if (use_depth_) depth_sub_.subscribe(nh_, "depth/image_raw", queue_, hints_);
   if (exact_sync_ && use_depth_) {
     rgbd_exact_ = std::make_unique<message_filters::Synchronizer<RgbdExact>>(RgbdExact(queue_), color_sub_, depth_sub_,
                                                                              info_sub_);

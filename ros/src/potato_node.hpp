@@ -50,6 +50,7 @@ class PotatoNode {
   bool use_depth_ = true;
   double rate_hz_ = 3.0, depth_scale_ = 0.001, slop_s_ = 0.02;
   int queue_ = 5;
+  ros::TransportHints hints_;
   int frame_ = 0;
   ros::Time last_target_;
   message_filters::Subscriber<Image> color_sub_, depth_sub_;

@@ -36,6 +36,7 @@ bridge::StereoGeometry stereo_geometry(const sensor_msgs::CameraInfo& left, cons
 SeedlingNode::SeedlingNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {
   const std::string preset = resolve_project_path(pnh_.param<std::string>("preset", "seedling"));
   queue_ = std::max(1, pnh_.param("queue_size", 5));
+  hints_ = input_transport(pnh_);
   slop_s_ = pnh_.param("slop_s", 0.02);
   runner_ = std::make_unique<bridge::SeedlingRunner>(preset, read_set_param(pnh_));
   health_ = std::make_unique<InputHealth>(nh_, ros::this_node::getName());
@@ -50,10 +51,10 @@ SeedlingNode::SeedlingNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), p
 }
 
 void SeedlingNode::connect() {
-  left_sub_.subscribe(nh_, "left/image_rect_color", queue_);
-  right_sub_.subscribe(nh_, "right/image_rect_color", queue_);
-  left_info_sub_.subscribe(nh_, "left/camera_info", queue_);
-  right_info_sub_.subscribe(nh_, "right/camera_info", queue_);
+  left_sub_.subscribe(nh_, "left/image_rect_color", queue_, hints_);
+  right_sub_.subscribe(nh_, "right/image_rect_color", queue_, hints_);
+  left_info_sub_.subscribe(nh_, "left/camera_info", queue_, hints_);
+  right_info_sub_.subscribe(nh_, "right/camera_info", queue_, hints_);
   sync_ = std::make_unique<message_filters::Synchronizer<Policy>>(Policy(queue_), left_sub_, right_sub_, left_info_sub_,
                                                                   right_info_sub_);
   sync_->setMaxIntervalDuration(ros::Duration(slop_s_));

@@ -49,6 +49,7 @@ class SeedlingNode {
   std::unique_ptr<bridge::SeedlingRunner> runner_;
   double slop_s_ = 0.02;
   int queue_ = 5;
+  ros::TransportHints hints_;
   message_filters::Subscriber<Image> left_sub_, right_sub_;
   message_filters::Subscriber<Info> left_info_sub_, right_info_sub_;
   std::unique_ptr<message_filters::Synchronizer<Policy>> sync_;
