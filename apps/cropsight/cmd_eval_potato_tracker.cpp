@@ -60,6 +60,8 @@ void run(const Options& o) {
                 {"success_iou", o.trial.success_iou},
                 {"csrt_template_size", o.trial.csrt.template_size},
                 {"csrt_scales", o.trial.csrt.scales},
+                {"csrt_segmentation", o.trial.csrt.segmentation},
+                {"csrt_admm_iterations", o.trial.csrt.admm_iterations},
                 {"trackers", rows}});
 }
 
@@ -86,6 +88,11 @@ void add_eval_potato_tracker(CLI::App& eval) {
       ->check(CLI::Range(16, 1000));
   cmd->add_option("--csrt-scales", o->trial.csrt.scales, "CSRT's scale-filter scales (tracking.csrt_scales)")
       ->check(CLI::Range(1, 200));
+  cmd->add_option("--csrt-segmentation", o->trial.csrt.segmentation,
+                  "true|false; CSRT's colour-histogram mask (tracking.csrt_segmentation)");
+  cmd->add_option("--csrt-admm-iterations", o->trial.csrt.admm_iterations,
+                  "CSRT's ADMM iterations per frame (tracking.csrt_admm_iterations)")
+      ->check(CLI::Range(1, 100));
   add_json_flag(cmd, o->common);
   cmd->callback([o] { run(*o); });
 }

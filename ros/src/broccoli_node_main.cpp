@@ -1,6 +1,8 @@
 // cropsight_broccoli_node: see broccoli_node.hpp and docs/ros.md.
 #include <ros/ros.h>
 
+#include <cstdio>
+
 #include "broccoli_node.hpp"
 
 int main(int argc, char** argv) {
@@ -9,6 +11,9 @@ int main(int argc, char** argv) {
     cropsight::ros_io::BroccoliNode node(ros::NodeHandle(), ros::NodeHandle("~"));
     ros::spin();
   } catch (const std::exception& e) {
+    // Also to stderr: once the node's handles are gone, roscpp has shut down and rosconsole
+    // prints nothing, so a node that cannot start would exit without saying why.
+    std::fprintf(stderr, "cropsight_broccoli_node: %s\n", e.what());
     ROS_FATAL("%s", e.what());
     return 2;
   }

@@ -1,6 +1,8 @@
 // cropsight_seedling_node: see seedling_node.hpp and docs/ros.md.
 #include <ros/ros.h>
 
+#include <cstdio>
+
 #include "seedling_node.hpp"
 
 int main(int argc, char** argv) {
@@ -9,6 +11,9 @@ int main(int argc, char** argv) {
     cropsight::ros_io::SeedlingNode node(ros::NodeHandle(), ros::NodeHandle("~"));
     ros::spin();
   } catch (const std::exception& e) {
+    // Also to stderr: once the node's handles are gone, roscpp has shut down and rosconsole
+    // prints nothing, so a node that cannot start would exit without saying why.
+    std::fprintf(stderr, "cropsight_seedling_node: %s\n", e.what());
     ROS_FATAL("%s", e.what());
     return 2;
   }

@@ -57,6 +57,8 @@ class OpenCvTracker final : public VisualTracker {
         cv::TrackerCSRT::Params p;
         p.template_size = float(csrt_.template_size);
         p.number_of_scales = csrt_.scales;
+        p.use_segmentation = csrt_.segmentation;
+        p.admm_iterations = csrt_.admm_iterations;
         return cv::TrackerCSRT::create(p);
       }
     }
@@ -72,8 +74,8 @@ class OpenCvTracker final : public VisualTracker {
 
 std::unique_ptr<VisualTracker> make_visual_tracker(VisualTrackerKind kind, const CsrtParams& csrt) {
   if (kind == VisualTrackerKind::none) return nullptr;
-  if (csrt.template_size < 16 || csrt.scales < 1)
-    throw Error("visual tracker", "CSRT needs template_size >= 16 and scales >= 1");
+  if (csrt.template_size < 16 || csrt.scales < 1 || csrt.admm_iterations < 1)
+    throw Error("visual tracker", "CSRT needs template_size >= 16, scales >= 1 and admm_iterations >= 1");
   return std::make_unique<OpenCvTracker>(kind, csrt);
 }
 

@@ -336,6 +336,20 @@ TEST_F(RosNodes, SeedlingNodeEnvelopeEqualsTheCli) {
   EXPECT_EQ(node.stop(), 0);
 }
 
+TEST_F(RosNodes, ANodeThatCannotStartSaysWhyAndExits2) {
+  const fs::path d = scratch_dir("node_bad_preset");
+  for (const std::string node : {"potato", "grape"}) {
+    const fs::path err = d / (node + ".err");
+    EXPECT_EQ(run(kBin + "/cropsight_" + node + "_node __ns:=/bad __name:=" + node + " _preset:=no-such-preset 2>" +
+                  err.string() + " >/dev/null"),
+              2)
+        << node;
+    std::ifstream in(err);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    EXPECT_NE(text.find("cropsight_" + node + "_node: no-such-preset: no such preset"), std::string::npos) << text;
+  }
+}
+
 TEST_F(RosNodes, BroccoliNodeOnOrganisedCloudsEqualsTheCli) {
   // The frames of a simulated pass as organised clouds (what depth_image_proc publishes): the
   // node turns them back into depth with fitted intrinsics, so its heads equal the CLI's on the

@@ -86,6 +86,10 @@ struct TargetTrackerConfig {
       "px; CSRT's template side (smaller is cheaper: 100 took about half the CPU of 200 a frame; OpenCV's default 200)",
       Range::at_least(16));
     v("csrt_scales", csrt.scales, "CSRT's scale-filter scales per frame (OpenCV's default 33)", Range::at_least(1));
+    v("csrt_segmentation", csrt.segmentation,
+      "bool; CSRT's colour-histogram mask of the filter (OpenCV's default true)");
+    v("csrt_admm_iterations", csrt.admm_iterations, "CSRT's ADMM iterations per frame (OpenCV's default 4)",
+      Range::at_least(1));
   }
 };
 

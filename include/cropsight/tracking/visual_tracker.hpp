@@ -30,8 +30,10 @@ class VisualTracker {
 /// CSRT's cost per frame is set by its template (the padded box resized to about this many pixels
 /// a side) and by the scales its scale filter tries, not by the box's size in the image.
 struct CsrtParams {
-  int template_size = 200;  ///< px; OpenCV's default
-  int scales = 33;          ///< scale-filter scales; OpenCV's default
+  int template_size = 200;   ///< px; OpenCV's default
+  int scales = 33;           ///< scale-filter scales; OpenCV's default
+  bool segmentation = true;  ///< colour-histogram mask of the filter (OpenCV's default: on)
+  int admm_iterations = 4;   ///< iterations of the filter's ADMM solve per frame; OpenCV's default
 };
 
 /// An OpenCV tracker of `kind`; nullptr for VisualTrackerKind::none. `csrt` applies to CSRT only.
