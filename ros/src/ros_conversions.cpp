@@ -67,9 +67,15 @@ sensor_msgs::CameraInfo info_from_camera(const bridge::CameraModel& c) {
 
 std::vector<std::uint16_t> depth_from_image(const sensor_msgs::Image& im, const bridge::CameraModel& cam,
                                             const std::string& topic) {
+  // Encoding and layout are checked before the output is allocated: the size comes from a
+  // camera_info that may be malformed (up to 100000 x 100000), the data bound it.
+  const bool raw16 = im.encoding == "16UC1" || im.encoding == "mono16";
+  if (!raw16 && im.encoding != "32FC1")
+    throw Error(topic, "depth encoding '" + im.encoding + "' is not 16UC1, mono16 or 32FC1");
+  check_layout(im, cam, raw16 ? 2 : 4, topic);
+  if (!raw16 && im.is_bigendian) throw Error(topic, "big-endian 32FC1 depth is not supported");
   std::vector<std::uint16_t> out(std::size_t(cam.width) * std::size_t(cam.height));
-  if (im.encoding == "16UC1" || im.encoding == "mono16") {
-    check_layout(im, cam, 2, topic);
+  if (raw16) {
     for (int v = 0; v < cam.height; ++v) {
       const std::uint8_t* src = im.data.data() + std::size_t(v) * im.step;
       std::uint16_t* dst = out.data() + std::size_t(v) * std::size_t(cam.width);
@@ -77,9 +83,7 @@ std::vector<std::uint16_t> depth_from_image(const sensor_msgs::Image& im, const 
       if (im.is_bigendian)
         for (int u = 0; u < cam.width; ++u) dst[u] = std::uint16_t((dst[u] >> 8) | (dst[u] << 8));
     }
-  } else if (im.encoding == "32FC1") {
-    check_layout(im, cam, 4, topic);
-    if (im.is_bigendian) throw Error(topic, "big-endian 32FC1 depth is not supported");
+  } else {
     for (int v = 0; v < cam.height; ++v) {
       const std::uint8_t* src = im.data.data() + std::size_t(v) * im.step;
       for (int u = 0; u < cam.width; ++u) {
@@ -90,8 +94,6 @@ std::vector<std::uint16_t> depth_from_image(const sensor_msgs::Image& im, const 
             raw > std::numeric_limits<std::uint16_t>::max() ? 0 : std::uint16_t(raw);
       }
     }
-  } else {
-    throw Error(topic, "depth encoding '" + im.encoding + "' is not 16UC1, mono16 or 32FC1");
   }
   return out;
 }

@@ -116,5 +116,19 @@ TEST(RosConversions, CameraInfoIsValidatedAndRoundTrips) {
   EXPECT_NE(error_of([&] { camera_from_info(bad, 0.001, "/info"); }).find("is not an image size"), std::string::npos);
 }
 
+TEST(RosConversions, AHugeCameraInfoWithASmallImageIsAnErrorBeforeAnyAllocation) {
+  // camera_info may claim up to 100000 x 100000 pixels; the depth buffer was allocated (20 GB)
+  // before the image's size and encoding were checked, so a malformed pair could exhaust memory
+  // (std::bad_alloc escaping the node's callback). Now the image is checked first.
+  bridge::CameraModel cam = camera(100000, 100000);
+  const sensor_msgs::Image small = image_from_depth({1, 2, 3, 4}, 2, 2);
+  EXPECT_NE(
+      error_of([&] { depth_from_image(small, cam, "/d"); }).find("/d: image is 2x2, camera_info says 100000x100000"),
+      std::string::npos);
+  sensor_msgs::Image wrong = small;
+  wrong.encoding = "bgr8";
+  EXPECT_NE(error_of([&] { depth_from_image(wrong, cam, "/d"); }).find("depth encoding 'bgr8'"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace cropsight::ros_io
