@@ -36,7 +36,8 @@ sensor_msgs::Image image(FuzzedDataProvider& in, std::initializer_list<const cha
   im.height = dimension(in);
   im.encoding = one_of(in, encodings);
   im.is_bigendian = in.ConsumeIntegral<std::uint8_t>();
-  im.step = in.ConsumeBool() ? im.width * in.ConsumeIntegralInRange<std::uint32_t>(0, 5) : in.ConsumeIntegral<std::uint32_t>();
+  im.step = in.ConsumeBool() ? im.width * in.ConsumeIntegralInRange<std::uint32_t>(0, 5)
+                             : in.ConsumeIntegral<std::uint32_t>();
   im.data = in.ConsumeBytes<std::uint8_t>(in.ConsumeIntegralInRange<std::size_t>(0, 1 << 15));
   return im;
 }
@@ -45,7 +46,8 @@ void camera_and_images(FuzzedDataProvider& in) {
   sensor_msgs::CameraInfo info;
   info.width = dimension(in);
   info.height = dimension(in);
-  for (double& k : info.K) k = in.ConsumeBool() ? in.ConsumeFloatingPointInRange<double>(-100, 1000) : in.ConsumeFloatingPoint<double>();
+  for (double& k : info.K)
+    k = in.ConsumeBool() ? in.ConsumeFloatingPointInRange<double>(-100, 1000) : in.ConsumeFloatingPoint<double>();
   info.distortion_model = one_of(in, {"plumb_bob", "rational_polynomial", "equidistant"});
   info.D.resize(in.ConsumeIntegralInRange<std::size_t>(0, 14));
   for (double& d : info.D) d = in.ConsumeFloatingPoint<double>();
@@ -71,7 +73,8 @@ void organised_cloud(FuzzedDataProvider& in) {
     f.count = in.ConsumeIntegral<std::uint32_t>();
   }
   pc.is_bigendian = in.ConsumeBool();
-  pc.point_step = in.ConsumeBool() ? in.ConsumeIntegralInRange<std::uint32_t>(0, 32) : in.ConsumeIntegral<std::uint32_t>();
+  pc.point_step =
+      in.ConsumeBool() ? in.ConsumeIntegralInRange<std::uint32_t>(0, 32) : in.ConsumeIntegral<std::uint32_t>();
   pc.row_step = in.ConsumeBool() ? pc.point_step * pc.width : in.ConsumeIntegral<std::uint32_t>();
   const double depth_scale = in.ConsumeBool() ? 0.001 : in.ConsumeFloatingPoint<double>();
   const bool want_color = in.ConsumeBool();
@@ -94,7 +97,8 @@ void grape_boxes(FuzzedDataProvider& in) {
     for (double* v : {&d.bbox.center.x, &d.bbox.center.y, &d.bbox.size_x, &d.bbox.size_y})
       *v = in.ConsumeBool() ? in.ConsumeFloatingPointInRange<double>(-10, 2000) : in.ConsumeFloatingPoint<double>();
   }
-  cropsight::fuzz::expect_error_or_success("detections", [&] { (void)cropsight::ros_io::grape_boxes(arr, "detections"); });
+  cropsight::fuzz::expect_error_or_success("detections",
+                                           [&] { (void)cropsight::ros_io::grape_boxes(arr, "detections"); });
 }
 
 }  // namespace
