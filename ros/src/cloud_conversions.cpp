@@ -25,6 +25,11 @@ const sensor_msgs::PointField* find_field(const sensor_msgs::PointCloud2& c, con
   return nullptr;
 }
 
+// R G B bytes as the float32 `rgb` field holds them in PCL's packing: 0x00RRGGBB.
+std::uint32_t pack_rgb(const std::uint8_t* rgb) {
+  return std::uint32_t(rgb[0]) << 16 | std::uint32_t(rgb[1]) << 8 | std::uint32_t(rgb[2]);
+}
+
 // Least squares of y = a x + b over the pairs; false when x has no spread.
 struct LineFit {
   double sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
@@ -67,8 +72,7 @@ sensor_msgs::PointCloud2 make_cloud(const std::vector<float>& xyz, const std::ve
     std::memcpy(p, &xyz[3 * i], 12);
     std::uint32_t off = 12;
     if (rgb) {
-      const std::uint32_t packed =
-          std::uint32_t((*rgb)[3 * i]) << 16 | std::uint32_t((*rgb)[3 * i + 1]) << 8 | std::uint32_t((*rgb)[3 * i + 2]);
+      const std::uint32_t packed = pack_rgb(&(*rgb)[3 * i]);
       std::memcpy(p + off, &packed, 4);
       off += 4;
     }
@@ -108,8 +112,7 @@ sensor_msgs::PointCloud2 organised_cloud_from_frame(const bridge::FrameBuffers& 
       std::uint8_t* p = pc.data.data() + i * pc.point_step;
       std::memcpy(p, xyz, 12);
       if (color) {
-        const std::uint32_t packed =
-            std::uint32_t(f.rgb[3 * i]) << 16 | std::uint32_t(f.rgb[3 * i + 1]) << 8 | std::uint32_t(f.rgb[3 * i + 2]);
+        const std::uint32_t packed = pack_rgb(&f.rgb[3 * i]);
         std::memcpy(p + 12, &packed, 4);
       }
     }

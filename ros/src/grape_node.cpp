@@ -19,8 +19,8 @@ constexpr std::uint8_t kPeduncleColour[3] = {240, 170, 40};
 constexpr std::uint8_t kRoiColour[3] = {40, 220, 40};
 }  // namespace
 
-std::vector<bridge::GrapeBox> grape_boxes(const vision_msgs::Detection2DArray& msg, const std::string& topic) {
-  std::vector<bridge::GrapeBox> out;
+std::vector<bridge::GrapeInputBox> grape_boxes(const vision_msgs::Detection2DArray& msg, const std::string& topic) {
+  std::vector<bridge::GrapeInputBox> out;
   for (std::size_t k = 0; k < msg.detections.size(); ++k) {
     const vision_msgs::Detection2D& d = msg.detections[k];
     const std::string which = "detection " + std::to_string(k);
@@ -33,13 +33,11 @@ std::vector<bridge::GrapeBox> grape_boxes(const vision_msgs::Detection2DArray& m
       throw Error(topic, which + " has a box beyond any image");
     if (d.results[0].id < INT_MIN || d.results[0].id > INT_MAX)
       throw Error(topic, which + " has a class id beyond int");
-    // The pixel box that covers the continuous one (as the CLI reads a COCO box).
-    const double x1 = b.center.x - 0.5 * b.size_x, y1 = b.center.y - 0.5 * b.size_y;
-    bridge::GrapeBox g;
-    g.x = int(std::floor(x1 + 1e-9));
-    g.y = int(std::floor(y1 + 1e-9));
-    g.width = int(std::ceil(x1 + b.size_x - 1e-9)) - g.x;
-    g.height = int(std::ceil(y1 + b.size_y - 1e-9)) - g.y;
+    bridge::GrapeInputBox g;
+    g.x1 = b.center.x - 0.5 * b.size_x;
+    g.y1 = b.center.y - 0.5 * b.size_y;
+    g.x2 = g.x1 + b.size_x;
+    g.y2 = g.y1 + b.size_y;
     g.category = int(d.results[0].id);
     g.score = float(d.results[0].score);
     out.push_back(g);
@@ -126,7 +124,7 @@ void GrapeNode::on_frame_boxes(const sensor_msgs::ImageConstPtr& color, const se
   if (!assemble_frame(*info, depth.get(), color.get(), depth_scale_,
                       {info_sub_.getTopic(), depth_sub_.getTopic(), color_sub_.getTopic()}, *health_, f))
     return;
-  std::vector<bridge::GrapeBox> given;
+  std::vector<bridge::GrapeInputBox> given;
   if (boxes) {
     try {
       given = grape_boxes(*boxes, boxes_sub_.getTopic());

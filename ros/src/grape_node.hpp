@@ -35,7 +35,7 @@ namespace cropsight::ros_io {
 /// The boxes of a Detection2DArray as the grape pipeline's (category = results[0].id). Throws
 /// Error(topic, problem) for a detection without a result, a non-finite or negative box, or a
 /// category id outside int.
-std::vector<bridge::GrapeBox> grape_boxes(const vision_msgs::Detection2DArray& msg, const std::string& topic);
+std::vector<bridge::GrapeInputBox> grape_boxes(const vision_msgs::Detection2DArray& msg, const std::string& topic);
 
 class GrapeNode {
  public:

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/core/timer.hpp"
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/nn/center_onnx.hpp"
 #include "cropsight/pipeline/grape/grape_pipeline.hpp"
@@ -53,9 +52,8 @@ GrapeBunchOut bunch_of(const pipeline::GrapeBunch& b) {
   return out;
 }
 
-GrapeFrameOut frame_out(const pipeline::GrapeFrameResult& r, double ms) {
+GrapeFrameOut frame_out(const pipeline::GrapeFrameResult& r) {
   GrapeFrameOut out;
-  out.ms = ms;
   for (const auto& d : r.detections) out.detections.push_back(box_of(d.box, d.category, d.score));
   for (const auto& b : r.bunches) out.bunches.push_back(bunch_of(b));
   return out;
@@ -74,21 +72,16 @@ GrapeRunner::~GrapeRunner() = default;
 
 GrapeFrameOut GrapeRunner::process(const FrameBuffers& frame) {
   if (frame.rgb.empty()) throw Error("frame " + std::to_string(frame.index), "has no colour image");
-  const Stopwatch clock;
-  const pipeline::GrapeFrameResult r = impl_->pipe.process(to_rgbd_frame(frame));
-  return frame_out(r, clock.ms());
+  return frame_out(impl_->pipe.process(to_rgbd_frame(frame)));
 }
 
-GrapeFrameOut GrapeRunner::process(const FrameBuffers& frame, const std::vector<GrapeBox>& boxes) {
+GrapeFrameOut GrapeRunner::process(const FrameBuffers& frame, const std::vector<GrapeInputBox>& boxes) {
   if (frame.rgb.empty()) throw Error("frame " + std::to_string(frame.index), "has no colour image");
-  std::vector<pipeline::GrapeDetection> given;
-  for (std::size_t k = 0; k < boxes.size(); ++k) {
-    const GrapeBox& b = boxes[k];
-    given.push_back({Box2D{b.x, b.y, b.width, b.height}, b.category, b.score, long(k)});
-  }
-  const Stopwatch clock;
-  const pipeline::GrapeFrameResult r = impl_->pipe.process(to_rgbd_frame(frame), given);
-  return frame_out(r, clock.ms());
+  // As the project's detector's boxes: class_id = category - 1 (grape_detections adds it back).
+  std::vector<Detection2D> given;
+  for (const GrapeInputBox& b : boxes)
+    given.push_back({float(b.x1), float(b.y1), float(b.x2), float(b.y2), b.category - 1, b.score});
+  return frame_out(impl_->pipe.process(to_rgbd_frame(frame), pipeline::grape_detections(given)));
 }
 
 bool GrapeRunner::has_detector() const { return impl_->pipe.has_detector(); }

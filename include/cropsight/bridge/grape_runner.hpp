@@ -23,6 +23,14 @@ struct GrapeRunnerOptions {
   int threads = 2;                       ///< threads of the segmenter and a .pt detector
 };
 
+/// A box of the user's own detector, continuous pixel corners; the pipeline takes the pixel box
+/// that covers it, as it takes the project's detector's boxes (pipeline::grape_detections).
+struct GrapeInputBox {
+  double x1 = 0, y1 = 0, x2 = 0, y2 = 0;  ///< pixels
+  int category = 1;                       ///< 1 bunch, 2 peduncle (the dataset's COCO categories)
+  float score = 1;
+};
+
 /// A bunch (category 1) or peduncle (category 2) box, the dataset's COCO categories.
 struct GrapeBox {
   int x = 0, y = 0, width = 0, height = 0;  ///< pixels
@@ -44,7 +52,6 @@ struct GrapeBunchOut {
 struct GrapeFrameOut {
   std::vector<GrapeBox> detections;    ///< the boxes used
   std::vector<GrapeBunchOut> bunches;  ///< one per ROI with at least 3 points, in ROI order
-  double ms = 0;                       ///< wall clock of the whole pipeline call
 };
 
 class GrapeRunner {
@@ -59,7 +66,7 @@ class GrapeRunner {
   /// when the runner has no detector or the frame is malformed.
   GrapeFrameOut process(const FrameBuffers& frame);
   /// One frame on the boxes given (a detector of the user's).
-  GrapeFrameOut process(const FrameBuffers& frame, const std::vector<GrapeBox>& boxes);
+  GrapeFrameOut process(const FrameBuffers& frame, const std::vector<GrapeInputBox>& boxes);
   bool has_detector() const;
   /// The segmenter's model file, for logs.
   std::string segmenter_model() const;
