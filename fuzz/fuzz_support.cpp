@@ -20,6 +20,10 @@ struct Scratch {
       std::abort();
     }
     dir = pattern;
+    // OpenCV's temporary files (cv::imdecode of formats it reads only from files) go here, so
+    // that one left behind is seen (expect_error_or_success; finding 20).
+    std::filesystem::create_directories(dir / "opencv_tmp");
+    setenv("OPENCV_TEMP_PATH", (dir / "opencv_tmp").c_str(), 1);
   }
   ~Scratch() {
     std::error_code ec;
@@ -44,6 +48,16 @@ std::filesystem::path write_input(std::string_view bytes, const std::string& nam
     std::abort();
   }
   return path;
+}
+
+void expect_no_stray_files(const char* what) {
+  const std::filesystem::path opencv_tmp = scratch_dir() / "opencv_tmp";
+  std::error_code ec;
+  std::filesystem::directory_iterator it(opencv_tmp, ec);
+  if (!ec && it != std::filesystem::directory_iterator()) {
+    std::fprintf(stderr, "%s: left OpenCV's temporary file %s behind\n", what, it->path().c_str());
+    std::abort();
+  }
 }
 
 void remove_input(const std::string& name) {

@@ -6,7 +6,8 @@
 // The contract a harness checks, beyond ASan/UBSan's: the parser either succeeds or throws
 // cropsight::Error (which the CLI prints as one line "FILE: PROBLEM" and exits 2 with). Any other
 // exception would reach the CLI as exit 1 "internal error", so it is a finding: the harness prints
-// it and aborts, and libFuzzer saves the input.
+// it and aborts, and libFuzzer saves the input. So is a temporary file OpenCV leaves behind
+// (finding 20: bad input must leave nothing).
 //
 // Not thread-safe: libFuzzer runs a harness on one thread.
 #include <cstdint>
@@ -34,10 +35,18 @@ inline std::filesystem::path write_input(const std::uint8_t* data, std::size_t s
 /// Removes scratch_dir()/`name` (a file or a folder) when it exists.
 void remove_input(const std::string& name);
 
+/// Aborts, naming `what`, when the parser left a temporary file of OpenCV's in the scratch
+/// folder (scratch_dir() points $OPENCV_TEMP_PATH there): bad input must leave nothing behind.
+void expect_no_stray_files(const char* what);
+
 /// Runs `parse()`: returns normally when it succeeds or throws cropsight::Error; aborts on any
-/// other exception after printing `what`, its type and message.
+/// other exception after printing `what`, its type and message, and on a stray temporary file.
 template <typename F>
 void expect_error_or_success(const char* what, F&& parse) {
+  struct CheckAfter {
+    const char* what;
+    ~CheckAfter() { expect_no_stray_files(what); }
+  } check_after{what};
   try {
     parse();
     if (std::getenv("CROPSIGHT_FUZZ_VERBOSE")) std::fprintf(stderr, "%s: ok\n", what);

@@ -101,6 +101,30 @@ TEST(ImageIo, MissingAndCorruptFiles) {
       tmp / "dir.png", [&] { read_u16(tmp / "dir.png"); }, "is a directory");
 }
 
+// Fuzzing finding 20: OpenCV decodes PFM, Radiance HDR and OpenEXR content only from a file, so
+// cv::imdecode copied such bytes to a temporary file and, when the header was bad, left it behind
+// (one stray /tmp/__opencv_temp.* per damaged image). OPENCV_TEMP_PATH points OpenCV's temporary
+// files at a folder of this test's own (ctest runs each test in its own process).
+TEST(ImageIo, ADamagedImageLeavesNoOpenCvTemporaryFile) {
+  TempDir tmp;
+  const fs::path opencv_tmp = tmp / "opencv_tmp";
+  fs::create_directories(opencv_tmp);
+  ASSERT_EQ(setenv("OPENCV_TEMP_PATH", opencv_tmp.c_str(), 1), 0);
+  const std::string bad_pfm("Pf\n0 4\n-1\n\0\0 4\n-1\n\0~~~~~~~~~~~~~~~~", 30);
+  write_file_atomic(tmp / "pfm.png", bad_pfm);
+  expect_error_names(
+      tmp / "pfm.png", [&] { read_u16(tmp / "pfm.png"); }, "decode");
+  write_file_atomic(tmp / "hdr.png", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 0 +X 99999999\n");
+  expect_error_names(
+      tmp / "hdr.png", [&] { read_color(tmp / "hdr.png"); }, "decode");
+  // A well-formed PFM still decodes (and is refused for its depth, not its format).
+  write_file_atomic(tmp / "good.png", std::string("Pf\n2 1\n-1\n", 10) + std::string(8, '\0'));
+  expect_error_names(
+      tmp / "good.png", [&] { read_u16(tmp / "good.png"); }, "32-bit");
+  unsetenv("OPENCV_TEMP_PATH");
+  EXPECT_TRUE(fs::is_empty(opencv_tmp)) << "OpenCV left " << fs::directory_iterator(opencv_tmp)->path();
+}
+
 TEST(ImageIo, FailedWriteLeavesNothing) {
   TempDir tmp;
   EXPECT_THROW(write_u16(tmp / "noext", ramp16(3, 3)), Error);
