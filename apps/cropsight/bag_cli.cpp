@@ -1,9 +1,9 @@
 #include "bag_cli.hpp"
 
 #include <filesystem>
-#include <random>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/files.hpp"
 #if CROPSIGHT_HAS_ROS
 #include "cropsight_ros/bag_io.hpp"
 #endif
@@ -31,8 +31,11 @@ ros_io::BagTopics topics_of(const BagTopicOptions& o) {
 }  // namespace
 
 BagSequence::BagSequence(const std::string& bag, const BagTopicOptions& topics) {
-  std::random_device rd;
-  root_ = (fs::temp_directory_path() / ("cropsight-bag-" + std::to_string(rd()))).string();
+  // /tmp/.cropsight-bag.tmp-PID-N: the process id in the name lets the next run remove what a
+  // run killed by a signal (which cannot unwind) left (kill safety, issue 26).
+  const fs::path name = fs::temp_directory_path() / "cropsight-bag";
+  io::remove_stale_temporaries(name);
+  root_ = io::temporary_sibling(name).string();
   fs::create_directories(root_);
   path_ = (fs::path(root_) / "sequence").string();
   ros_io::BagImportOptions o;

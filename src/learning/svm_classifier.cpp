@@ -162,7 +162,7 @@ void SvmClassifier::load_text(const std::string& text, const std::string& where)
   check_libsvm_text(text, where);
   {
     TempFile tmp;
-    io::write_file_atomic(tmp.path(), text);
+    tmp.write(text);
     model_ = svm_load_model(tmp.path().c_str());
   }
   if (!model_) throw Error(where, "libsvm cannot parse the embedded SVM model");

@@ -1,8 +1,10 @@
 #include "learning/temp_file.hpp"
 
+#include <sys/mman.h>
 #include <unistd.h>
 
 #include <cstdlib>
+#include <fstream>
 #include <system_error>
 
 #include "cropsight/core/error.hpp"
@@ -10,6 +12,14 @@
 namespace cropsight::learning::detail {
 
 TempFile::TempFile() {
+  fd_ = ::memfd_create("cropsight-model", MFD_CLOEXEC);
+  if (fd_ >= 0) {
+    path_ = "/proc/self/fd/" + std::to_string(fd_);
+    std::error_code ec;
+    if (std::filesystem::exists(path_, ec)) return;  // /proc is mounted: libsvm can open it by name
+    ::close(fd_);
+    fd_ = -1;
+  }
   std::string templ = (std::filesystem::temp_directory_path() / "cropsight-model-XXXXXX").string();
   const int fd = ::mkstemp(templ.data());
   if (fd < 0) throw Error(templ, "cannot create a temporary file");
@@ -18,8 +28,18 @@ TempFile::TempFile() {
 }
 
 TempFile::~TempFile() {
+  if (fd_ >= 0) {
+    ::close(fd_);
+    return;
+  }
   std::error_code ec;
   std::filesystem::remove(path_, ec);
+}
+
+void TempFile::write(const std::string& bytes) const {
+  std::ofstream out(path_, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), std::streamsize(bytes.size()));
+  if (!out.flush()) throw Error(path_.string(), "cannot write the temporary model file");
 }
 
 namespace {

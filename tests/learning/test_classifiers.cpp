@@ -1,13 +1,18 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/learning/classifier.hpp"
 #include "cropsight/learning/standardizer.hpp"
 #include "learning/knn_classifier.hpp"
 #include "learning/svm_classifier.hpp"
+#include "learning/temp_file.hpp"
 #include "test_learning_common.hpp"
+#include "testing/testing.hpp"
 
 using namespace cropsight;
 using namespace cropsight::learning;
@@ -45,6 +50,27 @@ double accuracy(const Classifier& c, const Dataset& d) {
   return double(ok) / double(d.size());
 }
 }  // namespace
+
+// libsvm's model goes through a file: an anonymous in-memory one, so that a process killed while
+// it exists (kill safety, issue 26) leaves nothing in the temporary folder.
+TEST(Svm, ItsTemporaryModelFileIsNeverInTheTemporaryFolder) {
+  cropsight::testing::TempDir tmp;
+  ASSERT_EQ(setenv("TMPDIR", tmp.path().c_str(), 1), 0);
+  {
+    detail::TempFile file;
+    file.write("svm_type c_svc\n");
+    EXPECT_TRUE(std::filesystem::is_empty(tmp.path())) << file.path();
+    std::ifstream in(file.path());
+    std::string line;
+    EXPECT_TRUE(std::getline(in, line));
+    EXPECT_EQ(line, "svm_type c_svc");
+    ClassifierParams p;
+    p.type = "svm-rbf";
+    const auto clf = train_classifier(testdata::gaussians(60, 4, 1.5, 3), p);  // save, then load
+    EXPECT_TRUE(std::filesystem::is_empty(tmp.path()));
+  }
+  unsetenv("TMPDIR");
+}
 
 class SvmKernels : public ::testing::TestWithParam<std::string> {};
 

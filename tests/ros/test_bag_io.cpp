@@ -4,6 +4,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "cropsight/bridge/sequence_io.hpp"
 #include "cropsight/core/error.hpp"
@@ -164,6 +167,51 @@ TEST(BagIo, DamagedLengthsAreErrorsNotAllocations) {
   i.bag = (d / "long.bag").string();
   EXPECT_NE(error_of([&] { import_bag_sequence(i); }).find("runs past the end of the file"), std::string::npos);
   EXPECT_FALSE(fs::exists(i.out));
+}
+
+// `detect broccoli --bag` unpacks the bag to a temporary sequence and gives what `--data` gives on
+// the sequence the bag was made from. The unpacked folder goes at the end, and the one a run killed
+// by a signal left (.cropsight-bag.tmp-PID-N of a dead PID) goes at the next run (kill safety,
+// issue 26); a live run's is left alone.
+TEST(BagIo, DetectOnABagEqualsDetectOnItsSequenceAndCleansWhatKilledRunsLeft) {
+  using ros_test::run;
+  const fs::path d = ros_test::scratch_dir("bag_detect");
+  const std::string model = std::string(CROPSIGHT_SOURCE_DIR) + "/models/broccoli-oes-uk.json";
+  ASSERT_EQ(run(ros_test::cli() + " simulate broccoli --frames 3 --seed 5 --out " + (d / "seq").string() +
+                " >/dev/null 2>&1"),
+            0);
+  ASSERT_EQ(
+      run(ros_test::cli() + " export " + (d / "seq").string() + " --bag " + (d / "s.bag").string() + " >/dev/null"), 0);
+  const fs::path tmp = d / "tmp", stale = tmp / ".cropsight-bag.tmp-999999999-1", live = tmp / ".cropsight-bag.tmp-1-1";
+  fs::create_directories(stale / "sequence");
+  fs::create_directories(live);
+  std::ofstream(stale / "sequence" / "000000.png") << "partial";
+  ASSERT_EQ(run("TMPDIR=" + tmp.string() + " " + ros_test::cli() + " detect broccoli --bag " + (d / "s.bag").string() +
+                " --model " + model + " --out " + (d / "bag.jsonl").string() + " --quiet"),
+            0);
+  ASSERT_EQ(run(ros_test::cli() + " detect broccoli --data " + (d / "seq").string() + " --model " + model + " --out " +
+                (d / "seq.jsonl").string() + " --quiet"),
+            0);
+  // The same detections frame by frame; the timestamps equal to the bag's nanoseconds.
+  auto read = [](const fs::path& p) {
+    std::ifstream in(p);
+    std::vector<nlohmann::json> lines;
+    for (std::string line; std::getline(in, line);) lines.push_back(nlohmann::json::parse(line));
+    return lines;
+  };
+  const auto from_bag = read(d / "bag.jsonl"), from_seq = read(d / "seq.jsonl");
+  ASSERT_EQ(from_bag.size(), 3u);
+  ASSERT_EQ(from_seq.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_FALSE(from_seq[i]["detections"].empty());
+    EXPECT_EQ(from_bag[i]["detections"], from_seq[i]["detections"]) << "frame " << i;
+    EXPECT_EQ(from_bag[i]["frame"], from_seq[i]["frame"]);
+    EXPECT_NEAR(from_bag[i]["timestamp"].get<double>(), from_seq[i]["timestamp"].get<double>(), 1e-9);
+  }
+  EXPECT_FALSE(fs::exists(stale));
+  EXPECT_TRUE(fs::exists(live));  // process 1 (init) is alive: not ours to remove
+  fs::remove(live);
+  EXPECT_TRUE(fs::is_empty(tmp));
 }
 
 }  // namespace
