@@ -1,17 +1,17 @@
 #!/usr/bin/env bash
 # A ROS node fed for a long time (issue 26, deliverable 5; docs/reliability.md, "Long runs").
 # Starts a roscore, the node pinned to core 0 and bench_ros_latency on core 1, which plays a
-# simulated sequence's bag in a loop at RATE Hz for MINUTES and checks that every output equals
+# simulated sequence's bag (the seedling node: a simulated folder of stereo pairs) in a loop at RATE Hz for MINUTES and checks that every output equals
 # the first output for the same bag frame ("differing"). Every SAMPLE seconds the node's resident
 # memory (VmRSS) goes to DIR/rss.tsv; at the end one line compares the first sample after
 # WARMUP seconds with the last, and the node's log is searched for errors.
 #
-# Usage: scripts/ros-long-run.sh [NODE=broccoli] [MINUTES=30] [RATE=15] [BUILD=build]
+# Usage: scripts/ros-long-run.sh [NODE=broccoli|potato|seedling] [MINUTES=30] [RATE=15] [BUILD=build]
 # Environment: WARMUP (s, default 60), SAMPLE (s, default 10).
 set -euo pipefail
 node=${1:-broccoli}; minutes=${2:-30}; rate=${3:-15}; build=${4:-build}
 warmup=${WARMUP:-60}; sample=${SAMPLE:-10}
-case "$node" in broccoli | potato) ;; *) echo "ros-long-run.sh: NODE must be broccoli or potato, got '$node'" >&2; exit 2 ;; esac
+case "$node" in broccoli | potato | seedling) ;; *) echo "ros-long-run.sh: NODE must be broccoli, potato or seedling, got '$node'" >&2; exit 2 ;; esac
 [[ "$minutes" =~ ^[0-9]+$ && "$minutes" -ge 1 ]] || { echo "ros-long-run.sh: MINUTES must be a positive integer" >&2; exit 2; }
 bin="$build/bin"; dir="$build/ros_long_run/$node"
 for b in cropsight "cropsight_${node}_node" bench_ros_latency; do
@@ -21,7 +21,14 @@ mkdir -p "$dir"
 scripts/ros-master.sh start "$dir" >/dev/null
 trap 'kill "${sampler:-}" "${node_pid:-}" 2>/dev/null || true; scripts/ros-master.sh stop "$dir" >/dev/null' EXIT
 export ROS_MASTER_URI=$(cat "$dir/master_uri") ROS_HOSTNAME=127.0.0.1 ROS_HOME="$dir/ros_home"
-if [[ ! -f "$dir/seq.bag" ]]; then
+if [[ $node == seedling ]]; then
+  [[ -f "$dir/pairs/rig.yaml" ]] ||
+    "$bin/cropsight" simulate seedling --pairs 10 --calib-pairs 0 --seed 9102 --quiet --out "$dir/pairs" >/dev/null
+  input=(--stereo "$dir/pairs")
+else
+  input=(--bag "$dir/seq.bag")
+fi
+if [[ $node != seedling && ! -f "$dir/seq.bag" ]]; then
   if [[ $node == broccoli ]]; then
     "$bin/cropsight" simulate broccoli --frames 30 --seed 9100 --out "$dir/seq" --force >/dev/null
   else
@@ -42,7 +49,7 @@ node_pid=$!
 ) &
 sampler=$!
 frames=$((minutes * 60 * rate))
-taskset -c 1 "$bin/bench_ros_latency" --bag "$dir/seq.bag" --ns "/long_$node" --node "$node" --rate "$rate" \
+taskset -c 1 "$bin/bench_ros_latency" "${input[@]}" --ns "/long_$node" --node "$node" --rate "$rate" \
   --frames "$frames" --warmup "$((warmup * rate))" | tee "$dir/result.json"
 kill -INT "$node_pid"; wait "$node_pid" 2>/dev/null || true
 node_pid=
