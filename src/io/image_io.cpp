@@ -93,9 +93,14 @@ void check_size(const std::string& where, int w, int h, std::size_t n) {
 }  // namespace
 
 std::string read_image_file(const fs::path& path) {
-  if (!fs::exists(path)) throw Error(path.string(), "file not found");
+  // The error-code overloads: a name the system refuses (too long, a symlink loop) is an Error
+  // naming it, not a std::filesystem_error (fuzzing finding 21).
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (st.type() == fs::file_type::not_found) throw Error(path.string(), "file not found");
+  if (ec) throw Error(path.string(), "cannot access: " + ec.message());
   // Named before reading: a permission or directory problem is fixed differently from a damaged file.
-  if (fs::is_directory(path)) throw Error(path.string(), "is a directory, not an image");
+  if (fs::is_directory(st)) throw Error(path.string(), "is a directory, not an image");
   std::string bytes = read_file(path);
   if (bytes.empty()) throw Error(path.string(), "empty file, not an image");
   if (!png_complete(bytes)) throw Error(path.string(), "truncated PNG (its chunks end before IEND)");

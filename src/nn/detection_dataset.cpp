@@ -18,9 +18,16 @@ namespace {
 
 using nlohmann::json;
 
+// A regular file at `p`; false, not a std::filesystem_error, for a name the system refuses (too
+// long, a loop): the annotation's file name is data (fuzzing finding 21).
+bool is_file(const std::filesystem::path& p) {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(p, ec);
+}
+
 std::filesystem::path find_image(const std::filesystem::path& dir, const std::string& name) {
   for (const auto& p : {dir / name, dir / std::filesystem::path(name).filename()})
-    if (std::filesystem::is_regular_file(p)) return p;
+    if (is_file(p)) return p;
   return dir / name;
 }
 
@@ -127,7 +134,8 @@ DetectionDataset read_coco_detection(const std::filesystem::path& annotations, c
 DetectionDataset read_voc_detection(const std::filesystem::path& voc_dir, const std::filesystem::path& images_dir,
                                     const std::vector<std::string>& classes) {
   if (classes.empty()) throw Error("--classes", "a VOC set needs the class names");
-  if (!std::filesystem::is_directory(voc_dir)) throw Error(voc_dir.string(), "not a folder of VOC annotations");
+  if (std::error_code ec; !std::filesystem::is_directory(voc_dir, ec))
+    throw Error(voc_dir.string(), "not a folder of VOC annotations");
   std::vector<std::filesystem::path> files;
   for (const auto& e : std::filesystem::directory_iterator(voc_dir))
     if (e.path().extension() == ".xml") files.push_back(e.path());
@@ -139,9 +147,9 @@ DetectionDataset read_voc_detection(const std::filesystem::path& voc_dir, const 
     const io::VocAnnotation a = io::read_voc(f);
     std::filesystem::path image = find_image(images_dir, a.filename);
     for (const char* ext : {".jpg", ".png"})
-      if (a.filename.empty() || !std::filesystem::is_regular_file(image)) {
+      if (a.filename.empty() || !is_file(image)) {
         const auto alt = images_dir / (f.stem().string() + ext);
-        if (std::filesystem::is_regular_file(alt)) image = alt;
+        if (is_file(alt)) image = alt;
       }
     DetectionSample s;
     s.name = image.filename().string();

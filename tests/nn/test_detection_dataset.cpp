@@ -67,6 +67,26 @@ TEST(DetectionDataset, BadCocoFilesNameTheFileAndTheKey) {
   EXPECT_NE(error_of([&] { read_coco_detection(t / "badimage.json", t.path()); }).find("bad.png"), std::string::npos);
 }
 
+// Fuzzing finding 21: an image name the system refuses (here longer than NAME_MAX) made
+// std::filesystem throw filesystem_error out of the readers; now it is an Error naming the path.
+TEST(DetectionDataset, AnImageNameTheSystemRefusesIsAnErrorNamingIt) {
+  TempDir t;
+  const std::string long_name(300, 'a');
+  std::filesystem::create_directories(t / "voc");
+  std::filesystem::create_directories(t / "images");
+  write_text(t / "voc" / "x.xml", "<annotation><filename>" + long_name +
+                                      ".png</filename><size><width>8</width><height>8</height></size></annotation>");
+  std::string e = error_of([&] { read_voc_detection(t / "voc", t / "images", {"potato"}); });
+  EXPECT_NE(e.find(long_name), std::string::npos) << e;
+  EXPECT_NE(e.find("File name too long"), std::string::npos) << e;
+  write_text(t / "long.json", R"({"images": [{"id": 1, "file_name": ")" + long_name +
+                                  R"(.png"}], "categories": [{"id": 1, "name": "x"}], "annotations": []})");
+  e = error_of([&] { read_coco_detection(t / "long.json", t.path()); });
+  EXPECT_NE(e.find("File name too long"), std::string::npos) << e;
+  e = error_of([&] { io::read_color(t / (long_name + ".png")); });
+  EXPECT_NE(e.find("File name too long"), std::string::npos) << e;
+}
+
 DetectionSample square_sample() {
   DetectionSample s;
   s.image = ColorImage(64, 48, Rgb8{100, 100, 100});
