@@ -61,7 +61,7 @@ struct CenterNetOnnx::Impl {
 CenterNetOnnx::CenterNetOnnx(const std::filesystem::path& path) : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.where = path.string();
-  if (!std::filesystem::is_regular_file(path)) throw Error(m.where, "no such ONNX file");
+  if (std::error_code ec; !std::filesystem::is_regular_file(path, ec)) throw Error(m.where, "no such ONNX file");
   const OnnxModelInfo info = read_onnx_info(path);
   if (info.metadata.count("kind") == 0 || info.metadata.at("kind") != "cropsight-centernet")
     throw Error(m.where, "not a cropsight detector (no cropsight.kind metadata; a foreign ONNX layout?)");

@@ -33,7 +33,8 @@ GrapeModel& GrapeModel::operator=(GrapeModel&&) noexcept = default;
 
 GrapeModel GrapeModel::load(const std::filesystem::path& path, int threads) {
   const std::string where = path.string();
-  if (!std::filesystem::is_regular_file(path)) throw Error(where, "no such model file");
+  // The error-code overload: a name the system refuses (a preset names its model) is "no such file".
+  if (std::error_code ec; !std::filesystem::is_regular_file(path, ec)) throw Error(where, "no such model file");
   GrapeModel m;
   m.impl_ = std::make_unique<Impl>();
   m.impl_->threads = threads;
