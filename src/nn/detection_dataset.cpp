@@ -2,6 +2,7 @@
 #include "cropsight/nn/detection_dataset.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -115,8 +116,13 @@ DetectionDataset read_coco_detection(const std::filesystem::path& annotations, c
     if (a.contains("segmentation") && a["segmentation"].is_array() && !a["segmentation"].empty()) {
       std::vector<std::vector<cv::Point>> polys;
       for (const auto& poly : a["segmentation"]) {
-        if (!poly.is_array() || poly.size() < 6 || poly.size() % 2)
-          throw Error(file, where + ": 'segmentation' holds a polygon that is not [x0, y0, x1, y1, ...]");
+        // Every coordinate a number, and within a million pixels: the points become ints for
+        // cv::fillPoly (fuzzing finding 22: an object inside a polygon escaped as json::type_error).
+        if (!poly.is_array() || poly.size() < 6 || poly.size() % 2 ||
+            !std::all_of(poly.begin(), poly.end(),
+                         [](const json& v) { return v.is_number() && std::abs(v.get<double>()) <= 1e6; }))
+          throw Error(file,
+                      where + ": 'segmentation' holds a polygon that is not [x0, y0, x1, y1, ...] (numbers, pixels)");
         std::vector<cv::Point> pts;
         for (std::size_t k = 0; k + 1 < poly.size(); k += 2)
           pts.emplace_back(int(std::lround(poly[k].get<double>())), int(std::lround(poly[k + 1].get<double>())));

@@ -65,6 +65,17 @@ TEST(DetectionDataset, BadCocoFilesNameTheFileAndTheKey) {
              R"({"images": [{"id": 1, "file_name": "bad.png"}], "categories": [{"id": 1, "name": "x"}],
     "annotations": []})");
   EXPECT_NE(error_of([&] { read_coco_detection(t / "badimage.json", t.path()); }).find("bad.png"), std::string::npos);
+  // Fuzzing finding 22: a polygon holding something other than numbers (here an object) escaped as
+  // nlohmann::json::type_error; a coordinate beyond a million pixels would overflow fillPoly's ints.
+  for (const std::string poly :
+       {R"([2, 3, {"id": 2}, 1, 7, 1])", "[2, 3, 5, 1e300, 7, 1]", R"([2, 3, 5, "1", 7, 1])"}) {
+    write_text(t / "poly.json", R"({"images": [{"id": 1, "file_name": "a.png"}], "categories": [{"id": 1, "name": "x"}],
+      "annotations": [{"image_id": 1, "category_id": 1, "bbox": [2, 3, 8, 6], "segmentation": [)" +
+                                    poly + "]}]}");
+    const std::string p = error_of([&] { read_coco_detection(t / "poly.json", t.path()); });
+    EXPECT_NE(p.find("annotations[0]: 'segmentation' holds a polygon that is not"), std::string::npos)
+        << poly << ": " << p;
+  }
 }
 
 // Fuzzing finding 21: an image name the system refuses (here longer than NAME_MAX) made
