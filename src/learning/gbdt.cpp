@@ -320,11 +320,27 @@ void Gbdt::save(const std::filesystem::path& path) const {
 
 namespace {
 
+// XGBoost's "no parent" (the root's parent index in its JSON).
+constexpr std::int64_t kNoParent = 2147483647;
+
+// A decimal count written as a string (XGBoost's parameters); 0 when it is not one.
+std::int64_t parse_count(const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const std::int64_t v = std::stoll(text, &used);
+    return used == text.size() ? v : 0;
+  } catch (const std::exception&) {
+    return 0;
+  }
+}
+
 // XGBoost 1.7 trusts a JSON model's tree structure: two trees with the same "id" made its
 // parallel loader free one tree twice (fuzz_gbdt_model; fuzz/regressions/gbdt_model/), and a
 // child index out of range or pointing back up would send compile() out of bounds or round a
 // cycle. So the gbtree model is checked first: tree ids 0..n-1 each once, tree_info of n
-// entries, every per-node array of num_nodes entries, every child after its parent and in range.
+// entries, every per-node array of num_nodes entries, every child after its parent and in range,
+// every parent the node that names the child, split features within the model's, no categorical
+// splits.
 void check_tree_model(const nlohmann::json& j, const std::string& where) {
   const auto fail = [&](const std::string& problem) { throw Error(where, "not a valid XGBoost model: " + problem); };
   const auto* learner = j.contains("learner") && j["learner"].is_object() ? &j["learner"] : nullptr;
@@ -339,6 +355,13 @@ void check_tree_model(const nlohmann::json& j, const std::string& where) {
   if (trees == model->end() || !trees->is_array() || info == model->end() || !info->is_array() ||
       info->size() != trees->size())
     fail("\"trees\" and \"tree_info\" must be arrays of the same length");
+  // The learner's feature count (a string, as XGBoost writes its parameters).
+  std::int64_t num_feature = 0;
+  if (const auto mp = learner->find("learner_model_param");
+      mp != learner->end() && mp->is_object() && mp->contains("num_feature") && (*mp)["num_feature"].is_string())
+    num_feature = parse_count((*mp)["num_feature"].get<std::string>());
+  if (num_feature < 1 || num_feature > (std::int64_t(1) << 31))
+    fail("learner_model_param.num_feature is not a positive count");
   const std::size_t n = trees->size();
   std::vector<char> seen(n, 0);
   for (const auto& t : *trees) {
@@ -350,14 +373,7 @@ void check_tree_model(const nlohmann::json& j, const std::string& where) {
     std::int64_t nodes = 0;
     if (param == t.end() || !param->is_object() || !param->contains("num_nodes") || !(*param)["num_nodes"].is_string())
       fail("a tree without tree_param.num_nodes");
-    try {
-      std::size_t used = 0;
-      const std::string text = (*param)["num_nodes"].get<std::string>();
-      nodes = std::stoll(text, &used);
-      if (used != text.size()) nodes = 0;
-    } catch (const std::exception&) {
-      nodes = 0;
-    }
+    nodes = parse_count((*param)["num_nodes"].get<std::string>());
     if (nodes < 1 || nodes > (std::int64_t(1) << 31)) fail("a tree's num_nodes is not a positive count");
     for (const char* key : {"left_children", "right_children", "parents", "split_indices", "split_conditions",
                             "default_left", "base_weights", "loss_changes", "sum_hessian"}) {
@@ -374,6 +390,31 @@ void check_tree_model(const nlohmann::json& j, const std::string& where) {
         if (v != -1 && (v <= i || v >= nodes)) fail("a tree node's child is not a later node of the same tree");
       }
     }
+    // XGBoost writes each node's parent index unchecked: a parent far out of range was a SEGV in
+    // RegTree::LoadModel (fuzzing finding 23), a near one silent heap corruption.
+    const auto& parents = t["parents"];
+    for (std::int64_t i = 0; i < nodes; ++i) {
+      const auto& p = parents[std::size_t(i)];
+      if (!p.is_number_integer()) fail("a tree's \"parents\" holds a non-integer");
+      const std::int64_t v = p.get<std::int64_t>();
+      const bool ok = i == 0 ? v == kNoParent
+                             : v >= 0 && v < i &&
+                                   (t["left_children"][std::size_t(v)].get<std::int64_t>() == i ||
+                                    t["right_children"][std::size_t(v)].get<std::int64_t>() == i);
+      if (!ok) fail("a tree node's parent is not the node whose child it is");
+    }
+    // A split's feature index reads the feature row: it must be one of the model's features.
+    for (const auto& f : t["split_indices"])
+      if (!f.is_number_integer() || f.get<std::int64_t>() < 0 || f.get<std::int64_t>() >= num_feature)
+        fail("a tree's split feature is not one of the model's " + std::to_string(num_feature) + " features");
+    // cropsight trains numerical splits only; XGBoost's categorical ones index further arrays.
+    if (const auto st = t.find("split_type"); st != t.end())
+      if (!st->is_array() || std::int64_t(st->size()) != nodes ||
+          !std::all_of(st->begin(), st->end(), [](const nlohmann::json& v) { return v == 0; }))
+        fail("a tree's \"split_type\" is not num_nodes numerical splits (0)");
+    for (const char* key : {"categories", "categories_nodes", "categories_segments", "categories_sizes"})
+      if (const auto c = t.find(key); c != t.end() && !(c->is_array() && c->empty()))
+        fail(std::string("a tree holds categorical splits (\"") + key + "\")");
   }
 }
 

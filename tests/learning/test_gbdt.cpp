@@ -153,6 +153,29 @@ TEST(Gbdt, BrokenTreeStructureIsAnError) {
   } catch (const cropsight::Error& e) {
     EXPECT_NE(e.problem().find("child is not a later node"), std::string::npos) << e.what();
   }
+  // Fuzzing finding 23: a parent index far out of range was a SEGV inside XGBoost's loader; a
+  // split on a feature the model does not have, or a categorical split, reads past its arrays.
+  auto refused = [&](const std::string& file, const std::string& words) {
+    try {
+      Gbdt::load(file);
+      ADD_FAILURE() << "loaded " << file;
+    } catch (const cropsight::Error& e) {
+      EXPECT_NE(e.problem().find(words), std::string::npos) << e.what();
+    }
+  };
+  refused(std::string(CROPSIGHT_SOURCE_DIR) + "/fuzz/regressions/gbdt_model/crash-2122b3564da4",
+          "parent is not the node whose child it is");
+  auto edited = [&](const std::string& key, const std::string& value, const std::string& name) {
+    std::ifstream original(std::string(CROPSIGHT_SOURCE_DIR) + "/models/grape-gbdt-fast.json");
+    std::string m((std::istreambuf_iterator<char>(original)), {});
+    const auto at = m.find(key) + key.size();
+    m.replace(at, m.find(',', at) - at, value);
+    std::ofstream(t / name) << m;
+    return (t / name).string();
+  };
+  refused(edited("\"parents\":[", "0", "root_parent.json"), "parent is not the node whose child it is");
+  refused(edited("\"split_indices\":[", "100000", "feature.json"), "split feature is not one of the model's");
+  refused(edited("\"split_type\":[", "1", "categorical.json"), "numerical splits");
 }
 
 // Parameters out of range are named before XGBoost runs (rounds 0 used to blame the output file);
