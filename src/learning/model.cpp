@@ -1,6 +1,8 @@
 #include "cropsight/learning/model.hpp"
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "cropsight/core/error.hpp"
@@ -11,6 +13,21 @@ namespace cropsight::learning {
 namespace {
 constexpr const char* kFormat = "cropsight-model";
 constexpr int kVersion = 1;
+
+// The integer member `key` of `j` within [lo, hi], else Error. nlohmann's get<int>() casts a
+// floating-point value such as 2e119 to int, which is undefined behaviour (fuzzing finding 24).
+std::int64_t integer_at(const nlohmann::json& j, const char* key, std::int64_t lo, std::int64_t hi,
+                        const std::string& where) {
+  const nlohmann::json& v = j.at(key);
+  const bool in_range = v.is_number_unsigned() ? v.get<std::uint64_t>() <= std::uint64_t(hi) &&
+                                                     (lo <= 0 || v.get<std::uint64_t>() >= std::uint64_t(lo))
+                        : v.is_number_integer() ? v.get<std::int64_t>() >= lo && v.get<std::int64_t>() <= hi
+                                                : false;
+  if (!in_range)
+    throw Error(where, std::string("'") + key + "' must be an integer from " + std::to_string(lo) + " to " +
+                           std::to_string(hi) + ", got " + v.dump());
+  return v.get<std::int64_t>();
+}
 
 std::string join(const std::vector<std::string>& v) {
   std::string s;
@@ -65,13 +82,13 @@ Model load_model(const std::filesystem::path& path) {
   }
   try {
     if (!j.is_object() || j.value("format", "") != kFormat) throw Error(where, "not a cropsight model (format field)");
-    if (j.at("version").get<int>() != kVersion)
+    if (integer_at(j, "version", 0, std::numeric_limits<int>::max(), where) != kVersion)
       throw Error(where, "model version " + j.at("version").dump() + " is not supported (expected 1)");
     Model m;
     m.info.task = j.at("task").get<std::string>();
     m.info.pipeline = j.at("pipeline").get<std::string>();
     m.info.features = j.at("features").get<std::vector<std::string>>();
-    m.info.feature_dim = j.at("feature_dim").get<int>();
+    m.info.feature_dim = int(integer_at(j, "feature_dim", 1, std::numeric_limits<int>::max(), where));
     if (m.info.feature_dim <= 0) throw Error(where, "feature_dim must be positive");
     for (const auto& [k, v] : j.at("config").items()) m.info.config[k] = v.get<std::string>();
     if (j.contains("provenance")) m.info.provenance = j.at("provenance").get<std::map<std::string, std::string>>();
@@ -89,7 +106,8 @@ Model load_model(const std::filesystem::path& path) {
     // The size recorded at save time: a payload edited or cut short is caught here if its own
     // parser let it through.
     if (j.contains("classifier_model_size") &&
-        j.at("classifier_model_size").get<std::size_t>() != m.classifier->model_size())
+        std::size_t(integer_at(j, "classifier_model_size", 0, std::numeric_limits<std::int64_t>::max(), where)) !=
+            m.classifier->model_size())
       throw Error(where, "classifier payload holds " + std::to_string(m.classifier->model_size()) +
                              " entries but the file records classifier_model_size " +
                              j.at("classifier_model_size").dump() + " (damaged model file)");

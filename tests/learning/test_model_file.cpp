@@ -112,4 +112,11 @@ TEST(ModelFile, BadFilesNameTheFileAndTheProblem) {
   corrupt("total_sv ", "total_sv 1");
   corrupt("\"mean\": [", "\"mean\": [1e999, ");
   corrupt("\"classifier_model_size\": ", "\"classifier_model_size\": 1");
+  // Fuzzing finding 24: a floating-point value where an integer belongs (2e119 as feature_dim) was
+  // cast to int by nlohmann's get<int>(), undefined behaviour; a negative size wrapped around.
+  corrupt("\"feature_dim\": 6", "\"feature_dim\": 2e119");
+  corrupt("\"feature_dim\": 6", "\"feature_dim\": 6.0");
+  corrupt("\"version\": 1", "\"version\": 1e30");
+  corrupt("\"classifier_model_size\": ", "\"classifier_model_size\": -1");
+  corrupt("\"classifier_model_size\": ", "\"classifier_model_size\": 1e300");
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -163,17 +164,22 @@ std::vector<GrapeDetection> read_coco_detections(const std::filesystem::path& pa
     if (!a.is_object() || !a.contains("bbox") || !a["bbox"].is_array() || a["bbox"].size() != 4 ||
         !a.contains("category_id") || !a["category_id"].is_number_integer())
       throw Error(where, item + ": needs \"bbox\" [x, y, w, h] and an integer \"category_id\"");
+    // Integers and bounded coordinates only: nlohmann's get<long>() of 2e119, or int(floor(1e300)),
+    // is undefined behaviour (as fuzzing finding 24).
+    if (a.contains("image_id") && !a["image_id"].is_number_integer())
+      throw Error(where, item + ": \"image_id\" must be an integer");
     if (image_id >= 0 && a.value("image_id", -1L) != image_id) continue;
     double b[4];
     for (int i = 0; i < 4; ++i) {
       if (!a["bbox"][std::size_t(i)].is_number()) throw Error(where, item + ": bbox values must be numbers");
       b[i] = a["bbox"][std::size_t(i)].get<double>();
+      if (std::abs(b[i]) > 1e6) throw Error(where, item + ": bbox values must lie within a million pixels");
     }
     if (b[2] < 0 || b[3] < 0) throw Error(where, item + ": negative bbox size");
     GrapeDetection d;
     d.annotation = long(k - 1);
     d.box = {int(std::floor(b[0])), int(std::floor(b[1])), int(std::ceil(b[2])), int(std::ceil(b[3]))};
-    d.category = a["category_id"].get<int>();
+    d.category = int(std::clamp<std::int64_t>(a["category_id"].get<std::int64_t>(), -1, 1 << 20));
     d.score = a.contains("score") && a["score"].is_number() ? a["score"].get<float>() : 1.f;
     out.push_back(d);
   }
