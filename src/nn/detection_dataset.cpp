@@ -100,8 +100,11 @@ DetectionDataset read_coco_detection(const std::filesystem::path& annotations, c
     const long image_id = member(a, "image_id", json::value_t::number_integer, file, where).get<long>();
     const long cat = member(a, "category_id", json::value_t::number_integer, file, where).get<long>();
     const json& bbox = member(a, "bbox", json::value_t::array, file, where);
-    if (bbox.size() != 4 || !std::all_of(bbox.begin(), bbox.end(), [](const json& v) { return v.is_number(); }))
-      throw Error(file, where + ": 'bbox' is not [x, y, width, height]");
+    // Within a million pixels, as the polygons: training turns box coordinates into ints.
+    if (bbox.size() != 4 || !std::all_of(bbox.begin(), bbox.end(), [](const json& v) {
+          return v.is_number() && std::abs(v.get<double>()) <= 1e6;
+        }))
+      throw Error(file, where + ": 'bbox' is not [x, y, width, height] (numbers, pixels)");
     const auto img = image_index.find(image_id);
     if (img == image_index.end())
       throw Error(file, where + ": 'image_id' " + std::to_string(image_id) + " names no image");
