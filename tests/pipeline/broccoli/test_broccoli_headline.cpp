@@ -5,6 +5,9 @@
 // rounding and nothing more, so a change that moves a documented figure fails here.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <string>
+
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_tracking_eval.hpp"
@@ -14,13 +17,27 @@
 using namespace cropsight;
 using namespace cropsight::pipeline;
 
+namespace {
+// `cropsight simulate broccoli ARGS --out DIR/NAME` (a held-out pass) and the shipped model
+// models/MODEL loaded: what both headline tests start from.
+std::filesystem::path simulate(const cropsight::testing::TempDir& tmp, const std::string& name,
+                               const std::string& args) {
+  const auto seq = tmp / name;
+  const auto sim =
+      cropsight::testing::run_cli("simulate broccoli " + args + " --out " + cropsight::testing::shell_quoted(seq));
+  EXPECT_EQ(sim.exit_code, 0) << sim.err;
+  return seq;
+}
+std::string shipped_model(const std::string& name) {
+  return (cropsight::testing::source_dir() / "models" / name).string();
+}
+}  // namespace
+
 TEST(BroccoliHeadline, ShippedOesUkModelOnTheDocumentedTestPass) {
   cropsight::testing::TempDir tmp;
-  const auto seq = tmp / "uk-2001";
-  const auto sim = cropsight::testing::run_cli("simulate broccoli --variety uk --seed 2001 --frames 50 --out " +
-                                               cropsight::testing::shell_quoted(seq));
-  ASSERT_EQ(sim.exit_code, 0) << sim.err;
-  const auto model_path = (cropsight::testing::source_dir() / "models" / "broccoli-oes-uk.json").string();
+  const auto seq = simulate(tmp, "uk-2001", "--variety uk --seed 2001 --frames 50");
+  ASSERT_FALSE(::testing::Test::HasFailure());
+  const auto model_path = shipped_model("broccoli-oes-uk.json");
   const auto model = load_broccoli_model(model_path);
   // The sizing-tracking doc's AP table: poses on (AP50 does not depend on the size settings).
   BroccoliPipeline pipe(broccoli_config_for_model(*model, {{"tracking.use_poses", "true"}}, model_path), model);
@@ -62,11 +79,9 @@ TEST(BroccoliHeadline, ShippedOesUkModelOnTheDocumentedTestPass) {
 // 0.714 (the model before the 6.5 mm tolerance: 0.913 / 0.785 / 0.855 / 0.376).
 TEST(BroccoliHeadline, ShippedOesGeneralModelOnAHeldOutRandomisedField) {
   cropsight::testing::TempDir tmp;
-  const auto seq = tmp / "random-7103";
-  const auto sim = cropsight::testing::run_cli("simulate broccoli --variety random --seed 7103 --frames 30 --out " +
-                                               cropsight::testing::shell_quoted(seq));
-  ASSERT_EQ(sim.exit_code, 0) << sim.err;
-  const auto model_path = (cropsight::testing::source_dir() / "models" / "broccoli-oes-general.json").string();
+  const auto seq = simulate(tmp, "random-7103", "--variety random --seed 7103 --frames 30");
+  ASSERT_FALSE(::testing::Test::HasFailure());
+  const auto model_path = shipped_model("broccoli-oes-general.json");
   const auto model = load_broccoli_model(model_path);
   BroccoliPipeline pipe(broccoli_config_for_model(*model, {}, model_path), model);
   BroccoliEvaluator detection(pipe);
