@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "census_sgm.hpp"
+#include "core/parallel_for.hpp"
 #include "cropsight/core/config.hpp"
 #include "cropsight/core/error.hpp"
 #include "cv_convert.hpp"
@@ -147,23 +148,32 @@ cv::Mat rank_features(const cv::Mat& image, int radius) {
   return merged;
 }
 
+// Threads of the post-processing passes below: the census engine's two bands (census_sgm.hpp).
+constexpr int kPostThreads = 2;
+
 // Removes small disparity islands (OpenCV's filterSpeckles on a 1/16 px fixed-point copy): the
-// census engine's equivalent of SGBM's built-in speckle filter.
+// census engine's equivalent of SGBM's built-in speckle filter. The conversions run on two
+// threads (rows are independent); filterSpeckles itself is one flood fill.
 void remove_speckles(DisparityImage& disp, int window, int range) {
   if (window <= 0) return;
   cv::Mat d16(disp.height, disp.width, CV_16S);
-  for (int y = 0; y < disp.height; ++y) {
-    const float* s = disp.row(y);
-    short* o = d16.ptr<short>(y);
-    for (int x = 0; x < disp.width; ++x) o[x] = std::isnan(s[x]) ? short(-16) : short(std::lround(s[x] * 16.0f));
-  }
+  const auto rows = std::size_t(disp.height);
+  cropsight::detail::parallel_for(rows, kPostThreads, 32, [&](std::size_t b, std::size_t e) {
+    for (std::size_t y = b; y < e; ++y) {
+      const float* s = disp.row(int(y));
+      short* o = d16.ptr<short>(int(y));
+      for (int x = 0; x < disp.width; ++x) o[x] = std::isnan(s[x]) ? short(-16) : short(std::lround(s[x] * 16.0f));
+    }
+  });
   cv::filterSpeckles(d16, -16, window, range * 16);
-  for (int y = 0; y < disp.height; ++y) {
-    const short* o = d16.ptr<short>(y);
-    float* s = disp.row(y);
-    for (int x = 0; x < disp.width; ++x)
-      if (o[x] == -16) s[x] = kNaN;
-  }
+  cropsight::detail::parallel_for(rows, kPostThreads, 32, [&](std::size_t b, std::size_t e) {
+    for (std::size_t y = b; y < e; ++y) {
+      const short* o = d16.ptr<short>(int(y));
+      float* s = disp.row(int(y));
+      for (int x = 0; x < disp.width; ++x)
+        if (o[x] == -16) s[x] = kNaN;
+    }
+  });
 }
 
 DisparityImage run_census(const cv::Mat& left, const cv::Mat& right, const DisparityConfig& c,
@@ -238,36 +248,39 @@ void validate_disparity_config(const DisparityConfig& c, const std::string& wher
 void fill_disparity_holes(DisparityImage& disp, int median) {
   const int w = disp.width, h = disp.height;
   if (w == 0 || h == 0) return;
-  std::vector<std::uint8_t> filled(std::size_t(w) * h, 0);
-  std::vector<float> left_val(w), right_val(w);
-  std::vector<int> empty_rows;
+  std::vector<std::uint8_t> filled(std::size_t(w) * h, 0), empty(std::size_t(h), 0);
+  // Scan-line filling, row by row on two threads (each row reads and writes itself only).
+  cropsight::detail::parallel_for(std::size_t(h), kPostThreads, 32, [&](std::size_t b, std::size_t e) {
+    std::vector<float> left_val(static_cast<std::size_t>(w)), right_val(static_cast<std::size_t>(w));
+    for (int y = int(b); y < int(e); ++y) {
+      float* row = disp.row(y);
+      float last = kNaN;
+      for (int x = 0; x < w; ++x) {
+        if (!std::isnan(row[x])) last = row[x];
+        left_val[std::size_t(x)] = last;
+      }
+      last = kNaN;
+      for (int x = w - 1; x >= 0; --x) {
+        if (!std::isnan(row[x])) last = row[x];
+        right_val[std::size_t(x)] = last;
+      }
+      if (std::isnan(left_val[std::size_t(w - 1)])) {  // no valid pixel in the row
+        empty[std::size_t(y)] = 1;
+        continue;
+      }
+      for (int x = 0; x < w; ++x) {
+        if (!std::isnan(row[x])) continue;
+        const float a = left_val[std::size_t(x)], c = right_val[std::size_t(x)];
+        // Occluded / unmatched pixels lie behind their neighbours: take the smaller disparity.
+        row[x] = std::isnan(a) ? c : std::isnan(c) ? a : std::min(a, c);
+        filled[std::size_t(y) * w + x] = 1;
+      }
+    }
+  });
+  if (std::count(empty.begin(), empty.end(), std::uint8_t(1)) == h) return;
+  // Rows without any estimate copy the nearest row that has one (above first), in row order.
   for (int y = 0; y < h; ++y) {
-    float* row = disp.row(y);
-    float last = kNaN;
-    for (int x = 0; x < w; ++x) {
-      if (!std::isnan(row[x])) last = row[x];
-      left_val[x] = last;
-    }
-    last = kNaN;
-    for (int x = w - 1; x >= 0; --x) {
-      if (!std::isnan(row[x])) last = row[x];
-      right_val[x] = last;
-    }
-    if (std::isnan(left_val[w - 1])) {  // no valid pixel in the row
-      empty_rows.push_back(y);
-      continue;
-    }
-    for (int x = 0; x < w; ++x) {
-      if (!std::isnan(row[x])) continue;
-      const float a = left_val[x], b = right_val[x];
-      // Occluded / unmatched pixels lie behind their neighbours: take the smaller disparity.
-      row[x] = std::isnan(a) ? b : std::isnan(b) ? a : std::min(a, b);
-      filled[std::size_t(y) * w + x] = 1;
-    }
-  }
-  if (int(empty_rows.size()) == h) return;
-  // Rows without any estimate copy the nearest row that has one (above first).
-  for (int y : empty_rows) {
+    if (!empty[std::size_t(y)]) continue;
     int src = -1;
     for (int d = 1; d < h && src < 0; ++d) {
       if (y - d >= 0 && !std::isnan(disp.row(y - d)[w - 1]) && !filled[std::size_t(y - d) * w + w - 1])
@@ -281,15 +294,22 @@ void fill_disparity_holes(DisparityImage& disp, int median) {
   }
   if (median <= 1) return;
   // Scan-line filling leaves horizontal streaks; a median over the filled pixels removes them
-  // without touching matched pixels.
-  cv::Mat d = detail::view(disp), m;
-  cv::medianBlur(d, m, median >= 5 ? 5 : 3);
-  for (int y = 0; y < h; ++y) {
-    const float* s = m.ptr<float>(y);
-    float* row = disp.row(y);
-    for (int x = 0; x < w; ++x)
-      if (filled[std::size_t(y) * w + x]) row[x] = s[x];
-  }
+  // without touching matched pixels. Two row blocks on two threads, each median taken on its
+  // rows plus the k/2 rows of context on either side that exist, so that every output pixel sees
+  // the same neighbourhood (and image-border replication) as one median over the whole image.
+  const int k = median >= 5 ? 5 : 3, r = k / 2;
+  const cv::Mat d = detail::view(disp).clone();
+  cropsight::detail::parallel_for(std::size_t(h), kPostThreads, 32, [&](std::size_t b, std::size_t e) {
+    const int y0 = int(b), y1 = int(e), c0 = std::max(y0 - r, 0), c1 = std::min(y1 + r, h);
+    cv::Mat m;
+    cv::medianBlur(d.rowRange(c0, c1), m, k);
+    for (int y = y0; y < y1; ++y) {
+      const float* s = m.ptr<float>(y - c0);
+      float* row = disp.row(y);
+      for (int x = 0; x < w; ++x)
+        if (filled[std::size_t(y) * w + x]) row[x] = s[x];
+    }
+  });
 }
 
 DisparityImage compute_disparity(const ColorImage& left, const ColorImage& right, const DisparityConfig& cfg,

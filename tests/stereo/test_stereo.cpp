@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <opencv2/imgproc.hpp>
 #include <random>
 
 #include "cropsight/core/error.hpp"
@@ -59,6 +60,38 @@ TEST(Disparity, FrontoParallelPlaneIsExact) {
   }
   EXPECT_EQ(valid, long(w) * h);  // hole filling: every pixel has an estimate
   EXPECT_GE(double(exact) / double(w * h), 0.995);
+}
+
+// fill_disparity_holes runs its median in two row blocks on two threads, each with the rows of
+// context it needs: the filled pixels must equal one cv::medianBlur over the whole scan-line
+// filled image, and matched pixels must stay as they were.
+TEST(Disparity, HoleFillingMedianEqualsOneOpenCvMedianOverTheImage) {
+  const int w = 97, h = 151;  // odd sizes; more than two 32-row grains, so the rows are split
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> value(0.0f, 60.0f);
+  DisparityImage in(w, h, 0.0f);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      in.row(y)[x] = (rng() % 10 < 3 || y == 40 || y == 75 || y == 76) ? std::nanf("") : value(rng);
+  for (int k : {3, 5}) {
+    DisparityImage scanline = in, filled = in;
+    fill_disparity_holes(scanline, 0);
+    fill_disparity_holes(filled, k);
+    cv::Mat reference;
+    cv::medianBlur(cv::Mat(h, w, CV_32F, scanline.data.data()), reference, k);
+    long holes = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        const float original = in.row(y)[x], got = filled.row(y)[x];
+        if (std::isnan(original)) {
+          ++holes;
+          ASSERT_EQ(got, reference.at<float>(y, x)) << "k " << k << " at " << x << "," << y;
+        } else {
+          ASSERT_EQ(got, original) << "k " << k << " at " << x << "," << y;
+        }
+      }
+    EXPECT_GT(holes, long(w) * h / 4);
+  }
 }
 
 TEST(Disparity, RejectsMismatchedSizesAndBadConfig) {
