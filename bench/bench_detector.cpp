@@ -1,0 +1,87 @@
+// The project's CenterNet detector (issue 24) on one 1280x720 grape image of the shared data
+// (../shared/data/grape/coco_train/JPEGImages, the first by name), shipped weights:
+//   BM_GrapeDetectorOnnx    nn::CenterNetOnnx::detect(): letterbox, OpenCV DNN forward of
+//                           models/detector-grape.onnx, decoding: the path a robot without
+//                           libtorch runs, and the one the issue's target (<= 100 ms per
+//                           1280x720 image on two cores) is about
+//   BM_GrapeDetectorTorch   nn::CenterNet::detect() of models/detector-grape.pt (the same
+//                           weights) through the libtorch plugin: the baseline in the same process
+//   BM_GrapeDetectorBlob    the letterboxed input blob alone (nn::center_blob), the fixed cost
+// Both detectors run on two threads (cv::setNumThreads(2); the plugin's threads = 2). The ratio
+// of the ONNX row to the libtorch row of the same run is the number to compare across machines.
+//
+//   build/bin/bench_detector [--benchmark_filter=...]
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <opencv2/core/utility.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cropsight/io/image_io.hpp"
+#include "cropsight/nn/center_net.hpp"
+#include "cropsight/nn/center_onnx.hpp"
+#include "nn/center_codec.hpp"
+
+namespace {
+namespace fs = std::filesystem;
+using namespace cropsight;
+
+const fs::path kModels = fs::path(CROPSIGHT_SOURCE_DIR) / "models";
+
+const std::optional<ColorImage>& grape_image() {
+  static const std::optional<ColorImage> image = []() -> std::optional<ColorImage> {
+    const fs::path dir = fs::path(CROPSIGHT_SHARED_DATA_DIR) / "grape" / "coco_train" / "JPEGImages";
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) return std::nullopt;
+    std::vector<fs::path> files;
+    for (const auto& e : fs::directory_iterator(dir, ec))
+      if (e.path().extension() == ".jpg" || e.path().extension() == ".png") files.push_back(e.path());
+    if (files.empty()) return std::nullopt;
+    return io::read_color(*std::min_element(files.begin(), files.end()));
+  }();
+  return image;
+}
+
+void BM_GrapeDetectorTorch(benchmark::State& state) {
+  const fs::path m = kModels / "detector-grape.pt";
+  if (!grape_image() || !fs::exists(m)) return state.SkipWithError("needs ../shared/data/grape and models/detector-grape.pt");
+  const nn::CenterNet net = nn::CenterNet::load(m, 2);
+  std::size_t boxes = 0;
+  for (auto _ : state) boxes = net.detect(*grape_image()).size();
+  state.counters["boxes"] = double(boxes);
+  state.SetLabel(std::to_string(grape_image()->width) + "x" + std::to_string(grape_image()->height));
+}
+BENCHMARK(BM_GrapeDetectorTorch)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_GrapeDetectorOnnx(benchmark::State& state) {
+  const fs::path m = kModels / "detector-grape.onnx";
+  if (!grape_image() || !fs::exists(m)) return state.SkipWithError("needs ../shared/data/grape and models/detector-grape.onnx");
+  nn::CenterNetOnnx net(m);
+  std::size_t boxes = 0;
+  for (auto _ : state) boxes = net.detect(*grape_image()).size();
+  state.counters["boxes"] = double(boxes);
+}
+BENCHMARK(BM_GrapeDetectorOnnx)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_GrapeDetectorBlob(benchmark::State& state) {
+  const fs::path m = kModels / "detector-grape.onnx";
+  if (!grape_image() || !fs::exists(m)) return state.SkipWithError("needs ../shared/data/grape and models/detector-grape.onnx");
+  const nn::CenterNetConfig cfg = nn::CenterNetOnnx(m).config();
+  for (auto _ : state)
+    benchmark::DoNotOptimize(nn::center_blob(*grape_image(), cfg.input_width, cfg.input_height, nullptr));
+}
+BENCHMARK(BM_GrapeDetectorBlob)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  cv::setNumThreads(2);  // the issue's two cores
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
