@@ -47,7 +47,8 @@ const std::optional<ColorImage>& grape_image() {
 
 void BM_GrapeDetectorTorch(benchmark::State& state) {
   const fs::path m = kModels / "detector-grape.pt";
-  if (!grape_image() || !fs::exists(m)) return state.SkipWithError("needs ../shared/data/grape and models/detector-grape.pt");
+  if (!grape_image() || !fs::exists(m))
+    return state.SkipWithError("needs ../shared/data/grape and models/detector-grape.pt");
   const nn::CenterNet net = nn::CenterNet::load(m, 2);
   std::size_t boxes = 0;
   for (auto _ : state) boxes = net.detect(*grape_image()).size();
@@ -58,7 +59,8 @@ BENCHMARK(BM_GrapeDetectorTorch)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_GrapeDetectorOnnx(benchmark::State& state) {
   const fs::path m = kModels / "detector-grape.onnx";
-  if (!grape_image() || !fs::exists(m)) return state.SkipWithError("needs ../shared/data/grape and models/detector-grape.onnx");
+  if (!grape_image() || !fs::exists(m))
+    return state.SkipWithError("needs ../shared/data/grape and models/detector-grape.onnx");
   nn::CenterNetOnnx net(m);
   std::size_t boxes = 0;
   for (auto _ : state) boxes = net.detect(*grape_image()).size();
@@ -68,7 +70,8 @@ BENCHMARK(BM_GrapeDetectorOnnx)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_GrapeDetectorBlob(benchmark::State& state) {
   const fs::path m = kModels / "detector-grape.onnx";
-  if (!grape_image() || !fs::exists(m)) return state.SkipWithError("needs ../shared/data/grape and models/detector-grape.onnx");
+  if (!grape_image() || !fs::exists(m))
+    return state.SkipWithError("needs ../shared/data/grape and models/detector-grape.onnx");
   const nn::CenterNetConfig cfg = nn::CenterNetOnnx(m).config();
   for (auto _ : state)
     benchmark::DoNotOptimize(nn::center_blob(*grape_image(), cfg.input_width, cfg.input_height, nullptr));

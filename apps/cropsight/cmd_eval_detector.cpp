@@ -5,6 +5,10 @@
 //   cropsight eval detector (--coco ANN.json | --voc DIR) --images DIR --model M(.pt|.onnx)
 //       [--classes a,b] [--val-split F --split-seed S] [--mask-threshold T] [--threads N] [--json]
 //
+// Masks are thresholded at the model's per-class mask_thresholds (set by train detector /
+// calibrate-detector on training images; 0.5 for older models) unless --mask-threshold gives one
+// value for every class.
+//
 // With --val-split only the held-out images of that split are scored: the same images `train
 // detector` held out with the same fraction and seed (split_indices of detector_cli.hpp).
 // --classes defaults to the model's class names, so class ids match the model's.
@@ -25,7 +29,7 @@ namespace eval_detector_cmd {
 struct EvalDetectorOptions {
   DatasetOptions data;
   std::string model;
-  double val_split = 0, mask_threshold = 0.5;
+  double val_split = 0, mask_threshold = -1;  // < 0: the model's per-class thresholds
   std::uint64_t split_seed = 1;
   int threads = 1;
   CommonOptions common;
@@ -49,6 +53,8 @@ void run(EvalDetectorOptions o) {
   for (const auto& s : scored) names.push_back(s.name);
   double ms = 0;
   const nn::DetectorScore score = nn::evaluate_detector(*det, scored, float(o.mask_threshold), &ms);
+  std::vector<float> thresholds = model_config(*det).mask_threshold_values(o.model);
+  if (o.mask_threshold >= 0) std::fill(thresholds.begin(), thresholds.end(), float(o.mask_threshold));
   if (o.common.json) {
     nlohmann::json classes = nlohmann::json::array();
     for (const auto& c : score.classes)
@@ -66,14 +72,17 @@ void run(EvalDetectorOptions o) {
                 {"masked_images", score.masked_images},
                 {"image_names", names},
                 {"ap", "COCO bbox: greedy best-unmatched matching, 101-point interpolation"},
-                {"mask_threshold", o.mask_threshold},
+                {"mask_thresholds", rounded_thresholds(thresholds)},
                 {"ms_per_image", json_number(ms)},
                 {"classes", classes}});
   } else {
     std::printf("%d images (%d with masks)\n", score.images, score.masked_images);
-    for (const auto& c : score.classes)
-      std::printf("%-12s box AP50 %.3f  AP50:95 %.3f  pixel acc %.3f  IoU %.3f\n", c.name.c_str(), c.ap50, c.ap50_95,
-                  c.pixel_accuracy, c.iou);
+    for (std::size_t i = 0; i < score.classes.size(); ++i) {
+      const auto& c = score.classes[i];
+      std::printf("%-12s box AP50 %.3f  AP50:95 %.3f  pixel acc %.3f  IoU %.3f  (mask threshold %.2f)\n",
+                  c.name.c_str(), c.ap50, c.ap50_95, c.pixel_accuracy, c.iou,
+                  i < thresholds.size() ? thresholds[i] : 0.5f);
+    }
   }
 }
 }  // namespace eval_detector_cmd
@@ -87,7 +96,9 @@ void add_eval_detector(CLI::App& eval) {
   cmd->add_option("--model", o->model, "Detector: .pt (libtorch) or .onnx (OpenCV DNN)")->required();
   cmd->add_option("--val-split", o->val_split, "Score only the held-out images of this split (as train detector)");
   cmd->add_option("--split-seed", o->split_seed, "Seed of the held-out split");
-  cmd->add_option("--mask-threshold", o->mask_threshold, "Mask head score a pixel needs")->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--mask-threshold", o->mask_threshold,
+                  "Mask head score a pixel needs, for every class (default: the model's per-class mask_thresholds)")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--threads", o->threads, "libtorch threads (.pt)")->check(CLI::Range(1, 256));
   add_json_flag(cmd, o->common);
   cmd->callback([o] { run(*o); });

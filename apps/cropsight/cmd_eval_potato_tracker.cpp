@@ -2,7 +2,9 @@
 // when detection misses it, measured on simulated approaches by
 // pipeline::potato::evaluate_visual_tracker. This file parses, calls and prints.
 #include <cstdio>
+#include <nlohmann/json.hpp>
 
+#include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/config.hpp"
 #include "cropsight/pipeline/potato/visual_tracker_eval.hpp"

@@ -90,6 +90,13 @@ void run(const TrainDetectorOptions& o) {
                           {"seconds", json_number(l.seconds)}});
       },
       checkpoint);
+  // Mask thresholds per class from the training images (never the held-out ones).
+  const std::vector<float> mask_thresholds = calibrate_masks(net, train);
+  if (!mask_thresholds.empty()) {
+    std::string list;
+    for (float t : mask_thresholds) list += (list.empty() ? "" : " ") + std::to_string(t).substr(0, 4);
+    std::fprintf(stderr, "mask thresholds per class (best IoU on the training images): %s\n", list.c_str());
+  }
   net.save(o.out);
   const double seconds = clock.seconds();
   nlohmann::json result = {{"out", o.out},
@@ -100,6 +107,7 @@ void run(const TrainDetectorOptions& o) {
                            {"threads", cfg.threads},
                            {"parameters", net.parameter_count()},
                            {"train_seconds", json_number(seconds)},
+                           {"mask_thresholds", rounded_thresholds(net.config().mask_threshold_values())},
                            {"log", epochs}};
   if (!logs.empty() && logs.back().val_ap50 >= 0) result["val_ap50"] = json_number(logs.back().val_ap50);
   if (o.common.json)

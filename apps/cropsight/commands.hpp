@@ -51,6 +51,7 @@ void add_bench_potato(CLI::App& bench);
 // Our own 2D detector (issue 24): train detector, export-detector, detect objects, eval detector
 void add_train_detector(CLI::App& train);
 void add_export_detector(CLI::App& app);
+void add_calibrate_detector(CLI::App& app);
 void add_detect_objects(CLI::App& detect);
 void add_eval_detector(CLI::App& eval);
 

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "cropsight/core/detection2d.hpp"
+#include "cropsight/nn/center_net.hpp"
 #include "cropsight/nn/detection_dataset.hpp"
 
 namespace cropsight::cli {
@@ -27,5 +29,16 @@ struct Split {
   std::vector<std::size_t> train, val;
 };
 Split split_indices(std::size_t n, double fraction, std::uint64_t seed);
+
+/// The configuration of a detector load_center_detector returned (.pt or .onnx CenterNet).
+/// Throws Error(where) for another kind of Detector2D.
+const nn::CenterNetConfig& model_config(const Detector2D& det, const std::string& where = "--model");
+
+/// Per-class mask thresholds chosen on `train` (nn::calibrate_mask_thresholds), set on `net`;
+/// returns them (empty, and nothing set, when no training image has masks).
+std::vector<float> calibrate_masks(nn::CenterNet& net, const std::vector<nn::DetectionSample>& train);
+
+/// Mask thresholds as JSON numbers rounded to 1e-4 (0.65, not 0.6500000357627869).
+std::vector<double> rounded_thresholds(const std::vector<float>& t);
 
 }  // namespace cropsight::cli

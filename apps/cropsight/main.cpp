@@ -74,6 +74,7 @@ int main(int argc, char** argv) {
   // Our own 2D detector (issue 24)
   add_train_detector(*train);
   add_export_detector(app);
+  add_calibrate_detector(app);
   add_detect_objects(*detect);
   add_eval_detector(*eval);
 

@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <numeric>
 #include <opencv2/imgproc.hpp>
 #include <random>
+#include <sstream>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/timer.hpp"
@@ -171,6 +173,16 @@ std::vector<Detection2D> CenterNet::detect(const ColorImage& image) const {
 std::vector<Detection2D> CenterNet::detect(const DetectorInput& in) {
   if (in.image == nullptr) throw Error("detector", "detect() needs a colour image");
   return detect(*in.image);
+}
+
+void CenterNet::set_mask_thresholds(const std::vector<float>& per_class) {
+  std::ostringstream list;
+  list << std::setprecision(6);
+  for (std::size_t c = 0; c < per_class.size(); ++c) list << (c ? "," : "") << per_class[c];
+  CenterNetConfig check = config();
+  check.mask_thresholds = list.str();
+  check.mask_threshold_values("detector: mask thresholds");
+  impl_->backend->set_mask_thresholds(check.mask_thresholds);
 }
 
 void CenterNet::save(const std::filesystem::path& path) const { impl_->backend->save(path); }

@@ -1,6 +1,8 @@
 // CenterNetConfig's checks and the class-name list: plain C++, shared by the CenterNet facade
 // (cropsight_nn) and the libtorch backend plugin (compiled into both).
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/nn/center_net.hpp"
@@ -20,6 +22,30 @@ std::vector<std::string> split_class_names(const std::string& list) {
 void CenterNetConfig::validate(const std::string& where) const {
   check_config(*this, where);
   if (names().empty()) throw Error(where, "'class_names' names no class");
+  mask_threshold_values(where);
+}
+
+std::vector<float> CenterNetConfig::mask_threshold_values(const std::string& where) const {
+  const std::size_t classes = names().size();
+  const std::vector<std::string> items = split_class_names(mask_thresholds);
+  if (items.empty()) return std::vector<float>(classes, 0.5f);
+  if (items.size() != classes)
+    throw Error(where, "'mask_thresholds' has " + std::to_string(items.size()) + " values for " +
+                           std::to_string(classes) + " classes");
+  std::vector<float> out;
+  for (const auto& item : items) {
+    std::size_t used = 0;
+    double v = 0;
+    try {
+      v = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != item.size() || !(v > 0 && v < 1))
+      throw Error(where, "'mask_thresholds' value '" + item + "' is not a number in (0, 1)");
+    out.push_back(float(v));
+  }
+  return out;
 }
 
 std::vector<std::string> CenterNetConfig::names() const { return split_class_names(class_names); }

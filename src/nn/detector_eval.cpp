@@ -74,44 +74,150 @@ DetectorScore DetectorEvaluator::score() const {
   return s;
 }
 
-std::vector<GrayImage> masks_from_heads(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w,
-                                        int image_h, float threshold) {
+namespace {
+
+// The mask head's cell of each image column and row: the pixel centre through the letterbox,
+// the nearest output cell.
+struct CellMap {
+  std::vector<int> x, y;
+};
+
+CellMap cell_map(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w, int image_h) {
   const Letterbox lb = Letterbox::fit(image_w, image_h, cfg.input_width, cfg.input_height, OnnxResize::letterbox);
   const float sx = float(cfg.input_width) / float(heads.out_w), sy = float(cfg.input_height) / float(heads.out_h);
-  std::vector<int> cell_x(static_cast<std::size_t>(image_w)), cell_y(static_cast<std::size_t>(image_h));
+  CellMap m;
+  m.x.resize(static_cast<std::size_t>(image_w));
+  m.y.resize(static_cast<std::size_t>(image_h));
   for (int u = 0; u < image_w; ++u)
-    cell_x[std::size_t(u)] =
+    m.x[std::size_t(u)] =
         std::clamp(int(std::floor(((float(u) + 0.5f) * lb.scale_x + float(lb.pad_x)) / sx)), 0, heads.out_w - 1);
   for (int v = 0; v < image_h; ++v)
-    cell_y[std::size_t(v)] =
+    m.y[std::size_t(v)] =
         std::clamp(int(std::floor(((float(v) + 0.5f) * lb.scale_y + float(lb.pad_y)) / sy)), 0, heads.out_h - 1);
+  return m;
+}
+
+// The thresholds calibrate_mask_thresholds() chooses from.
+constexpr int kGrid = 19;
+float grid_value(int j) { return 0.05f * float(j + 1); }
+
+// The heads of one image from either kind of CenterNet (eval mode), and its configuration.
+struct AnyCenterNet {
+  CenterNetOnnx* onnx = nullptr;
+  CenterNet* torch_net = nullptr;
+  explicit AnyCenterNet(Detector2D& d, const std::string& where)
+      : onnx(dynamic_cast<CenterNetOnnx*>(&d)), torch_net(dynamic_cast<CenterNet*>(&d)) {
+    if (onnx == nullptr && torch_net == nullptr)
+      throw Error(where, "the model is not a cropsight CenterNet (.pt or .onnx)");
+  }
+  const CenterNetConfig& config() const { return onnx != nullptr ? onnx->config() : torch_net->config(); }
+  CenterNetHeads heads(const ColorImage& image) const {
+    return onnx != nullptr ? onnx->heads(image) : torch_net->heads(image);
+  }
+};
+
+}  // namespace
+
+std::vector<GrayImage> masks_from_heads(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w,
+                                        int image_h, float threshold) {
+  const CellMap cells = cell_map(heads, cfg, image_w, image_h);
+  const std::vector<float> per_class = threshold < 0
+                                           ? cfg.mask_threshold_values()
+                                           : std::vector<float>(std::size_t(std::max(heads.classes, 0)), threshold);
   std::vector<GrayImage> out;
   const std::size_t plane = std::size_t(heads.out_w) * std::size_t(heads.out_h);
   for (int c = 0; c < heads.classes; ++c) {
+    const float t = std::size_t(c) < per_class.size() ? per_class[std::size_t(c)] : 0.5f;
     GrayImage m(image_w, image_h, 0);
     const float* p = heads.mask.data() + std::size_t(c) * plane;
     for (int v = 0; v < image_h; ++v) {
-      const float* prow = p + std::size_t(cell_y[std::size_t(v)]) * std::size_t(heads.out_w);
+      const float* prow = p + std::size_t(cells.y[std::size_t(v)]) * std::size_t(heads.out_w);
       auto* row = m.row(v);
-      for (int u = 0; u < image_w; ++u) row[u] = prow[cell_x[std::size_t(u)]] >= threshold ? 255 : 0;
+      for (int u = 0; u < image_w; ++u) row[u] = prow[cells.x[std::size_t(u)]] >= t ? 255 : 0;
     }
     out.push_back(std::move(m));
   }
   return out;
 }
 
+MaskCalibration::MaskCalibration(int classes)
+    : truth_(std::size_t(classes) * kGrid, 0), other_(truth_), total_(std::size_t(classes), 0) {}
+
+void MaskCalibration::add(const CenterNetHeads& heads, const CenterNetConfig& cfg, const DetectionSample& sample) {
+  if (sample.masks.empty()) return;
+  const int classes = int(total_.size());
+  const int w = sample.image.width, h = sample.image.height;
+  const CellMap cells = cell_map(heads, cfg, w, h);
+  const std::size_t plane = std::size_t(heads.out_w) * std::size_t(heads.out_h);
+  for (int c = 0; c < classes && c < heads.classes && std::size_t(c) < sample.masks.size(); ++c) {
+    const GrayImage& t = sample.masks[std::size_t(c)];
+    if (t.width != w || t.height != h)
+      throw Error(sample.name, "truth mask of class " + std::to_string(c) + " is not image-sized");
+    const float* p = heads.mask.data() + std::size_t(c) * plane;
+    std::int64_t* in_truth = truth_.data() + std::size_t(c) * kGrid;
+    std::int64_t* outside = other_.data() + std::size_t(c) * kGrid;
+    for (int v = 0; v < h; ++v) {
+      const float* prow = p + std::size_t(cells.y[std::size_t(v)]) * std::size_t(heads.out_w);
+      const auto* trow = t.row(v);
+      for (int u = 0; u < w; ++u) {
+        const float score = prow[cells.x[std::size_t(u)]];
+        // Bin k counts pixels predicted at grid thresholds 0..k-1: score >= grid_value(j) for j < k.
+        int k = 0;
+        while (k < kGrid && score >= grid_value(k)) ++k;
+        if (trow[u] != 0) {
+          ++total_[std::size_t(c)];
+          if (k > 0) ++in_truth[k - 1];
+        } else if (k > 0) {
+          ++outside[k - 1];
+        }
+      }
+    }
+  }
+}
+
+std::vector<float> MaskCalibration::thresholds() const {
+  std::vector<float> out;
+  for (std::size_t c = 0; c < total_.size(); ++c) {
+    float best_t = 0.5f;
+    double best_iou = -1;
+    // TP(j) and FP(j): pixels whose bin is > j, i.e. summed from the top bin down.
+    std::int64_t tp = 0, fp = 0;
+    std::vector<double> iou(kGrid, 0.0);
+    for (int j = kGrid - 1; j >= 0; --j) {
+      tp += truth_[c * kGrid + std::size_t(j)];
+      fp += other_[c * kGrid + std::size_t(j)];
+      const std::int64_t fn = total_[c] - tp;
+      iou[std::size_t(j)] = tp + fp + fn > 0 ? double(tp) / double(tp + fp + fn) : 0.0;
+    }
+    if (total_[c] > 0)
+      for (int j = 0; j < kGrid; ++j) {
+        const double d = std::abs(grid_value(j) - 0.5f), best_d = std::abs(best_t - 0.5f);
+        if (iou[std::size_t(j)] > best_iou || (iou[std::size_t(j)] == best_iou && d < best_d))
+          best_iou = iou[std::size_t(j)], best_t = grid_value(j);
+      }
+    out.push_back(best_t);
+  }
+  return out;
+}
+
+std::vector<float> calibrate_mask_thresholds(Detector2D& detector, const std::vector<DetectionSample>& samples) {
+  const AnyCenterNet net(detector, "calibrate mask thresholds");
+  const CenterNetConfig& cfg = net.config();
+  MaskCalibration cal(cfg.num_classes());
+  for (const auto& s : samples)
+    if (!s.masks.empty()) cal.add(net.heads(s.image), cfg, s);
+  return cal.thresholds();
+}
+
 DetectorScore evaluate_detector(Detector2D& detector, const std::vector<DetectionSample>& samples, float mask_threshold,
                                 double* ms_per_image) {
-  auto* onnx = dynamic_cast<CenterNetOnnx*>(&detector);
-  auto* torch_net = dynamic_cast<CenterNet*>(&detector);
-  if (onnx == nullptr && torch_net == nullptr)
-    throw Error("eval detector", "the model is not a cropsight CenterNet (.pt or .onnx)");
-  const CenterNetConfig& cfg = onnx != nullptr ? onnx->config() : torch_net->config();
+  const AnyCenterNet net(detector, "eval detector");
+  const CenterNetConfig& cfg = net.config();
   DetectorEvaluator ev(cfg.names());
   double seconds = 0;
   for (const auto& s : samples) {
     const Stopwatch clock;
-    const CenterNetHeads h = onnx != nullptr ? onnx->heads(s.image) : torch_net->heads(s.image);
+    const CenterNetHeads h = net.heads(s.image);
     const Letterbox lb =
         Letterbox::fit(s.image.width, s.image.height, cfg.input_width, cfg.input_height, OnnxResize::letterbox);
     const auto boxes = decode_heads(h, lb, float(cfg.score_threshold), cfg.top_k);

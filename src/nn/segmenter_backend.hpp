@@ -38,7 +38,9 @@ class SegmenterBackend {
 /// Bumped whenever SegmenterBackend, DetectorBackend, their configurations, EpochLog or Cloud
 /// change layout: a plugin of another version is refused (it would be a build mix-up, never a
 /// supported combination).
-inline constexpr int kBackendApiVersion = 3;  // 2: PointNetConfig::lovasz_weight; 3: the detector
+// 2: PointNetConfig::lovasz_weight; 3: the detector; 4: CenterNetConfig::mask_thresholds and
+// DetectorBackend::set_mask_thresholds.
+inline constexpr int kBackendApiVersion = 4;
 
 struct BackendApi {
   int version = 0;

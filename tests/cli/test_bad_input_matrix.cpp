@@ -389,6 +389,10 @@ const std::vector<Row>& rows() {
      "detect objects --model {c}/det.onnx --images {c}/images --out {c}/out/o",
      {kFolderImage, kOnnx, kOut}},
     {"export_detector", "export-detector --model {c}/det.pt --out {c}/out/d.onnx", {kPt, kOut}},
+    {"calibrate_detector",
+     "calibrate-detector --model {c}/det.pt --coco {c}/coco.json --images {c}/images --classes bunch,peduncle "
+     "--out {c}/out/c.pt",
+     {kPt, kCocoGt, kImage, kOut}},
     {"eval_detector",
      "eval detector --coco {c}/coco.json --images {c}/images --model {c}/det.onnx",
      {kCocoGt, kImage, kOnnx}},
@@ -448,7 +452,8 @@ class BadInputMatrix : public ::testing::TestWithParam<Row> {
     spit(
         b / "coco.json",
         R"({"images":[{"id":1,"file_name":"a.png","width":64,"height":64},{"id":2,"file_name":"b.png","width":64,"height":64}],)"
-        R"("annotations":[{"id":1,"image_id":1,"category_id":1,"bbox":[10,10,20,20],"area":400,"iscrowd":0}],)"
+        R"("annotations":[{"id":1,"image_id":1,"category_id":1,"bbox":[10,10,20,20],"area":400,"iscrowd":0,)"
+        R"("segmentation":[[10,10,30,10,30,30,10,30]]}],)"
         R"("categories":[{"id":1,"name":"bunch"},{"id":2,"name":"peduncle"}]})");
     spit(b / "roi.json", R"([{"image_id":0,"category_id":1,"bbox":[200,150,60,60],"score":0.9}])");
   }

@@ -83,6 +83,64 @@ TEST(DetectorCli, TrainsOnAVocSetWithAHeldOutSplit) {
   EXPECT_NE(bad.err.find("im0.png"), std::string::npos) << bad.err;
 }
 
+// The same images as COCO with polygons (masks): train detector calibrates its per-class mask
+// thresholds on its training images, calibrate-detector does it for an existing model, the ONNX
+// export carries them and eval detector uses them; a set without masks cannot calibrate.
+TEST(DetectorCli, MaskThresholdsAreCalibratedOnTrainingImagesAndTravel) {
+  TempDir t;
+  write_voc_set(t.path(), 4);
+  nlohmann::json coco = {{"categories", {{{"id", 1}, {"name", "potato"}}}}};
+  for (int i = 0; i < 4; ++i) {
+    coco["images"].push_back(
+        {{"id", i + 1}, {"file_name", "im" + std::to_string(i) + ".png"}, {"width", 64}, {"height", 64}});
+    const double y0 = 10 + i, y1 = 30 + i;
+    coco["annotations"].push_back({{"id", i + 1},
+                                   {"image_id", i + 1},
+                                   {"category_id", 1},
+                                   {"bbox", {12, y0, 24, 20}},
+                                   {"area", 480},
+                                   {"iscrowd", 0},
+                                   {"segmentation", {{12, y0, 36, y0, 36, y1, 12, y1}}}});
+  }
+  write_text(t / "coco.json", coco.dump());
+  const std::string set = " --coco " + shell_quoted(t / "coco.json") + " --images " + shell_quoted(t / "img");
+  const auto tr = run_cli("train detector" + set + " --out " + shell_quoted(t / "det.pt") +
+                          " --input 64x64 --width 8 --epochs 2 --val-split 0.25 --json");
+  ASSERT_EQ(tr.exit_code, 0) << tr.err;
+  EXPECT_NE(tr.err.find("mask thresholds per class"), std::string::npos) << tr.err;
+  const auto trained = nlohmann::json::parse(tr.out)["mask_thresholds"];
+  ASSERT_EQ(trained.size(), 1u);
+  EXPECT_GT(trained[0].get<double>(), 0.0);
+  EXPECT_LT(trained[0].get<double>(), 1.0);
+
+  const auto cal = run_cli("calibrate-detector --model " + shell_quoted(t / "det.pt") + set +
+                           " --val-split 0.25 --out " + shell_quoted(t / "cal.pt") + " --json");
+  ASSERT_EQ(cal.exit_code, 0) << cal.err;
+  const auto cj = nlohmann::json::parse(cal.out);
+  EXPECT_EQ(cj["images"], 3);                 // the split's training images only
+  EXPECT_EQ(cj["mask_thresholds"], trained);  // the same images and weights: the same choice
+  ASSERT_EQ(run_cli("export-detector --model " + shell_quoted(t / "cal.pt") + " --out " + shell_quoted(t / "cal.onnx"))
+                .exit_code,
+            0);
+  for (const char* m : {"cal.pt", "cal.onnx"}) {
+    const auto ev = run_cli("eval detector" + set + " --model " + shell_quoted(t / m) + " --val-split 0.25 --json");
+    ASSERT_EQ(ev.exit_code, 0) << ev.err;
+    EXPECT_EQ(nlohmann::json::parse(ev.out)["mask_thresholds"], trained) << m;
+    const auto flat = run_cli("eval detector" + set + " --model " + shell_quoted(t / m) +
+                              " --val-split 0.25 --mask-threshold 0.3 --json");
+    ASSERT_EQ(flat.exit_code, 0) << flat.err;
+    EXPECT_EQ(nlohmann::json::parse(flat.out)["mask_thresholds"], nlohmann::json::array({0.3})) << m;
+  }
+  // Boxes only (VOC): nothing to calibrate, one line naming the set, no output.
+  const auto none =
+      run_cli("calibrate-detector --model " + shell_quoted(t / "det.pt") + " --voc " + shell_quoted(t / "ann") +
+              " --images " + shell_quoted(t / "img") + " --out " + shell_quoted(t / "none.pt"));
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_NE(none.err.find("ann"), std::string::npos) << none.err;
+  EXPECT_NE(none.err.find("no training image has masks"), std::string::npos) << none.err;
+  EXPECT_FALSE(fs::exists(t / "none.pt"));
+}
+
 TEST(DetectorCli, BadSetsAreOneLineExitTwo) {
   TempDir t;
   write_text(t / "ann.json", R"({"images": [], "categories": [{"id": 1, "name": "x"}]})");

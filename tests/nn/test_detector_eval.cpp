@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "cropsight/core/error.hpp"
 #include "cropsight/nn/detector_eval.hpp"
 
 namespace {
@@ -68,6 +69,83 @@ TEST(DetectorEvaluator, MaskHeadMapsBackThroughTheLetterbox) {
         EXPECT_TRUE(u >= 8 && u < 16 && v >= 16 && v < 24) << u << "," << v;
       }
   EXPECT_EQ(on, 64);
+}
+
+// Two classes on a 32x32 image (input 32x32, heads 8x8: one cell = 4x4 pixels). Class 0's mask
+// head scores 0.8 on its truth and 0.3 elsewhere; class 1 (thin, like a peduncle) scores only 0.2
+// on its truth and 0.04 elsewhere, so 0.5 finds none of it.
+struct TwoClassScene {
+  nn::CenterNetConfig cfg;
+  nn::CenterNetHeads heads;
+  nn::DetectionSample sample;
+  TwoClassScene() {
+    cfg.class_names = "bunch,peduncle";
+    cfg.input_width = 32, cfg.input_height = 32;
+    heads.classes = 2, heads.out_w = 8, heads.out_h = 8;
+    heads.mask.assign(2 * 64, 0.f);
+    sample.name = "scene.png";
+    sample.image = ColorImage(32, 32);
+    sample.masks = {GrayImage(32, 32, 0), GrayImage(32, 32, 0)};
+    for (int cy = 0; cy < 8; ++cy)
+      for (int cx = 0; cx < 8; ++cx) {
+        const bool bunch = cx >= 2 && cx < 6 && cy >= 3, stem = cx == 4 && cy < 3;
+        heads.mask[std::size_t(cy * 8 + cx)] = bunch ? 0.8f : 0.3f;
+        heads.mask[std::size_t(64 + cy * 8 + cx)] = stem ? 0.2f : 0.04f;
+        for (int v = 4 * cy; v < 4 * cy + 4; ++v)
+          for (int u = 4 * cx; u < 4 * cx + 4; ++u) {
+            if (bunch) sample.masks[0].at(u, v) = 1;
+            if (stem) sample.masks[1].at(u, v) = 1;
+          }
+      }
+  }
+};
+
+TEST(MaskCalibration, PicksEachClassesBestIouThresholdNearestOneHalf) {
+  const TwoClassScene s;
+  nn::MaskCalibration cal(2);
+  cal.add(s.heads, s.cfg, s.sample);
+  const auto t = cal.thresholds();
+  ASSERT_EQ(t.size(), 2u);
+  // Class 0: every threshold in (0.3, 0.8] separates it exactly; the nearest to 0.5 is 0.5.
+  EXPECT_FLOAT_EQ(t[0], 0.5f);
+  // Class 1: (0.04, 0.2] separates it: 0.05 ... 0.20; the nearest to 0.5 is 0.20.
+  EXPECT_FLOAT_EQ(t[1], 0.2f);
+  // The masks at those thresholds are the truth.
+  nn::CenterNetConfig cfg = s.cfg;
+  cfg.mask_thresholds = "0.5,0.2";
+  const auto m = nn::masks_from_heads(s.heads, cfg, 32, 32);
+  nn::DetectorEvaluator ev(cfg.names());
+  ev.add(s.sample, {}, m);
+  const auto r = ev.score();
+  EXPECT_DOUBLE_EQ(r.classes[0].iou, 1.0);
+  EXPECT_DOUBLE_EQ(r.classes[1].iou, 1.0);
+  // At one threshold of 0.5 for both, the thin class has no pixel.
+  nn::DetectorEvaluator flat(cfg.names());
+  flat.add(s.sample, {}, nn::masks_from_heads(s.heads, cfg, 32, 32, 0.5f));
+  EXPECT_EQ(flat.score().classes[1].predicted_pixels, 0);
+}
+
+TEST(MaskCalibration, AClassWithoutTruthPixelsKeepsOneHalf) {
+  TwoClassScene s;
+  s.sample.masks[1] = GrayImage(32, 32, 0);
+  nn::MaskCalibration cal(2);
+  cal.add(s.heads, s.cfg, s.sample);
+  nn::DetectionSample unmasked = s.sample;
+  unmasked.masks.clear();
+  cal.add(s.heads, s.cfg, unmasked);  // adds nothing
+  EXPECT_FLOAT_EQ(cal.thresholds()[1], 0.5f);
+}
+
+TEST(MaskCalibration, ConfigChecksTheThresholdList) {
+  nn::CenterNetConfig cfg;
+  cfg.class_names = "a,b";
+  EXPECT_EQ(cfg.mask_threshold_values(), (std::vector<float>{0.5f, 0.5f}));  // empty: 0.5 each
+  cfg.mask_thresholds = "0.65, 0.05";
+  EXPECT_EQ(cfg.mask_threshold_values(), (std::vector<float>{0.65f, 0.05f}));
+  for (const char* bad : {"0.5", "0.5,0.5,0.5", "0.5,1", "0,0.5", "0.5,x", "0.5,nan", "0.5,0.2e"}) {
+    cfg.mask_thresholds = bad;
+    EXPECT_THROW(cfg.validate("m.pt"), Error) << bad;
+  }
 }
 
 }  // namespace

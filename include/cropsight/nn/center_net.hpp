@@ -53,6 +53,12 @@ struct CenterNetConfig {
   // Decoding
   double score_threshold = 0.1;  ///< heatmap peak score kept
   int top_k = 100;               ///< peaks kept per image over all classes
+  /// Per class, in class_names order, comma-separated: the mask-head score a pixel needs to be
+  /// inside the class's mask; empty = 0.5 for every class. `train detector` and
+  /// `calibrate-detector` set it to each class's best-IoU threshold on the training images
+  /// (calibrate_mask_thresholds, detector_eval.hpp): a thin class such as a peduncle may never
+  /// score 0.5. Models written before this key load with it empty.
+  std::string mask_thresholds;
 
   template <class V>
   void visit(V& v) {
@@ -72,9 +78,14 @@ struct CenterNetConfig {
     v("seed", seed, "random seed (weights, shuffling, augmentation)");
     v("score_threshold", score_threshold, "heatmap score a peak needs", Range::within(0, 1));
     v("top_k", top_k, "count; peaks kept per image", Range::at_least(1));
+    v("mask_thresholds", mask_thresholds,
+      "per class, comma-separated: mask head score a pixel needs, each in (0, 1) (empty: 0.5 for every class)");
   }
-  /// The Ranges above and at least one class name. Throws Error(where).
+  /// The Ranges above, at least one class name, and mask_thresholds empty or one number in
+  /// (0, 1) per class. Throws Error(where).
   void validate(const std::string& where = "detector") const;
+  /// mask_thresholds per class id (0.5 each when empty). Throws Error like validate().
+  std::vector<float> mask_threshold_values(const std::string& where = "detector") const;
   /// class_names split at commas, spaces trimmed.
   std::vector<std::string> names() const;
   int num_classes() const { return int(names().size()); }
@@ -140,6 +151,10 @@ class CenterNet final : public Detector2D {
   std::vector<Detection2D> detect(const DetectorInput& in) override;
   std::vector<Detection2D> detect(const ColorImage& image) const;
   std::vector<std::string> class_names() const override;
+
+  /// Replaces the per-class mask thresholds (config().mask_thresholds): one per class, each in
+  /// (0, 1); save() and export_onnx() write them. Throws Error on a wrong count or value.
+  void set_mask_thresholds(const std::vector<float>& per_class);
 
   /// Weights and configuration in one libtorch archive (written atomically).
   void save(const std::filesystem::path& path) const;

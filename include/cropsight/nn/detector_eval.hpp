@@ -55,14 +55,34 @@ class DetectorEvaluator {
 };
 
 /// The mask head mapped back to a w x h image (see above): per class, 255 where the score >=
-/// threshold.
+/// threshold; a negative threshold uses the model's per-class cfg.mask_threshold_values().
 std::vector<GrayImage> masks_from_heads(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w,
-                                        int image_h, float threshold = 0.5f);
+                                        int image_h, float threshold = -1.0f);
 
 /// Runs `detector` (a CenterNet or CenterNetOnnx, as load_center_detector returns) on every
-/// sample and scores it. `ms_per_image` (may be null) gets the mean time of the network and the
-/// decoding per image. Throws Error for another kind of detector.
+/// sample and scores it; masks at `mask_threshold` for every class, or (negative, the default)
+/// at the model's per-class thresholds. `ms_per_image` (may be null) gets the mean time of the
+/// network and the decoding per image. Throws Error for another kind of detector.
 DetectorScore evaluate_detector(Detector2D& detector, const std::vector<DetectionSample>& samples,
-                                float mask_threshold = 0.5f, double* ms_per_image = nullptr);
+                                float mask_threshold = -1.0f, double* ms_per_image = nullptr);
+
+/// Per-class mask thresholds from labelled images: for each class, the value of the grid 0.05,
+/// 0.10, ..., 0.95 whose masks have the best pixel IoU over all added images (the same pixels
+/// and IoU as above), ties to the value nearest 0.5; 0.5 for a class without truth pixels.
+/// Calibrate on training images only: a threshold read off the scored images is tuning on them.
+class MaskCalibration {
+ public:
+  explicit MaskCalibration(int classes);
+  /// One image's heads against its truth masks (an image without masks adds nothing).
+  void add(const CenterNetHeads& heads, const CenterNetConfig& cfg, const DetectionSample& sample);
+  std::vector<float> thresholds() const;  ///< per class id
+
+ private:
+  // Per class and grid bin: truth / other pixels whose score reaches exactly that many grid values.
+  std::vector<std::int64_t> truth_, other_, total_;
+};
+
+/// MaskCalibration over `samples` with `detector`'s heads (a CenterNet or CenterNetOnnx).
+std::vector<float> calibrate_mask_thresholds(Detector2D& detector, const std::vector<DetectionSample>& samples);
 
 }  // namespace cropsight::nn

@@ -209,6 +209,8 @@ class Backend final : public detail::DetectorBackend {
     save_archive_atomic(a, path);
   }
 
+  void set_mask_thresholds(const std::string& list) override { cfg_.mask_thresholds = list; }
+
   std::vector<detail::FoldedConv> folded_convs() const override {
     torch::NoGradGuard no_grad;
     std::vector<detail::FoldedConv> out;
@@ -286,12 +288,18 @@ class Backend final : public detail::DetectorBackend {
         a.write(std::string("meta.") + k, c10::IValue(double(f)));
     }
   };
+  // A key the archive lacks keeps its default only where a later version added it (a model
+  // written before mask_thresholds existed); any other missing key is not a cropsight model.
   struct GetMeta {
     torch::serialize::InputArchive& a;
     template <class T>
     void operator()(const char* k, T& f, const char*, const Range& = {}) {
       c10::IValue v;
-      a.read(std::string("meta.") + k, v);
+      if (std::string(k) == "mask_thresholds") {
+        if (!a.try_read(std::string("meta.") + k, v)) return;
+      } else {
+        a.read(std::string("meta.") + k, v);
+      }
       if constexpr (std::is_same_v<T, std::string>)
         f = v.toStringRef();
       else

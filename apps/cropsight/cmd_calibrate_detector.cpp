@@ -1,0 +1,65 @@
+// cropsight calibrate-detector --model IN.pt (--coco ANN.json | --voc DIR) --images DIR
+//     [--classes a,b] [--val-split F --split-seed S] --out OUT.pt [--json]
+//
+// Sets a trained detector's per-class mask thresholds (CenterNetConfig::mask_thresholds) to
+// each class's best-IoU value on the images `train detector` trained on: with --val-split and
+// --split-seed, the images that split does not hold out, so that `eval detector` with the same
+// split still scores images nothing was chosen on. `train detector` does the same at its end;
+// this verb brings models trained before that (the shipped ones) up to date. The weights are
+// unchanged; export-detector carries the thresholds into the ONNX file.
+#include <cstdio>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+#include "cropsight/core/error.hpp"
+#include "cropsight/nn/center_net.hpp"
+#include "detector_cli.hpp"
+
+namespace cropsight::cli {
+
+void add_calibrate_detector(CLI::App& app) {
+  struct Options {
+    DatasetOptions data;
+    std::string model, out;
+    double val_split = 0;
+    std::uint64_t split_seed = 1;
+    CommonOptions common;
+  };
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("calibrate-detector",
+                                 "Set a detector's per-class mask thresholds from its training images (.pt)");
+  cmd->add_option("--model", o->model, "Detector model written by train detector (.pt)")->required();
+  add_dataset_options(cmd, o->data);
+  cmd->add_option("--val-split", o->val_split,
+                  "Held-out fraction of train detector's split: those images are not used");
+  cmd->add_option("--split-seed", o->split_seed, "Seed of that split");
+  cmd->add_option("--out", o->out, "Model file to write (.pt)")->required();
+  add_json_flag(cmd, o->common);
+  cmd->callback([o] {
+    if (o->val_split < 0 || o->val_split >= 1) throw Error("--val-split", "must be in [0, 1)");
+    nn::CenterNet net = nn::CenterNet::load(o->model, 1);
+    if (o->data.classes.empty())
+      for (const auto& c : net.class_names()) o->data.classes += (o->data.classes.empty() ? "" : ",") + c;
+    nn::DetectionDataset set = load_dataset(o->data);
+    const Split split = split_indices(set.samples.size(), o->val_split, o->split_seed);
+    std::vector<nn::DetectionSample> train;
+    for (auto i : split.train) train.push_back(std::move(set.samples[i]));
+    const std::vector<float> t = calibrate_masks(net, train);
+    const std::string source = o->data.coco.empty() ? o->data.voc : o->data.coco;
+    if (t.empty()) throw Error(source, "no training image has masks (COCO polygons): nothing to calibrate");
+    net.save(o->out);
+    if (o->common.json) {
+      print_json({{"out", o->out},
+                  {"classes", net.class_names()},
+                  {"mask_thresholds", rounded_thresholds(t)},
+                  {"images", train.size()}});
+    } else {
+      std::printf("mask thresholds from %zu training images:", train.size());
+      const auto names = net.class_names();
+      for (std::size_t c = 0; c < t.size(); ++c) std::printf(" %s %.2f", names[c].c_str(), t[c]);
+      std::printf(" -> %s\n", o->out.c_str());
+    }
+  });
+}
+
+}  // namespace cropsight::cli
