@@ -47,9 +47,9 @@ CS_INLINE v16 splat(int x) { return v16{} + i16(x); }
 // builtin is expanded inside sweep_band_avx2, whose target includes SSE4.1.
 template <bool kAvx2>
 CS_INLINE i16 hmin(v16 v) {
-  using v8 = i16 __attribute__((vector_size(16)));
 #if CROPSIGHT_X86_DISPATCH && !defined(__clang__)
   if constexpr (kAvx2) {
+    using v8 = i16 __attribute__((vector_size(16)));
     const v8 lo = __builtin_shufflevector(v, v, 0, 1, 2, 3, 4, 5, 6, 7);
     const v8 hi = __builtin_shufflevector(v, v, 8, 9, 10, 11, 12, 13, 14, 15);
     return __builtin_ia32_phminposuw128(lo < hi ? lo : hi)[0];
@@ -360,7 +360,8 @@ CS_INLINE void sweep_band_impl(const BandJob& job) {
       bool ok = true;
       if (job.uniqueness > 0) {
         const v16 dd = besti - splat(bd);
-        const v16 others = (dd >= -1) & (dd <= 1) ? second : bestv;
+        const v16 near = (dd >= -1) & (dd <= 1);
+        const v16 others = near ? second : bestv;
         ok = int(hmin<kPopcnt>(others)) * (100 - job.uniqueness) >= int(smin) * 100;
       }
       best[std::size_t(x)] = ok ? bd : -1;
