@@ -363,6 +363,27 @@ void check_tree_model(const nlohmann::json& j, const std::string& where) {
   if (num_feature < 1 || num_feature > (std::int64_t(1) << 31))
     fail("learner_model_param.num_feature is not a positive count");
   const std::size_t n = trees->size();
+  // XGBoost's loader reads tree_info[i] for every i below gbtree_model_param.num_trees, unchecked:
+  // a num_trees above the trees given read past the array (SEGV, fuzzing finding 25). So it must
+  // be the number of trees, num_parallel_tree must divide it, and each tree_info entry (the
+  // tree's output group) must be one of the learner's num_class groups (1 when num_class is 0).
+  const auto gp = model->find("gbtree_model_param");
+  const auto count_in = [](const nlohmann::json& o, const char* key) -> std::int64_t {
+    return o.contains(key) && o[key].is_string() ? parse_count(o[key].get<std::string>()) : -1;
+  };
+  if (gp == model->end() || !gp->is_object() || count_in(*gp, "num_trees") != std::int64_t(n))
+    fail("gbtree_model_param.num_trees is not the number of trees (" + std::to_string(n) + ")");
+  if (gp->contains("num_parallel_tree")) {
+    const std::int64_t parallel = count_in(*gp, "num_parallel_tree");
+    if (parallel < 1 || (n > 0 && std::int64_t(n) % parallel != 0))
+      fail("gbtree_model_param.num_parallel_tree is not a positive divisor of the number of trees");
+  }
+  std::int64_t groups = 1;
+  if (const auto mp = learner->find("learner_model_param"); mp != learner->end() && mp->is_object())
+    if (const std::int64_t classes = count_in(*mp, "num_class"); classes > 1) groups = classes;
+  for (const auto& g : *info)
+    if (!g.is_number_integer() || g.get<std::int64_t>() < 0 || g.get<std::int64_t>() >= groups)
+      fail("a \"tree_info\" entry is not one of the model's " + std::to_string(groups) + " output groups");
   std::vector<char> seen(n, 0);
   for (const auto& t : *trees) {
     const auto id = t.find("id");

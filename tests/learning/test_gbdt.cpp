@@ -176,6 +176,14 @@ TEST(Gbdt, BrokenTreeStructureIsAnError) {
   refused(edited("\"parents\":[", "0", "root_parent.json"), "parent is not the node whose child it is");
   refused(edited("\"split_indices\":[", "100000", "feature.json"), "split feature is not one of the model's");
   refused(edited("\"split_type\":[", "1", "categorical.json"), "numerical splits");
+  // Fuzzing finding 25: num_trees above the trees given made XGBoost read tree_info past its end
+  // (SEGV); a tree_info group outside num_class and a num_parallel_tree that does not divide the
+  // trees are refused with it.
+  refused(std::string(CROPSIGHT_SOURCE_DIR) + "/fuzz/regressions/gbdt_model/crash-f137b83e5364",
+          "num_trees is not the number of trees (4)");
+  refused(edited("\"num_trees\":\"", "601\"", "num_trees.json"), "num_trees is not the number of trees (600)");
+  refused(edited("\"tree_info\":[", "6", "group.json"), "not one of the model's 6 output groups");
+  refused(edited("\"num_parallel_tree\":\"", "7\"", "parallel.json"), "num_parallel_tree is not a positive divisor");
 }
 
 // Parameters out of range are named before XGBoost runs (rounds 0 used to blame the output file);
