@@ -110,6 +110,13 @@ TEST(ModelFile, BadFilesNameTheFileAndTheProblem) {
   const auto line_end = text.find("\\n", sv + 6);
   corrupt(text.substr(sv, line_end - sv), "\\nSV");
   corrupt("total_sv ", "total_sv 1");
+  // Fuzzing finding 26: libsvm leaves label / rho / nSV null when their header line is missing; a
+  // missing label line was a null dereference (SIGSEGV outside the sanitizers).
+  for (const char* key : {"\\nlabel ", "\\nrho ", "\\nnr_sv "}) {
+    const auto at = text.find(key);
+    ASSERT_NE(at, std::string::npos) << key;
+    corrupt(text.substr(at, text.find("\\n", at + 2) - at), "");
+  }
   corrupt("\"mean\": [", "\"mean\": [1e999, ");
   corrupt("\"classifier_model_size\": ", "\"classifier_model_size\": 1");
   // Fuzzing finding 24: a floating-point value where an integer belongs (2e119 as feature_dim) was
