@@ -346,7 +346,10 @@ void check_tree_model(const nlohmann::json& j, const std::string& where) {
   const auto* learner = j.contains("learner") && j["learner"].is_object() ? &j["learner"] : nullptr;
   if (!learner) fail("no \"learner\" object");
   const auto gb = learner->find("gradient_booster");
-  if (gb == learner->end() || !gb->is_object() || gb->value("name", std::string()) != "gbtree")
+  // Every value is type-checked before it is read: nlohmann's value() / get() throw type_error on
+  // a mismatch ("name": [..] escaped as an internal error, fuzzing finding 27).
+  const auto name = gb != learner->end() && gb->is_object() ? gb->find("name") : learner->end();
+  if (gb == learner->end() || !gb->is_object() || name == gb->end() || !name->is_string() || *name != "gbtree")
     fail("the gradient booster is not a gbtree (cropsight trains and reads gbtree models)");
   const auto model = gb->find("model");
   if (model == gb->end() || !model->is_object()) fail("gbtree without its model");

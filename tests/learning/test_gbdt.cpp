@@ -184,6 +184,8 @@ TEST(Gbdt, BrokenTreeStructureIsAnError) {
   refused(edited("\"num_trees\":\"", "601\"", "num_trees.json"), "num_trees is not the number of trees (600)");
   refused(edited("\"tree_info\":[", "6", "group.json"), "not one of the model's 6 output groups");
   refused(edited("\"num_parallel_tree\":\"", "7\"", "parallel.json"), "num_parallel_tree is not a positive divisor");
+  // Fuzzing finding 27: a booster "name" that is not a string escaped as nlohmann's type_error.
+  refused(std::string(CROPSIGHT_SOURCE_DIR) + "/fuzz/regressions/gbdt_model/crash-7350529975a6", "not a gbtree");
 }
 
 // Parameters out of range are named before XGBoost runs (rounds 0 used to blame the output file);
