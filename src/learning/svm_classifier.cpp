@@ -124,30 +124,78 @@ SvmClassifier::~SvmClassifier() {
   if (model_) svm_free_and_destroy_model(&model_);
 }
 
-// A function-try-block: when a check below rejects the model, libsvm's model is freed before the
-// error leaves (the constructors call this, and a constructor that throws runs no destructor).
-// libsvm's svm_load_model reads `total_sv` lines after "SV" without checking that they are there: a
-// model text cut short loads with the missing support vectors made of stale buffer contents (seen:
-// a model cut in half turned 25 detections into 116), and a malformed header makes libsvm print to
-// stderr before it fails. So the text's shape is checked here first: a header with total_sv, the
-// "SV" line, then exactly total_sv non-empty lines.
+// libsvm's svm_load_model trusts its text: it reads `total_sv` lines after "SV" without checking
+// that they are there (a model cut in half turned 25 detections into 116: the missing support
+// vectors were stale buffer contents), allocates its rho / label / nr_sv arrays from nr_class as
+// written (a huge one was a 16-exabyte allocation, fuzzing finding 28), leaves an array null when
+// its line is missing (finding 26) and prints to stderr on an unknown line. cropsight's models are
+// two-class C-SVCs, so the header is checked line by line before libsvm sees it: known keys only,
+// each once, nr_class 2 before the per-class lines, the value counts of a two-class model, nr_sv
+// summing to total_sv; then the "SV" line and exactly total_sv non-empty lines.
 namespace {
+// The whitespace-separated fields of `rest`, each a number (integers where `integers`), exactly
+// `count` of them; false otherwise.
+bool numbers(const std::string& rest, std::size_t count, bool integers, std::vector<double>* out = nullptr) {
+  std::istringstream in(rest);
+  std::vector<double> v;
+  for (std::string field; in >> field;) {
+    char* end = nullptr;
+    const double x = integers ? double(std::strtol(field.c_str(), &end, 10)) : std::strtod(field.c_str(), &end);
+    if (end == field.c_str() || *end != '\0' || !std::isfinite(x)) return false;
+    if (integers && (x < -1e9 || x > 1e9)) return false;
+    v.push_back(x);
+  }
+  if (out) *out = v;
+  return v.size() == count;
+}
+
 void check_libsvm_text(const std::string& text, const std::string& where) {
+  const auto bad = [&](const std::string& problem) { throw Error(where, "embedded SVM model: " + problem); };
   std::istringstream in(text);
   std::string line;
+  std::vector<std::string> seen;
   long total = -1;
+  std::vector<double> nr_sv;
   bool sv = false;
   while (std::getline(in, line)) {
-    if (line.rfind("total_sv ", 0) == 0) {
-      char* end = nullptr;
-      total = std::strtol(line.c_str() + 9, &end, 10);
-      if (end == line.c_str() + 9 || total < 1) throw Error(where, "embedded SVM model: bad total_sv line");
-    } else if (line == "SV") {
+    if (line == "SV") {
       sv = true;
       break;
     }
+    const auto space = line.find(' ');
+    const std::string key = line.substr(0, space), rest = space == std::string::npos ? "" : line.substr(space + 1);
+    if (std::find(seen.begin(), seen.end(), key) != seen.end()) bad("header line '" + key + "' appears twice");
+    seen.push_back(key);
+    const bool after_nr_class = std::find(seen.begin(), seen.end(), "nr_class") != seen.end();
+    if (key == "svm_type") {
+      if (rest != "c_svc") bad("svm_type is not c_svc");
+    } else if (key == "kernel_type") {
+      if (rest != "linear" && rest != "rbf") bad("kernel_type is not linear or rbf");
+    } else if (key == "degree") {
+      if (!numbers(rest, 1, true)) bad("bad degree line");
+    } else if (key == "gamma" || key == "coef0") {
+      if (!numbers(rest, 1, false)) bad("bad " + key + " line");
+    } else if (key == "nr_class") {
+      if (rest != "2") bad("nr_class is not 2 (cropsight's SVMs are two-class)");
+    } else if (key == "total_sv") {
+      std::vector<double> v;
+      if (!numbers(rest, 1, true, &v) || v[0] < 1) bad("bad total_sv line");
+      total = long(v[0]);
+    } else if (key == "rho" || key == "probA" || key == "probB") {
+      if (!after_nr_class || !numbers(rest, 1, false)) bad("bad " + key + " line (one number, after nr_class)");
+    } else if (key == "label") {
+      if (!after_nr_class || !numbers(rest, 2, true)) bad("bad label line (two integers, after nr_class)");
+    } else if (key == "nr_sv") {
+      if (!after_nr_class || !numbers(rest, 2, true, &nr_sv) || nr_sv[0] < 0 || nr_sv[1] < 0)
+        bad("bad nr_sv line (two counts, after nr_class)");
+    } else {
+      bad("unknown header line '" + line.substr(0, 40) + "'");
+    }
   }
-  if (total < 1 || !sv) throw Error(where, "embedded SVM model is malformed (no total_sv or no SV section)");
+  if (!sv) bad("no SV section");
+  for (const char* key : {"svm_type", "kernel_type", "nr_class", "total_sv", "rho", "label", "nr_sv"})
+    if (std::find(seen.begin(), seen.end(), key) == seen.end()) bad(std::string("no ") + key + " line");
+  if (long(nr_sv[0] + nr_sv[1]) != total) bad("nr_sv does not sum to total_sv");
   long lines = 0;
   while (std::getline(in, line))
     if (!line.empty()) ++lines;
@@ -158,6 +206,8 @@ void check_libsvm_text(const std::string& text, const std::string& where) {
 }
 }  // namespace
 
+// A function-try-block: when a check below rejects the model, libsvm's model is freed before the
+// error leaves (the constructors call this, and a constructor that throws runs no destructor).
 void SvmClassifier::load_text(const std::string& text, const std::string& where) try {
   check_libsvm_text(text, where);
   {

@@ -117,6 +117,14 @@ TEST(ModelFile, BadFilesNameTheFileAndTheProblem) {
     ASSERT_NE(at, std::string::npos) << key;
     corrupt(text.substr(at, text.find("\\n", at + 2) - at), "");
   }
+  // Fuzzing finding 28: libsvm sizes its per-class arrays from nr_class as written (a huge one
+  // was a 16-exabyte allocation); the header is now checked line by line before libsvm reads it.
+  corrupt("nr_class 2", "nr_class -1234567890");
+  corrupt("nr_class 2", "nr_class 3");
+  corrupt("\\nnr_sv ", "\\nnr_sv 1000 ");
+  corrupt("\\nSV\\n", "\\nlabel 1 -1\\nSV\\n");  // a line twice
+  corrupt("\\nSV\\n", "\\nweird 1\\nSV\\n");     // an unknown line
+  corrupt("svm_type c_svc", "svm_type nu_svc");
   corrupt("\"mean\": [", "\"mean\": [1e999, ");
   corrupt("\"classifier_model_size\": ", "\"classifier_model_size\": 1");
   // Fuzzing finding 24: a floating-point value where an integer belongs (2e119 as feature_dim) was
