@@ -125,6 +125,30 @@ TEST(ImageIo, ADamagedImageLeavesNoOpenCvTemporaryFile) {
   EXPECT_TRUE(fs::is_empty(opencv_tmp)) << "OpenCV left " << fs::directory_iterator(opencv_tmp)->path();
 }
 
+// Fuzzing finding 29: Debian's OpenCV hands content with "DICM" at offset 128 to GDCM, which
+// asserts (abort) on a damaged header. Only the formats cropsight reads are offered to OpenCV;
+// anything else is one error naming the file, whatever its extension.
+TEST(ImageIo, OnlyKnownImageFormatsReachOpenCv) {
+  TempDir tmp;
+  const std::string dicom =
+      io::read_file(fs::path(CROPSIGHT_SOURCE_DIR) / "fuzz/regressions/stereo_ground_truth/crash-2d11e407b57f");
+  ASSERT_EQ(dicom.substr(128, 4), "DICM");
+  write_file_atomic(tmp / "dicom.png", dicom);
+  expect_error_names(
+      tmp / "dicom.png", [&] { read_u16(tmp / "dicom.png"); }, "not an image format cropsight reads");
+  write_file_atomic(tmp / "jp2.png", std::string("\0\0\0\x0cjP  \r\n\x87\n", 12) + std::string(40, 'x'));
+  expect_error_names(
+      tmp / "jp2.png", [&] { read_color(tmp / "jp2.png"); }, "not an image format cropsight reads");
+  // The formats cropsight reads still decode, whatever the file is called.
+  const cv::Mat grey(3, 4, CV_8UC1, cv::Scalar(7));
+  for (const char* ext : {".png", ".bmp", ".tiff", ".pgm", ".jpg", ".webp"}) {
+    std::vector<std::uint8_t> bytes;
+    ASSERT_TRUE(cv::imencode(ext, grey, bytes)) << ext;
+    write_file_atomic(tmp / "img.bin.png", std::string(bytes.begin(), bytes.end()));
+    EXPECT_NO_THROW(read_color(tmp / "img.bin.png")) << ext;
+  }
+}
+
 TEST(ImageIo, FailedWriteLeavesNothing) {
   TempDir tmp;
   EXPECT_THROW(write_u16(tmp / "noext", ramp16(3, 3)), Error);
