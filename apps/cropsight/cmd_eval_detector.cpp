@@ -53,7 +53,7 @@ void run(EvalDetectorOptions o) {
   for (const auto& s : scored) names.push_back(s.name);
   double ms = 0;
   const nn::DetectorScore score = nn::evaluate_detector(*det, scored, float(o.mask_threshold), &ms);
-  std::vector<float> thresholds = model_config(*det).mask_threshold_values(o.model);
+  std::vector<float> thresholds = nn::center_net_config(*det, o.model).mask_threshold_values(o.model);
   if (o.mask_threshold >= 0) std::fill(thresholds.begin(), thresholds.end(), float(o.mask_threshold));
   if (o.common.json) {
     nlohmann::json classes = nlohmann::json::array();

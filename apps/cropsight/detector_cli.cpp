@@ -8,7 +8,6 @@
 
 #include "cli_common.hpp"
 #include "cropsight/core/error.hpp"
-#include "cropsight/nn/center_onnx.hpp"
 #include "cropsight/nn/detector_eval.hpp"
 
 namespace cropsight::cli {
@@ -45,12 +44,6 @@ Split split_indices(std::size_t n, double fraction, std::uint64_t seed) {
   std::sort(s.val.begin(), s.val.end());
   std::sort(s.train.begin(), s.train.end());
   return s;
-}
-
-const nn::CenterNetConfig& model_config(const Detector2D& det, const std::string& where) {
-  if (const auto* onnx = dynamic_cast<const nn::CenterNetOnnx*>(&det)) return onnx->config();
-  if (const auto* net = dynamic_cast<const nn::CenterNet*>(&det)) return net->config();
-  throw Error(where, "not a cropsight CenterNet detector (.pt or .onnx)");
 }
 
 std::vector<float> calibrate_masks(nn::CenterNet& net, const std::vector<nn::DetectionSample>& train) {

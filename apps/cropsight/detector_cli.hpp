@@ -6,7 +6,6 @@
 #include <string>
 #include <vector>
 
-#include "cropsight/core/detection2d.hpp"
 #include "cropsight/nn/center_net.hpp"
 #include "cropsight/nn/detection_dataset.hpp"
 
@@ -29,10 +28,6 @@ struct Split {
   std::vector<std::size_t> train, val;
 };
 Split split_indices(std::size_t n, double fraction, std::uint64_t seed);
-
-/// The configuration of a detector load_center_detector returned (.pt or .onnx CenterNet).
-/// Throws Error(where) for another kind of Detector2D.
-const nn::CenterNetConfig& model_config(const Detector2D& det, const std::string& where = "--model");
 
 /// Per-class mask thresholds chosen on `train` (nn::calibrate_mask_thresholds), set on `net`;
 /// returns them (empty, and nothing set, when no training image has masks).

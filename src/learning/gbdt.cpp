@@ -334,6 +334,12 @@ std::int64_t parse_count(const std::string& text) {
   }
 }
 
+// The count XGBoost writes as a decimal string under `key` of object `o`: -1 when absent or not a
+// string, 0 when the string is not a count.
+std::int64_t count_at(const nlohmann::json& o, const char* key) {
+  return o.contains(key) && o[key].is_string() ? parse_count(o[key].get<std::string>()) : -1;
+}
+
 // XGBoost 1.7 trusts a JSON model's tree structure: two trees with the same "id" made its
 // parallel loader free one tree twice (fuzz_gbdt_model; fuzz/regressions/gbdt_model/), and a
 // child index out of range or pointing back up would send compile() out of bounds or round a
@@ -358,11 +364,10 @@ void check_tree_model(const nlohmann::json& j, const std::string& where) {
   if (trees == model->end() || !trees->is_array() || info == model->end() || !info->is_array() ||
       info->size() != trees->size())
     fail("\"trees\" and \"tree_info\" must be arrays of the same length");
-  // The learner's feature count (a string, as XGBoost writes its parameters).
-  std::int64_t num_feature = 0;
-  if (const auto mp = learner->find("learner_model_param");
-      mp != learner->end() && mp->is_object() && mp->contains("num_feature") && (*mp)["num_feature"].is_string())
-    num_feature = parse_count((*mp)["num_feature"].get<std::string>());
+  // The learner's feature and class counts (strings, as XGBoost writes its parameters).
+  const auto mp = learner->find("learner_model_param");
+  const bool has_mp = mp != learner->end() && mp->is_object();
+  const std::int64_t num_feature = has_mp ? count_at(*mp, "num_feature") : -1;
   if (num_feature < 1 || num_feature > (std::int64_t(1) << 31))
     fail("learner_model_param.num_feature is not a positive count");
   const std::size_t n = trees->size();
@@ -371,19 +376,14 @@ void check_tree_model(const nlohmann::json& j, const std::string& where) {
   // be the number of trees, num_parallel_tree must divide it, and each tree_info entry (the
   // tree's output group) must be one of the learner's num_class groups (1 when num_class is 0).
   const auto gp = model->find("gbtree_model_param");
-  const auto count_in = [](const nlohmann::json& o, const char* key) -> std::int64_t {
-    return o.contains(key) && o[key].is_string() ? parse_count(o[key].get<std::string>()) : -1;
-  };
-  if (gp == model->end() || !gp->is_object() || count_in(*gp, "num_trees") != std::int64_t(n))
+  if (gp == model->end() || !gp->is_object() || count_at(*gp, "num_trees") != std::int64_t(n))
     fail("gbtree_model_param.num_trees is not the number of trees (" + std::to_string(n) + ")");
   if (gp->contains("num_parallel_tree")) {
-    const std::int64_t parallel = count_in(*gp, "num_parallel_tree");
+    const std::int64_t parallel = count_at(*gp, "num_parallel_tree");
     if (parallel < 1 || (n > 0 && std::int64_t(n) % parallel != 0))
       fail("gbtree_model_param.num_parallel_tree is not a positive divisor of the number of trees");
   }
-  std::int64_t groups = 1;
-  if (const auto mp = learner->find("learner_model_param"); mp != learner->end() && mp->is_object())
-    if (const std::int64_t classes = count_in(*mp, "num_class"); classes > 1) groups = classes;
+  const std::int64_t groups = std::max<std::int64_t>(has_mp ? count_at(*mp, "num_class") : 1, 1);
   for (const auto& g : *info)
     if (!g.is_number_integer() || g.get<std::int64_t>() < 0 || g.get<std::int64_t>() >= groups)
       fail("a \"tree_info\" entry is not one of the model's " + std::to_string(groups) + " output groups");

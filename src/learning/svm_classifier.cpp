@@ -216,10 +216,6 @@ void SvmClassifier::load_text(const std::string& text, const std::string& where)
     model_ = svm_load_model(tmp.path().c_str());
   }
   if (!model_) throw Error(where, "libsvm cannot parse the embedded SVM model");
-  // libsvm accepts a header without its label, rho or nr_sv line and leaves that array null
-  // (fuzzing finding 26: a missing label line was a null dereference below).
-  if (model_->label == nullptr || model_->rho == nullptr || model_->nSV == nullptr)
-    throw Error(where, "embedded SVM model lacks its label, rho or nr_sv line");
   text_ = text;
   const svm_parameter& p = model_->param;
   if (p.svm_type != C_SVC || model_->nr_class != 2) throw Error(where, "SVM model is not a two-class C-SVC");

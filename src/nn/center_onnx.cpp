@@ -107,6 +107,12 @@ std::vector<Detection2D> CenterNetOnnx::detect(const DetectorInput& in) {
   return detect(*in.image);
 }
 
+const CenterNetConfig& center_net_config(const Detector2D& detector, const std::string& where) {
+  if (const auto* onnx = dynamic_cast<const CenterNetOnnx*>(&detector)) return onnx->config();
+  if (const auto* net = dynamic_cast<const CenterNet*>(&detector)) return net->config();
+  throw Error(where, "the model is not a cropsight CenterNet (.pt or .onnx)");
+}
+
 std::unique_ptr<Detector2D> load_center_detector(const std::filesystem::path& path, int threads) {
   if (path.extension() == ".onnx") return std::make_unique<CenterNetOnnx>(path);
   return std::make_unique<CenterNet>(CenterNet::load(path, threads));

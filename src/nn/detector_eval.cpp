@@ -103,16 +103,12 @@ float grid_value(int j) { return 0.05f * float(j + 1); }
 
 // The heads of one image from either kind of CenterNet (eval mode), and its configuration.
 struct AnyCenterNet {
-  CenterNetOnnx* onnx = nullptr;
-  CenterNet* torch_net = nullptr;
-  explicit AnyCenterNet(Detector2D& d, const std::string& where)
-      : onnx(dynamic_cast<CenterNetOnnx*>(&d)), torch_net(dynamic_cast<CenterNet*>(&d)) {
-    if (onnx == nullptr && torch_net == nullptr)
-      throw Error(where, "the model is not a cropsight CenterNet (.pt or .onnx)");
-  }
-  const CenterNetConfig& config() const { return onnx != nullptr ? onnx->config() : torch_net->config(); }
+  Detector2D& detector;
+  const CenterNetConfig& cfg;
+  AnyCenterNet(Detector2D& d, const std::string& where) : detector(d), cfg(center_net_config(d, where)) {}
   CenterNetHeads heads(const ColorImage& image) const {
-    return onnx != nullptr ? onnx->heads(image) : torch_net->heads(image);
+    if (auto* onnx = dynamic_cast<CenterNetOnnx*>(&detector)) return onnx->heads(image);
+    return static_cast<const CenterNet&>(detector).heads(image);
   }
 };
 
@@ -202,7 +198,7 @@ std::vector<float> MaskCalibration::thresholds() const {
 
 std::vector<float> calibrate_mask_thresholds(Detector2D& detector, const std::vector<DetectionSample>& samples) {
   const AnyCenterNet net(detector, "calibrate mask thresholds");
-  const CenterNetConfig& cfg = net.config();
+  const CenterNetConfig& cfg = net.cfg;
   MaskCalibration cal(cfg.num_classes());
   for (const auto& s : samples)
     if (!s.masks.empty()) cal.add(net.heads(s.image), cfg, s);
@@ -212,7 +208,7 @@ std::vector<float> calibrate_mask_thresholds(Detector2D& detector, const std::ve
 DetectorScore evaluate_detector(Detector2D& detector, const std::vector<DetectionSample>& samples, float mask_threshold,
                                 double* ms_per_image) {
   const AnyCenterNet net(detector, "eval detector");
-  const CenterNetConfig& cfg = net.config();
+  const CenterNetConfig& cfg = net.cfg;
   DetectorEvaluator ev(cfg.names());
   double seconds = 0;
   for (const auto& s : samples) {

@@ -42,9 +42,9 @@ CS_INLINE void st(i16* p, v16 v) { std::memcpy(p, &v, sizeof v); }
 CS_INLINE v16 vmin(v16 a, v16 b) { return a < b ? a : b; }
 CS_INLINE v16 splat(int x) { return v16{} + i16(x); }
 // Smallest of the 16 lanes (every value the kernel reduces lies in [0, kBig]). The AVX2 kernel
-// folds the halves and lets SSE4.1's phminposuw find the minimum of 8 (2 instructions instead of
-// 6 shuffle / min steps, on the chain that carries the horizontal path from pixel to pixel); the
-// builtin is expanded inside sweep_band_avx2, whose target includes SSE4.1.
+// folds the halves and lets SSE4.1's phminposuw find the minimum of 8 (an extract, a min and
+// phminposuw instead of four shuffle / min pairs, on the chain that carries the horizontal path
+// from pixel to pixel); the builtin is expanded inside sweep_band_avx2, whose target includes SSE4.1.
 template <bool kAvx2>
 CS_INLINE i16 hmin(v16 v) {
 #if CROPSIGHT_X86_DISPATCH && !defined(__clang__)
@@ -97,7 +97,7 @@ CROPSIGHT_TARGET_AVX2 CS_INLINE __m256i popcount_halves_avx2(__m256i v) {
 // Matching costs of one row for census words of at most 32 bits: cost[x * D + d] = Hamming
 // distance between left word x and mirrored right word W - 1 - x + d (x - d in the right image).
 // The AVX2 table look-up takes about half the instructions of the portable SWAR count in 32-bit
-// lanes, which was a fifth of the matcher's time; both give the exact bit count. Not inlined:
+// lanes, the largest single block of the matcher in a perf profile; both give the exact count. Not inlined:
 // one call per row, and a target-specific body.
 CROPSIGHT_TARGET_AVX2 void cost_row32_avx2(const std::uint64_t* cl, const std::uint32_t* crev, int W, int D,
                                            i16* cost) {

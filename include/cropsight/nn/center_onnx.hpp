@@ -44,4 +44,8 @@ class CenterNetOnnx final : public Detector2D {
 /// (CenterNet::load with `threads`).
 std::unique_ptr<Detector2D> load_center_detector(const std::filesystem::path& path, int threads = 1);
 
+/// The configuration of a CenterNet or CenterNetOnnx (as load_center_detector returns). Throws
+/// Error(where) for another kind of Detector2D.
+const CenterNetConfig& center_net_config(const Detector2D& detector, const std::string& where);
+
 }  // namespace cropsight::nn
