@@ -1,5 +1,6 @@
 #include "cropsight/stereo/stereo_io.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cctype>
 #include <cmath>
@@ -127,6 +128,14 @@ Image<float> read_pfm(const fs::path& path) {
     throw Error(where, "PFM size " + std::to_string(w) + "x" + std::to_string(h) + " outside 1..65535");
   if (scale == 0 || !std::isfinite(scale)) throw Error(where, "PFM scale must be a non-zero number");
   in.get();  // the single whitespace character that ends the header
+  // The data's size is checked against the file before anything is allocated: a 20-byte header
+  // can claim 65535 x 65535 floats (16 GiB; fuzzing finding 30).
+  const std::uintmax_t expected = std::uintmax_t(w) * std::uintmax_t(h) * sizeof(float);
+  const std::streamoff at = in.tellg();
+  const std::uintmax_t left = at < 0 ? 0 : fs::file_size(path) - std::min(fs::file_size(path), std::uintmax_t(at));
+  if (left < expected)
+    throw Error(where, "PFM data truncated: expected " + std::to_string(w) + "x" + std::to_string(h) + " floats, got " +
+                           std::to_string(left / sizeof(float)));
   std::vector<float> raw(std::size_t(w) * std::size_t(h));
   in.read(reinterpret_cast<char*>(raw.data()), std::streamsize(raw.size() * sizeof(float)));
   if (in.gcount() != std::streamsize(raw.size() * sizeof(float)))

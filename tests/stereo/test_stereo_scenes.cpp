@@ -88,6 +88,10 @@ TEST(Pfm, BadFilesNameTheFile) {
   expect_error_naming([&] { read_pfm(tmp / "short.pfm"); }, "truncated");
   std::ofstream(tmp / "size.pfm") << "Pf\n0 4\n-1\n";
   expect_error_naming([&] { read_pfm(tmp / "size.pfm"); }, "size.pfm");
+  // Fuzzing finding 30: a header claiming 19909 x 40242 floats in a 20-byte file allocated 3.2 GB
+  // before the read found the data missing; the size is now checked against the file first.
+  std::ofstream(tmp / "huge.pfm") << "Pf\n 19909\n 40242 4 9";
+  expect_error_naming([&] { read_pfm(tmp / "huge.pfm"); }, "truncated");
   std::ofstream(tmp / "noscale.pfm") << "Pf\n2 2\n";
   expect_error_naming([&] { read_pfm(tmp / "noscale.pfm"); }, "noscale.pfm");
 }
