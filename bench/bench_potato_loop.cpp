@@ -76,6 +76,7 @@ void BM_Locate(benchmark::State& state, measure::CentreOffset offset) {
   for (auto _ : state)
     benchmark::DoNotOptimize(measure::locate(a.target_box, a.last_depth_m, a.frames.back().camera, cfg).xyz);
 }
+BENCHMARK_CAPTURE(BM_Locate, profile, measure::CentreOffset::profile)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Locate, silhouette, measure::CentreOffset::silhouette)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(BM_Locate, half_width, measure::CentreOffset::half_width)->Unit(benchmark::kMicrosecond);
 

@@ -1,8 +1,11 @@
 // Box-centre deprojection with a robust depth (see position.hpp).
 #include "cropsight/measure/position.hpp"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include "cropsight/core/error.hpp"
 
@@ -32,22 +35,85 @@ struct Silhouette {
   int pixels = 0;
   double minor = 0, major = 0;  ///< full axes of the equivalent ellipse, radians (metres per metre along c)
   Eigen::Vector3d centroid_ray = Eigen::Vector3d::UnitZ();  ///< unit ray through the silhouette's centroid
+  // The equivalent ellipse in the plane at unit distance along c: centroid (ma, mb), covariance.
+  Eigen::Vector3d e1 = Eigen::Vector3d::UnitX(), e2 = Eigen::Vector3d::UnitY();
+  double ma = 0, mb = 0, caa = 0, cbb = 0, cab = 0;
 };
 
-Silhouette silhouette(const Detection2D& box, const Image<float>& depth_m, const CameraIntrinsics& camera,
-                      const Eigen::Vector3d& c, float z, float near_m, float band_m) {
+// The silhouette's pixels: those of the box whose depth lies in [lo, hi], and with grow > 0 those
+// up to `grow` of the box's sides beyond it that are connected to them (8-neighbours, in the band,
+// depth steps up to `step`): a detector's box that cuts off a dark end of the potato no longer cuts
+// its silhouette. Inside the box nothing needs a connection: a root across the potato removes a
+// strip from the band and would cut the silhouette in two. Thread-safety: the mask reuses a
+// thread_local buffer.
+struct SilhouetteMask {
+  int u0 = 0, v0 = 0, width = 0, height = 0;
+  const std::vector<std::uint8_t>* in = nullptr;  ///< row-major, width x height, 1 = silhouette
+  bool at(int u, int v) const { return (*in)[std::size_t(v - v0) * std::size_t(width) + std::size_t(u - u0)] != 0; }
+};
+
+SilhouetteMask silhouette_mask(const Detection2D& box, const Image<float>& depth_m, float lo, float hi, double grow,
+                               float step) {
+  const double gw = grow * box.width(), gh = grow * box.height();
+  SilhouetteMask m;
+  m.u0 = std::clamp(int(std::floor(box.x1 - gw)), 0, depth_m.width);
+  m.v0 = std::clamp(int(std::floor(box.y1 - gh)), 0, depth_m.height);
+  const int u1 = std::clamp(int(std::ceil(box.x2 + gw)), 0, depth_m.width);
+  const int v1 = std::clamp(int(std::ceil(box.y2 + gh)), 0, depth_m.height);
+  m.width = std::max(0, u1 - m.u0), m.height = std::max(0, v1 - m.v0);
+  thread_local std::vector<std::uint8_t> in;
+  in.assign(std::size_t(m.width) * std::size_t(m.height), 0);
+  m.in = &in;
+  const auto band = [&](int u, int v) {
+    const float d = depth_m.at(u, v);
+    return d >= lo && d <= hi;
+  };
+  if (grow <= 0) {
+    for (int v = m.v0; v < v1; ++v)
+      for (int u = m.u0; u < u1; ++u)
+        in[std::size_t(v - m.v0) * std::size_t(m.width) + std::size_t(u - m.u0)] = band(u, v);
+    return m;
+  }
+  thread_local std::vector<std::pair<int, int>> stack;
+  stack.clear();
+  const auto mark = [&](int u, int v) {
+    std::uint8_t& f = in[std::size_t(v - m.v0) * std::size_t(m.width) + std::size_t(u - m.u0)];
+    if (f == 0) f = 1, stack.emplace_back(u, v);
+  };
+  const int bu0 = std::clamp(int(std::floor(box.x1)), 0, depth_m.width);
+  const int bu1 = std::clamp(int(std::ceil(box.x2)), 0, depth_m.width);
+  const int bv0 = std::clamp(int(std::floor(box.y1)), 0, depth_m.height);
+  const int bv1 = std::clamp(int(std::ceil(box.y2)), 0, depth_m.height);
+  // Inside the box every in-band pixel counts; only those on its edge can reach beyond it.
+  for (int v = bv0; v < bv1; ++v)
+    for (int u = bu0; u < bu1; ++u) {
+      if (!band(u, v)) continue;
+      in[std::size_t(v - m.v0) * std::size_t(m.width) + std::size_t(u - m.u0)] = 1;
+      if (u == bu0 || v == bv0 || u == bu1 - 1 || v == bv1 - 1) stack.emplace_back(u, v);
+    }
+  const auto inside_box = [&](int u, int v) { return u >= bu0 && v >= bv0 && u < bu1 && v < bv1; };
+  while (!stack.empty()) {
+    const auto [u, v] = stack.back();
+    stack.pop_back();
+    const float d = depth_m.at(u, v);
+    for (int dv = -1; dv <= 1; ++dv)
+      for (int du = -1; du <= 1; ++du) {
+        const int uu = u + du, vv = v + dv;
+        if (uu < m.u0 || vv < m.v0 || uu >= u1 || vv >= v1 || inside_box(uu, vv) || !band(uu, vv)) continue;
+        if (std::abs(depth_m.at(uu, vv) - d) <= step) mark(uu, vv);
+      }
+  }
+  return m;
+}
+
+// Moments of the mask's pixels, each measured across the ray c (see Silhouette).
+Silhouette silhouette(const SilhouetteMask& mask, const CameraIntrinsics& camera, const Eigen::Vector3d& c) {
   const Eigen::Vector3d e1 = (Eigen::Vector3d::UnitX() - c.x() * c).normalized(), e2 = c.cross(e1);
-  const int u0 = std::clamp(int(std::floor(box.x1)), 0, depth_m.width);
-  const int u1 = std::clamp(int(std::ceil(box.x2)), 0, depth_m.width);
-  const int v0 = std::clamp(int(std::floor(box.y1)), 0, depth_m.height);
-  const int v1 = std::clamp(int(std::ceil(box.y2)), 0, depth_m.height);
-  const float lo = z - near_m, hi = z + band_m;
   double n = 0, sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
-  for (int v = v0; v < v1; ++v) {
-    const float* row = depth_m.row(v);
+  for (int v = mask.v0; v < mask.v0 + mask.height; ++v) {
     const double yn = (double(v) - camera.cy) / camera.fy;
-    for (int u = u0; u < u1; ++u) {
-      if (!(row[u] >= lo && row[u] <= hi)) continue;
+    for (int u = mask.u0; u < mask.u0 + mask.width; ++u) {
+      if (!mask.at(u, v)) continue;
       const Eigen::Vector3d d((double(u) - camera.cx) / camera.fx, yn, 1.0);
       const double t = 1.0 / d.dot(c), a = t * d.dot(e1), b = t * d.dot(e2);
       n += 1, sa += a, sb += b, saa += a * a, sbb += b * b, sab += a * b;
@@ -60,9 +126,84 @@ Silhouette silhouette(const Detection2D& box, const Image<float>& depth_m, const
   const double caa = saa / n - ma * ma, cbb = sbb / n - mb * mb, cab = sab / n - ma * mb;
   const double mean = 0.5 * (caa + cbb), d = std::sqrt(0.25 * (caa - cbb) * (caa - cbb) + cab * cab);
   s.centroid_ray = (c + ma * e1 + mb * e2).normalized();
+  s.e1 = e1, s.e2 = e2, s.ma = ma, s.mb = mb, s.caa = caa, s.cbb = cbb, s.cab = cab;
   s.minor = 4.0 * std::sqrt(std::max(0.0, mean - d));
   s.major = 4.0 * std::sqrt(std::max(0.0, mean + d));
   return s;
+}
+// The centre's distance along the silhouette's centroid ray from the shape of the visible surface
+// (centre_offset: profile). An ellipsoid at distance D whose semi-axis along the view is C: a pixel
+// at normalised radius rho inside the silhouette's equivalent ellipse (offset (da, db) from its
+// centroid in the plane at unit distance) sees its front at range
+//   r = D + g1 da + g2 db - C sqrt(1 - rho^2) + D (da^2 + db^2) / 2 - rho^2 C^2 / D
+// to second order in the angles (exact for a sphere: r = D cos(phi) - sqrt(R^2 - D^2 sin^2 phi)).
+// g1, g2: the rim's plane is tilted when the potato is. C is the thickness the silhouette cannot
+// show. The last two terms (about a millimetre) are taken at the previous estimate, so the model
+// is linear in (D, g1, g2, C): least squares over the pixels with rho below max_radius (the rim's
+// depth is noisy and often missing), again without the residuals beyond three robust sigmas (a
+// root or sprout on the surface), and once more with the terms at the new estimate. `d0`, `c0`:
+// the first estimate. Returns {D, C}, or {0, 0} when too few pixels remain.
+std::pair<double, double> fit_profile(const SilhouetteMask& mask, const Image<float>& depth_m,
+                                      const CameraIntrinsics& camera, const Silhouette& s, double d0, double c0,
+                                      double max_radius, int min_pixels) {
+  // Inverse of 4 x covariance: for a filled ellipse of semi-axes p, q the covariance is diag(p^2, q^2) / 4.
+  const double det = s.caa * s.cbb - s.cab * s.cab;
+  if (!(det > 0) || !(d0 > 0)) return {0, 0};
+  const double iaa = s.cbb / (4 * det), ibb = s.caa / (4 * det), iab = -s.cab / (4 * det);
+  const Eigen::Vector3d c = s.e1.cross(s.e2);
+  struct Row {
+    Eigen::Vector4d x;  ///< 1, da, db, -sqrt(1 - rho^2)
+    double r, lateral2, rho2;
+  };
+  thread_local std::vector<Row> rows;
+  rows.clear();
+  for (int v = mask.v0; v < mask.v0 + mask.height; ++v) {
+    const float* row = depth_m.row(v);
+    const double yn = (double(v) - camera.cy) / camera.fy;
+    for (int u = mask.u0; u < mask.u0 + mask.width; ++u) {
+      if (!mask.at(u, v)) continue;
+      const Eigen::Vector3d d((double(u) - camera.cx) / camera.fx, yn, 1.0);
+      const double t = 1.0 / d.dot(c), da = t * d.dot(s.e1) - s.ma, db = t * d.dot(s.e2) - s.mb;
+      const double rho2 = iaa * da * da + 2 * iab * da * db + ibb * db * db;
+      if (rho2 >= max_radius * max_radius) continue;
+      rows.push_back(
+          {Eigen::Vector4d(1.0, da, db, -std::sqrt(1.0 - rho2)), double(row[u]) * d.norm(), da * da + db * db, rho2});
+    }
+  }
+  // Pass 0 fits every pixel with the terms at the first estimate; its residuals set the outlier
+  // cutoff; passes 1 and 2 fit the inliers of the previous fit with the terms at its estimate.
+  double dist = d0, thick = c0;
+  Eigen::Vector4d beta = Eigen::Vector4d::Zero();
+  double cutoff = std::numeric_limits<double>::infinity();
+  thread_local std::vector<double> abs_res;
+  for (int pass = 0; pass < 3; ++pass) {
+    const Eigen::Vector4d previous = beta;
+    const auto target = [&](const Row& q) { return q.r - 0.5 * dist * q.lateral2 + q.rho2 * thick * thick / dist; };
+    Eigen::Matrix4d ata = Eigen::Matrix4d::Zero();
+    Eigen::Vector4d atb = Eigen::Vector4d::Zero();
+    int used = 0;
+    for (const Row& q : rows) {
+      const double y = target(q);
+      if (pass > 0 && std::abs(q.x.dot(previous) - y) > cutoff) continue;
+      ata.noalias() += q.x * q.x.transpose();
+      atb.noalias() += q.x * y;
+      ++used;
+    }
+    if (used < min_pixels) return {0, 0};
+    const Eigen::LDLT<Eigen::Matrix4d> ldlt(ata);
+    if (ldlt.info() != Eigen::Success) return {0, 0};
+    beta = ldlt.solve(atb);
+    if (pass == 0) {
+      abs_res.clear();
+      for (const Row& q : rows) abs_res.push_back(std::abs(q.x.dot(beta) - target(q)));
+      auto mid = abs_res.begin() + std::ptrdiff_t(abs_res.size() / 2);
+      std::nth_element(abs_res.begin(), mid, abs_res.end());
+      cutoff = std::max(3.0 * 1.4826 * *mid, 1e-4);  // floor 0.1 mm: the depth's units are 1 mm
+    }
+    if (!(beta(0) > 0)) return {0, 0};
+    dist = beta(0), thick = beta(3);
+  }
+  return {dist, thick};
 }
 }  // namespace
 
@@ -118,10 +259,34 @@ Position3D locate(const Detection2D& box, const Image<float>& depth_m, const Cam
   const double rho_s = double(z) * ray.norm();
   double semi = 0;
   CentreOffset offset = cfg.centre_offset;
-  if (offset == CentreOffset::silhouette) {
+  if (offset == CentreOffset::silhouette || offset == CentreOffset::profile) {
     const float band = 0.5f * float(std::max(box.width() / camera.fx, box.height() / camera.fy)) * z;
-    const Silhouette s = silhouette(box, depth_m, camera, c, z, float(cfg.silhouette_near_m), band);
+    const float near = float(cfg.silhouette_near_m);
+    const SilhouetteMask mask =
+        silhouette_mask(box, depth_m, z - near, z + band, cfg.silhouette_grow, float(cfg.silhouette_step_m));
+    const Silhouette s = silhouette(mask, camera, c);
     out.silhouette_pixels = s.pixels;
+    if (offset == CentreOffset::profile && s.pixels >= cfg.silhouette_min_px) {
+      // The fitted thickness must be a potato's: within profile_max_ratio of the silhouette's
+      // semi-minor axis at the fitted distance; otherwise (a box on two potatoes, a flat patch of
+      // backdrop) the round cross-section of `silhouette` is the safer guess.
+      const double semi0 = 0.5 * s.minor, dist0 = rho_s / std::max(0.5, 1.0 - semi0);
+      const auto [dist, thick] =
+          fit_profile(mask, depth_m, camera, s, dist0, semi0 * dist0, cfg.profile_max_radius, cfg.silhouette_min_px);
+      const double semi_m = 0.5 * s.minor * dist;
+      if (dist > 0 && thick * cfg.profile_max_ratio >= semi_m && thick <= cfg.profile_max_ratio * semi_m) {
+        out.xyz = (dist * s.centroid_ray).cast<float>();
+        out.thickness_m = float(2 * thick);
+        out.minor_m = float(s.minor * dist);
+        out.major_m = float(s.major * dist);
+        const float zc = out.xyz.z();
+        out.width_m = float(box.width() * zc / camera.fx);
+        out.height_m = float(box.height() * zc / camera.fy);
+        out.area_m2 = out.width_m * out.height_m;
+        return out;
+      }
+      offset = CentreOffset::silhouette;
+    }
     if (s.pixels >= cfg.silhouette_min_px) {
       semi = 0.5 * s.minor;
       const double rho_c = rho_s / std::max(0.5, 1.0 - semi);

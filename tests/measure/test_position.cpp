@@ -77,10 +77,15 @@ struct Rendered {
   Image<float> depth{640, 480, 0.7f};
   Detection2D box;
 };
-Rendered render_ellipsoid(const Eigen::Vector3d& c0, double a, double b, double c, double angle) {
+// `tilt` turns the length axis toward the camera (radians); `quantum_m` rounds the depth like the
+// D415's 1 mm units (0: exact).
+Rendered render_ellipsoid(const Eigen::Vector3d& c0, double a, double b, double c, double angle, double tilt = 0,
+                          double quantum_m = 0) {
   Rendered out;
   const CameraIntrinsics cam = camera();
-  const Eigen::Vector3d ax(std::cos(angle), -std::sin(angle), 0), bx(std::sin(angle), std::cos(angle), 0), cz(0, 0, 1);
+  const Eigen::Vector3d a0(std::cos(angle), -std::sin(angle), 0), bx(std::sin(angle), std::cos(angle), 0);
+  const Eigen::Vector3d ax = std::cos(tilt) * a0 - std::sin(tilt) * Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d cz = ax.cross(bx).normalized();
   Eigen::Matrix3d A = ax * ax.transpose() / (a * a) + bx * bx.transpose() / (b * b) + cz * cz.transpose() / (c * c);
   float u0 = 1e9f, v0 = 1e9f, u1 = -1, v1 = -1;
   for (int v = 0; v < 480; ++v)
@@ -90,7 +95,8 @@ Rendered render_ellipsoid(const Eigen::Vector3d& c0, double a, double b, double 
       const double qa = d.dot(A * d), qb = -2 * d.dot(A * c0), qc = c0.dot(A * c0) - 1;
       const double disc = qb * qb - 4 * qa * qc;
       if (disc < 0) continue;
-      out.depth.at(u, v) = float((-qb - std::sqrt(disc)) / (2 * qa));
+      const double t = (-qb - std::sqrt(disc)) / (2 * qa);
+      out.depth.at(u, v) = float(quantum_m > 0 ? quantum_m * std::round(t / quantum_m) : t);
       u0 = std::min(u0, float(u)), u1 = std::max(u1, float(u + 1)), v0 = std::min(v0, float(v)),
       v1 = std::max(v1, float(v + 1));
     }
@@ -106,7 +112,9 @@ TEST(Position, SilhouetteOffsetFindsTheCentreOfAnEllipsoidAtAnAngle) {
   // A potato 9 x 5.6 x 5.6 cm lying at 45 deg in the image, centre 0.42 m away, 3 cm right of the axis.
   const Eigen::Vector3d c0(0.03, -0.01, 0.42);
   const Rendered r = render_ellipsoid(c0, 0.045, 0.028, 0.028, M_PI / 4);
-  const Position3D p = locate(r.box, r.depth, camera());
+  PositionConfig rule;
+  rule.centre_offset = CentreOffset::silhouette;
+  const Position3D p = locate(r.box, r.depth, camera(), rule);
   ASSERT_TRUE(p.depth_ok);
   EXPECT_NEAR(p.xyz.z(), c0.z(), 0.0015);
   EXPECT_NEAR(p.xyz.x(), c0.x(), 0.001);
@@ -120,16 +128,77 @@ TEST(Position, SilhouetteOffsetFindsTheCentreOfAnEllipsoidAtAnAngle) {
   EXPECT_GT(locate(r.box, r.depth, camera(), box_rule).xyz.z() - c0.z(), 0.006);
   // Lying along the image x axis, the two rules agree.
   const Rendered flat = render_ellipsoid(c0, 0.045, 0.028, 0.028, 0.0);
-  EXPECT_NEAR(locate(flat.box, flat.depth, camera()).xyz.z(), c0.z(), 0.0015);
+  EXPECT_NEAR(locate(flat.box, flat.depth, camera(), rule).xyz.z(), c0.z(), 0.0015);
   EXPECT_NEAR(locate(flat.box, flat.depth, camera(), box_rule).xyz.z(), c0.z(), 0.0015);
   // 24 deg off the optical axis, standing upright: in plain image coordinates the silhouette is
   // stretched sideways (radially) by 1 / cos 24 deg; measured across the ray to it, it is not.
   const Eigen::Vector3d c1(-0.15, 0.06, 0.36);
   const Rendered side = render_ellipsoid(c1, 0.04, 0.033, 0.033, M_PI / 2);
-  const Position3D q = locate(side.box, side.depth, camera());
+  const Position3D q = locate(side.box, side.depth, camera(), rule);
   ASSERT_TRUE(q.depth_ok);
   EXPECT_NEAR((q.xyz.cast<double>() - c1).norm(), 0.0, 0.002);
   EXPECT_NEAR(q.minor_m, 0.066, 0.003);
+}
+
+TEST(Position, ProfileOffsetMeasuresTheThicknessTheSilhouetteCannotShow) {
+  // Potatoes 9 x 6 cm across the view, 4.4 or 7.2 cm thick along it, at 45 deg, 1 mm depth units,
+  // a root in front. The silhouette rule takes the thickness to be the width (6 cm): 8 mm too far
+  // for the flat one and 6 mm too near for the thick one. The profile fit sees the curvature.
+  const Eigen::Vector3d c0(0.03, -0.01, 0.42);
+  PositionConfig silhouette_rule;
+  silhouette_rule.centre_offset = CentreOffset::silhouette;
+  PositionConfig profile;
+  profile.centre_offset = CentreOffset::profile;
+  for (const double thickness : {0.044, 0.072}) {
+    const Rendered r = render_ellipsoid(c0, 0.045, 0.03, 0.5 * thickness, M_PI / 4, 0.0, 0.001);
+    const Position3D s = locate(r.box, r.depth, camera(), silhouette_rule);
+    EXPECT_GT(std::abs(s.xyz.z() - c0.z()), 0.005) << thickness;
+    const Position3D p = locate(r.box, r.depth, camera(), profile);
+    ASSERT_TRUE(p.depth_ok);
+    EXPECT_NEAR(p.thickness_m, thickness, 0.003) << thickness;
+    EXPECT_NEAR((p.xyz.cast<double>() - c0).norm(), 0.0, 0.0015) << thickness;
+  }
+  // Tilted 20 deg toward the camera and 24 deg off the optical axis: the rim's plane is tilted,
+  // which the fit's linear terms take up.
+  const Eigen::Vector3d c1(-0.15, 0.06, 0.36);
+  const Rendered t = render_ellipsoid(c1, 0.045, 0.03, 0.025, 1.0, 0.35, 0.001);
+  const Position3D p = locate(t.box, t.depth, camera(), profile);
+  ASSERT_TRUE(p.depth_ok);
+  EXPECT_GT(p.thickness_m, 0.f);
+  EXPECT_NEAR((p.xyz.cast<double>() - c1).norm(), 0.0, 0.002);
+  // A thickness outside profile_max_ratio of the width (a flat patch: a box on the backdrop) falls
+  // back to the silhouette rule.
+  Image<float> wall(640, 480, 0.5f);
+  const Position3D flat = locate(box(300, 200, 360, 260), wall, camera(), profile);
+  EXPECT_EQ(flat.thickness_m, 0.f);
+  EXPECT_NEAR(flat.xyz.z(), locate(box(300, 200, 360, 260), wall, camera(), silhouette_rule).xyz.z(), 1e-6);
+}
+
+TEST(Position, GrownSilhouetteRecoversAnEndTheBoxCutsOff) {
+  // The detector's box misses the right 8 % of the potato (a dark end): the silhouette inside the
+  // box is narrower and off-centre; grown by depth connectivity beyond the box, it is whole again.
+  const Eigen::Vector3d c0(0.02, 0.0, 0.4);
+  const Rendered r = render_ellipsoid(c0, 0.045, 0.03, 0.03, 0.0, 0.0, 0.001);
+  Detection2D cut = r.box;
+  cut.x2 -= 0.08f * r.box.width();
+  PositionConfig boxed;
+  boxed.silhouette_grow = 0;
+  PositionConfig grown;
+  grown.silhouette_grow = 0.1;
+  for (const CentreOffset offset : {CentreOffset::silhouette, CentreOffset::profile}) {
+    boxed.centre_offset = grown.centre_offset = offset;
+    const Position3D whole = locate(r.box, r.depth, camera(), boxed);
+    const Position3D inside = locate(cut, r.depth, camera(), boxed);
+    const Position3D regrown = locate(cut, r.depth, camera(), grown);
+    EXPECT_LT(inside.silhouette_pixels, whole.silhouette_pixels);
+    EXPECT_EQ(regrown.silhouette_pixels, whole.silhouette_pixels);
+    EXPECT_GT((inside.xyz.cast<double>() - c0).norm(), 0.002);
+    EXPECT_NEAR((regrown.xyz.cast<double>() - c0).norm(), 0.0, 0.0015);
+  }
+  // The root 3 cm in front and the backdrop are not connected to the potato: growing the whole
+  // box's silhouette adds nothing.
+  EXPECT_EQ(locate(r.box, r.depth, camera(), grown).silhouette_pixels,
+            locate(r.box, r.depth, camera(), boxed).silhouette_pixels);
 }
 
 TEST(Position, MedianWindowIgnoresHolesAndARootInFront) {

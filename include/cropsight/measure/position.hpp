@@ -7,13 +7,18 @@
 // keeps the paper's reading. Camera frame: x right, y down, z forward, metres.
 //
 // The depth read at the box centre is the potato's front surface. The gripper needs the centre,
-// which lies one semi-axis behind it along the view. `centre_offset: silhouette` (default) takes
-// that semi-axis from the potato's silhouette in the box (the pixels whose depth lies between just
-// in front of the surface and one box length behind it): the semi-minor axis of its equivalent
-// ellipse, i.e. the potato's cross-section is taken as round (the depth extent along the view of
-// a potato lying across the view is its thickness, which the camera cannot see; width is the
-// nearest thing it can). `half_width` takes half the box's smaller side (wrong for a potato lying
-// at an angle: the axis-aligned box is wider than the potato); `surface` keeps the paper's point.
+// which lies one semi-axis behind it along the view. `centre_offset: profile` (default) fits an
+// ellipsoid cap to the visible surface inside the potato's silhouette (the pixels whose depth lies
+// between just in front of the surface and one box length behind it): its centre's distance and its
+// semi-axis along the view, i.e. the thickness the silhouette cannot show, from the surface's
+// curvature. `silhouette` takes that semi-axis to be the silhouette's semi-minor axis (a round
+// cross-section; the fallback when the fit fails or gives a thickness no potato has). `half_width`
+// takes half the box's smaller side (wrong for a potato lying at an angle: the axis-aligned box is
+// wider than the potato); `surface` keeps the paper's point. With `silhouette_grow` > 0 the
+// silhouette also takes the depth region connected to it just beyond the box, so a box that cuts
+// off an end of the potato does not cut its silhouette.
+//
+// Thread-safety: locate() may run on several threads at once (its scratch buffers are thread_local).
 #include <Eigen/Core>
 #include <array>
 #include <vector>
@@ -28,8 +33,10 @@ namespace cropsight::measure {
 enum class DepthSampling { median_window, centre_pixel };
 constexpr std::array<const char*, 2> config_names(DepthSampling) { return {"median_window", "centre_pixel"}; }
 
-enum class CentreOffset { silhouette, half_width, surface };
-constexpr std::array<const char*, 3> config_names(CentreOffset) { return {"silhouette", "half_width", "surface"}; }
+enum class CentreOffset { silhouette, half_width, surface, profile };
+constexpr std::array<const char*, 4> config_names(CentreOffset) {
+  return {"silhouette", "half_width", "surface", "profile"};
+}
 
 /// The ray the centre lies on: through the box centre (paper) or through the silhouette's centroid.
 enum class CentreRay { box, silhouette };
@@ -42,10 +49,14 @@ struct PositionConfig {
   double min_depth_m = 0.25;         ///< D415's minimum usable range
   double max_depth_m = 3.0;          ///< farther depths are not trusted
   double min_valid_fraction = 0.25;  ///< of the window's pixels that must have a depth
-  CentreOffset centre_offset = CentreOffset::silhouette;
+  CentreOffset centre_offset = CentreOffset::profile;
   double silhouette_near_m = 0.01;  ///< silhouette pixels may lie this much in front of the surface depth
   int silhouette_min_px = 20;       ///< fewer silhouette pixels: fall back to half_width
+  double silhouette_grow = 0.1;     ///< the silhouette may reach this fraction of the box's sides beyond it
+  double silhouette_step_m = 0.01;  ///< largest depth step between neighbouring silhouette pixels, m
   CentreRay ray = CentreRay::silhouette;
+  double profile_max_radius = 0.85;  ///< profile fit: pixels inside this normalised radius of the silhouette
+  double profile_max_ratio = 1.5;    ///< profile fit: thickness within this factor of the silhouette's minor axis
 
   template <class V>
   void visit(V& v) {
@@ -62,14 +73,33 @@ struct PositionConfig {
       "fraction; depth_ok false when fewer of the window's pixels have a depth (not in the paper)",
       Range::within(0.0, 1.0));
     v("centre_offset", centre_offset,
-      "silhouette | half_width | surface; report the potato's centre: surface depth + the silhouette's semi-minor "
-      "axis (ours), + half the box's smaller metric side (ours, older), or the surface point (paper)");
+      "silhouette | profile | half_width | surface; report the potato's centre: surface depth + the silhouette's "
+      "semi-minor axis (ours), the centre of the ellipsoid fitted to the visible surface (ours: its thickness "
+      "from the surface's curvature), + half the box's smaller metric side (ours, older), or the surface point "
+      "(paper)");
     v("silhouette_near_m", silhouette_near_m,
       "m; a box pixel belongs to the silhouette from this much in front of the surface depth (a root in front of "
       "the potato is nearer; not in the paper)",
       Range::at_least(0.0));
     v("silhouette_min_px", silhouette_min_px,
       "px; fewer silhouette pixels fall back to centre_offset half_width (not in the paper)", Range::at_least(3));
+    v("silhouette_grow", silhouette_grow,
+      "fraction of the box's width/height; > 0: the silhouette is the depth region connected to the median "
+      "window, reaching up to this far beyond each side of the box (a box that cuts off part of the potato); 0: "
+      "every in-band pixel of the box (not in the paper)",
+      Range::within(0.0, 1.0));
+    v("silhouette_step_m", silhouette_step_m,
+      "m; with silhouette_grow > 0, neighbouring silhouette pixels differ in depth by at most this (not in the "
+      "paper)",
+      Range::above(0.0));
+    v("profile_max_radius", profile_max_radius,
+      "fraction of the silhouette's equivalent ellipse; centre_offset profile fits the visible surface inside it "
+      "(the rim's depth is noisy and often missing; not in the paper)",
+      Range::within(0.0, 1.0).open_below().open_above());
+    v("profile_max_ratio", profile_max_ratio,
+      "factor; centre_offset profile keeps a fitted thickness within this factor of the silhouette's semi-minor "
+      "axis, else falls back to silhouette (not in the paper)",
+      Range::at_least(1.0));
     v("ray", ray,
       "box | silhouette; x and y: the ray through the box centre (paper) or through the centroid of the "
       "silhouette (ours; needs centre_offset silhouette)");
@@ -87,7 +117,8 @@ struct Position3D {
   int valid_pixels = 0, window_pixels = 0;        ///< depth samples used / window size
   int silhouette_pixels = 0;                      ///< box pixels of the silhouette (centre_offset silhouette)
   float minor_m = 0, major_m = 0;                 ///< silhouette's equivalent-ellipse full axes at the centre depth, m
-  bool depth_ok = false;                          ///< depth inside [min, max] from enough valid pixels
+  float thickness_m = 0;       ///< full axis along the view fitted by centre_offset profile, m (0 = not fitted)
+  bool depth_ok = false;       ///< depth inside [min, max] from enough valid pixels
   bool cut_by_border = false;  ///< the box touches the image border: part of the potato is out of view, so
                                ///< its centre (box or silhouette) is off toward the image inside
 };
