@@ -30,9 +30,18 @@ inline bool decoded_only_from_files(std::string_view bytes) {
 /// are never offered a file: Debian's OpenCV reads DICOM through GDCM, which aborts the process on
 /// a damaged header (an assert, fuzzing finding 29), and JPEG 2000, Sun raster and the rest are
 /// not formats of a camera, a robot or a data set cropsight knows.
+///
+/// OpenCV picks a decoder by asking each in turn whether it claims the first bytes, and some claim
+/// bytes far from the start: GDCM "DICM" at 128, GDAL "NITF" at 0 and "DTED" at 140. Such content
+/// is refused whatever it starts with. Otherwise a start that one of OpenCV's own checks rejects
+/// (a PFM "Pf" with no whitespace after it, which OpenCV's PFM check requires) reached GDCM
+/// further down the list (fuzzing finding 31).
 inline bool supported_image_signature(std::string_view b) {
   const auto starts = [&](std::string_view sig) { return b.substr(0, sig.size()) == sig; };
   using namespace std::string_view_literals;
+  if ((b.size() >= 132 && b.substr(128, 4) == "DICM"sv) || starts("NITF"sv) ||
+      (b.size() >= 144 && b.substr(140, 4) == "DTED"sv))
+    return false;
   if (starts("\x89PNG\r\n\x1a\n"sv) || starts("\xff\xd8\xff"sv) || starts("BM"sv) || starts("II*\0"sv) ||
       starts("MM\0*"sv))
     return true;

@@ -136,6 +136,20 @@ TEST(ImageIo, OnlyKnownImageFormatsReachOpenCv) {
   write_file_atomic(tmp / "dicom.png", dicom);
   expect_error_names(
       tmp / "dicom.png", [&] { read_u16(tmp / "dicom.png"); }, "not an image format cropsight reads");
+  // Finding 31: a PFM-like start ("Pf" without the whitespace OpenCV's PFM check wants) with
+  // "DICM" at 128 still reached GDCM; content that GDCM or GDAL would claim is refused first.
+  const std::string pf_dicom =
+      io::read_file(fs::path(CROPSIGHT_SOURCE_DIR) / "fuzz/regressions/stereo_ground_truth/crash-e5dec8fdaa8a");
+  ASSERT_EQ(pf_dicom.substr(0, 2), "Pf");
+  write_file_atomic(tmp / "pf.png", pf_dicom);
+  expect_error_names(
+      tmp / "pf.png", [&] { read_u16(tmp / "pf.png"); }, "not an image format cropsight reads");
+  for (const std::string& gdal : {std::string("NITF02.10") + std::string(200, ' '),
+                                  std::string("P5\n") + std::string(137, 'x') + "DTED" + std::string(40, 'x')}) {
+    write_file_atomic(tmp / "gdal.png", gdal);
+    expect_error_names(
+        tmp / "gdal.png", [&] { read_u16(tmp / "gdal.png"); }, "not an image format cropsight reads");
+  }
   write_file_atomic(tmp / "jp2.png", std::string("\0\0\0\x0cjP  \r\n\x87\n", 12) + std::string(40, 'x'));
   expect_error_names(
       tmp / "jp2.png", [&] { read_color(tmp / "jp2.png"); }, "not an image format cropsight reads");

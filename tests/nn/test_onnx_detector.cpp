@@ -265,6 +265,11 @@ TEST_F(OnnxDetectorTest, BadFilesAreOneLineErrorsNamingTheFile) {
   c.model = std::string(CROPSIGHT_SOURCE_DIR) + "/fuzz/regressions/onnx_model/crash-a77e4e0387cf";
   expect_error(c, "Reshape node 'flat' asks for a tensor of more than 268435456 elements");
 
+  // A Conv whose weights and bias name nothing in the model: OpenCV 4.6 read address 0
+  // (fuzzing finding 32, kept in fuzz/regressions/onnx_model/).
+  c.model = std::string(CROPSIGHT_SOURCE_DIR) + "/fuzz/regressions/onnx_model/crash-8391a0695a1d";
+  expect_error(c, "Conv node 'conv' reads 'zero_w', which nothing in the model defines");
+
   // A graph whose output [1, 4, 3] matches no layout.
   c = config("foreign.onnx", OnnxLayout::yolov5);
   expect_error(c, "output [1, 4, 3] is not the yolov5 layout [1, N, 5 + C]");
