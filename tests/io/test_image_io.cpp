@@ -153,6 +153,19 @@ TEST(ImageIo, OnlyKnownImageFormatsReachOpenCv) {
   write_file_atomic(tmp / "jp2.png", std::string("\0\0\0\x0cjP  \r\n\x87\n", 12) + std::string(40, 'x'));
   expect_error_names(
       tmp / "jp2.png", [&] { read_color(tmp / "jp2.png"); }, "not an image format cropsight reads");
+  // Finding 33: a 30-byte P6 header claiming 244604 x 4024 pixels made OpenCV allocate 2.9 GB
+  // before it found no data; the header's size is checked against the file first.
+  const std::string huge_ppm =
+      io::read_file(fs::path(CROPSIGHT_SOURCE_DIR) / "fuzz/regressions/stereo_ground_truth/oom-69a38a4d34a2");
+  write_file_atomic(tmp / "huge.png", huge_ppm);
+  expect_error_names(
+      tmp / "huge.png", [&] { read_u16(tmp / "huge.png"); }, "truncated image");
+  write_file_atomic(tmp / "short.pgm", std::string("P5\n# c\n4 4\n255\n") + std::string(15, 'x'));
+  expect_error_names(
+      tmp / "short.pgm", [&] { read_u16(tmp / "short.pgm"); }, "needs 16 bytes of pixels, the file has 15");
+  write_file_atomic(tmp / "pam.png", std::string("P7\nWIDTH 9000\nHEIGHT 9000\nDEPTH 3\nMAXVAL 255\nENDHDR\n") + "xx");
+  expect_error_names(
+      tmp / "pam.png", [&] { read_color(tmp / "pam.png"); }, "truncated image");
   // The formats cropsight reads still decode, whatever the file is called.
   const cv::Mat grey(3, 4, CV_8UC1, cv::Scalar(7));
   for (const char* ext : {".png", ".bmp", ".tiff", ".pgm", ".jpg", ".webp"}) {
