@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <opencv2/imgproc.hpp>
 
 #include "cropsight/core/error.hpp"
 
@@ -53,7 +54,7 @@ struct SilhouetteMask {
 };
 
 SilhouetteMask silhouette_mask(const Detection2D& box, const Image<float>& depth_m, float lo, float hi, double grow,
-                               float step) {
+                               float step, int opening_px) {
   const double gw = grow * box.width(), gh = grow * box.height();
   SilhouetteMask m;
   m.u0 = std::clamp(int(std::floor(box.x1 - gw)), 0, depth_m.width);
@@ -102,6 +103,13 @@ SilhouetteMask silhouette_mask(const Detection2D& box, const Image<float>& depth
         if (uu < m.u0 || vv < m.v0 || uu >= u1 || vv >= v1 || inside_box(uu, vv) || !band(uu, vv)) continue;
         if (std::abs(depth_m.at(uu, vv) - d) <= step) mark(uu, vv);
       }
+  }
+  // Strings, roots and sprouts at the potato's depth are a few pixels wide: an opening removes
+  // them, so that they neither widen the equivalent ellipse nor bend the profile fit.
+  if (opening_px >= 2 && m.width > 0 && m.height > 0) {
+    cv::Mat view(m.height, m.width, CV_8UC1, in.data());
+    cv::morphologyEx(view, view, cv::MORPH_OPEN,
+                     cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(opening_px, opening_px)));
   }
   return m;
 }
@@ -262,8 +270,8 @@ Position3D locate(const Detection2D& box, const Image<float>& depth_m, const Cam
   if (offset == CentreOffset::silhouette || offset == CentreOffset::profile) {
     const float band = 0.5f * float(std::max(box.width() / camera.fx, box.height() / camera.fy)) * z;
     const float near = float(cfg.silhouette_near_m);
-    const SilhouetteMask mask =
-        silhouette_mask(box, depth_m, z - near, z + band, cfg.silhouette_grow, float(cfg.silhouette_step_m));
+    const SilhouetteMask mask = silhouette_mask(box, depth_m, z - near, z + band, cfg.silhouette_grow,
+                                                float(cfg.silhouette_step_m), cfg.silhouette_opening_px);
     const Silhouette s = silhouette(mask, camera, c);
     out.silhouette_pixels = s.pixels;
     if (offset == CentreOffset::profile && s.pixels >= cfg.silhouette_min_px) {

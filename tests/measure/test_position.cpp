@@ -185,6 +185,7 @@ TEST(Position, GrownSilhouetteRecoversAnEndTheBoxCutsOff) {
   boxed.silhouette_grow = 0;
   PositionConfig grown;
   grown.silhouette_grow = 0.1;
+  grown.silhouette_opening_px = 0;  // pixel counts comparable with the box's (the opening trims the rim)
   for (const CentreOffset offset : {CentreOffset::silhouette, CentreOffset::profile}) {
     boxed.centre_offset = grown.centre_offset = offset;
     const Position3D whole = locate(r.box, r.depth, camera(), boxed);

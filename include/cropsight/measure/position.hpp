@@ -54,6 +54,7 @@ struct PositionConfig {
   int silhouette_min_px = 20;       ///< fewer silhouette pixels: fall back to half_width
   double silhouette_grow = 0.1;     ///< the silhouette may reach this fraction of the box's sides beyond it
   double silhouette_step_m = 0.01;  ///< largest depth step between neighbouring silhouette pixels, m
+  int silhouette_opening_px = 5;    ///< > 1: opening of the silhouette (with silhouette_grow > 0), px
   CentreRay ray = CentreRay::silhouette;
   double profile_max_radius = 0.85;  ///< profile fit: pixels inside this normalised radius of the silhouette
   double profile_max_ratio = 1.5;    ///< profile fit: thickness within this factor of the silhouette's minor axis
@@ -88,6 +89,10 @@ struct PositionConfig {
       "window, reaching up to this far beyond each side of the box (a box that cuts off part of the potato); 0: "
       "every in-band pixel of the box (not in the paper)",
       Range::within(0.0, 1.0));
+    v("silhouette_opening_px", silhouette_opening_px,
+      "px; with silhouette_grow > 0, an opening of this size removes strings, roots and sprouts from the silhouette; "
+      "< 2 = none (not in the paper)",
+      Range::at_least(0));
     v("silhouette_step_m", silhouette_step_m,
       "m; with silhouette_grow > 0, neighbouring silhouette pixels differ in depth by at most this (not in the "
       "paper)",

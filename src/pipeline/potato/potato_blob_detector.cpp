@@ -9,6 +9,7 @@
 
 #include "concavity_split.hpp"
 #include "cropsight/core/error.hpp"
+#include "depth_completion.hpp"
 #include "stereo/cv_convert.hpp"
 
 namespace cropsight::pipeline::potato {
@@ -146,8 +147,8 @@ std::vector<Detection2D> PotatoBlobDetector::detect(const DetectorInput& in) {
   }
   // Opening first: strings and roots are a few pixels wide and vanish; potatoes keep their shape.
   const int short_side = std::min(w, h);
-  if (const cv::Mat k = disc(cfg.opening_fraction, short_side); !k.empty())
-    cv::morphologyEx(m.mask, m.mask, cv::MORPH_OPEN, k);
+  const cv::Mat opening = disc(cfg.opening_fraction, short_side);
+  if (!opening.empty()) cv::morphologyEx(m.mask, m.mask, cv::MORPH_OPEN, opening);
   if (const cv::Mat k = disc(cfg.closing_fraction, short_side); !k.empty())
     cv::morphologyEx(m.mask, m.mask, cv::MORPH_CLOSE, k);
 
@@ -156,6 +157,10 @@ std::vector<Detection2D> PotatoBlobDetector::detect(const DetectorInput& in) {
   const int ring = int(std::lround(cfg.contrast_ring_fraction * short_side));
   const detail::SplitRule split_rule{cfg.split_concavity_depth, cfg.split_min_part_fraction,
                                      cfg.split_min_part_solidity, cfg.split_max_depth};
+  detail::DepthCompletionRule completion;
+  completion.grow = cfg.depth_completion;
+  completion.band_m = cfg.depth_completion_band_m;
+  completion.step_m = cfg.depth_completion_step_m;
   std::vector<Detection2D> out;
   cv::Mat blob;
   std::vector<cv::Mat> parts;
@@ -174,11 +179,23 @@ std::vector<Detection2D> PotatoBlobDetector::detect(const DetectorInput& in) {
       if (area < min_area) continue;
       const double colour = cv::sum(m.like(r) & part)[0] / (255.0 * area);  // like is 0 outside the colour test
       const double contrast = contrast_factor(part, r, m.lab, m.mask, ring, cfg.contrast_scale);
-      if (auto d = part_detection(part, r.tl(), area, colour * contrast, cfg)) out.push_back(*d);
+      if (auto d = part_detection(part, r.tl(), area, colour * contrast, cfg)) {
+        if (depth) *d = detail::complete_by_depth(*d, part, r.x, r.y, *depth, m.labels, i, opening, completion);
+        out.push_back(*d);
+      }
     }
   }
   std::stable_sort(out.begin(), out.end(),
                    [](const Detection2D& a, const Detection2D& b) { return a.score > b.score; });
+  // Two parts of one potato (a root's shadow across it) complete to the same box: keep the better.
+  if (depth && completion.grow > 0) {
+    std::vector<Detection2D> kept;
+    for (const Detection2D& d : out)
+      if (std::none_of(kept.begin(), kept.end(),
+                       [&](const Detection2D& k) { return iou(k, d) > cfg.depth_completion_same_iou; }))
+        kept.push_back(d);
+    out.swap(kept);
+  }
   m.last_mask.width = w;
   m.last_mask.height = h;
   m.last_mask.data.assign(m.mask.datastart, m.mask.dataend);

@@ -162,6 +162,39 @@ TEST(PotatoBlobDetector, DepthGatesTheForeground) {
   EXPECT_THROW(det.detect({&im, &wrong}), Error);
 }
 
+// A potato whose lower half is in shadow (darker than the colour model) in front of a sheet 0.4 m
+// behind it, hanging from a root 8 px wide at its own depth. The colour finds the upper half; the
+// depth surface completes the box, the opening keeps the root out, and a flat depth (a wall at
+// the potato's depth, no rim) completes nothing.
+TEST(PotatoBlobDetector, DepthCompletesTheBoxOfAShadedPotato) {
+  cv::Mat m(416, 416, CV_8UC3, cv::Scalar(235, 235, 240));
+  cv::ellipse(m, {200, 220}, {45, 30}, 0, 0, 360, cv::Scalar(12, 8, 6), cv::FILLED);  // the shadow
+  cv::ellipse(m, {200, 220}, {45, 30}, 0, 180, 360, skin_rgb(), cv::FILLED);          // the lit half
+  const ColorImage im = to_image(m);
+  Image<float> depth(416, 416, 0.8f);
+  cv::Mat dm(416, 416, CV_32FC1, depth.data.data());
+  cv::line(dm, {200, 0}, {200, 200}, cv::Scalar(0.4), 8);
+  cv::ellipse(dm, {200, 220}, {45, 30}, 0, 0, 360, cv::Scalar(0.4), cv::FILLED);
+  const Detection2D whole = ellipse_box(200, 220, 45, 30);
+
+  PotatoBlobConfig off;
+  off.depth_completion = 0;
+  const auto colour_only = PotatoBlobDetector(off).detect({&im, &depth});
+  ASSERT_EQ(colour_only.size(), 1u);
+  EXPECT_LT(iou(colour_only[0], whole), 0.65);  // the upper half
+
+  const auto completed = PotatoBlobDetector().detect({&im, &depth});
+  ASSERT_EQ(completed.size(), 1u);
+  EXPECT_GT(iou(completed[0], whole), 0.9)
+      << completed[0].x1 << " " << completed[0].y1 << " " << completed[0].x2 << " " << completed[0].y2;
+  EXPECT_GT(completed[0].y1, 180.f);  // not up the root
+
+  Image<float> wall(416, 416, 0.4f);
+  const auto flat = PotatoBlobDetector().detect({&im, &wall});
+  ASSERT_EQ(flat.size(), 1u);
+  EXPECT_NEAR(iou(flat[0], colour_only[0]), 1.0, 1e-6);
+}
+
 TEST(PotatoBlobDetector, ConfigIsChecked) {
   PotatoBlobConfig cfg;
   EXPECT_THROW(apply_config(cfg, {{"detector.colour_distance", "3"}}, "--set", "detector."), Error);

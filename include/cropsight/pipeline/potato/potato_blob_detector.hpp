@@ -61,6 +61,11 @@ struct PotatoBlobConfig {
   // Contrast with the background ring (see above); AP50 flat for scales 3-10 on the shared images.
   double contrast_scale = 5.0;            ///< 8-bit L; logistic scale of |ring L - blob L|; 0 = off
   double contrast_ring_fraction = 0.012;  ///< ring width / short image side (5 px at 416)
+  // Box completion over the depth surface (with metric depth only; see below).
+  double depth_completion = 1.0;           ///< fraction of the box's sides it may grow beyond each; 0 = off
+  double depth_completion_band_m = 0.05;   ///< m; within this of the blob's median depth
+  double depth_completion_step_m = 0.01;   ///< m; largest depth step between neighbouring pixels
+  double depth_completion_same_iou = 0.7;  ///< completed boxes overlapping more are one potato
 
   template <class V>
   void visit(V& v) {
@@ -100,6 +105,19 @@ struct PotatoBlobConfig {
       Range::at_least(0));
     v("contrast_ring_fraction", contrast_ring_fraction,
       "fraction of the short image side; width of the background ring of the contrast factor", Range::within(0, 0.1));
+    v("depth_completion", depth_completion,
+      "fraction of the box's width/height; with metric depth, a blob's box grows over the depth surface connected "
+      "to it (a shaded underside or dark end the colour model misses), up to this far beyond each side; 0 = off "
+      "(not in the paper)",
+      Range::within(0.0, 2.0));
+    v("depth_completion_band_m", depth_completion_band_m,
+      "m; depth completion keeps to pixels within this of the blob's median depth (not in the paper)",
+      Range::above(0.0));
+    v("depth_completion_step_m", depth_completion_step_m,
+      "m; depth completion's largest depth step between neighbouring pixels (not in the paper)", Range::above(0.0));
+    v("depth_completion_same_iou", depth_completion_same_iou,
+      "IoU; completed boxes that overlap more are one potato, the better scored kept (not in the paper)",
+      Range::within(0.0, 1.0).open_below());
     v("min_score", min_score, "score in [0, 1]; lower-scoring blobs are not reported", Range::within(0, 1));
   }
   /// Rules between fields (ranges are checked by check_config). Throws Error(where, ...).
