@@ -9,6 +9,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/measure/depth_flood.hpp"
 
 namespace cropsight::measure {
 
@@ -79,7 +80,9 @@ SilhouetteMask silhouette_mask(const Detection2D& box, const Image<float>& depth
   stack.clear();
   const auto mark = [&](int u, int v) {
     std::uint8_t& f = in[std::size_t(v - m.v0) * std::size_t(m.width) + std::size_t(u - m.u0)];
-    if (f == 0) f = 1, stack.emplace_back(u, v);
+    if (f != 0) return false;
+    f = 1;
+    return true;
   };
   const int bu0 = std::clamp(int(std::floor(box.x1)), 0, depth_m.width);
   const int bu1 = std::clamp(int(std::ceil(box.x2)), 0, depth_m.width);
@@ -93,17 +96,8 @@ SilhouetteMask silhouette_mask(const Detection2D& box, const Image<float>& depth
       if (u == bu0 || v == bv0 || u == bu1 - 1 || v == bv1 - 1) stack.emplace_back(u, v);
     }
   const auto inside_box = [&](int u, int v) { return u >= bu0 && v >= bv0 && u < bu1 && v < bv1; };
-  while (!stack.empty()) {
-    const auto [u, v] = stack.back();
-    stack.pop_back();
-    const float d = depth_m.at(u, v);
-    for (int dv = -1; dv <= 1; ++dv)
-      for (int du = -1; du <= 1; ++du) {
-        const int uu = u + du, vv = v + dv;
-        if (uu < m.u0 || vv < m.v0 || uu >= u1 || vv >= v1 || inside_box(uu, vv) || !band(uu, vv)) continue;
-        if (std::abs(depth_m.at(uu, vv) - d) <= step) mark(uu, vv);
-      }
-  }
+  flood_depth(
+      depth_m, m.u0, m.v0, u1, v1, step, stack, [&](int u, int v) { return !inside_box(u, v) && band(u, v); }, mark);
   // Strings, roots and sprouts at the potato's depth are a few pixels wide: an opening removes
   // them, so that they neither widen the equivalent ellipse nor bend the profile fit.
   if (opening_px >= 2 && m.width > 0 && m.height > 0) {

@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "cropsight/measure/depth_flood.hpp"
+
 namespace cropsight::pipeline::potato::detail {
 
 Detection2D complete_by_depth(const Detection2D& box, const cv::Mat& part, int roi_x, int roi_y,
@@ -47,20 +49,12 @@ Detection2D complete_by_depth(const Detection2D& box, const cv::Mat& part, int r
       if (fits(u, v)) stack.emplace_back(u, v);
     }
   }
-  while (!stack.empty()) {
-    const auto [u, v] = stack.back();
-    stack.pop_back();
-    const float d = depth_m.at(u, v);
-    for (int dv = -1; dv <= 1; ++dv)
-      for (int du = -1; du <= 1; ++du) {
-        const int uu = u + du, vv = v + dv;
-        if (!region.contains(cv::Point(uu, vv))) continue;
-        std::uint8_t& g = grown.at<std::uint8_t>(vv - region.y, uu - region.x);
-        if (g || !fits(uu, vv) || std::abs(depth_m.at(uu, vv) - d) > step) continue;
-        g = 255;
-        stack.emplace_back(uu, vv);
-      }
-  }
+  measure::flood_depth(depth_m, region.x, region.y, region.br().x, region.br().y, step, stack, fits, [&](int u, int v) {
+    std::uint8_t& g = grown.at<std::uint8_t>(v - region.y, u - region.x);
+    if (g) return false;
+    g = 255;
+    return true;
+  });
   // The opening scales with the potato: its diameter is `opening_fraction` x the grown region's
   // largest inscribed radius (half the potato's width), at least the detector's kernel. A root or
   // string at the potato's depth is far thinner than the potato, but near the camera it is wider
