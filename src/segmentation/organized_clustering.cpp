@@ -209,6 +209,7 @@ std::vector<Segment> segment_oes(const OrganizedCloud& cloud, const std::vector<
                                  const OesConfig& cfg, OrganizedClusteringWorkspace& ws) {
   check_sizes("oes", cfg.distance_tolerance, cfg.min_size, cfg.max_size);
   if (cfg.min_size_border < 0) throw Error("oes", "min_size_border must be >= 0");
+  if (!(cfg.debris_tolerance >= 0.0f)) throw Error("oes", "debris_tolerance must be >= 0");
   if (edges.size() != cloud.size()) throw Error("oes", "edge label image size differs from the cloud size");
   if (cfg.barrier_labels < 0 || cfg.barrier_labels > 255)
     throw Error("oes", "barrier_labels must be a bit mask in 0..255");

@@ -28,6 +28,7 @@ struct OesConfig {
   int min_size = 500;       ///< points
   int max_size = 10000;     ///< points
   int min_size_border = 0;  ///< points; minimum for segments touching the image border (0 = min_size)
+  float debris_tolerance = 0.0f;  ///< m; > 0: a second pass over the pixels no segment kept (0 = off)
 
   template <class V>
   void visit(V& v) {
@@ -43,6 +44,10 @@ struct OesConfig {
     v("min_size_border", min_size_border,
       "points; smaller minimum for segments with a pixel on the image border, where heads are cut and show "
       "fewer points (ours; 0 = min_size for every segment)");
+    v("debris_tolerance", debris_tolerance,
+      "m; when > 0, a second pass with this looser tolerance segments the valid pixels that no kept segment holds "
+      "(pieces below min_size): a rough or noisy surface that the first tolerance shattered into debris gets a "
+      "segment, while what the first pass separated stays separated (ours, issue 27; 0 = off, the paper's one pass)");
   }
 };
 

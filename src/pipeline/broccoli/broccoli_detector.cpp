@@ -12,6 +12,7 @@
 #include "cropsight/geometry/statistical_outlier.hpp"
 #include "cropsight/segmentation/euclidean_clustering.hpp"
 #include "cropsight/segmentation/organized_clustering.hpp"
+#include "cropsight/segmentation/segment_growth.hpp"
 
 namespace cropsight::pipeline {
 
@@ -163,8 +164,28 @@ void BroccoliDetector::cluster_oes() {
   {
     auto t = timer_.scope("clustering");
     segments_ = segmentation::segment_oes(cloud_, edges_, oes_frame_, flood_);
+    if (oes_frame_.debris_tolerance > 0.0f) segment_debris();
   }
   if (lazy) normals(flood_.labels);
+}
+
+void BroccoliDetector::segment_debris() {
+  // The pixels of kept segments become a barrier (a bit no edge label uses) for the second pass.
+  constexpr std::uint8_t kKept = 0x80;
+  const std::size_t n = edges_.size();
+  debris_edges_.resize(n);
+  kept_labels_.assign(flood_.labels.begin(), flood_.labels.end());
+  for (std::size_t i = 0; i < n; ++i) debris_edges_[i] = std::uint8_t(edges_[i] | (kept_labels_[i] >= 0 ? kKept : 0));
+  segmentation::OesConfig second = oes_frame_;
+  second.distance_tolerance = oes_frame_.debris_tolerance;
+  second.barrier_labels = oes_frame_.barrier_labels | kKept;
+  std::vector<Segment> more = segmentation::segment_oes(cloud_, debris_edges_, second, flood_);
+  // One label image for both passes (the lazy normals select by it): second-pass ids follow the first's.
+  const int offset = int(segments_.size());
+  for (std::size_t i = 0; i < n; ++i)
+    if (flood_.labels[i] >= 0) kept_labels_[i] = flood_.labels[i] + offset;
+  flood_.labels.swap(kept_labels_);
+  for (Segment& s : more) segments_.push_back(std::move(s));
 }
 
 void BroccoliDetector::cluster_org() {
@@ -227,7 +248,29 @@ std::span<const BroccoliCandidate> BroccoliDetector::process(const RgbdFrame& fr
       c.head = model_ && c.score > threshold;
     }
   }
+  if (cfg_.detection.grow_tolerance > 0.0f) complete_heads();
   return {candidates_.data(), count_};
+}
+
+void BroccoliDetector::complete_heads() {
+  auto t = timer_.scope("completion");
+  grow_order_.clear();
+  segment_ptrs_.clear();
+  for (std::size_t k = 0; k < count_; ++k) {
+    segment_ptrs_.push_back(&candidates_[k].segment);
+    if (candidates_[k].head) grow_order_.push_back(int(k));
+  }
+  if (grow_order_.empty()) return;
+  // The most confident head claims contested debris first.
+  std::stable_sort(grow_order_.begin(), grow_order_.end(),
+                   [&](int a, int b) { return candidates_[std::size_t(a)].score > candidates_[std::size_t(b)].score; });
+  const segmentation::SegmentGrowthOptions options{cfg_.detection.grow_tolerance, cfg_.detection.grow_radius};
+  // The organised clusterings' label image is already the owner map (segment k = candidate k); it
+  // is not read again after the normals.
+  if (cfg_.pipeline == BroccoliVariant::fec)
+    segmentation::grow_into_free_pixels(cloud_, segment_ptrs_, grow_order_, options, growth_);
+  else
+    segmentation::grow_into_free_pixels(cloud_, segment_ptrs_, grow_order_, options, flood_.labels, growth_.queue);
 }
 
 std::vector<Detection> BroccoliDetector::detections() const {

@@ -9,7 +9,9 @@
 #include "broccoli_sim_frames.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/config_yaml.hpp"
+#include "cropsight/learning/model.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_training.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_truth.hpp"
 #include "cropsight/pipeline/broccoli/pcl_reference.hpp"
 #include "testing/testing.hpp"
 
@@ -310,4 +312,93 @@ TEST(BroccoliRange, ScalingIsNeutralAtTheReferenceRange) {
   scaled.range.reference_range = measure.soil_depth() - scaled.range.head_height;
   BroccoliDetector c(scaled);
   EXPECT_EQ(c.process(frames[0]).size(), n_base);
+}
+
+namespace {
+// Pixels of `indices` labelled `head` and the IoU of `indices` with that head's labelled pixels.
+double head_iou(const OrganizedCloud& cloud, const std::vector<int>& indices, std::uint16_t head) {
+  long inter = 0, truth = 0;
+  for (int i : indices) inter += cloud.labels[std::size_t(i)] == head;
+  for (std::size_t i = 0; i < cloud.labels.size(); ++i) truth += cloud.labels[i] == head && std::isfinite(cloud.z[i]);
+  return double(inter) / double(long(indices.size()) + truth - inter);
+}
+}  // namespace
+
+// Issue 27: under ToF noise a head breaks into one kept piece and debris below min_size. The
+// debris pass (oes.debris_tolerance) segments what the first pass dropped without touching what it
+// kept; completion (detection.grow_tolerance) grows a head's mask over unclustered pixels only.
+TEST(BroccoliDetector, DebrisPassAndCompletionRecoverNoisyHeads) {
+  sim::BroccoliSimConfig noisy;
+  noisy.sensor.noise_at_1m_m = 0.006;
+  const auto frames = testdata::simulate(noisy, 31, 3);
+  BroccoliDetectorConfig one = preset("broccoli-oes-uk");
+  one.oes.distance_tolerance = 0.0065f;
+  BroccoliDetectorConfig two = one;
+  two.oes.debris_tolerance = 0.01f;
+  BroccoliDetector a(one), b(two);
+  int extra = 0;
+  for (const auto& f : frames) {
+    const auto ca = a.process(f);
+    const auto cb = b.process(f);
+    ASSERT_GE(cb.size(), ca.size());
+    std::vector<char> kept(a.cloud().size(), 0);
+    for (std::size_t k = 0; k < ca.size(); ++k) {
+      EXPECT_EQ(cb[k].segment.indices, ca[k].segment.indices);  // the first pass is untouched
+      for (int i : ca[k].segment.indices) kept[std::size_t(i)] = 1;
+    }
+    for (std::size_t k = ca.size(); k < cb.size(); ++k) {
+      ++extra;
+      EXPECT_GE(int(cb[k].segment.indices.size()), two.oes.min_size);
+      int with_normal = 0;
+      for (int i : cb[k].segment.indices) {
+        EXPECT_FALSE(kept[std::size_t(i)]);
+        with_normal += std::isfinite(b.cloud().nx[std::size_t(i)]) ? 1 : 0;
+      }
+      EXPECT_GT(with_normal, 0) << "the lazy normals cover the second pass's segments too";
+    }
+  }
+  EXPECT_GT(extra, 0) << "6 mm noise at 1 m leaves debris large enough for a second-pass segment";
+
+  // Completion with the shipped general model: every head's mask is a superset of its kept piece,
+  // grown pixels belong to no other candidate, and the heads' IoU with their truth rises.
+  auto model = std::make_shared<learning::Model>(
+      learning::load_model((cropsight::testing::source_dir() / "models" / "broccoli-oes-general.json").string()));
+  BroccoliDetectorConfig grown_cfg = one;
+  grown_cfg.detection.grow_tolerance = 0.013f;
+  BroccoliDetector plain(one), grown(grown_cfg);
+  plain.set_model(model);
+  grown.set_model(model);
+  double iou_plain = 0.0, iou_grown = 0.0;
+  int heads = 0;
+  for (const auto& f : frames) {
+    const auto cp = plain.process(f);
+    const auto cg = grown.process(f);
+    ASSERT_EQ(cp.size(), cg.size());
+    std::vector<int> owner(plain.cloud().size(), -1);
+    for (std::size_t k = 0; k < cp.size(); ++k)
+      for (int i : cp[k].segment.indices) owner[std::size_t(i)] = int(k);
+    for (std::size_t k = 0; k < cp.size(); ++k) {
+      EXPECT_EQ(cg[k].head, cp[k].head);
+      EXPECT_EQ(cg[k].score, cp[k].score);
+      if (!cp[k].head) {
+        EXPECT_EQ(cg[k].segment.indices, cp[k].segment.indices);
+        continue;
+      }
+      EXPECT_TRUE(std::includes(cg[k].segment.indices.begin(), cg[k].segment.indices.end(),
+                                cp[k].segment.indices.begin(), cp[k].segment.indices.end()));
+      for (int i : cg[k].segment.indices) {
+        const int o = owner[std::size_t(i)];
+        EXPECT_TRUE(o == -1 || o == int(k));
+        EXPECT_LT((grown.cloud().point(std::size_t(i)) - cp[k].segment.centroid).norm(), 0.1f);
+      }
+      const auto truth = cluster_truth(cp[k].segment.indices, plain.cloud().labels, 0.5f);
+      if (truth.head_id == 0) continue;
+      ++heads;
+      iou_plain += head_iou(plain.cloud(), cp[k].segment.indices, std::uint16_t(truth.head_id));
+      iou_grown += head_iou(grown.cloud(), cg[k].segment.indices, std::uint16_t(truth.head_id));
+    }
+  }
+  ASSERT_GT(heads, 0);
+  EXPECT_GT(iou_grown / heads, iou_plain / heads + 0.02)
+      << "plain " << iou_plain / heads << " grown " << iou_grown / heads;
 }

@@ -36,8 +36,10 @@ struct OutlierStageConfig {
 
 /// The detector's decision rules.
 struct BroccoliDetectionConfig {
-  float score_margin = 0.0f;  ///< added to the classifier's threshold (0 SVM, 0.5 KNN)
-  int min_normal_points = 0;  ///< clusters with fewer points with a normal are not classified
+  float score_margin = 0.0f;    ///< added to the classifier's threshold (0 SVM, 0.5 KNN)
+  int min_normal_points = 0;    ///< clusters with fewer points with a normal are not classified
+  float grow_tolerance = 0.0f;  ///< m; > 0: a head's mask grows over unclustered neighbours (0 = off)
+  float grow_radius = 0.1f;     ///< m; ... within this distance of the head cluster's centroid
 
   template <class V>
   void visit(V& v) {
@@ -49,6 +51,16 @@ struct BroccoliDetectionConfig {
       "integral-image normals are undefined within normal_smoothing_size of the image border and next to depth "
       "changes): it is never a head (lowest score) and is left out of training (ours; 0 = classify every cluster)",
       Range::at_least(0));
+    v("grow_tolerance", grow_tolerance,
+      "m; when > 0, a cluster classified as a head grows over the valid pixels that no cluster holds (fragments "
+      "below min_size, NaN-boundary pixels), joining 4-neighbours closer than this: a rough or noisy head that the "
+      "clustering broke into one kept piece and debris gets its whole mask back (ours, issue 27; 0 = off, the "
+      "paper's masks). Only the mask, box and centroid change; the score is the kept piece's",
+      Range::at_least(0.0));
+    v("grow_radius", grow_radius,
+      "m; grown pixels lie within this distance of the head cluster's centroid (ours; 0.1 m: a 180 mm head seen "
+      "from a piece off its centre)",
+      Range::above(0.0));
   }
 };
 

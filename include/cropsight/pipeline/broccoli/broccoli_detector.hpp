@@ -8,10 +8,11 @@
 //       ORG: flood fill on normal angle, grown from low-curvature points
 //       FEC: [statistical outlier removal] + Euclidean clustering (k-d tree)
 //     → features per cluster (VFH [, viewpoint angle, geometric, CVFH])
-//     → classifier score (SVM decision value / KNN vote) → detections
+//     → classifier score (SVM decision value / KNN vote)
+//     → [detection.grow_tolerance > 0: head masks grown over unclustered debris] → detections
 //
 // Every stage is timed (StageTimer, names: "cloud", "normals", "edges", "outliers",
-// "clustering", "features", "classify"). OES needs no normals to segment (unless crease edges
+// "clustering", "features", "classify", "completion"). OES needs no normals to segment (unless crease edges
 // are on): it computes them after the flood fill, only for the pixels of the kept segments (the
 // only ones the features read), so its cloud() has NaN normals elsewhere. All buffers (cloud, normals' integral images,
 // edge labels, flood-fill stacks, feature vectors, candidate list) live in the detector and are reused from frame to
@@ -32,6 +33,7 @@
 #include "cropsight/learning/model.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_config.hpp"
 #include "cropsight/segmentation/flood_fill.hpp"
+#include "cropsight/segmentation/segment_growth.hpp"
 
 namespace cropsight::pipeline {
 
@@ -86,8 +88,10 @@ class BroccoliDetector {
   void normals(std::span<const int> select = {});
   void cluster();  // normals (all pixels, or only the kept OES segments' pixels) + edges + clustering
   void cluster_oes();
+  void segment_debris();  // oes.debris_tolerance > 0: second OES pass over what the first did not keep
   void cluster_org();
   void cluster_fec();
+  void complete_heads();  // detection.grow_tolerance > 0: head masks grow over unclustered debris
 
   BroccoliDetectorConfig cfg_;
   features::FeatureSet feature_set_;
@@ -109,6 +113,11 @@ class BroccoliDetector {
   float soil_depth_ = std::numeric_limits<float>::quiet_NaN();
   segmentation::OesConfig oes_frame_;  // cfg_.oes, scaled to the frame's range when range.reference_range > 0
   std::vector<std::uint32_t> depth_histogram_;
+  segmentation::SegmentGrowthWorkspace growth_;
+  std::vector<Segment*> segment_ptrs_;
+  std::vector<int> grow_order_;
+  std::vector<std::uint8_t> debris_edges_;
+  std::vector<int> kept_labels_;
 };
 
 }  // namespace cropsight::pipeline
