@@ -1,12 +1,16 @@
 // cropsight calibrate-detector --model IN.pt (--coco ANN.json | --voc DIR) --images DIR
-//     [--classes a,b] [--val-split F --split-seed S] --out OUT.pt [--json]
+//     [--classes a,b] [--val-split F --split-seed S] [--input WxH] [--mask-upsampling M]
+//     --out OUT.pt [--json]
 //
 // Sets a trained detector's per-class mask thresholds (CenterNetConfig::mask_thresholds) to
 // each class's best-IoU value on the images `train detector` trained on: with --val-split and
 // --split-seed, the images that split does not hold out, so that `eval detector` with the same
 // split still scores images nothing was chosen on. `train detector` does the same at its end;
-// this verb brings models trained before that (the shipped ones) up to date. The weights are
-// unchanged; export-detector carries the thresholds into the ONNX file.
+// this verb brings models trained before that (the shipped ones) up to date. --input sets the
+// inference resolution first (the network is fully convolutional: the same weights at a larger
+// input give the stride-4 mask head finer cells), --mask-upsampling how the mask head is brought
+// back to pixels (default bilinear); the thresholds are then calibrated for both. The weights are
+// unchanged; export-detector carries the settings into the ONNX file.
 #include <cstdio>
 
 #include "cli_common.hpp"
@@ -20,7 +24,7 @@ namespace cropsight::cli {
 void add_calibrate_detector(CLI::App& app) {
   struct Options {
     DatasetOptions data;
-    std::string model, out;
+    std::string model, out, input, upsampling = "bilinear";
     double val_split = 0;
     std::uint64_t split_seed = 1;
     CommonOptions common;
@@ -33,11 +37,20 @@ void add_calibrate_detector(CLI::App& app) {
   cmd->add_option("--val-split", o->val_split,
                   "Held-out fraction of train detector's split: those images are not used");
   cmd->add_option("--split-seed", o->split_seed, "Seed of that split");
+  cmd->add_option("--input", o->input,
+                  "Inference input WxH, multiples of 32 (default: the model's; a later training would use it too)");
+  cmd->add_option("--mask-upsampling", o->upsampling, "bilinear | nearest: mask head cells to pixels")
+      ->capture_default_str();
   cmd->add_option("--out", o->out, "Model file to write (.pt)")->required();
   add_json_flag(cmd, o->common);
   cmd->callback([o] {
     if (o->val_split < 0 || o->val_split >= 1) throw Error("--val-split", "must be in [0, 1)");
     nn::CenterNet net = nn::CenterNet::load(o->model, 1);
+    if (!o->input.empty()) {
+      const auto [w, h] = parse_input_size(o->input);
+      net.set_input_size(w, h);
+    }
+    net.set_mask_upsampling(o->upsampling);
     if (o->data.classes.empty())
       for (const auto& c : net.class_names()) o->data.classes += (o->data.classes.empty() ? "" : ",") + c;
     nn::DetectionDataset set = load_dataset(o->data);
@@ -51,13 +64,16 @@ void add_calibrate_detector(CLI::App& app) {
     if (o->common.json) {
       print_json({{"out", o->out},
                   {"classes", net.class_names()},
+                  {"input", std::to_string(net.config().input_width) + "x" + std::to_string(net.config().input_height)},
+                  {"mask_upsampling", net.config().mask_upsampling},
                   {"mask_thresholds", rounded_thresholds(t)},
                   {"images", train.size()}});
     } else {
       std::printf("mask thresholds from %zu training images:", train.size());
       const auto names = net.class_names();
       for (std::size_t c = 0; c < t.size(); ++c) std::printf(" %s %.2f", names[c].c_str(), t[c]);
-      std::printf(" -> %s\n", o->out.c_str());
+      std::printf(" (input %dx%d, %s) -> %s\n", net.config().input_width, net.config().input_height,
+                  net.config().mask_upsampling.c_str(), o->out.c_str());
     }
   });
 }

@@ -53,7 +53,9 @@ void run(EvalDetectorOptions o) {
   for (const auto& s : scored) names.push_back(s.name);
   double ms = 0;
   const nn::DetectorScore score = nn::evaluate_detector(*det, scored, float(o.mask_threshold), &ms);
-  std::vector<float> thresholds = nn::center_net_config(*det, o.model).mask_threshold_values(o.model);
+  const nn::CenterNetConfig& cfg = nn::center_net_config(*det, o.model);
+  std::vector<float> thresholds = cfg.mask_threshold_values(o.model);
+  const std::string input = std::to_string(cfg.input_width) + "x" + std::to_string(cfg.input_height);
   if (o.mask_threshold >= 0) std::fill(thresholds.begin(), thresholds.end(), float(o.mask_threshold));
   if (o.common.json) {
     nlohmann::json classes = nlohmann::json::array();
@@ -73,10 +75,13 @@ void run(EvalDetectorOptions o) {
                 {"image_names", names},
                 {"ap", "COCO bbox: greedy best-unmatched matching, 101-point interpolation"},
                 {"mask_thresholds", rounded_thresholds(thresholds)},
+                {"mask_upsampling", cfg.mask_upsampling},
+                {"input", input},
                 {"ms_per_image", json_number(ms)},
                 {"classes", classes}});
   } else {
-    std::printf("%d images (%d with masks)\n", score.images, score.masked_images);
+    std::printf("%d images (%d with masks), input %s, masks %s\n", score.images, score.masked_images, input.c_str(),
+                cfg.mask_upsampling.c_str());
     for (std::size_t i = 0; i < score.classes.size(); ++i) {
       const auto& c = score.classes[i];
       std::printf("%-12s box AP50 %.3f  AP50:95 %.3f  pixel acc %.3f  IoU %.3f  (mask threshold %.2f)\n",

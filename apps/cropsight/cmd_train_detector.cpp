@@ -9,6 +9,7 @@
 // One progress line per epoch on stderr (losses, held-out AP50, seconds); stdout holds the result.
 #include <cstdio>
 #include <nlohmann/json.hpp>
+#include <tuple>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -31,14 +32,6 @@ struct TrainDetectorOptions {
   CommonOptions common;
 };
 
-void parse_input(const std::string& text, nn::CenterNetConfig& cfg) {
-  int w = 0, h = 0;
-  char x = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x')
-    throw Error("--input", "expects WxH, e.g. 416x416, got '" + text + "'");
-  cfg.input_width = w, cfg.input_height = h;
-}
-
 void run(const TrainDetectorOptions& o) {
   if (o.out.empty()) throw Error("--out", "give the model file to write");
   const nn::DetectionDataset set = load_dataset(o.data);
@@ -50,7 +43,7 @@ void run(const TrainDetectorOptions& o) {
   std::string names;
   for (const auto& c : set.classes) names += (names.empty() ? "" : ",") + c;
   cfg.class_names = names;
-  if (!o.input.empty()) parse_input(o.input, cfg);
+  if (!o.input.empty()) std::tie(cfg.input_width, cfg.input_height) = parse_input_size(o.input);
   if (o.epochs) cfg.epochs = o.epochs;
   if (o.width) cfg.width = o.width;
   if (o.batch) cfg.batch_size = o.batch;

@@ -46,6 +46,14 @@ Split split_indices(std::size_t n, double fraction, std::uint64_t seed) {
   return s;
 }
 
+std::pair<int, int> parse_input_size(const std::string& text) {
+  int w = 0, h = 0;
+  char x = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x')
+    throw Error("--input", "expects WxH, e.g. 416x416, got '" + text + "'");
+  return {w, h};
+}
+
 std::vector<float> calibrate_masks(nn::CenterNet& net, const std::vector<nn::DetectionSample>& train) {
   if (std::none_of(train.begin(), train.end(), [](const auto& s) { return !s.masks.empty(); })) return {};
   const std::vector<float> t = nn::calibrate_mask_thresholds(net, train);

@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cropsight/nn/center_net.hpp"
@@ -31,6 +32,9 @@ Split split_indices(std::size_t n, double fraction, std::uint64_t seed);
 
 /// Per-class mask thresholds chosen on `train` (nn::calibrate_mask_thresholds), set on `net`;
 /// returns them (empty, and nothing set, when no training image has masks).
+/// "WxH" (e.g. 416x416) as {W, H}; throws Error("--input", ...) for another form.
+std::pair<int, int> parse_input_size(const std::string& text);
+
 std::vector<float> calibrate_masks(nn::CenterNet& net, const std::vector<nn::DetectionSample>& train);
 
 /// Mask thresholds as JSON numbers rounded to 1e-4 (0.65, not 0.6500000357627869).

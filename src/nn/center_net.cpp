@@ -182,7 +182,22 @@ void CenterNet::set_mask_thresholds(const std::vector<float>& per_class) {
   CenterNetConfig check = config();
   check.mask_thresholds = list.str();
   check.mask_threshold_values("detector: mask thresholds");
-  impl_->backend->set_mask_thresholds(check.mask_thresholds);
+  impl_->backend->set_inference(check);
+}
+
+void CenterNet::set_input_size(int width, int height) {
+  CenterNetConfig check = config();
+  check.input_width = width;
+  check.input_height = height;
+  check.validate("detector: input size");
+  impl_->backend->set_inference(check);
+}
+
+void CenterNet::set_mask_upsampling(const std::string& mode) {
+  CenterNetConfig check = config();
+  check.mask_upsampling = mode;
+  check.validate("detector: mask upsampling");
+  impl_->backend->set_inference(check);
 }
 
 void CenterNet::save(const std::filesystem::path& path) const { impl_->backend->save(path); }

@@ -23,6 +23,8 @@ void CenterNetConfig::validate(const std::string& where) const {
   check_config(*this, where);
   if (names().empty()) throw Error(where, "'class_names' names no class");
   mask_threshold_values(where);
+  if (mask_upsampling != "bilinear" && mask_upsampling != "nearest")
+    throw Error(where, "'mask_upsampling' must be bilinear or nearest, not '" + mask_upsampling + "'");
 }
 
 std::vector<float> CenterNetConfig::mask_threshold_values(const std::string& where) const {

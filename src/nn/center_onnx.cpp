@@ -67,6 +67,7 @@ CenterNetOnnx::CenterNetOnnx(const std::filesystem::path& path) : impl_(std::mak
     throw Error(m.where, "not a cropsight detector (no cropsight.kind metadata; a foreign ONNX layout?)");
   ConfigMap map(info.metadata.begin(), info.metadata.end());
   map.erase("kind");
+  m.cfg.mask_upsampling = "nearest";  // what a model written before the key was calibrated for
   apply_config(m.cfg, map, m.where + ": metadata");
   m.cfg.validate(m.where + ": metadata");
   for (const auto& o : kOutputs)

@@ -41,8 +41,9 @@ class DetectorBackend {
   /// Eval-mode heads of n images (n*3*H*W floats).
   virtual std::vector<CenterNetHeads> forward(const std::vector<float>& images, int n) const = 0;
   virtual void save(const std::filesystem::path& path) const = 0;
-  /// Replaces config().mask_thresholds (already validated by the caller).
-  virtual void set_mask_thresholds(const std::string& list) = 0;
+  /// Replaces the inference settings of config() with those of `cfg` (already validated by the
+  /// caller): input size, mask thresholds, mask upsampling. The weights are unchanged.
+  virtual void set_inference(const CenterNetConfig& cfg) = 0;
   /// Every convolution, folded, by name (center_onnx.cpp wires them as forward() does).
   virtual std::vector<FoldedConv> folded_convs() const = 0;
   /// Weights, optimiser state and epochs done (training checkpoints, written atomically).

@@ -76,25 +76,61 @@ DetectorScore DetectorEvaluator::score() const {
 
 namespace {
 
-// The mask head's cell of each image column and row: the pixel centre through the letterbox,
-// the nearest output cell.
+// The mask head's cells around each image column and row, through the letterbox: the scores of
+// cells x0 and x1 mixed with weight wx on x1 (rows the same). Bilinear: the two cell centres
+// around the pixel centre; nearest: the cell under it twice, weight 0.
 struct CellMap {
-  std::vector<int> x, y;
+  std::vector<int> x0, x1, y0, y1;
+  std::vector<float> wx, wy;
 };
+
+void axis_cells(int pixels, float scale, int pad, float cell, int cells, bool bilinear, std::vector<int>& c0,
+                std::vector<int>& c1, std::vector<float>& w) {
+  c0.resize(std::size_t(pixels));
+  c1.resize(std::size_t(pixels));
+  w.assign(std::size_t(pixels), 0.0f);
+  for (int i = 0; i < pixels; ++i) {
+    const float at = ((float(i) + 0.5f) * scale + float(pad)) / cell;  // in cells; centres at k + 0.5
+    if (!bilinear) {
+      c0[std::size_t(i)] = c1[std::size_t(i)] = std::clamp(int(std::floor(at)), 0, cells - 1);
+      continue;
+    }
+    const float f = at - 0.5f;
+    const int k = int(std::floor(f));
+    if (k < 0 || k >= cells - 1) {  // beyond the first or last centre: that cell alone
+      c0[std::size_t(i)] = c1[std::size_t(i)] = std::clamp(k < 0 ? 0 : cells - 1, 0, cells - 1);
+      continue;
+    }
+    c0[std::size_t(i)] = k;
+    c1[std::size_t(i)] = k + 1;
+    w[std::size_t(i)] = f - float(k);
+  }
+}
 
 CellMap cell_map(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w, int image_h) {
   const Letterbox lb = Letterbox::fit(image_w, image_h, cfg.input_width, cfg.input_height, OnnxResize::letterbox);
   const float sx = float(cfg.input_width) / float(heads.out_w), sy = float(cfg.input_height) / float(heads.out_h);
+  const bool bilinear = cfg.mask_upsampling != "nearest";
   CellMap m;
-  m.x.resize(static_cast<std::size_t>(image_w));
-  m.y.resize(static_cast<std::size_t>(image_h));
-  for (int u = 0; u < image_w; ++u)
-    m.x[std::size_t(u)] =
-        std::clamp(int(std::floor(((float(u) + 0.5f) * lb.scale_x + float(lb.pad_x)) / sx)), 0, heads.out_w - 1);
-  for (int v = 0; v < image_h; ++v)
-    m.y[std::size_t(v)] =
-        std::clamp(int(std::floor(((float(v) + 0.5f) * lb.scale_y + float(lb.pad_y)) / sy)), 0, heads.out_h - 1);
+  axis_cells(image_w, lb.scale_x, lb.pad_x, sx, heads.out_w, bilinear, m.x0, m.x1, m.wx);
+  axis_cells(image_h, lb.scale_y, lb.pad_y, sy, heads.out_h, bilinear, m.y0, m.y1, m.wy);
   return m;
+}
+
+// Calls f(u, score) for every pixel of image row v of class plane p (out_w cells a row): the rows
+// are mixed once into `line` (one value per cell), then each pixel mixes two cells of it.
+template <class F>
+void for_each_score(const CellMap& m, const float* p, int out_w, int v, std::vector<float>& line, F&& f) {
+  const float* r0 = p + std::size_t(m.y0[std::size_t(v)]) * std::size_t(out_w);
+  const float* r1 = p + std::size_t(m.y1[std::size_t(v)]) * std::size_t(out_w);
+  const float wy = m.wy[std::size_t(v)];
+  line.resize(std::size_t(out_w));
+  for (int x = 0; x < out_w; ++x) line[std::size_t(x)] = r0[x] + wy * (r1[x] - r0[x]);
+  const int w = int(m.x0.size());
+  for (int u = 0; u < w; ++u) {
+    const float a = line[std::size_t(m.x0[std::size_t(u)])], b = line[std::size_t(m.x1[std::size_t(u)])];
+    f(u, a + m.wx[std::size_t(u)] * (b - a));
+  }
 }
 
 // The thresholds calibrate_mask_thresholds() chooses from.
@@ -121,15 +157,15 @@ std::vector<GrayImage> masks_from_heads(const CenterNetHeads& heads, const Cente
                                            ? cfg.mask_threshold_values()
                                            : std::vector<float>(std::size_t(std::max(heads.classes, 0)), threshold);
   std::vector<GrayImage> out;
+  std::vector<float> line;
   const std::size_t plane = std::size_t(heads.out_w) * std::size_t(heads.out_h);
   for (int c = 0; c < heads.classes; ++c) {
     const float t = std::size_t(c) < per_class.size() ? per_class[std::size_t(c)] : 0.5f;
     GrayImage m(image_w, image_h, 0);
     const float* p = heads.mask.data() + std::size_t(c) * plane;
     for (int v = 0; v < image_h; ++v) {
-      const float* prow = p + std::size_t(cells.y[std::size_t(v)]) * std::size_t(heads.out_w);
       auto* row = m.row(v);
-      for (int u = 0; u < image_w; ++u) row[u] = prow[cells.x[std::size_t(u)]] >= t ? 255 : 0;
+      for_each_score(cells, p, heads.out_w, v, line, [&](int u, float score) { row[u] = score >= t ? 255 : 0; });
     }
     out.push_back(std::move(m));
   }
@@ -144,6 +180,7 @@ void MaskCalibration::add(const CenterNetHeads& heads, const CenterNetConfig& cf
   const int classes = int(total_.size());
   const int w = sample.image.width, h = sample.image.height;
   const CellMap cells = cell_map(heads, cfg, w, h);
+  std::vector<float> line;
   const std::size_t plane = std::size_t(heads.out_w) * std::size_t(heads.out_h);
   for (int c = 0; c < classes && c < heads.classes && std::size_t(c) < sample.masks.size(); ++c) {
     const GrayImage& t = sample.masks[std::size_t(c)];
@@ -153,10 +190,8 @@ void MaskCalibration::add(const CenterNetHeads& heads, const CenterNetConfig& cf
     std::int64_t* in_truth = truth_.data() + std::size_t(c) * kGrid;
     std::int64_t* outside = other_.data() + std::size_t(c) * kGrid;
     for (int v = 0; v < h; ++v) {
-      const float* prow = p + std::size_t(cells.y[std::size_t(v)]) * std::size_t(heads.out_w);
       const auto* trow = t.row(v);
-      for (int u = 0; u < w; ++u) {
-        const float score = prow[cells.x[std::size_t(u)]];
+      for_each_score(cells, p, heads.out_w, v, line, [&](int u, float score) {
         // Bin k counts pixels predicted at grid thresholds 0..k-1: score >= grid_value(j) for j < k.
         int k = 0;
         while (k < kGrid && score >= grid_value(k)) ++k;
@@ -166,7 +201,7 @@ void MaskCalibration::add(const CenterNetHeads& heads, const CenterNetConfig& cf
         } else if (k > 0) {
           ++outside[k - 1];
         }
-      }
+      });
     }
   }
 }

@@ -39,8 +39,9 @@ class SegmenterBackend {
 /// change layout: a plugin of another version is refused (it would be a build mix-up, never a
 /// supported combination).
 // 2: PointNetConfig::lovasz_weight; 3: the detector; 4: CenterNetConfig::mask_thresholds and
-// DetectorBackend::set_mask_thresholds.
-inline constexpr int kBackendApiVersion = 4;
+// DetectorBackend::set_mask_thresholds; 5: CenterNetConfig::mask_upsampling and
+// DetectorBackend::set_inference in its place.
+inline constexpr int kBackendApiVersion = 5;
 
 struct BackendApi {
   int version = 0;

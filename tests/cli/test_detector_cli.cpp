@@ -2,6 +2,7 @@
 // JSON with the held-out images), eval detector scores the same held-out images, and bad sets are one line naming the
 // file, exit 2.
 #include <gtest/gtest.h>
+#include <algorithm>
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -130,6 +131,31 @@ TEST(DetectorCli, MaskThresholdsAreCalibratedOnTrainingImagesAndTravel) {
                               " --val-split 0.25 --mask-threshold 0.3 --json");
     ASSERT_EQ(flat.exit_code, 0) << flat.err;
     EXPECT_EQ(nlohmann::json::parse(flat.out)["mask_thresholds"], nlohmann::json::array({0.3})) << m;
+  }
+  // Another inference input and mask upsampling: calibrated for, and carried into the ONNX file.
+  const auto big = run_cli("calibrate-detector --model " + shell_quoted(t / "det.pt") + set +
+                           " --val-split 0.25 --input 96x96 --mask-upsampling nearest --out " +
+                           shell_quoted(t / "big.pt") + " --json");
+  ASSERT_EQ(big.exit_code, 0) << big.err;
+  EXPECT_EQ(nlohmann::json::parse(big.out)["input"], "96x96");
+  EXPECT_EQ(nlohmann::json::parse(big.out)["mask_upsampling"], "nearest");
+  ASSERT_EQ(run_cli("export-detector --model " + shell_quoted(t / "big.pt") + " --out " + shell_quoted(t / "big.onnx"))
+                .exit_code,
+            0);
+  for (const char* m : {"big.pt", "big.onnx", "cal.onnx"}) {
+    const auto ev = run_cli("eval detector" + set + " --model " + shell_quoted(t / m) + " --val-split 0.25 --json");
+    ASSERT_EQ(ev.exit_code, 0) << ev.err;
+    const auto j = nlohmann::json::parse(ev.out);
+    const bool cal_model = std::string(m) == "cal.onnx";
+    EXPECT_EQ(j["input"], cal_model ? "64x64" : "96x96") << m;
+    EXPECT_EQ(j["mask_upsampling"], cal_model ? "bilinear" : "nearest") << m;
+  }
+  for (const char* bad : {" --input 90x90", " --input 96", " --mask-upsampling cubic"}) {
+    const auto r = run_cli("calibrate-detector --model " + shell_quoted(t / "det.pt") + set + bad + " --out " +
+                           shell_quoted(t / "bad.pt"));
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad << ": " << r.err;
+    EXPECT_FALSE(fs::exists(t / "bad.pt")) << bad;
   }
   // Boxes only (VOC): nothing to calibrate, one line naming the set, no output.
   const auto none =

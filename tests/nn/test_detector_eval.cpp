@@ -54,6 +54,7 @@ TEST(DetectorEvaluator, ImagesWithoutMasksCountForBoxesOnly) {
 TEST(DetectorEvaluator, MaskHeadMapsBackThroughTheLetterbox) {
   nn::CenterNetConfig cfg;
   cfg.input_width = 32, cfg.input_height = 32;
+  cfg.mask_upsampling = "nearest";
   nn::CenterNetHeads h;
   h.classes = 1, h.out_w = 8, h.out_h = 8;
   h.mask.assign(64, 0.f);
@@ -71,6 +72,38 @@ TEST(DetectorEvaluator, MaskHeadMapsBackThroughTheLetterbox) {
   EXPECT_EQ(on, 64);
 }
 
+// Bilinear upsampling interpolates between cell centres: on a ramp of scores across the cells
+// the mask's edge lies where the interpolated score crosses the threshold, not at a cell border.
+TEST(DetectorEvaluator, BilinearMaskEdgeFollowsTheScoreBetweenCellCentres) {
+  nn::CenterNetConfig cfg;
+  cfg.input_width = 32, cfg.input_height = 32;  // heads 8x8: one cell = 4 input = 8 image pixels
+  nn::CenterNetHeads h;
+  h.classes = 1, h.out_w = 8, h.out_h = 8;
+  h.mask.resize(64);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) h.mask[std::size_t(y * 8 + x)] = float(x) / 7.0f;
+  auto first_on = [&](const GrayImage& m, int v) {
+    for (int u = 0; u < m.width; ++u)
+      if (m.at(u, v)) return u;
+    return -1;
+  };
+  // Pixel u's centre lies at cell coordinate (u + 0.5) / 8; cell centres at k + 0.5. Score 0.55
+  // is reached at 3.85 cells past the first centre: pixel 35 (34 gives 0.545). The cell under
+  // pixel 32 already scores 4/7 = 0.571, so nearest switches on there.
+  const auto bilinear = nn::masks_from_heads(h, cfg, 64, 64, 0.55f);
+  cfg.mask_upsampling = "nearest";
+  const auto nearest = nn::masks_from_heads(h, cfg, 64, 64, 0.55f);
+  for (int v : {0, 31, 63}) {
+    EXPECT_EQ(first_on(bilinear[0], v), 35) << "row " << v;
+    EXPECT_EQ(first_on(nearest[0], v), 32) << "row " << v;
+  }
+  // Outside the outermost centres the edge cell's score holds (no extrapolation).
+  EXPECT_TRUE(bilinear[0].at(63, 10));
+  EXPECT_FALSE(bilinear[0].at(0, 10));
+  cfg.mask_upsampling = "cubic";
+  EXPECT_THROW(cfg.validate("test"), Error);
+}
+
 // Two classes on a 32x32 image (input 32x32, heads 8x8: one cell = 4x4 pixels). Class 0's mask
 // head scores 0.8 on its truth and 0.3 elsewhere; class 1 (thin, like a peduncle) scores only 0.2
 // on its truth and 0.04 elsewhere, so 0.5 finds none of it.
@@ -81,6 +114,7 @@ struct TwoClassScene {
   TwoClassScene() {
     cfg.class_names = "bunch,peduncle";
     cfg.input_width = 32, cfg.input_height = 32;
+    cfg.mask_upsampling = "nearest";  // the scores are constant per cell: exact expected masks
     heads.classes = 2, heads.out_w = 8, heads.out_h = 8;
     heads.mask.assign(2 * 64, 0.f);
     sample.name = "scene.png";

@@ -59,6 +59,13 @@ struct CenterNetConfig {
   /// (calibrate_mask_thresholds, detector_eval.hpp): a thin class such as a peduncle may never
   /// score 0.5. Models written before this key load with it empty.
   std::string mask_thresholds;
+  /// How the stride-4 mask head is brought back to image pixels: "bilinear" interpolates the scores
+  /// between the four nearest cell centres (as semantic segmentation and Mask R-CNN upsample
+  /// their mask logits), "nearest" takes the cell under the pixel centre (one cell covers 10x10
+  /// pixels of a 1280x720 image at 512x288 input: blocky edges, a peduncle one cell wide).
+  /// Models written before this key load with "nearest", the mapping their thresholds were
+  /// calibrated for; new models and `calibrate-detector` use "bilinear".
+  std::string mask_upsampling = "bilinear";
 
   template <class V>
   void visit(V& v) {
@@ -80,9 +87,12 @@ struct CenterNetConfig {
     v("top_k", top_k, "count; peaks kept per image", Range::at_least(1));
     v("mask_thresholds", mask_thresholds,
       "per class, comma-separated: mask head score a pixel needs, each in (0, 1) (empty: 0.5 for every class)");
+    v("mask_upsampling", mask_upsampling,
+      "bilinear | nearest: mask head scores interpolated between cell centres, or the cell under each pixel "
+      "(mask_thresholds are calibrated for one of them)");
   }
-  /// The Ranges above, at least one class name, and mask_thresholds empty or one number in
-  /// (0, 1) per class. Throws Error(where).
+  /// The Ranges above, at least one class name, mask_thresholds empty or one number in (0, 1)
+  /// per class, mask_upsampling bilinear or nearest. Throws Error(where).
   void validate(const std::string& where = "detector") const;
   /// mask_thresholds per class id (0.5 each when empty). Throws Error like validate().
   std::vector<float> mask_threshold_values(const std::string& where = "detector") const;
@@ -155,6 +165,13 @@ class CenterNet final : public Detector2D {
   /// Replaces the per-class mask thresholds (config().mask_thresholds): one per class, each in
   /// (0, 1); save() and export_onnx() write them. Throws Error on a wrong count or value.
   void set_mask_thresholds(const std::vector<float>& per_class);
+  /// Replaces the inference input size (config().input_width / input_height, multiples of 32):
+  /// the network is fully convolutional, so the same weights run at another resolution (a larger
+  /// one gives the stride-4 mask head finer cells). save() and export_onnx() write it; a later
+  /// training from this file would also train at it. Throws Error on an invalid size.
+  void set_input_size(int width, int height);
+  /// Replaces config().mask_upsampling ("bilinear" or "nearest"). Throws Error on another value.
+  void set_mask_upsampling(const std::string& mode);
 
   /// Weights and configuration in one libtorch archive (written atomically).
   void save(const std::filesystem::path& path) const;

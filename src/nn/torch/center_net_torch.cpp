@@ -209,7 +209,12 @@ class Backend final : public detail::DetectorBackend {
     save_archive_atomic(a, path);
   }
 
-  void set_mask_thresholds(const std::string& list) override { cfg_.mask_thresholds = list; }
+  void set_inference(const CenterNetConfig& c) override {
+    cfg_.input_width = c.input_width;
+    cfg_.input_height = c.input_height;
+    cfg_.mask_thresholds = c.mask_thresholds;
+    cfg_.mask_upsampling = c.mask_upsampling;
+  }
 
   std::vector<detail::FoldedConv> folded_convs() const override {
     torch::NoGradGuard no_grad;
@@ -254,6 +259,7 @@ class Backend final : public detail::DetectorBackend {
     torch::serialize::InputArchive a;
     open_model_archive(a, path, "detector");
     CenterNetConfig c;
+    c.mask_upsampling = "nearest";  // what a model written before the key was calibrated for
     try {
       c10::IValue kind;
       a.read("meta.kind", kind);
@@ -289,13 +295,14 @@ class Backend final : public detail::DetectorBackend {
     }
   };
   // A key the archive lacks keeps its default only where a later version added it (a model
-  // written before mask_thresholds existed); any other missing key is not a cropsight model.
+  // written before mask_thresholds or mask_upsampling existed); any other missing key is not a
+  // cropsight model.
   struct GetMeta {
     torch::serialize::InputArchive& a;
     template <class T>
     void operator()(const char* k, T& f, const char*, const Range& = {}) {
       c10::IValue v;
-      if (std::string(k) == "mask_thresholds") {
+      if (std::string(k) == "mask_thresholds" || std::string(k) == "mask_upsampling") {
         if (!a.try_read(std::string("meta.") + k, v)) return;
       } else {
         a.read(std::string("meta.") + k, v);
