@@ -1,5 +1,5 @@
 // cropsight calibrate-detector --model IN.pt (--coco ANN.json | --voc DIR) --images DIR
-//     [--classes a,b] [--val-split F --split-seed S] [--input WxH] [--mask-upsampling M]
+//     [--classes a,b] [--val-split F --split-seed S] [--input WxH] [--mask-upsampling M] [--flip-test]
 //     --out OUT.pt [--json]
 //
 // Sets a trained detector's per-class mask thresholds (CenterNetConfig::mask_thresholds) to
@@ -9,7 +9,8 @@
 // this verb brings models trained before that (the shipped ones) up to date. --input sets the
 // inference resolution first (the network is fully convolutional: the same weights at a larger
 // input give the stride-4 mask head finer cells), --mask-upsampling how the mask head is brought
-// back to pixels (default bilinear); the thresholds are then calibrated for both. The weights are
+// back to pixels (default bilinear), --flip-test turns on the flip test (heads averaged with the
+// mirrored image's; otherwise the model's setting stays); the thresholds are then calibrated for them. The weights are
 // unchanged; export-detector carries the settings into the ONNX file.
 #include <cstdio>
 
@@ -27,6 +28,7 @@ void add_calibrate_detector(CLI::App& app) {
     std::string model, out, input, upsampling = "bilinear";
     double val_split = 0;
     std::uint64_t split_seed = 1;
+    bool flip_test = false;
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
@@ -41,6 +43,8 @@ void add_calibrate_detector(CLI::App& app) {
                   "Inference input WxH, multiples of 32 (default: the model's; a later training would use it too)");
   cmd->add_option("--mask-upsampling", o->upsampling, "bilinear | nearest: mask head cells to pixels")
       ->capture_default_str();
+  cmd->add_flag("--flip-test", o->flip_test,
+                "Average the heads with the mirrored image's (twice the inference time; default: the model's setting)");
   cmd->add_option("--out", o->out, "Model file to write (.pt)")->required();
   add_json_flag(cmd, o->common);
   cmd->callback([o] {
@@ -51,6 +55,7 @@ void add_calibrate_detector(CLI::App& app) {
       net.set_input_size(w, h);
     }
     net.set_mask_upsampling(o->upsampling);
+    if (o->flip_test) net.set_flip_test(true);
     if (o->data.classes.empty())
       for (const auto& c : net.class_names()) o->data.classes += (o->data.classes.empty() ? "" : ",") + c;
     nn::DetectionDataset set = load_dataset(o->data);
@@ -66,14 +71,15 @@ void add_calibrate_detector(CLI::App& app) {
                   {"classes", net.class_names()},
                   {"input", std::to_string(net.config().input_width) + "x" + std::to_string(net.config().input_height)},
                   {"mask_upsampling", net.config().mask_upsampling},
+                  {"flip_test", net.config().flip_test},
                   {"mask_thresholds", rounded_thresholds(t)},
                   {"images", train.size()}});
     } else {
       std::printf("mask thresholds from %zu training images:", train.size());
       const auto names = net.class_names();
       for (std::size_t c = 0; c < t.size(); ++c) std::printf(" %s %.2f", names[c].c_str(), t[c]);
-      std::printf(" (input %dx%d, %s) -> %s\n", net.config().input_width, net.config().input_height,
-                  net.config().mask_upsampling.c_str(), o->out.c_str());
+      std::printf(" (input %dx%d, %s masks%s) -> %s\n", net.config().input_width, net.config().input_height,
+                  net.config().mask_upsampling.c_str(), net.config().flip_test ? ", flip test" : "", o->out.c_str());
     }
   });
 }

@@ -76,6 +76,7 @@ void run(EvalDetectorOptions o) {
                 {"ap", "COCO bbox: greedy best-unmatched matching, 101-point interpolation"},
                 {"mask_thresholds", rounded_thresholds(thresholds)},
                 {"mask_upsampling", cfg.mask_upsampling},
+                {"flip_test", cfg.flip_test},
                 {"input", input},
                 {"ms_per_image", json_number(ms)},
                 {"classes", classes}});

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <opencv2/imgproc.hpp>
 
+#include "cropsight/core/error.hpp"
+
 namespace cropsight::nn {
 
 std::vector<float> center_blob(const ColorImage& image, int input_w, int input_h, Letterbox* lb_out) {
@@ -27,6 +29,38 @@ std::vector<float> center_blob(const ColorImage& image, int input_w, int input_h
             float(row[3 * x + c]) / 255.f;
   }
   return blob;
+}
+
+std::vector<float> mirrored_blob(const std::vector<float>& blob, int input_w, int input_h) {
+  std::vector<float> out(blob.size());
+  const std::size_t w = std::size_t(input_w), rows = blob.size() / w;
+  if (rows * w != blob.size() || rows != 3 * std::size_t(input_h))
+    throw Error("detector", "blob size differs from 3 x input size");
+  for (std::size_t r = 0; r < rows; ++r)
+    std::reverse_copy(blob.begin() + std::ptrdiff_t(r * w), blob.begin() + std::ptrdiff_t((r + 1) * w),
+                      out.begin() + std::ptrdiff_t(r * w));
+  return out;
+}
+
+namespace {
+// a := (a + mirror(b)) / 2 for planes of `w` cells a row (b's rows reversed).
+void average_mirrored(std::vector<float>& a, const std::vector<float>& b, int w) {
+  const std::size_t n = std::size_t(w);
+  for (std::size_t r = 0; r < a.size() / n; ++r) {
+    float* ar = a.data() + r * n;
+    const float* br = b.data() + r * n;
+    for (std::size_t x = 0; x < n; ++x) ar[x] = 0.5f * (ar[x] + br[n - 1 - x]);
+  }
+}
+}  // namespace
+
+void merge_mirrored_heads(CenterNetHeads& h, const CenterNetHeads& m) {
+  if (h.classes != m.classes || h.out_w != m.out_w || h.out_h != m.out_h || h.heatmap.size() != m.heatmap.size() ||
+      h.size.size() != m.size.size() || h.mask.size() != m.mask.size())
+    throw Error("detector", "flip test: the mirrored heads differ in shape");
+  average_mirrored(h.heatmap, m.heatmap, h.out_w);
+  average_mirrored(h.size, m.size, h.out_w);  // (w, h) of a box does not change under a mirror
+  average_mirrored(h.mask, m.mask, h.out_w);
 }
 
 float gaussian_radius(float h, float w, float mo) {

@@ -23,6 +23,16 @@ inline constexpr int kCenterPad = 114;
 /// float blob; `lb` receives the geometry.
 std::vector<float> center_blob(const ColorImage& image, int input_w, int input_h, Letterbox* lb);
 
+/// The blob of the mirrored image: each row of each channel reversed. The letterbox is centred, so
+/// this is the blob of the horizontally flipped image (up to a pixel of rounding in the padding).
+std::vector<float> mirrored_blob(const std::vector<float>& blob, int input_w, int input_h);
+
+/// Flip test (CenterNet's `flip_test`, CenterNetConfig::flip_test): `h` (heads of the image) averaged
+/// with `mirrored` (heads of the mirrored blob) mirrored back: the centre heatmap, the sizes and the
+/// mask scores; the sub-cell offsets stay `h`'s (CenterNet's code does the same). Throws Error when
+/// the shapes differ.
+void merge_mirrored_heads(CenterNetHeads& h, const CenterNetHeads& mirrored);
+
 /// One image's targets at the output resolution (ow x oh cells), channel-major like the heads.
 struct CenterTargets {
   std::vector<float> heatmap;       ///< classes * oh * ow, Gaussian peaks (exactly 1 at a centre)

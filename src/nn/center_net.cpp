@@ -155,18 +155,29 @@ std::vector<DetectorEpochLog> CenterNet::train(
   return logs;
 }
 
+namespace {
+// The heads of one letterboxed blob; with flip_test, the blob and its mirror in one batch.
+CenterNetHeads forward_one(const detail::DetectorBackend& backend, std::vector<float> blob) {
+  const CenterNetConfig& cfg = backend.config();
+  if (!cfg.flip_test) return backend.forward(blob, 1).front();
+  const auto mirrored = mirrored_blob(blob, cfg.input_width, cfg.input_height);
+  blob.insert(blob.end(), mirrored.begin(), mirrored.end());
+  auto both = backend.forward(blob, 2);
+  merge_mirrored_heads(both[0], both[1]);
+  return std::move(both[0]);
+}
+}  // namespace
+
 CenterNetHeads CenterNet::heads(const ColorImage& image) const {
   if (image.empty()) throw Error("detector", "detect() needs a colour image");
-  const auto blob = center_blob(image, config().input_width, config().input_height, nullptr);
-  return impl_->backend->forward(blob, 1).front();
+  return forward_one(*impl_->backend, center_blob(image, config().input_width, config().input_height, nullptr));
 }
 
 std::vector<Detection2D> CenterNet::detect(const ColorImage& image) const {
   if (image.empty()) throw Error("detector", "detect() needs a colour image");
   const CenterNetConfig& cfg = config();
   Letterbox lb;
-  const auto blob = center_blob(image, cfg.input_width, cfg.input_height, &lb);
-  const auto h = impl_->backend->forward(blob, 1).front();
+  const auto h = forward_one(*impl_->backend, center_blob(image, cfg.input_width, cfg.input_height, &lb));
   return decode_heads(h, lb, float(cfg.score_threshold), cfg.top_k);
 }
 
@@ -191,6 +202,12 @@ void CenterNet::set_input_size(int width, int height) {
   check.input_height = height;
   check.validate("detector: input size");
   impl_->backend->set_inference(check);
+}
+
+void CenterNet::set_flip_test(bool on) {
+  CenterNetConfig c = config();
+  c.flip_test = on;
+  impl_->backend->set_inference(c);
 }
 
 void CenterNet::set_mask_upsampling(const std::string& mode) {

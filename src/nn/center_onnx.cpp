@@ -56,6 +56,14 @@ struct CenterNetOnnx::Impl {
     }
     return h;
   }
+
+  // The heads of a blob, averaged with those of its mirror when the model asks for the flip test
+  // (the exported graph takes one image: two passes).
+  CenterNetHeads flip_tested(const std::vector<float>& blob) {
+    CenterNetHeads h = heads(blob);
+    if (cfg.flip_test) merge_mirrored_heads(h, heads(mirrored_blob(blob, cfg.input_width, cfg.input_height)));
+    return h;
+  }
 };
 
 CenterNetOnnx::CenterNetOnnx(const std::filesystem::path& path) : impl_(std::make_unique<Impl>()) {
@@ -93,14 +101,14 @@ std::vector<std::string> CenterNetOnnx::class_names() const { return impl_->cfg.
 
 CenterNetHeads CenterNetOnnx::heads(const ColorImage& image) {
   if (image.empty()) throw Error(impl_->where, "detect() needs a colour image");
-  return impl_->heads(center_blob(image, impl_->cfg.input_width, impl_->cfg.input_height, nullptr));
+  return impl_->flip_tested(center_blob(image, impl_->cfg.input_width, impl_->cfg.input_height, nullptr));
 }
 
 std::vector<Detection2D> CenterNetOnnx::detect(const ColorImage& image) {
   if (image.empty()) throw Error(impl_->where, "detect() needs a colour image");
   Letterbox lb;
   const auto blob = center_blob(image, impl_->cfg.input_width, impl_->cfg.input_height, &lb);
-  return decode_heads(impl_->heads(blob), lb, float(impl_->cfg.score_threshold), impl_->cfg.top_k);
+  return decode_heads(impl_->flip_tested(blob), lb, float(impl_->cfg.score_threshold), impl_->cfg.top_k);
 }
 
 std::vector<Detection2D> CenterNetOnnx::detect(const DetectorInput& in) {

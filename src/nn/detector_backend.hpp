@@ -42,7 +42,7 @@ class DetectorBackend {
   virtual std::vector<CenterNetHeads> forward(const std::vector<float>& images, int n) const = 0;
   virtual void save(const std::filesystem::path& path) const = 0;
   /// Replaces the inference settings of config() with those of `cfg` (already validated by the
-  /// caller): input size, mask thresholds, mask upsampling. The weights are unchanged.
+  /// caller): input size, mask thresholds, mask upsampling, flip test. The weights are unchanged.
   virtual void set_inference(const CenterNetConfig& cfg) = 0;
   /// Every convolution, folded, by name (center_onnx.cpp wires them as forward() does).
   virtual std::vector<FoldedConv> folded_convs() const = 0;

@@ -39,8 +39,8 @@ class SegmenterBackend {
 /// change layout: a plugin of another version is refused (it would be a build mix-up, never a
 /// supported combination).
 // 2: PointNetConfig::lovasz_weight; 3: the detector; 4: CenterNetConfig::mask_thresholds and
-// DetectorBackend::set_mask_thresholds; 5: CenterNetConfig::mask_upsampling and
-// DetectorBackend::set_inference in its place.
+// DetectorBackend::set_mask_thresholds; 5: CenterNetConfig::mask_upsampling and flip_test,
+// DetectorBackend::set_inference in place of set_mask_thresholds.
 inline constexpr int kBackendApiVersion = 5;
 
 struct BackendApi {

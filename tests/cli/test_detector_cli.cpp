@@ -134,11 +134,12 @@ TEST(DetectorCli, MaskThresholdsAreCalibratedOnTrainingImagesAndTravel) {
   }
   // Another inference input and mask upsampling: calibrated for, and carried into the ONNX file.
   const auto big = run_cli("calibrate-detector --model " + shell_quoted(t / "det.pt") + set +
-                           " --val-split 0.25 --input 96x96 --mask-upsampling nearest --out " +
+                           " --val-split 0.25 --input 96x96 --mask-upsampling nearest --flip-test --out " +
                            shell_quoted(t / "big.pt") + " --json");
   ASSERT_EQ(big.exit_code, 0) << big.err;
   EXPECT_EQ(nlohmann::json::parse(big.out)["input"], "96x96");
   EXPECT_EQ(nlohmann::json::parse(big.out)["mask_upsampling"], "nearest");
+  EXPECT_EQ(nlohmann::json::parse(big.out)["flip_test"], true);
   ASSERT_EQ(run_cli("export-detector --model " + shell_quoted(t / "big.pt") + " --out " + shell_quoted(t / "big.onnx"))
                 .exit_code,
             0);
@@ -149,6 +150,7 @@ TEST(DetectorCli, MaskThresholdsAreCalibratedOnTrainingImagesAndTravel) {
     const bool cal_model = std::string(m) == "cal.onnx";
     EXPECT_EQ(j["input"], cal_model ? "64x64" : "96x96") << m;
     EXPECT_EQ(j["mask_upsampling"], cal_model ? "bilinear" : "nearest") << m;
+    EXPECT_EQ(j["flip_test"], !cal_model) << m;
   }
   for (const char* bad : {" --input 90x90", " --input 96", " --mask-upsampling cubic"}) {
     const auto r = run_cli("calibrate-detector --model " + shell_quoted(t / "det.pt") + set + bad + " --out " +

@@ -222,3 +222,32 @@ TEST(CenterNet, ForeignFilesAreNamed) {
 }
 
 }  // namespace
+
+// Flip test: the mirrored blob reverses every row of every channel; the merge averages heatmap,
+// sizes and masks with the mirrored heads mirrored back and keeps the offsets.
+TEST(CenterCodec, MirroredHeadsAreAveragedBackInPlace) {
+  const std::vector<float> blob = {1, 2, 3, 4, 5, 6};  // 3 channels of 2x1
+  EXPECT_EQ(mirrored_blob(blob, 2, 1), (std::vector<float>{2, 1, 4, 3, 6, 5}));
+  EXPECT_THROW(mirrored_blob(blob, 3, 1), Error);
+  CenterNetHeads h, m;
+  h.classes = m.classes = 1;
+  h.out_w = m.out_w = 3;
+  h.out_h = m.out_h = 1;
+  h.heatmap = {0.9f, 0.1f, 0.0f};
+  m.heatmap = {0.2f, 0.1f, 0.7f};  // the same peak seen from the mirror: cell 2 is cell 0
+  h.size = {4, 4, 4, 2, 2, 2};
+  m.size = {6, 6, 6, 2, 2, 2};
+  h.offset = {0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f};
+  m.offset = {0, 0, 0, 0, 0, 0};
+  h.mask = {1.0f, 0.0f, 0.0f};
+  m.mask = {0.0f, 0.0f, 0.5f};
+  merge_mirrored_heads(h, m);
+  EXPECT_FLOAT_EQ(h.heatmap[0], 0.8f);
+  EXPECT_FLOAT_EQ(h.heatmap[2], 0.1f);
+  EXPECT_FLOAT_EQ(h.size[0], 5.0f);
+  EXPECT_FLOAT_EQ(h.mask[0], 0.75f);
+  EXPECT_FLOAT_EQ(h.mask[2], 0.0f);
+  EXPECT_EQ(h.offset, (std::vector<float>{0.5f, 0.5f, 0.5f, 0.5f, 0.5f, 0.5f}));
+  m.out_w = 2;
+  EXPECT_THROW(merge_mirrored_heads(h, m), Error);
+}

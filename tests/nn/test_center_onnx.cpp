@@ -80,6 +80,29 @@ TEST(CenterNetOnnx, OpenCvDnnGivesTheBoxesOfLibtorch) {
   // load_center_detector picks the backend by extension.
   EXPECT_EQ(load_center_detector(t / "det.onnx")->detect({&im, nullptr}).size(), db.size());
   EXPECT_EQ(load_center_detector(t / "det.pt")->class_names(), net.class_names());
+
+  // Flip test: both backends average with the mirrored image the same way (libtorch in one batch
+  // of two, OpenCV DNN in two passes), and the setting travels in both files.
+  net.set_flip_test(true);
+  net.export_onnx(t / "flip.onnx");
+  net.save(t / "flip.pt");
+  CenterNetOnnx flip_onnx(t / "flip.onnx");
+  EXPECT_TRUE(flip_onnx.config().flip_test);
+  EXPECT_TRUE(CenterNet::load(t / "flip.pt", 1).config().flip_test);
+  const auto fa = net.heads(im), fb = flip_onnx.heads(im);
+  float flip_worst = 0, changed = 0;
+  for (std::size_t i = 0; i < fa.mask.size(); ++i) {
+    flip_worst = std::max(flip_worst, std::abs(fa.mask[i] - fb.mask[i]));
+    changed = std::max(changed, std::abs(fa.mask[i] - a.mask[i]));
+  }
+  for (std::size_t i = 0; i < fa.heatmap.size(); ++i)
+    flip_worst = std::max(flip_worst, std::abs(fa.heatmap[i] - fb.heatmap[i]));
+  EXPECT_LT(flip_worst, 1e-4f);
+  EXPECT_GT(changed, 1e-3f) << "the mirrored image's heads differ for this asymmetric scene";
+  float offset_change = 0;  // offsets stay the unmirrored image's
+  for (std::size_t i = 0; i < fa.offset.size(); ++i)
+    offset_change = std::max(offset_change, std::abs(fa.offset[i] - a.offset[i]));
+  EXPECT_LT(offset_change, 1e-5f);
 }
 
 TEST(CenterNetOnnx, ForeignFilesAreNamed) {

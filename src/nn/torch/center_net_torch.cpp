@@ -214,6 +214,7 @@ class Backend final : public detail::DetectorBackend {
     cfg_.input_height = c.input_height;
     cfg_.mask_thresholds = c.mask_thresholds;
     cfg_.mask_upsampling = c.mask_upsampling;
+    cfg_.flip_test = c.flip_test;
   }
 
   std::vector<detail::FoldedConv> folded_convs() const override {
@@ -295,14 +296,14 @@ class Backend final : public detail::DetectorBackend {
     }
   };
   // A key the archive lacks keeps its default only where a later version added it (a model
-  // written before mask_thresholds or mask_upsampling existed); any other missing key is not a
+  // written before mask_thresholds, mask_upsampling or flip_test existed); any other missing key is not a
   // cropsight model.
   struct GetMeta {
     torch::serialize::InputArchive& a;
     template <class T>
     void operator()(const char* k, T& f, const char*, const Range& = {}) {
       c10::IValue v;
-      if (std::string(k) == "mask_thresholds" || std::string(k) == "mask_upsampling") {
+      if (std::string(k) == "mask_thresholds" || std::string(k) == "mask_upsampling" || std::string(k) == "flip_test") {
         if (!a.try_read(std::string("meta.") + k, v)) return;
       } else {
         a.read(std::string("meta.") + k, v);
