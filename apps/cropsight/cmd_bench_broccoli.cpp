@@ -3,10 +3,11 @@
 // per-stage milliseconds, fps and each detector's speedup over the PCL reference.
 //
 // Frames are read into memory first (I/O excluded) without their label images (as deployed).
-// Each pipeline uses its preset
-// configs/broccoli-<pipeline>-<variety>.yaml; every pipeline scores its clusters with the
-// given model's classifier (timing only: the model must use VFH features, the only feature PCL
-// computes; its pipeline tag is ignored here). Statistical outlier removal is off for FEC and the
+// The model's own pipeline runs with the settings the model records (as `detect` and `eval
+// broccoli --model` run it), then --set; the other pipelines use their presets
+// configs/broccoli-<pipeline>-<variety>.yaml, then --set. Every pipeline scores its clusters with
+// the given model's classifier (for the others, timing only: the model must use VFH features, the
+// only feature PCL computes). Statistical outlier removal is off for FEC and the
 // PCL reference unless --sor, so that both do the same work as the reference
 // (normals + Euclidean clustering + VFH + SVM).
 //
@@ -71,6 +72,13 @@ pipeline::BroccoliPipelineConfig preset_of(const BenchOptions& o, const std::str
   return cfg;
 }
 
+// The model's own pipeline: what the model records, then --set (the bench's outlier setting too).
+pipeline::BroccoliPipelineConfig model_settings(const BenchOptions& o, const learning::Model& model) {
+  pipeline::BroccoliPipelineConfig cfg = pipeline::broccoli_config_for_model(model, o.common.config_map(), o.model, "--set");
+  cfg.detector.outliers.enabled = o.sor;
+  return cfg;
+}
+
 void print_text(const std::map<std::string, PipelineTiming>& timings, const PipelineTiming* tracked,
                 const std::vector<RgbdFrame>& frames, int repeat) {
   const auto pcl = timings.find("pcl_reference");
@@ -102,13 +110,16 @@ void run(const BenchOptions& o) {
   const std::vector<RgbdFrame> frames = read_bench_frames(o.data, o.frames);
   const std::set<std::string> wanted = wanted_pipelines(o);
   std::map<std::string, PipelineTiming> timings;
+  std::map<std::string, std::string> settings;  // per pipeline: "model" or the preset it ran with
   std::optional<PipelineTiming> tracked;
   tracking::HeadMapperConfig mapping;  // the OES preset's sizing.* / tracking.* keys, then --set
   for (const auto variant :
        {pipeline::BroccoliVariant::oes, pipeline::BroccoliVariant::org, pipeline::BroccoliVariant::fec}) {
     const std::string pipe = config_name(variant);
     if (!wanted.count(pipe)) continue;
-    const auto cfg = preset_of(o, pipe);
+    const bool own = model->info.pipeline == pipe;
+    const auto cfg = own ? model_settings(o, *model) : preset_of(o, pipe);
+    settings[pipe] = own ? "model" : "preset broccoli-" + pipe + "-" + o.variety;
     pipeline::BroccoliDetector det(cfg.detector);
     det.set_model(pipeline::model_for_variant(model, variant, o.model), o.model);
     timings[pipe] = pipeline::time_detector(det, frames, o.repeat);
@@ -128,6 +139,7 @@ void run(const BenchOptions& o) {
                      {"variety", o.variety},
                      {"threads", 1},
                      {"sor", o.sor},
+                     {"settings", settings},
                      {"width", frames[0].depth.width},
                      {"height", frames[0].depth.height}};
   const auto pcl = timings.find("pcl_reference");

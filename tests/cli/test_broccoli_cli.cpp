@@ -124,14 +124,18 @@ TEST_F(BroccoliCli, BenchReportsEveryPipelineAndThePclReference) {
     EXPECT_TRUE(j["pipelines"][p]["stages_ms"].contains("normals")) << p;
   }
   EXPECT_TRUE(j["pipelines"]["oes"].contains("speedup_vs_pcl"));
+  // The model's own pipeline (FEC) runs with the settings the model records, the others with presets.
+  EXPECT_EQ(j["settings"]["fec"], "model");
+  EXPECT_EQ(j["settings"]["oes"], "preset broccoli-oes-uk");
 }
 
 // bench --track (issue 4's timing target on the pipeline's own frames): the sizing + tracking time
 // of the OES detections, with the --set sizing keys it ran under; --pipelines picks what is timed.
 TEST_F(BroccoliCli, BenchTrackTimesSizingOnTheOesDetections) {
   const fs::path model = dir() / "bench-track.json";
-  auto r = run_cli("train broccoli --data " + shell_quoted(seq()) + " --config broccoli-oes-uk --out " +
-                   shell_quoted(model) + " --quiet");
+  auto r = run_cli("train broccoli --data " + shell_quoted(seq()) +
+                   " --config broccoli-oes-uk --set detection.grow_tolerance=0.013 --out " + shell_quoted(model) +
+                   " --quiet");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string base =
       "bench broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model) + " --frames 2";
@@ -140,6 +144,9 @@ TEST_F(BroccoliCli, BenchTrackTimesSizingOnTheOesDetections) {
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["pipelines"].size(), 1u);
   ASSERT_TRUE(j["pipelines"].contains("oes"));
+  // The model's settings, not the preset's: its head completion is timed.
+  EXPECT_EQ(j["settings"]["oes"], "model");
+  EXPECT_TRUE(j["pipelines"]["oes"]["stages_ms"].contains("completion"));
   EXPECT_FALSE(j["pipelines"]["oes"].contains("speedup_vs_pcl"));  // no PCL run to compare with
   ASSERT_TRUE(j.contains("tracking"));
   const auto& t = j["tracking"];
