@@ -74,7 +74,8 @@ pipeline::BroccoliPipelineConfig preset_of(const BenchOptions& o, const std::str
 
 // The model's own pipeline: what the model records, then --set (the bench's outlier setting too).
 pipeline::BroccoliPipelineConfig model_settings(const BenchOptions& o, const learning::Model& model) {
-  pipeline::BroccoliPipelineConfig cfg = pipeline::broccoli_config_for_model(model, o.common.config_map(), o.model, "--set");
+  pipeline::BroccoliPipelineConfig cfg =
+      pipeline::broccoli_config_for_model(model, o.common.config_map(), o.model, "--set");
   cfg.detector.outliers.enabled = o.sor;
   return cfg;
 }
