@@ -401,4 +401,38 @@ TEST(BroccoliDetector, DebrisPassAndCompletionRecoverNoisyHeads) {
   ASSERT_GT(heads, 0);
   EXPECT_GT(iou_grown / heads, iou_plain / heads + 0.02)
       << "plain " << iou_plain / heads << " grown " << iou_grown / heads;
+
+  // ORG's completion (its label image as the owner map), on the plain uk frames: head masks grow,
+  // and never into another candidate. (FEC builds its owner map: grow_into_free_pixels' own tests.)
+  {
+    const std::string name = "org";
+    BroccoliDetectorConfig base = preset("broccoli-" + name + "-uk");
+    BroccoliDetectorConfig grow = base;
+    grow.detection.grow_tolerance = 0.013f;
+    auto m = std::make_shared<learning::Model>(learning::load_model(
+        (cropsight::testing::source_dir() / "models" / ("broccoli-" + name + "-uk.json")).string()));
+    BroccoliDetector p(base), g(grow);
+    p.set_model(m);
+    g.set_model(m);
+    int grown_heads = 0, org_heads = 0;
+    for (const auto& f : test_frames()) {
+      const auto cp = p.process(f);
+      const auto cg = g.process(f);
+      ASSERT_EQ(cp.size(), cg.size()) << name;
+      std::vector<int> owner(p.cloud().size(), -1);
+      for (std::size_t k = 0; k < cp.size(); ++k)
+        for (int i : cp[k].segment.indices) owner[std::size_t(i)] = int(k);
+      for (std::size_t k = 0; k < cp.size(); ++k) {
+        if (!cp[k].head) continue;
+        ++org_heads;
+        EXPECT_TRUE(std::includes(cg[k].segment.indices.begin(), cg[k].segment.indices.end(),
+                                  cp[k].segment.indices.begin(), cp[k].segment.indices.end()))
+            << name;
+        for (int i : cg[k].segment.indices)
+          EXPECT_TRUE(owner[std::size_t(i)] == -1 || owner[std::size_t(i)] == int(k)) << name;
+        grown_heads += cg[k].segment.indices.size() > cp[k].segment.indices.size();
+      }
+    }
+    EXPECT_GT(grown_heads, 0) << name << ": " << org_heads << " heads";
+  }
 }
