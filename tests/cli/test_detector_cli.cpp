@@ -180,6 +180,17 @@ TEST(DetectorCli, BadSetsAreOneLineExitTwo) {
   r = run_cli("train detector --images " + shell_quoted(t.path()) + " --out " + shell_quoted(t / "m.pt"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--coco"), std::string::npos) << r.err;
+  // A key outside the detector.* / augment.* sections, or a misspelt one inside, is an error, not
+  // silently ignored: one line naming it, no model file.
+  write_voc_set(t.path(), 2);
+  for (const char* bad : {"mask_weight=3", "detector.mask_wieght=3"}) {
+    r = run_cli("train detector --voc " + shell_quoted(t / "ann") + " --images " + shell_quoted(t / "img") +
+                " --classes potato --epochs 1 --input 64x64 --out " + shell_quoted(t / "m.pt") + " --set " + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_NE(r.err.find(std::string(bad).substr(0, std::string(bad).find('='))), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(t / "m.pt")) << bad;
+  }
 }
 
 }  // namespace
