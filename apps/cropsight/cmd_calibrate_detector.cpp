@@ -69,7 +69,7 @@ void add_calibrate_detector(CLI::App& app) {
     if (o->common.json) {
       print_json({{"out", o->out},
                   {"classes", net.class_names()},
-                  {"input", std::to_string(net.config().input_width) + "x" + std::to_string(net.config().input_height)},
+                  {"input", input_size_text(net.config())},
                   {"mask_upsampling", net.config().mask_upsampling},
                   {"flip_test", net.config().flip_test},
                   {"mask_thresholds", rounded_thresholds(t)},
@@ -78,7 +78,7 @@ void add_calibrate_detector(CLI::App& app) {
       std::printf("mask thresholds from %zu training images:", train.size());
       const auto names = net.class_names();
       for (std::size_t c = 0; c < t.size(); ++c) std::printf(" %s %.2f", names[c].c_str(), t[c]);
-      std::printf(" (input %dx%d, %s masks%s) -> %s\n", net.config().input_width, net.config().input_height,
+      std::printf(" (input %s, %s masks%s) -> %s\n", input_size_text(net.config()).c_str(),
                   net.config().mask_upsampling.c_str(), net.config().flip_test ? ", flip test" : "", o->out.c_str());
     }
   });

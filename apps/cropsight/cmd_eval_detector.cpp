@@ -55,7 +55,7 @@ void run(EvalDetectorOptions o) {
   const nn::DetectorScore score = nn::evaluate_detector(*det, scored, float(o.mask_threshold), &ms);
   const nn::CenterNetConfig& cfg = nn::center_net_config(*det, o.model);
   std::vector<float> thresholds = cfg.mask_threshold_values(o.model);
-  const std::string input = std::to_string(cfg.input_width) + "x" + std::to_string(cfg.input_height);
+  const std::string input = input_size_text(cfg);
   if (o.mask_threshold >= 0) std::fill(thresholds.begin(), thresholds.end(), float(o.mask_threshold));
   if (o.common.json) {
     nlohmann::json classes = nlohmann::json::array();

@@ -35,17 +35,17 @@ struct TrainDetectorOptions {
 void run(const TrainDetectorOptions& o) {
   if (o.out.empty()) throw Error("--out", "give the model file to write");
   const ConfigMap map = o.common.config_map();
+  const std::string where = o.common.config.empty() ? "--set" : o.common.config;
   // Every key belongs to one of the two sections: a key without its section (`mask_weight` for
   // `detector.mask_weight`) would otherwise be ignored without a word.
   for (const auto& [key, value] : map)
     if (key.rfind("detector.", 0) != 0 && key.rfind("augment.", 0) != 0)
-      throw Error(o.common.config.empty() ? "--set" : o.common.config,
-                  "unknown key '" + key + "' (keys are detector.* or augment.*)");
+      throw Error(where, "unknown key '" + key + "' (keys are detector.* or augment.*)");
   const nn::DetectionDataset set = load_dataset(o.data);
   nn::CenterNetConfig cfg;
   nn::DetectionAugmentConfig aug;
-  apply_config(cfg, map, o.common.config.empty() ? "--set" : o.common.config, "detector.");
-  apply_config(aug, map, o.common.config.empty() ? "--set" : o.common.config, "augment.");
+  apply_config(cfg, map, where, "detector.");
+  apply_config(aug, map, where, "augment.");
   std::string names;
   for (const auto& c : set.classes) names += (names.empty() ? "" : ",") + c;
   cfg.class_names = names;

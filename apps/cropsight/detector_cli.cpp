@@ -54,6 +54,10 @@ std::pair<int, int> parse_input_size(const std::string& text) {
   return {w, h};
 }
 
+std::string input_size_text(const nn::CenterNetConfig& cfg) {
+  return std::to_string(cfg.input_width) + "x" + std::to_string(cfg.input_height);
+}
+
 std::vector<float> calibrate_masks(nn::CenterNet& net, const std::vector<nn::DetectionSample>& train) {
   if (std::none_of(train.begin(), train.end(), [](const auto& s) { return !s.masks.empty(); })) return {};
   const std::vector<float> t = nn::calibrate_mask_thresholds(net, train);

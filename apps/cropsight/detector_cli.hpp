@@ -34,6 +34,8 @@ Split split_indices(std::size_t n, double fraction, std::uint64_t seed);
 /// returns them (empty, and nothing set, when no training image has masks).
 /// "WxH" (e.g. 416x416) as {W, H}; throws Error("--input", ...) for another form.
 std::pair<int, int> parse_input_size(const std::string& text);
+/// The model's input size as "WxH", the form parse_input_size reads.
+std::string input_size_text(const nn::CenterNetConfig& cfg);
 
 std::vector<float> calibrate_masks(nn::CenterNet& net, const std::vector<nn::DetectionSample>& train);
 

@@ -186,35 +186,38 @@ std::vector<Detection2D> CenterNet::detect(const DetectorInput& in) {
   return detect(*in.image);
 }
 
+namespace {
+// The one way an inference setting changes: the config with `edit` applied, validated (errors name
+// `what`), handed to the backend; the weights stay.
+template <class Edit>
+void change_inference(detail::DetectorBackend& backend, const std::string& what, Edit&& edit) {
+  CenterNetConfig c = backend.config();
+  edit(c);
+  c.validate("detector: " + what);
+  backend.set_inference(c);
+}
+}  // namespace
+
 void CenterNet::set_mask_thresholds(const std::vector<float>& per_class) {
   std::ostringstream list;
   list << std::setprecision(6);
   for (std::size_t c = 0; c < per_class.size(); ++c) list << (c ? "," : "") << per_class[c];
-  CenterNetConfig check = config();
-  check.mask_thresholds = list.str();
-  check.mask_threshold_values("detector: mask thresholds");
-  impl_->backend->set_inference(check);
+  change_inference(*impl_->backend, "mask thresholds", [&](CenterNetConfig& c) { c.mask_thresholds = list.str(); });
 }
 
 void CenterNet::set_input_size(int width, int height) {
-  CenterNetConfig check = config();
-  check.input_width = width;
-  check.input_height = height;
-  check.validate("detector: input size");
-  impl_->backend->set_inference(check);
+  change_inference(*impl_->backend, "input size", [&](CenterNetConfig& c) {
+    c.input_width = width;
+    c.input_height = height;
+  });
 }
 
 void CenterNet::set_flip_test(bool on) {
-  CenterNetConfig c = config();
-  c.flip_test = on;
-  impl_->backend->set_inference(c);
+  change_inference(*impl_->backend, "flip test", [&](CenterNetConfig& c) { c.flip_test = on; });
 }
 
 void CenterNet::set_mask_upsampling(const std::string& mode) {
-  CenterNetConfig check = config();
-  check.mask_upsampling = mode;
-  check.validate("detector: mask upsampling");
-  impl_->backend->set_inference(check);
+  change_inference(*impl_->backend, "mask upsampling", [&](CenterNetConfig& c) { c.mask_upsampling = mode; });
 }
 
 void CenterNet::save(const std::filesystem::path& path) const { impl_->backend->save(path); }

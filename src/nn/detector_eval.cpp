@@ -98,7 +98,7 @@ void axis_cells(int pixels, float scale, int pad, float cell, int cells, bool bi
     const float f = at - 0.5f;
     const int k = int(std::floor(f));
     if (k < 0 || k >= cells - 1) {  // beyond the first or last centre: that cell alone
-      c0[std::size_t(i)] = c1[std::size_t(i)] = std::clamp(k < 0 ? 0 : cells - 1, 0, cells - 1);
+      c0[std::size_t(i)] = c1[std::size_t(i)] = k < 0 ? 0 : cells - 1;
       continue;
     }
     c0[std::size_t(i)] = k;
