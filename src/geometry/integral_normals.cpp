@@ -62,7 +62,7 @@ CROPSIGHT_AVX2_CLONES void build_row(int w, const float* __restrict xr, const fl
 // lane by lane in 4-lane vectors (AVX2 clone at run time; no FMA), so the values are the same.
 CROPSIGHT_AVX2_CLONES void scatter_row(int count, const int* __restrict cols, const int* __restrict sizes,
                                        const double* const* tops, const double* const* bottoms, float* __restrict m,
-                                       std::size_t stride) {
+                                       std::size_t stride, double min_valid_fraction) {
   for (int k = 0; k < count; ++k) {
     const int s = sizes[k], left = cols[k] - s / 2;
     const double* a0 = tops[s] + std::size_t(left) * kCell;
@@ -84,6 +84,10 @@ CROPSIGHT_AVX2_CLONES void scatter_row(int count, const int* __restrict cols, co
     m[k] = float(c[0]), m[stride + k] = float(c[1]), m[2 * stride + k] = float(c[2]), m[3 * stride + k] = float(c[3]);
     m[4 * stride + k] = float(w[2][0] - w[0][2] * w[0][3] * ic);
     m[5 * stride + k] = float(w[2][1] - w[0][3] * w[0][3] * ic);
+    // Too few valid points in the window (only possible when NaN pixels do not break windows):
+    // a zero matrix, which solve_row() turns into NaN.
+    if (w[0][0] < min_valid_fraction * double(s) * double(s))
+      for (int j = 0; j < 6; ++j) m[std::size_t(j) * stride + k] = 0.0f;
   }
 }
 
@@ -214,6 +218,8 @@ void check_inputs(const IntegralNormalConfig& cfg, std::span<const int> select, 
   if (!(cfg.normal_smoothing_size >= 1.0f) || !std::isfinite(cfg.normal_smoothing_size))
     throw Error("normals", "normal_smoothing_size must be at least 1 pixel");
   if (!(cfg.max_depth_change_factor >= 0.0f)) throw Error("normals", "max_depth_change_factor must be >= 0");
+  if (!(cfg.min_valid_fraction >= 0.0f && cfg.min_valid_fraction <= 1.0f))
+    throw Error("normals", "min_valid_fraction must be in [0, 1]");
   if (!select.empty() && select.size() != n) throw Error("normals", "selection size differs from the cloud size");
 }
 
@@ -231,8 +237,9 @@ void nan_rows(OrganizedCloud& cloud, int v0, int v1) {
 // right (H) and lower (V) neighbour, and a failed test marks both pixels. So the last column is
 // only compared with its left neighbour and the last row with the row above. Computed per row
 // as flags (branch-free, vectorised), then combined. change[i] = 1: no depth change at pixel i.
-void depth_change_map(const float* Z, int w, int h, float factor, std::vector<std::uint8_t>& change,
+void depth_change_map(const float* Z, int w, int h, float factor, bool nan_breaks, std::vector<std::uint8_t>& change,
                       std::vector<std::uint8_t>& flags) {
+  const bool nan_ok = !nan_breaks;
   change.assign(std::size_t(w) * std::size_t(h), 1);
   flags.assign(3 * std::size_t(w), 0);
   std::uint8_t* H = flags.data();  // this row: pixel vs right neighbour failed
@@ -248,8 +255,12 @@ void depth_change_map(const float* Z, int w, int h, float factor, std::vector<st
         const float limit = factor * (std::abs(depth) + 1.0f) * 2.0f;
         const bool fin = std::isfinite(depth);
         // "!(a <= b)" is true for NaN, like PCL's "fabs(..) > limit || !isfinite(..)" chain.
-        H[ci] = std::uint8_t(!(std::fabs(depth - depth_r) <= limit) | !fin | !std::isfinite(depth_r));
-        V[ci] = std::uint8_t(!(std::fabs(depth - depth_d) <= limit) | !fin | !std::isfinite(depth_d));
+        // With nan_breaks off, a pair with a NaN is no depth change (the NaN adds nothing to the sums).
+        const bool fin_r = std::isfinite(depth_r), fin_d = std::isfinite(depth_d);
+        H[ci] = std::uint8_t(nan_ok ? (fin & fin_r & !(std::fabs(depth - depth_r) <= limit))
+                                    : (!(std::fabs(depth - depth_r) <= limit) | !fin | !fin_r));
+        V[ci] = std::uint8_t(nan_ok ? (fin & fin_d & !(std::fabs(depth - depth_d) <= limit))
+                                    : (!(std::fabs(depth - depth_d) <= limit) | !fin | !fin_d));
       }
       H[w - 1] = V[w - 1] = 0;
     } else {
@@ -393,7 +404,7 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int
   const float* Y = cloud.y.data();
   const float* Z = cloud.z.data();
 
-  depth_change_map(Z, w, h, cfg_.max_depth_change_factor, change_, flags_);
+  depth_change_map(Z, w, h, cfg_.max_depth_change_factor, cfg_.nan_breaks_window, change_, flags_);
   chamfer_distance(change_.data(), w, h, cfg_.normal_smoothing_size, distance_, scratch_);
   const float* dist = distance_.data();
 
@@ -419,7 +430,8 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int
     // Window rows per size: top v - s/2, bottom v - s/2 + s.
     for (int s = 2; s <= S; ++s)
       tops[std::size_t(s)] = integral.row(v - s / 2), bottoms[std::size_t(s)] = integral.row(v - s / 2 + s);
-    scatter_row(count, L.cols, L.sizes, tops.data(), bottoms.data(), L.M, L.stride);
+    scatter_row(count, L.cols, L.sizes, tops.data(), bottoms.data(), L.M, L.stride,
+                cfg_.nan_breaks_window ? 0.0 : double(cfg_.min_valid_fraction));
     for (int k = 0; k < count; ++k) {
       const int u = L.cols[k];
       L.PX[k] = X[o + u], L.PY[k] = Y[o + u], L.PZ[k] = Z[o + u];

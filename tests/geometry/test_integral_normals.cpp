@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <limits>
+#include <utility>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/pcl_conversions.hpp"
@@ -116,11 +118,96 @@ TEST(IntegralNormals, PlaneGivesExactNormalFacingCamera) {
   EXPECT_EQ(checked, (64 - 20) * (48 - 20));  // everything but the 10-pixel border
 }
 
+namespace {
+// The tilted plane of the test above, 64x48, with a depth step of `step` m from column 32 on.
+OrganizedCloud tilted_plane(float step) {
+  auto cam = CameraIntrinsics::from_fov(64, 48, 1.2, 1.0);
+  OrganizedCloud c(64, 48);
+  for (int v = 0; v < 48; ++v)
+    for (int u = 0; u < 64; ++u) {
+      const double rx = (u - cam.cx) / cam.fx, ry = (v - cam.cy) / cam.fy;
+      const double z = 0.8 / (1.0 - 0.2 * rx) + (u >= 32 ? step : 0.0f);
+      const int i = c.index(u, v);
+      c.x[i] = float(rx * z), c.y[i] = float(ry * z), c.z[i] = float(z);
+    }
+  return c;
+}
+}  // namespace
+
+// nan_breaks_window = false (ours, for ToF dropouts): holes no longer keep the windows around
+// them from a normal, while a real depth step still does and a window with too few valid pixels
+// gives none. PCL's rule (the default) loses every pixel within about two pixels of a hole.
+TEST(IntegralNormals, HolesNeedNotBreakTheWindow) {
+  OrganizedCloud c = tilted_plane(0.0f);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  auto punch = [&](int u, int v) { c.x[c.index(u, v)] = c.y[c.index(u, v)] = c.z[c.index(u, v)] = nan; };
+  for (int v = 0; v < 48; v += 5)
+    for (int u = (v * 3) % 7; u < 64; u += 7) punch(u, v);  // scattered dropouts
+  for (int v = 20; v < 24; ++v)
+    for (int u = 30; u < 34; ++u) punch(u, v);  // and a 4x4 hole
+  const Eigen::Vector3f expect = Eigen::Vector3f(0.2f, 0.0f, -1.0f).normalized();
+  auto count = [&](const OrganizedCloud& k) {
+    int n = 0, finite_inner = 0;
+    for (int v = 10; v < 38; ++v)
+      for (int u = 10; u < 54; ++u) {
+        const auto i = std::size_t(k.index(u, v));
+        if (!std::isfinite(k.z[i])) continue;
+        ++finite_inner;
+        if (!std::isfinite(k.nx[i])) continue;
+        ++n;
+        EXPECT_GT(k.normal(i).dot(expect), 0.99999f) << u << "," << v;
+      }
+    return std::pair{n, finite_inner};
+  };
+  OrganizedCloud pcl_rule = c;
+  geometry::estimate_normals_integral(pcl_rule);
+  const auto [with_pcl_rule, inner] = count(pcl_rule);
+  EXPECT_LT(with_pcl_rule, inner / 2);  // the holes are everywhere within reach
+  OrganizedCloud ours = c;
+  geometry::estimate_normals_integral(ours, {.nan_breaks_window = false});
+  EXPECT_EQ(count(ours).first, inner);  // every valid pixel inside the border
+
+  // A 5 cm step (limit at 0.8 m: 0.02 * 1.8 * 2 = 7.2 cm; so factor 0.01: 3.6 cm) still breaks windows.
+  OrganizedCloud step = tilted_plane(0.05f);
+  geometry::estimate_normals_integral(step, {.max_depth_change_factor = 0.01f, .nan_breaks_window = false});
+  int near_step = 0;
+  for (int v = 10; v < 38; ++v)
+    for (int u = 28; u < 36; ++u)
+      if (std::isfinite(step.nx[std::size_t(step.index(u, v))])) {
+        ++near_step;
+        // (beyond the step the surface is z + 5 cm, not quite the plane: 0.9999; a window across
+        // the step would tilt the normal by degrees)
+        EXPECT_GT(step.normal(std::size_t(step.index(u, v))).dot(expect), 0.9999f) << u << "," << v;
+      }
+  EXPECT_LT(near_step, 8 * 28);
+
+  // Three pixels of four missing: below min_valid_fraction 0.5 no normal, at 0.2 the plane's.
+  OrganizedCloud sparse = tilted_plane(0.0f);
+  for (int v = 0; v < 48; ++v)
+    for (int u = 0; u < 64; ++u)
+      if (u % 2 != 0 || v % 2 != 0)
+        sparse.x[sparse.index(u, v)] = sparse.y[sparse.index(u, v)] = sparse.z[sparse.index(u, v)] = nan;
+  OrganizedCloud half = sparse, fifth = sparse;
+  geometry::estimate_normals_integral(half, {.nan_breaks_window = false});
+  geometry::estimate_normals_integral(fifth, {.nan_breaks_window = false, .min_valid_fraction = 0.2f});
+  int n_half = 0, n_fifth = 0;
+  for (std::size_t i = 0; i < sparse.size(); ++i) {
+    n_half += std::isfinite(half.nx[i]);
+    if (std::isfinite(fifth.nx[i])) {
+      ++n_fifth;
+      EXPECT_GT(fifth.normal(i).dot(expect), 0.99999f);
+    }
+  }
+  EXPECT_EQ(n_half, 0);
+  EXPECT_EQ(n_fifth, 22 * 14);  // the valid pixels (even u, v) inside the 10-pixel border
+}
+
 TEST(IntegralNormals, RejectsBadConfig) {
   OrganizedCloud c(32, 32);
   EXPECT_THROW(
       geometry::estimate_normals_integral(c, {.max_depth_change_factor = 0.02f, .normal_smoothing_size = 0.0f}), Error);
   EXPECT_THROW(geometry::estimate_normals_integral(c, {.max_depth_change_factor = -1.0f}), Error);
+  EXPECT_THROW(geometry::estimate_normals_integral(c, {.min_valid_fraction = 1.5f}), Error);
 }
 
 TEST(IntegralNormals, TinyCloudIsAllNaN) {

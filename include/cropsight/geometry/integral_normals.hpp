@@ -22,6 +22,11 @@ namespace cropsight::geometry {
 struct IntegralNormalConfig {
   float max_depth_change_factor = 0.02f;  ///< dimensionless; PCL's depth-change factor
   float normal_smoothing_size = 10.0f;    ///< pixels; window side
+  /// PCL's rule (true): a NaN neighbour is a depth change, so no window reaches within about
+  /// two pixels of a hole. False: only two valid neighbours farther apart than the limit break a
+  /// window; NaN pixels add nothing, and a window needs min_valid_fraction of its pixels valid.
+  bool nan_breaks_window = true;
+  float min_valid_fraction = 0.5f;  ///< of the s×s window's pixels; used when nan_breaks_window is false
 
   template <class V>
   void visit(V& v) {
@@ -31,6 +36,11 @@ struct IntegralNormalConfig {
     v("normal_smoothing_size", normal_smoothing_size,
       "pixels; side of the averaging window (paper: 10, PCL IntegralImageNormalEstimation as used by Montes et al. "
       "2020)");
+    v("nan_breaks_window", nan_breaks_window,
+      "true: a NaN neighbour counts as a depth change (PCL's rule, paper); false: holes add nothing to the "
+      "window, only valid neighbours that differ by more than the limit break it (ours, for ToF dropouts)");
+    v("min_valid_fraction", min_valid_fraction,
+      "fraction of the window's pixels that must be valid for a normal when nan_breaks_window is false (ours)");
   }
 };
 
