@@ -6,14 +6,22 @@
 //                           1280x720 image on two cores) is about
 //   BM_GrapeDetectorTorch   nn::CenterNet::detect() of models/detector-grape.pt (the same
 //                           weights) through the libtorch plugin: the baseline in the same process
+//   BM_GrapeDetectorOnnxMasks  boxes and per-class masks through OpenCV DNN: CenterNetOnnx::heads()
+//                           (the main input and every mask_inputs pass, flip test as the model
+//                           says), decode_heads() and masks_from_heads() at 1280x720: what the
+//                           grape paper's Table 2 comparison needs from each image
 //   BM_GrapeDetectorBlob    the letterboxed input blob alone (nn::center_blob), the fixed cost
 // Both detectors run on two threads (cv::setNumThreads(2); the plugin's threads = 2). The ratio
 // of the ONNX row to the libtorch row of the same run is the number to compare across machines.
+//
+// CROPSIGHT_BENCH_DETECTOR=FILE.onnx replaces models/detector-grape.onnx in the ONNX rows (to time
+// a candidate before it ships).
 //
 //   build/bin/bench_detector [--benchmark_filter=...]
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <opencv2/core/utility.hpp>
 #include <optional>
@@ -23,13 +31,20 @@
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/nn/center_net.hpp"
 #include "cropsight/nn/center_onnx.hpp"
+#include "cropsight/nn/detector_eval.hpp"
 #include "nn/center_codec.hpp"
+#include "nn/onnx_decode.hpp"
 
 namespace {
 namespace fs = std::filesystem;
 using namespace cropsight;
 
 const fs::path kModels = fs::path(CROPSIGHT_SOURCE_DIR) / "models";
+
+fs::path onnx_model() {
+  const char* env = std::getenv("CROPSIGHT_BENCH_DETECTOR");
+  return env != nullptr && *env != 0 ? fs::path(env) : kModels / "detector-grape.onnx";
+}
 
 const std::optional<ColorImage>& grape_image() {
   static const std::optional<ColorImage> image = []() -> std::optional<ColorImage> {
@@ -58,7 +73,7 @@ void BM_GrapeDetectorTorch(benchmark::State& state) {
 BENCHMARK(BM_GrapeDetectorTorch)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_GrapeDetectorOnnx(benchmark::State& state) {
-  const fs::path m = kModels / "detector-grape.onnx";
+  const fs::path m = onnx_model();
   if (!grape_image() || !fs::exists(m))
     return state.SkipWithError("needs ../shared/data/grape and models/detector-grape.onnx");
   nn::CenterNetOnnx net(m);
@@ -68,8 +83,31 @@ void BM_GrapeDetectorOnnx(benchmark::State& state) {
 }
 BENCHMARK(BM_GrapeDetectorOnnx)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+void BM_GrapeDetectorOnnxMasks(benchmark::State& state) {
+  const fs::path m = onnx_model();
+  if (!grape_image() || !fs::exists(m))
+    return state.SkipWithError("needs ../shared/data/grape and models/detector-grape.onnx");
+  nn::CenterNetOnnx net(m);
+  const nn::CenterNetConfig& cfg = net.config();
+  const ColorImage& image = *grape_image();
+  std::size_t pixels = 0;
+  for (auto _ : state) {
+    const nn::CenterNetHeads h = net.heads(image);
+    const nn::Letterbox lb =
+        nn::Letterbox::fit(image.width, image.height, cfg.input_width, cfg.input_height, nn::OnnxResize::letterbox);
+    benchmark::DoNotOptimize(nn::decode_heads(h, lb, float(cfg.score_threshold), cfg.top_k));
+    const auto masks = nn::masks_from_heads(h, cfg, image.width, image.height);
+    pixels = 0;
+    for (const auto& k : masks)
+      pixels += std::size_t(std::count_if(k.data.begin(), k.data.end(), [](auto v) { return v != 0; }));
+  }
+  state.counters["mask_pixels"] = double(pixels);
+  state.SetLabel(cfg.mask_inputs.empty() ? "one input" : "masks also at " + cfg.mask_inputs);
+}
+BENCHMARK(BM_GrapeDetectorOnnxMasks)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 void BM_GrapeDetectorBlob(benchmark::State& state) {
-  const fs::path m = kModels / "detector-grape.onnx";
+  const fs::path m = onnx_model();
   if (!grape_image() || !fs::exists(m))
     return state.SkipWithError("needs ../shared/data/grape and models/detector-grape.onnx");
   const nn::CenterNetConfig cfg = nn::CenterNetOnnx(m).config();

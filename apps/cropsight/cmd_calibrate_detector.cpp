@@ -1,5 +1,6 @@
 // cropsight calibrate-detector --model IN.pt (--coco ANN.json | --voc DIR) --images DIR
 //     [--classes a,b] [--val-split F --split-seed S] [--input WxH] [--mask-upsampling M] [--flip-test]
+//     [--mask-inputs WxH[,WxH...]|none]
 //     --out OUT.pt [--json]
 //
 // Sets a trained detector's per-class mask thresholds (CenterNetConfig::mask_thresholds) to
@@ -10,8 +11,9 @@
 // inference resolution first (the network is fully convolutional: the same weights at a larger
 // input give the stride-4 mask head finer cells), --mask-upsampling how the mask head is brought
 // back to pixels (default bilinear), --flip-test turns on the flip test (heads averaged with the
-// mirrored image's; otherwise the model's setting stays); the thresholds are then calibrated for them. The weights are
-// unchanged; export-detector carries the settings into the ONNX file.
+// mirrored image's; otherwise the model's setting stays), --mask-inputs the multi-scale mask test
+// (further inputs whose mask heads are averaged with the main one's; "none" clears it); the thresholds are then
+// calibrated for them. The weights are unchanged; export-detector carries the settings into the ONNX file.
 #include <cstdio>
 
 #include "cli_common.hpp"
@@ -25,7 +27,7 @@ namespace cropsight::cli {
 void add_calibrate_detector(CLI::App& app) {
   struct Options {
     DatasetOptions data;
-    std::string model, out, input, upsampling = "bilinear";
+    std::string model, out, input, upsampling = "bilinear", mask_inputs;
     double val_split = 0;
     std::uint64_t split_seed = 1;
     bool flip_test = false;
@@ -45,6 +47,9 @@ void add_calibrate_detector(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--flip-test", o->flip_test,
                 "Average the heads with the mirrored image's (twice the inference time; default: the model's setting)");
+  cmd->add_option("--mask-inputs", o->mask_inputs,
+                  "Multi-scale mask test: further inputs WxH[,WxH...] whose mask heads are averaged with the main "
+                  "input's (boxes stay the main input's); none = off (default: the model's setting)");
   cmd->add_option("--out", o->out, "Model file to write (.pt)")->required();
   add_json_flag(cmd, o->common);
   cmd->callback([o] {
@@ -56,6 +61,7 @@ void add_calibrate_detector(CLI::App& app) {
     }
     net.set_mask_upsampling(o->upsampling);
     if (o->flip_test) net.set_flip_test(true);
+    if (!o->mask_inputs.empty()) net.set_mask_inputs(o->mask_inputs == "none" ? "" : o->mask_inputs);
     if (o->data.classes.empty())
       for (const auto& c : net.class_names()) o->data.classes += (o->data.classes.empty() ? "" : ",") + c;
     nn::DetectionDataset set = load_dataset(o->data);
@@ -72,14 +78,17 @@ void add_calibrate_detector(CLI::App& app) {
                   {"input", input_size_text(net.config())},
                   {"mask_upsampling", net.config().mask_upsampling},
                   {"flip_test", net.config().flip_test},
+                  {"mask_inputs", net.config().mask_inputs},
                   {"mask_thresholds", rounded_thresholds(t)},
                   {"images", train.size()}});
     } else {
       std::printf("mask thresholds from %zu training images:", train.size());
       const auto names = net.class_names();
       for (std::size_t c = 0; c < t.size(); ++c) std::printf(" %s %.2f", names[c].c_str(), t[c]);
-      std::printf(" (input %s, %s masks%s) -> %s\n", input_size_text(net.config()).c_str(),
-                  net.config().mask_upsampling.c_str(), net.config().flip_test ? ", flip test" : "", o->out.c_str());
+      const std::string extra = net.config().mask_inputs.empty() ? "" : ", masks also at " + net.config().mask_inputs;
+      std::printf(" (input %s, %s masks%s%s) -> %s\n", input_size_text(net.config()).c_str(),
+                  net.config().mask_upsampling.c_str(), net.config().flip_test ? ", flip test" : "", extra.c_str(),
+                  o->out.c_str());
     }
   });
 }

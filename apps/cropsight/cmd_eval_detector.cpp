@@ -77,6 +77,7 @@ void run(EvalDetectorOptions o) {
                 {"mask_thresholds", rounded_thresholds(thresholds)},
                 {"mask_upsampling", cfg.mask_upsampling},
                 {"flip_test", cfg.flip_test},
+                {"mask_inputs", cfg.mask_inputs},
                 {"input", input},
                 {"ms_per_image", json_number(ms)},
                 {"classes", classes}});

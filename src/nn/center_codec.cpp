@@ -54,6 +54,13 @@ void average_mirrored(std::vector<float>& a, const std::vector<float>& b, int w)
 }
 }  // namespace
 
+CenterNetHeads::MaskPass mask_pass(CenterNetHeads h, int input_w, int input_h) {
+  CenterNetHeads::MaskPass p;
+  p.input_w = input_w, p.input_h = input_h, p.out_w = h.out_w, p.out_h = h.out_h;
+  p.mask = std::move(h.mask);
+  return p;
+}
+
 void merge_mirrored_heads(CenterNetHeads& h, const CenterNetHeads& m) {
   if (h.classes != m.classes || h.out_w != m.out_w || h.out_h != m.out_h || h.heatmap.size() != m.heatmap.size() ||
       h.size.size() != m.size.size() || h.mask.size() != m.mask.size())

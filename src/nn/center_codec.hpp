@@ -33,6 +33,10 @@ std::vector<float> mirrored_blob(const std::vector<float>& blob, int input_w, in
 /// the shapes differ.
 void merge_mirrored_heads(CenterNetHeads& h, const CenterNetHeads& mirrored);
 
+/// The mask head of `h` (the heads of an input_w x input_h blob) as an extra mask pass
+/// (CenterNetConfig::mask_inputs); the other heads are dropped.
+CenterNetHeads::MaskPass mask_pass(CenterNetHeads h, int input_w, int input_h);
+
 /// One image's targets at the output resolution (ow x oh cells), channel-major like the heads.
 struct CenterTargets {
   std::vector<float> heatmap;       ///< classes * oh * ow, Gaussian peaks (exactly 1 at a centre)

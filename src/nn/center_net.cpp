@@ -156,13 +156,12 @@ std::vector<DetectorEpochLog> CenterNet::train(
 }
 
 namespace {
-// The heads of one letterboxed blob; with flip_test, the blob and its mirror in one batch.
-CenterNetHeads forward_one(const detail::DetectorBackend& backend, std::vector<float> blob) {
-  const CenterNetConfig& cfg = backend.config();
-  if (!cfg.flip_test) return backend.forward(blob, 1).front();
-  const auto mirrored = mirrored_blob(blob, cfg.input_width, cfg.input_height);
+// The heads of one blob letterboxed to w x h; with flip_test, the blob and its mirror in one batch.
+CenterNetHeads forward_one(const detail::DetectorBackend& backend, std::vector<float> blob, int w, int h) {
+  if (!backend.config().flip_test) return backend.forward(blob, 1, w, h).front();
+  const auto mirrored = mirrored_blob(blob, w, h);
   blob.insert(blob.end(), mirrored.begin(), mirrored.end());
-  auto both = backend.forward(blob, 2);
+  auto both = backend.forward(blob, 2, w, h);
   merge_mirrored_heads(both[0], both[1]);
   return std::move(both[0]);
 }
@@ -170,14 +169,20 @@ CenterNetHeads forward_one(const detail::DetectorBackend& backend, std::vector<f
 
 CenterNetHeads CenterNet::heads(const ColorImage& image) const {
   if (image.empty()) throw Error("detector", "detect() needs a colour image");
-  return forward_one(*impl_->backend, center_blob(image, config().input_width, config().input_height, nullptr));
+  const CenterNetConfig& cfg = config();
+  CenterNetHeads out = forward_one(*impl_->backend, center_blob(image, cfg.input_width, cfg.input_height, nullptr),
+                                   cfg.input_width, cfg.input_height);
+  for (const auto& [w, h] : cfg.mask_input_sizes())
+    out.extra_masks.push_back(mask_pass(forward_one(*impl_->backend, center_blob(image, w, h, nullptr), w, h), w, h));
+  return out;
 }
 
 std::vector<Detection2D> CenterNet::detect(const ColorImage& image) const {
   if (image.empty()) throw Error("detector", "detect() needs a colour image");
   const CenterNetConfig& cfg = config();
   Letterbox lb;
-  const auto h = forward_one(*impl_->backend, center_blob(image, cfg.input_width, cfg.input_height, &lb));
+  const auto h = forward_one(*impl_->backend, center_blob(image, cfg.input_width, cfg.input_height, &lb),
+                             cfg.input_width, cfg.input_height);
   return decode_heads(h, lb, float(cfg.score_threshold), cfg.top_k);
 }
 
@@ -214,6 +219,10 @@ void CenterNet::set_input_size(int width, int height) {
 
 void CenterNet::set_flip_test(bool on) {
   change_inference(*impl_->backend, "flip test", [&](CenterNetConfig& c) { c.flip_test = on; });
+}
+
+void CenterNet::set_mask_inputs(const std::string& list) {
+  change_inference(*impl_->backend, "mask inputs", [&](CenterNetConfig& c) { c.mask_inputs = list; });
 }
 
 void CenterNet::set_mask_upsampling(const std::string& mode) {

@@ -25,6 +25,21 @@ void CenterNetConfig::validate(const std::string& where) const {
   mask_threshold_values(where);
   if (mask_upsampling != "bilinear" && mask_upsampling != "nearest")
     throw Error(where, "'mask_upsampling' must be bilinear or nearest, not '" + mask_upsampling + "'");
+  mask_input_sizes(where);
+}
+
+std::vector<std::pair<int, int>> CenterNetConfig::mask_input_sizes(const std::string& where) const {
+  std::vector<std::pair<int, int>> out;
+  for (const auto& item : split_class_names(mask_inputs)) {
+    int w = 0, h = 0;
+    char x = 0, rest = 0;
+    std::istringstream in(item);
+    const bool parsed = bool(in >> w >> x >> h) && (x == 'x' || x == 'X') && !(in >> rest);
+    if (!parsed || w < 32 || h < 32 || w > 4096 || h > 4096 || w % 32 != 0 || h % 32 != 0)
+      throw Error(where, "'mask_inputs' entry '" + item + "' is not WxH with multiples of 32 in [32, 4096]");
+    out.emplace_back(w, h);
+  }
+  return out;
 }
 
 std::vector<float> CenterNetConfig::mask_threshold_values(const std::string& where) const {

@@ -27,8 +27,10 @@ struct CenterNetOnnx::Impl {
   CenterNetConfig cfg;
   cv::dnn::Net net;
 
-  std::vector<cv::Mat> forward(const std::vector<float>& blob) {
-    const int dims[4] = {1, 3, cfg.input_height, cfg.input_width};
+  // One pass of a blob letterboxed to w x h (the graph is fully convolutional and its Resize
+  // nodes take scales, so OpenCV DNN reshapes it for another input size).
+  std::vector<cv::Mat> forward(const std::vector<float>& blob, int w, int h) {
+    const int dims[4] = {1, 3, h, w};
     net.setInput(cv::Mat(4, dims, CV_32F, const_cast<float*>(blob.data())));
     std::vector<cv::Mat> outs;
     try {
@@ -39,10 +41,10 @@ struct CenterNetOnnx::Impl {
     return outs;
   }
 
-  CenterNetHeads heads(const std::vector<float>& blob) {
-    const auto outs = forward(blob);
+  CenterNetHeads heads(const std::vector<float>& blob, int w, int hgt) {
+    const auto outs = forward(blob, w, hgt);
     CenterNetHeads h;
-    h.classes = cfg.num_classes(), h.out_w = cfg.input_width / 4, h.out_h = cfg.input_height / 4;
+    h.classes = cfg.num_classes(), h.out_w = w / 4, h.out_h = hgt / 4;
     const std::size_t plane = std::size_t(h.out_w) * std::size_t(h.out_h);
     std::vector<float>* dst[4] = {&h.heatmap, &h.size, &h.offset, &h.mask};
     const std::size_t channels[4] = {std::size_t(h.classes), 2, 2, std::size_t(h.classes)};
@@ -59,9 +61,9 @@ struct CenterNetOnnx::Impl {
 
   // The heads of a blob, averaged with those of its mirror when the model asks for the flip test
   // (the exported graph takes one image: two passes).
-  CenterNetHeads flip_tested(const std::vector<float>& blob) {
-    CenterNetHeads h = heads(blob);
-    if (cfg.flip_test) merge_mirrored_heads(h, heads(mirrored_blob(blob, cfg.input_width, cfg.input_height)));
+  CenterNetHeads flip_tested(const std::vector<float>& blob, int w, int hgt) {
+    CenterNetHeads h = heads(blob, w, hgt);
+    if (cfg.flip_test) merge_mirrored_heads(h, heads(mirrored_blob(blob, w, hgt), w, hgt));
     return h;
   }
 };
@@ -92,7 +94,8 @@ CenterNetOnnx::CenterNetOnnx(const std::filesystem::path& path) : impl_(std::mak
   }
   cv::utils::logging::setLogLevel(level);
   // One blank input: a file whose outputs do not fit fails here, not on the first image.
-  m.heads(std::vector<float>(3 * std::size_t(m.cfg.input_width) * std::size_t(m.cfg.input_height), 0.5f));
+  m.heads(std::vector<float>(3 * std::size_t(m.cfg.input_width) * std::size_t(m.cfg.input_height), 0.5f),
+          m.cfg.input_width, m.cfg.input_height);
 }
 
 CenterNetOnnx::~CenterNetOnnx() = default;
@@ -101,14 +104,21 @@ std::vector<std::string> CenterNetOnnx::class_names() const { return impl_->cfg.
 
 CenterNetHeads CenterNetOnnx::heads(const ColorImage& image) {
   if (image.empty()) throw Error(impl_->where, "detect() needs a colour image");
-  return impl_->flip_tested(center_blob(image, impl_->cfg.input_width, impl_->cfg.input_height, nullptr));
+  const CenterNetConfig& cfg = impl_->cfg;
+  CenterNetHeads out = impl_->flip_tested(center_blob(image, cfg.input_width, cfg.input_height, nullptr),
+                                          cfg.input_width, cfg.input_height);
+  // Each extra input reshapes the network; the next main pass reshapes it back (measured in bench_detector).
+  for (const auto& [w, h] : cfg.mask_input_sizes())
+    out.extra_masks.push_back(mask_pass(impl_->flip_tested(center_blob(image, w, h, nullptr), w, h), w, h));
+  return out;
 }
 
 std::vector<Detection2D> CenterNetOnnx::detect(const ColorImage& image) {
   if (image.empty()) throw Error(impl_->where, "detect() needs a colour image");
   Letterbox lb;
   const auto blob = center_blob(image, impl_->cfg.input_width, impl_->cfg.input_height, &lb);
-  return decode_heads(impl_->flip_tested(blob), lb, float(impl_->cfg.score_threshold), impl_->cfg.top_k);
+  return decode_heads(impl_->flip_tested(blob, impl_->cfg.input_width, impl_->cfg.input_height), lb,
+                      float(impl_->cfg.score_threshold), impl_->cfg.top_k);
 }
 
 std::vector<Detection2D> CenterNetOnnx::detect(const DetectorInput& in) {

@@ -38,11 +38,12 @@ class DetectorBackend {
   virtual std::size_t parameter_count() const = 0;
   virtual void set_lr(double lr) = 0;
   virtual DetectorLosses train_step(const DetectorBatch& batch) = 0;
-  /// Eval-mode heads of n images (n*3*H*W floats).
-  virtual std::vector<CenterNetHeads> forward(const std::vector<float>& images, int n) const = 0;
+  /// Eval-mode heads of n images of width x height pixels (n*3*height*width floats; any multiple
+  /// of 32, not only the configured input: the network is fully convolutional).
+  virtual std::vector<CenterNetHeads> forward(const std::vector<float>& images, int n, int width, int height) const = 0;
   virtual void save(const std::filesystem::path& path) const = 0;
   /// Replaces the inference settings of config() with those of `cfg` (already validated by the
-  /// caller): input size, mask thresholds, mask upsampling, flip test. The weights are unchanged.
+  /// caller): input size, mask thresholds, mask upsampling, flip test, mask inputs. The weights are unchanged.
   virtual void set_inference(const CenterNetConfig& cfg) = 0;
   /// Every convolution, folded, by name (center_onnx.cpp wires them as forward() does).
   virtual std::vector<FoldedConv> folded_convs() const = 0;

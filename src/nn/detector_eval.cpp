@@ -107,13 +107,13 @@ void axis_cells(int pixels, float scale, int pad, float cell, int cells, bool bi
   }
 }
 
-CellMap cell_map(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w, int image_h) {
-  const Letterbox lb = Letterbox::fit(image_w, image_h, cfg.input_width, cfg.input_height, OnnxResize::letterbox);
-  const float sx = float(cfg.input_width) / float(heads.out_w), sy = float(cfg.input_height) / float(heads.out_h);
-  const bool bilinear = cfg.mask_upsampling != "nearest";
+// The cell map of a mask head of out_w x out_h cells computed from an input_w x input_h letterbox.
+CellMap cell_map(int out_w, int out_h, int input_w, int input_h, bool bilinear, int image_w, int image_h) {
+  const Letterbox lb = Letterbox::fit(image_w, image_h, input_w, input_h, OnnxResize::letterbox);
+  const float sx = float(input_w) / float(out_w), sy = float(input_h) / float(out_h);
   CellMap m;
-  axis_cells(image_w, lb.scale_x, lb.pad_x, sx, heads.out_w, bilinear, m.x0, m.x1, m.wx);
-  axis_cells(image_h, lb.scale_y, lb.pad_y, sy, heads.out_h, bilinear, m.y0, m.y1, m.wy);
+  axis_cells(image_w, lb.scale_x, lb.pad_x, sx, out_w, bilinear, m.x0, m.x1, m.wx);
+  axis_cells(image_h, lb.scale_y, lb.pad_y, sy, out_h, bilinear, m.y0, m.y1, m.wy);
   return m;
 }
 
@@ -132,6 +132,53 @@ void for_each_score(const CellMap& m, const float* p, int out_w, int v, std::vec
     f(u, a + m.wx[std::size_t(u)] * (b - a));
   }
 }
+
+// The mask scores of one image at its pixels, class by class and row by row: the main mask head's
+// and, with CenterNetConfig::mask_inputs, each extra pass's, each brought to the image through its
+// own letterbox and averaged (multi-scale test).
+class MaskScores {
+ public:
+  MaskScores(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w, int image_h)
+      : classes_(heads.classes), row_(std::size_t(std::max(image_w, 0))) {
+    const bool bilinear = cfg.mask_upsampling != "nearest";
+    add(heads.mask, heads.out_w, heads.out_h, cfg.input_width, cfg.input_height, bilinear, image_w, image_h);
+    for (const auto& p : heads.extra_masks)
+      add(p.mask, p.out_w, p.out_h, p.input_w, p.input_h, bilinear, image_w, image_h);
+  }
+
+  /// Scores of class c along image row v (image_w values, valid until the next call).
+  const float* row(int c, int v) {
+    const float inv = 1.0f / float(passes_.size());
+    for (std::size_t k = 0; k < passes_.size(); ++k) {
+      const Pass& p = passes_[k];
+      const float* plane = p.mask + std::size_t(c) * std::size_t(p.out_w) * std::size_t(p.out_h);
+      if (k == 0)
+        for_each_score(p.cells, plane, p.out_w, v, line_, [&](int u, float s) { row_[std::size_t(u)] = s; });
+      else
+        for_each_score(p.cells, plane, p.out_w, v, line_, [&](int u, float s) { row_[std::size_t(u)] += s; });
+    }
+    if (passes_.size() > 1)
+      for (auto& s : row_) s *= inv;
+    return row_.data();
+  }
+
+ private:
+  struct Pass {
+    CellMap cells;
+    const float* mask = nullptr;
+    int out_w = 0, out_h = 0;
+  };
+  void add(const std::vector<float>& mask, int out_w, int out_h, int input_w, int input_h, bool bilinear, int image_w,
+           int image_h) {
+    if (out_w <= 0 || out_h <= 0 || mask.size() != std::size_t(classes_) * std::size_t(out_w) * std::size_t(out_h))
+      throw Error("detector", "a mask head's size does not match its cells");
+    passes_.push_back(
+        {cell_map(out_w, out_h, input_w, input_h, bilinear, image_w, image_h), mask.data(), out_w, out_h});
+  }
+  int classes_;
+  std::vector<Pass> passes_;
+  std::vector<float> line_, row_;
+};
 
 // The thresholds calibrate_mask_thresholds() chooses from.
 constexpr int kGrid = 19;
@@ -152,20 +199,18 @@ struct AnyCenterNet {
 
 std::vector<GrayImage> masks_from_heads(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w,
                                         int image_h, float threshold) {
-  const CellMap cells = cell_map(heads, cfg, image_w, image_h);
+  MaskScores scores(heads, cfg, image_w, image_h);
   const std::vector<float> per_class = threshold < 0
                                            ? cfg.mask_threshold_values()
                                            : std::vector<float>(std::size_t(std::max(heads.classes, 0)), threshold);
   std::vector<GrayImage> out;
-  std::vector<float> line;
-  const std::size_t plane = std::size_t(heads.out_w) * std::size_t(heads.out_h);
   for (int c = 0; c < heads.classes; ++c) {
     const float t = std::size_t(c) < per_class.size() ? per_class[std::size_t(c)] : 0.5f;
     GrayImage m(image_w, image_h, 0);
-    const float* p = heads.mask.data() + std::size_t(c) * plane;
     for (int v = 0; v < image_h; ++v) {
       auto* row = m.row(v);
-      for_each_score(cells, p, heads.out_w, v, line, [&](int u, float score) { row[u] = score >= t ? 255 : 0; });
+      const float* score = scores.row(c, v);
+      for (int u = 0; u < image_w; ++u) row[u] = score[u] >= t ? 255 : 0;
     }
     out.push_back(std::move(m));
   }
@@ -179,19 +224,18 @@ void MaskCalibration::add(const CenterNetHeads& heads, const CenterNetConfig& cf
   if (sample.masks.empty()) return;
   const int classes = int(total_.size());
   const int w = sample.image.width, h = sample.image.height;
-  const CellMap cells = cell_map(heads, cfg, w, h);
-  std::vector<float> line;
-  const std::size_t plane = std::size_t(heads.out_w) * std::size_t(heads.out_h);
+  MaskScores scores(heads, cfg, w, h);
   for (int c = 0; c < classes && c < heads.classes && std::size_t(c) < sample.masks.size(); ++c) {
     const GrayImage& t = sample.masks[std::size_t(c)];
     if (t.width != w || t.height != h)
       throw Error(sample.name, "truth mask of class " + std::to_string(c) + " is not image-sized");
-    const float* p = heads.mask.data() + std::size_t(c) * plane;
     std::int64_t* in_truth = truth_.data() + std::size_t(c) * kGrid;
     std::int64_t* outside = other_.data() + std::size_t(c) * kGrid;
     for (int v = 0; v < h; ++v) {
       const auto* trow = t.row(v);
-      for_each_score(cells, p, heads.out_w, v, line, [&](int u, float score) {
+      const float* row = scores.row(c, v);
+      for (int u = 0; u < w; ++u) {
+        const float score = row[u];
         // Bin k counts pixels predicted at grid thresholds 0..k-1: score >= grid_value(j) for j < k.
         int k = 0;
         while (k < kGrid && score >= grid_value(k)) ++k;
@@ -201,7 +245,7 @@ void MaskCalibration::add(const CenterNetHeads& heads, const CenterNetConfig& cf
         } else if (k > 0) {
           ++outside[k - 1];
         }
-      });
+      }
     }
   }
 }

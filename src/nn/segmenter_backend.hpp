@@ -40,8 +40,9 @@ class SegmenterBackend {
 /// supported combination).
 // 2: PointNetConfig::lovasz_weight; 3: the detector; 4: CenterNetConfig::mask_thresholds and
 // DetectorBackend::set_mask_thresholds; 5: CenterNetConfig::mask_upsampling and flip_test,
-// DetectorBackend::set_inference in place of set_mask_thresholds.
-inline constexpr int kBackendApiVersion = 5;
+// DetectorBackend::set_inference in place of set_mask_thresholds; 6: CenterNetConfig::mask_inputs,
+// DetectorBackend::forward at any input size.
+inline constexpr int kBackendApiVersion = 6;
 
 struct BackendApi {
   int version = 0;

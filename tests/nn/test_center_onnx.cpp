@@ -103,6 +103,31 @@ TEST(CenterNetOnnx, OpenCvDnnGivesTheBoxesOfLibtorch) {
   for (std::size_t i = 0; i < fa.offset.size(); ++i)
     offset_change = std::max(offset_change, std::abs(fa.offset[i] - a.offset[i]));
   EXPECT_LT(offset_change, 1e-5f);
+
+  // Multi-scale mask test: both backends run the extra input (OpenCV DNN reshapes the graph) and
+  // agree; the main heads are untouched, and the setting travels in both files.
+  net.set_mask_inputs("128x96");
+  net.export_onnx(t / "ms.onnx");
+  net.save(t / "ms.pt");
+  CenterNetOnnx ms_onnx(t / "ms.onnx");
+  EXPECT_EQ(ms_onnx.config().mask_inputs, "128x96");
+  EXPECT_EQ(CenterNet::load(t / "ms.pt", 1).config().mask_inputs, "128x96");
+  const auto ma = net.heads(im), mb = ms_onnx.heads(im);
+  ASSERT_EQ(ma.extra_masks.size(), 1u);
+  ASSERT_EQ(mb.extra_masks.size(), 1u);
+  EXPECT_EQ(ma.extra_masks[0].out_w, 32);
+  EXPECT_EQ(ma.extra_masks[0].out_h, 24);
+  ASSERT_EQ(ma.extra_masks[0].mask.size(), mb.extra_masks[0].mask.size());
+  ASSERT_EQ(ma.extra_masks[0].mask.size(), 2u * 32u * 24u);
+  float ms_worst = 0;
+  for (std::size_t i = 0; i < ma.extra_masks[0].mask.size(); ++i)
+    ms_worst = std::max(ms_worst, std::abs(ma.extra_masks[0].mask[i] - mb.extra_masks[0].mask[i]));
+  EXPECT_LT(ms_worst, 1e-4f);
+  EXPECT_EQ(ma.heatmap, fa.heatmap);  // the main input's heads are those without the extra pass
+  // and the main pass still runs at the model's input after the graph was reshaped
+  const auto again = ms_onnx.heads(im);
+  for (std::size_t i = 0; i < again.heatmap.size(); ++i) EXPECT_NEAR(again.heatmap[i], fb.heatmap[i], 1e-5f);
+  EXPECT_THROW(net.set_mask_inputs("100x96"), Error);
 }
 
 TEST(CenterNetOnnx, ForeignFilesAreNamed) {

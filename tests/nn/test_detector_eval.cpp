@@ -72,6 +72,58 @@ TEST(DetectorEvaluator, MaskHeadMapsBackThroughTheLetterbox) {
   EXPECT_EQ(on, 64);
 }
 
+// Multi-scale mask test: a pixel's score is the mean of the main head's and each extra pass's,
+// each mapped through its own letterbox (an extra pass at twice the input has cells half as large
+// in the image), and calibration sees the same averaged scores.
+TEST(DetectorEvaluator, ExtraMaskPassesAreAveragedThroughTheirOwnLetterbox) {
+  nn::CenterNetConfig cfg;
+  cfg.input_width = 32, cfg.input_height = 32;
+  cfg.mask_upsampling = "nearest";
+  nn::CenterNetHeads h;
+  h.classes = 1, h.out_w = 8, h.out_h = 8;
+  h.mask.assign(64, 0.2f);
+  nn::CenterNetHeads::MaskPass p;
+  p.input_w = 64, p.input_h = 64, p.out_w = 16, p.out_h = 16;
+  p.mask.assign(256, 0.2f);
+  p.mask[5 * 16 + 3] = 1.0f;  // cell x 3, y 5 of the 64x64 input: image pixels x 12..15, y 20..23
+  h.extra_masks.push_back(p);
+  // 64x64 image: the main head's cells cover 8x8 pixels, the extra pass's 4x4.
+  const auto m = nn::masks_from_heads(h, cfg, 64, 64, 0.55f);  // (0.2 + 1.0) / 2 = 0.6 only in that cell
+  int on = 0;
+  for (int v = 0; v < 64; ++v)
+    for (int u = 0; u < 64; ++u)
+      if (m[0].at(u, v)) {
+        ++on;
+        EXPECT_TRUE(u >= 12 && u < 16 && v >= 20 && v < 24) << u << "," << v;
+      }
+  EXPECT_EQ(on, 16);
+  EXPECT_EQ(nn::masks_from_heads(h, cfg, 64, 64, 0.65f)[0].data, std::vector<std::uint8_t>(64 * 64, 0));
+  // Calibration bins the averaged scores: truth = exactly that 4x4 block, so the best threshold
+  // lies in (0.2, 0.6] and gives IoU 1; the one nearest 0.5 of those is 0.5.
+  nn::DetectionSample s;
+  s.image = ColorImage(64, 64);
+  s.masks = {GrayImage(64, 64, 0)};
+  for (int v = 20; v < 24; ++v)
+    for (int u = 12; u < 16; ++u) s.masks[0].at(u, v) = 255;
+  nn::MaskCalibration cal(1);
+  cal.add(h, cfg, s);
+  EXPECT_FLOAT_EQ(cal.thresholds()[0], 0.5f);
+  // A pass whose mask does not fit its cells is an error, not a read past the end.
+  h.extra_masks[0].mask.resize(10);
+  EXPECT_THROW(nn::masks_from_heads(h, cfg, 64, 64, 0.5f), Error);
+}
+
+TEST(DetectorEvaluator, MaskInputsAreCheckedWxHLists) {
+  nn::CenterNetConfig cfg;
+  EXPECT_TRUE(cfg.mask_input_sizes().empty());
+  cfg.mask_inputs = "768x448, 896X512";
+  EXPECT_EQ(cfg.mask_input_sizes(), (std::vector<std::pair<int, int>>{{768, 448}, {896, 512}}));
+  for (const char* bad : {"768", "768x", "770x448", "768x448x2", "0x0", "x448", "768x448,abc", "8192x448", "-32x64"}) {
+    cfg.mask_inputs = bad;
+    EXPECT_THROW(cfg.validate("m.pt"), Error) << bad;
+  }
+}
+
 // Bilinear upsampling interpolates between cell centres: on a ramp of scores across the cells
 // the mask's edge lies where the interpolated score crosses the threshold, not at a cell border.
 TEST(DetectorEvaluator, BilinearMaskEdgeFollowsTheScoreBetweenCellCentres) {

@@ -21,6 +21,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cropsight/core/config.hpp"
@@ -70,6 +71,14 @@ struct CenterNetConfig {
   /// image (heatmap, sizes, masks), twice the inference time for steadier scores. Models written
   /// before this key load with false.
   bool flip_test = false;
+  /// Multi-scale mask test: further inference inputs, comma-separated "WxH" (multiples of 32). The
+  /// network runs again at each (with the flip test when flip_test is on) and a pixel's mask score
+  /// is the mean of the main input's and these inputs' scores, each brought to the image by
+  /// mask_upsampling; the boxes come from the main input alone (detect() runs only that). A
+  /// larger input gives the stride-4 mask head finer cells (a peduncle 1-2 cells wide at 640x352)
+  /// while the boxes stay at the size the model was trained for. Empty: one input (models
+  /// written before the key load with it empty).
+  std::string mask_inputs;
 
   template <class V>
   void visit(V& v) {
@@ -96,12 +105,17 @@ struct CenterNetConfig {
       "(mask_thresholds are calibrated for one of them)");
     v("flip_test", flip_test,
       "bool; average the heads with those of the mirrored image (CenterNet's flip test; twice the inference time)");
+    v("mask_inputs", mask_inputs,
+      "further inference inputs for the mask head, comma-separated WxH (multiples of 32); mask scores averaged "
+      "over them and the main input (multi-scale test); empty: none");
   }
   /// The Ranges above, at least one class name, mask_thresholds empty or one number in (0, 1)
   /// per class, mask_upsampling bilinear or nearest. Throws Error(where).
   void validate(const std::string& where = "detector") const;
   /// mask_thresholds per class id (0.5 each when empty). Throws Error like validate().
   std::vector<float> mask_threshold_values(const std::string& where = "detector") const;
+  /// mask_inputs as (width, height) pairs, each a multiple of 32 in [32, 4096]. Throws Error like validate().
+  std::vector<std::pair<int, int>> mask_input_sizes(const std::string& where = "detector") const;
   /// class_names split at commas, spaces trimmed.
   std::vector<std::string> names() const;
   int num_classes() const { return int(names().size()); }
@@ -123,6 +137,13 @@ struct DetectionSample {
 struct CenterNetHeads {
   int classes = 0, out_w = 0, out_h = 0;
   std::vector<float> heatmap, size, offset, mask;
+  /// The mask head at one of CenterNetConfig::mask_inputs (input_w x input_h pixels, letterboxed like
+  /// the main input; out_w = input_w / 4), sigmoid scores [class][y][x].
+  struct MaskPass {
+    int input_w = 0, input_h = 0, out_w = 0, out_h = 0;
+    std::vector<float> mask;
+  };
+  std::vector<MaskPass> extra_masks;  ///< one per mask_inputs entry, in order; empty without
 };
 
 /// Per-epoch progress of train().
@@ -180,6 +201,8 @@ class CenterNet final : public Detector2D {
   void set_mask_upsampling(const std::string& mode);
   /// Replaces config().flip_test.
   void set_flip_test(bool on);
+  /// Replaces config().mask_inputs ("" for none). Throws Error on a malformed list.
+  void set_mask_inputs(const std::string& list);
 
   /// Weights and configuration in one libtorch archive (written atomically).
   void save(const std::filesystem::path& path) const;

@@ -177,10 +177,10 @@ class Backend final : public detail::DetectorBackend {
     return {loss.item<double>(), l_hm.item<double>(), l_wh.item<double>(), l_off.item<double>(), l_seg.item<double>()};
   }
 
-  std::vector<CenterNetHeads> forward(const std::vector<float>& images, int n) const override {
+  std::vector<CenterNetHeads> forward(const std::vector<float>& images, int n, int width, int height) const override {
     torch::NoGradGuard no_grad;
     net_->eval();
-    const int64_t H = cfg_.input_height, W = cfg_.input_width;
+    const int64_t H = height, W = width;
     const auto x = torch::from_blob(const_cast<float*>(images.data()), {n, 3, H, W}, torch::kFloat);
     auto out = net_->forward(x);
     out[0] = torch::sigmoid(out[0]);
@@ -215,6 +215,7 @@ class Backend final : public detail::DetectorBackend {
     cfg_.mask_thresholds = c.mask_thresholds;
     cfg_.mask_upsampling = c.mask_upsampling;
     cfg_.flip_test = c.flip_test;
+    cfg_.mask_inputs = c.mask_inputs;
   }
 
   std::vector<detail::FoldedConv> folded_convs() const override {
@@ -296,14 +297,15 @@ class Backend final : public detail::DetectorBackend {
     }
   };
   // A key the archive lacks keeps its default only where a later version added it (a model
-  // written before mask_thresholds, mask_upsampling or flip_test existed); any other missing key is not a
+  // written before mask_thresholds, mask_upsampling, flip_test or mask_inputs existed); any other missing key is not a
   // cropsight model.
   struct GetMeta {
     torch::serialize::InputArchive& a;
     template <class T>
     void operator()(const char* k, T& f, const char*, const Range& = {}) {
       c10::IValue v;
-      if (std::string(k) == "mask_thresholds" || std::string(k) == "mask_upsampling" || std::string(k) == "flip_test") {
+      if (std::string(k) == "mask_thresholds" || std::string(k) == "mask_upsampling" || std::string(k) == "flip_test" ||
+          std::string(k) == "mask_inputs") {
         if (!a.try_read(std::string("meta.") + k, v)) return;
       } else {
         a.read(std::string("meta.") + k, v);
