@@ -1,5 +1,5 @@
 // cropsight calibrate-detector --model IN.pt (--coco ANN.json | --voc DIR) --images DIR
-//     [--classes a,b] [--val-split F --split-seed S] [--input WxH] [--mask-upsampling M] [--flip-test]
+//     [--classes a,b] [--val-split F --split-seed S] [--input WxH] [--mask-upsampling M] [--flip-test[=false]]
 //     [--mask-inputs WxH[,WxH...]|none]
 //     --out OUT.pt [--json]
 //
@@ -10,8 +10,8 @@
 // this verb brings models trained before that (the shipped ones) up to date. --input sets the
 // inference resolution first (the network is fully convolutional: the same weights at a larger
 // input give the stride-4 mask head finer cells), --mask-upsampling how the mask head is brought
-// back to pixels (default bilinear), --flip-test turns on the flip test (heads averaged with the
-// mirrored image's; otherwise the model's setting stays), --mask-inputs the multi-scale mask test
+// back to pixels (default bilinear), --flip-test[=false] turns the flip test on or off (heads averaged
+// with the mirrored image's; otherwise the model's setting stays), --mask-inputs the multi-scale mask test
 // (further inputs whose mask heads are averaged with the main one's; "none" clears it); the thresholds are then
 // calibrated for them. The weights are unchanged; export-detector carries the settings into the ONNX file.
 #include <cstdio>
@@ -30,7 +30,8 @@ void add_calibrate_detector(CLI::App& app) {
     std::string model, out, input, upsampling = "bilinear", mask_inputs;
     double val_split = 0;
     std::uint64_t split_seed = 1;
-    bool flip_test = false;
+    bool flip_test = false, mask_flip = true;
+    const CLI::Option* flip_given = nullptr;
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
@@ -45,11 +46,15 @@ void add_calibrate_detector(CLI::App& app) {
                   "Inference input WxH, multiples of 32 (default: the model's; a later training would use it too)");
   cmd->add_option("--mask-upsampling", o->upsampling, "bilinear | nearest: mask head cells to pixels")
       ->capture_default_str();
-  cmd->add_flag("--flip-test", o->flip_test,
-                "Average the heads with the mirrored image's (twice the inference time; default: the model's setting)");
+  o->flip_given = cmd->add_flag("--flip-test", o->flip_test,
+                                "Average the heads with the mirrored image's (twice the inference time); "
+                                "--flip-test=false turns it off (default: the model's setting)");
   cmd->add_option("--mask-inputs", o->mask_inputs,
                   "Multi-scale mask test: further inputs WxH[,WxH...] whose mask heads are averaged with the main "
                   "input's (boxes stay the main input's); none = off (default: the model's setting)");
+  cmd->add_flag("--mask-inputs-flip-test", o->mask_flip,
+                "With --mask-inputs: the extra passes use the flip test too when it is on (default true; =false: "
+                "one pass each)");
   cmd->add_option("--out", o->out, "Model file to write (.pt)")->required();
   add_json_flag(cmd, o->common);
   cmd->callback([o] {
@@ -60,8 +65,8 @@ void add_calibrate_detector(CLI::App& app) {
       net.set_input_size(w, h);
     }
     net.set_mask_upsampling(o->upsampling);
-    if (o->flip_test) net.set_flip_test(true);
-    if (!o->mask_inputs.empty()) net.set_mask_inputs(o->mask_inputs == "none" ? "" : o->mask_inputs);
+    if (o->flip_given->count() > 0) net.set_flip_test(o->flip_test);
+    if (!o->mask_inputs.empty()) net.set_mask_inputs(o->mask_inputs == "none" ? "" : o->mask_inputs, o->mask_flip);
     if (o->data.classes.empty())
       for (const auto& c : net.class_names()) o->data.classes += (o->data.classes.empty() ? "" : ",") + c;
     nn::DetectionDataset set = load_dataset(o->data);
@@ -79,6 +84,7 @@ void add_calibrate_detector(CLI::App& app) {
                   {"mask_upsampling", net.config().mask_upsampling},
                   {"flip_test", net.config().flip_test},
                   {"mask_inputs", net.config().mask_inputs},
+                  {"mask_inputs_flip_test", net.config().mask_passes_flip()},
                   {"mask_thresholds", rounded_thresholds(t)},
                   {"images", train.size()}});
     } else {

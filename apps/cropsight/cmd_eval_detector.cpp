@@ -78,6 +78,7 @@ void run(EvalDetectorOptions o) {
                 {"mask_upsampling", cfg.mask_upsampling},
                 {"flip_test", cfg.flip_test},
                 {"mask_inputs", cfg.mask_inputs},
+                {"mask_inputs_flip_test", cfg.mask_passes_flip()},
                 {"input", input},
                 {"ms_per_image", json_number(ms)},
                 {"classes", classes}});

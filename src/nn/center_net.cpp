@@ -156,9 +156,9 @@ std::vector<DetectorEpochLog> CenterNet::train(
 }
 
 namespace {
-// The heads of one blob letterboxed to w x h; with flip_test, the blob and its mirror in one batch.
-CenterNetHeads forward_one(const detail::DetectorBackend& backend, std::vector<float> blob, int w, int h) {
-  if (!backend.config().flip_test) return backend.forward(blob, 1, w, h).front();
+// The heads of one blob letterboxed to w x h; with `flip`, the blob and its mirror in one batch.
+CenterNetHeads forward_one(const detail::DetectorBackend& backend, std::vector<float> blob, int w, int h, bool flip) {
+  if (!flip) return backend.forward(blob, 1, w, h).front();
   const auto mirrored = mirrored_blob(blob, w, h);
   blob.insert(blob.end(), mirrored.begin(), mirrored.end());
   auto both = backend.forward(blob, 2, w, h);
@@ -171,9 +171,10 @@ CenterNetHeads CenterNet::heads(const ColorImage& image) const {
   if (image.empty()) throw Error("detector", "detect() needs a colour image");
   const CenterNetConfig& cfg = config();
   CenterNetHeads out = forward_one(*impl_->backend, center_blob(image, cfg.input_width, cfg.input_height, nullptr),
-                                   cfg.input_width, cfg.input_height);
+                                   cfg.input_width, cfg.input_height, cfg.flip_test);
   for (const auto& [w, h] : cfg.mask_input_sizes())
-    out.extra_masks.push_back(mask_pass(forward_one(*impl_->backend, center_blob(image, w, h, nullptr), w, h), w, h));
+    out.extra_masks.push_back(
+        mask_pass(forward_one(*impl_->backend, center_blob(image, w, h, nullptr), w, h, cfg.mask_passes_flip()), w, h));
   return out;
 }
 
@@ -182,7 +183,7 @@ std::vector<Detection2D> CenterNet::detect(const ColorImage& image) const {
   const CenterNetConfig& cfg = config();
   Letterbox lb;
   const auto h = forward_one(*impl_->backend, center_blob(image, cfg.input_width, cfg.input_height, &lb),
-                             cfg.input_width, cfg.input_height);
+                             cfg.input_width, cfg.input_height, cfg.flip_test);
   return decode_heads(h, lb, float(cfg.score_threshold), cfg.top_k);
 }
 
@@ -221,8 +222,11 @@ void CenterNet::set_flip_test(bool on) {
   change_inference(*impl_->backend, "flip test", [&](CenterNetConfig& c) { c.flip_test = on; });
 }
 
-void CenterNet::set_mask_inputs(const std::string& list) {
-  change_inference(*impl_->backend, "mask inputs", [&](CenterNetConfig& c) { c.mask_inputs = list; });
+void CenterNet::set_mask_inputs(const std::string& list, bool flip_test) {
+  change_inference(*impl_->backend, "mask inputs", [&](CenterNetConfig& c) {
+    c.mask_inputs = list;
+    c.mask_inputs_flip_test = flip_test;
+  });
 }
 
 void CenterNet::set_mask_upsampling(const std::string& mode) {

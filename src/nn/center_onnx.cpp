@@ -26,30 +26,39 @@ struct CenterNetOnnx::Impl {
   std::string where;
   CenterNetConfig cfg;
   cv::dnn::Net net;
+  // cfg.mask_input_sizes(), parsed once. The one network runs them all: OpenCV DNN reshapes it
+  // when the input size changes. A network per size (read from the same file) measured the same
+  // in bench_detector's OnnxMasks row (2026-12-05: 97-119 against 97-108 ms for 640x352 with the
+  // flip test + 768x448; the VM's noise is larger than any difference), so it is not kept.
+  std::vector<std::pair<int, int>> extra_sizes;
 
-  // One pass of a blob letterboxed to w x h (the graph is fully convolutional and its Resize
-  // nodes take scales, so OpenCV DNN reshapes it for another input size).
-  std::vector<cv::Mat> forward(const std::vector<float>& blob, int w, int h) {
+  // One pass of a blob letterboxed to w x h (the graph is fully convolutional and its Resize nodes
+  // take scales, so any multiple of 32 runs); mask_only computes the mask head alone.
+  std::vector<cv::Mat> forward(const std::vector<float>& blob, int w, int h, bool mask_only) {
     const int dims[4] = {1, 3, h, w};
     net.setInput(cv::Mat(4, dims, CV_32F, const_cast<float*>(blob.data())));
     std::vector<cv::Mat> outs;
     try {
-      net.forward(outs, kOutputs);
+      if (mask_only)
+        net.forward(outs, kOutputs.back());  // the other heads' layers are skipped
+      else
+        net.forward(outs, kOutputs);
     } catch (const cv::Exception& e) {
       throw Error(where, "forward pass failed: " + first_line(e));
     }
     return outs;
   }
 
-  CenterNetHeads heads(const std::vector<float>& blob, int w, int hgt) {
-    const auto outs = forward(blob, w, hgt);
+  // The heads of one pass; with mask_only (an extra mask pass) only the mask head, the others empty.
+  CenterNetHeads heads(const std::vector<float>& blob, int w, int hgt, bool mask_only = false) {
+    const auto outs = forward(blob, w, hgt, mask_only);
     CenterNetHeads h;
     h.classes = cfg.num_classes(), h.out_w = w / 4, h.out_h = hgt / 4;
     const std::size_t plane = std::size_t(h.out_w) * std::size_t(h.out_h);
     std::vector<float>* dst[4] = {&h.heatmap, &h.size, &h.offset, &h.mask};
     const std::size_t channels[4] = {std::size_t(h.classes), 2, 2, std::size_t(h.classes)};
-    for (int i = 0; i < 4; ++i) {
-      const cv::Mat& m = outs[std::size_t(i)];
+    for (int i = mask_only ? 3 : 0; i < 4; ++i) {
+      const cv::Mat& m = outs[std::size_t(mask_only ? 0 : i)];
       if (m.total() != channels[i] * plane || m.type() != CV_32F)
         throw Error(where, "output '" + kOutputs[std::size_t(i)] + "' has a foreign layout (expected [1, " +
                                std::to_string(channels[i]) + ", " + std::to_string(h.out_h) + ", " +
@@ -61,9 +70,9 @@ struct CenterNetOnnx::Impl {
 
   // The heads of a blob, averaged with those of its mirror when the model asks for the flip test
   // (the exported graph takes one image: two passes).
-  CenterNetHeads flip_tested(const std::vector<float>& blob, int w, int hgt) {
-    CenterNetHeads h = heads(blob, w, hgt);
-    if (cfg.flip_test) merge_mirrored_heads(h, heads(mirrored_blob(blob, w, hgt), w, hgt));
+  CenterNetHeads flip_tested(const std::vector<float>& blob, int w, int hgt, bool flip, bool mask_only = false) {
+    CenterNetHeads h = heads(blob, w, hgt, mask_only);
+    if (flip) merge_mirrored_heads(h, heads(mirrored_blob(blob, w, hgt), w, hgt, mask_only));
     return h;
   }
 };
@@ -80,6 +89,7 @@ CenterNetOnnx::CenterNetOnnx(const std::filesystem::path& path) : impl_(std::mak
   m.cfg.mask_upsampling = "nearest";  // what a model written before the key was calibrated for
   apply_config(m.cfg, map, m.where + ": metadata");
   m.cfg.validate(m.where + ": metadata");
+  m.extra_sizes = m.cfg.mask_input_sizes(m.where);
   for (const auto& o : kOutputs)
     if (std::find(info.outputs.begin(), info.outputs.end(), o) == info.outputs.end())
       throw Error(m.where, "has no output '" + o + "' (a foreign ONNX layout)");
@@ -106,10 +116,10 @@ CenterNetHeads CenterNetOnnx::heads(const ColorImage& image) {
   if (image.empty()) throw Error(impl_->where, "detect() needs a colour image");
   const CenterNetConfig& cfg = impl_->cfg;
   CenterNetHeads out = impl_->flip_tested(center_blob(image, cfg.input_width, cfg.input_height, nullptr),
-                                          cfg.input_width, cfg.input_height);
-  // Each extra input reshapes the network; the next main pass reshapes it back (measured in bench_detector).
-  for (const auto& [w, h] : cfg.mask_input_sizes())
-    out.extra_masks.push_back(mask_pass(impl_->flip_tested(center_blob(image, w, h, nullptr), w, h), w, h));
+                                          cfg.input_width, cfg.input_height, cfg.flip_test);
+  for (const auto& [w, h] : impl_->extra_sizes)
+    out.extra_masks.push_back(
+        mask_pass(impl_->flip_tested(center_blob(image, w, h, nullptr), w, h, cfg.mask_passes_flip(), true), w, h));
   return out;
 }
 
@@ -117,8 +127,8 @@ std::vector<Detection2D> CenterNetOnnx::detect(const ColorImage& image) {
   if (image.empty()) throw Error(impl_->where, "detect() needs a colour image");
   Letterbox lb;
   const auto blob = center_blob(image, impl_->cfg.input_width, impl_->cfg.input_height, &lb);
-  return decode_heads(impl_->flip_tested(blob, impl_->cfg.input_width, impl_->cfg.input_height), lb,
-                      float(impl_->cfg.score_threshold), impl_->cfg.top_k);
+  return decode_heads(impl_->flip_tested(blob, impl_->cfg.input_width, impl_->cfg.input_height, impl_->cfg.flip_test),
+                      lb, float(impl_->cfg.score_threshold), impl_->cfg.top_k);
 }
 
 std::vector<Detection2D> CenterNetOnnx::detect(const DetectorInput& in) {

@@ -152,7 +152,31 @@ TEST(DetectorCli, MaskThresholdsAreCalibratedOnTrainingImagesAndTravel) {
     EXPECT_EQ(j["mask_upsampling"], cal_model ? "bilinear" : "nearest") << m;
     EXPECT_EQ(j["flip_test"], !cal_model) << m;
   }
-  for (const char* bad : {" --input 90x90", " --input 96", " --mask-upsampling cubic"}) {
+  // The multi-scale mask test and turning the flip test off travel the same way.
+  const auto ms =
+      run_cli("calibrate-detector --model " + shell_quoted(t / "big.pt") + set +
+              " --val-split 0.25 --flip-test=false --mask-inputs 128x128 --mask-inputs-flip-test=false --out " +
+              shell_quoted(t / "ms.pt") + " --json");
+  ASSERT_EQ(ms.exit_code, 0) << ms.err;
+  EXPECT_EQ(nlohmann::json::parse(ms.out)["flip_test"], false);
+  EXPECT_EQ(nlohmann::json::parse(ms.out)["mask_inputs"], "128x128");
+  ASSERT_EQ(run_cli("export-detector --model " + shell_quoted(t / "ms.pt") + " --out " + shell_quoted(t / "ms.onnx"))
+                .exit_code,
+            0);
+  for (const char* m : {"ms.pt", "ms.onnx"}) {
+    const auto ev = run_cli("eval detector" + set + " --model " + shell_quoted(t / m) + " --val-split 0.25 --json");
+    ASSERT_EQ(ev.exit_code, 0) << ev.err;
+    const auto j = nlohmann::json::parse(ev.out);
+    EXPECT_EQ(j["mask_inputs"], "128x128") << m;
+    EXPECT_EQ(j["flip_test"], false) << m;
+    EXPECT_EQ(j["mask_inputs_flip_test"], false) << m;
+  }
+  const auto cleared = run_cli("calibrate-detector --model " + shell_quoted(t / "ms.pt") + set +
+                               " --val-split 0.25 --mask-inputs none --out " + shell_quoted(t / "one.pt") + " --json");
+  ASSERT_EQ(cleared.exit_code, 0) << cleared.err;
+  EXPECT_EQ(nlohmann::json::parse(cleared.out)["mask_inputs"], "");
+  for (const char* bad : {" --input 90x90", " --input 96", " --mask-upsampling cubic", " --mask-inputs 100x96",
+                          " --mask-inputs 128x128,big"}) {
     const auto r = run_cli("calibrate-detector --model " + shell_quoted(t / "det.pt") + set + bad + " --out " +
                            shell_quoted(t / "bad.pt"));
     EXPECT_EQ(r.exit_code, 2) << bad;

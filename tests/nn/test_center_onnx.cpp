@@ -128,6 +128,24 @@ TEST(CenterNetOnnx, OpenCvDnnGivesTheBoxesOfLibtorch) {
   const auto again = ms_onnx.heads(im);
   for (std::size_t i = 0; i < again.heatmap.size(); ++i) EXPECT_NEAR(again.heatmap[i], fb.heatmap[i], 1e-5f);
   EXPECT_THROW(net.set_mask_inputs("100x96"), Error);
+
+  // The extra passes without the flip test (mask_inputs_flip_test false): one pass each, still
+  // the same in both backends, and no longer the flip-averaged scores.
+  net.set_mask_inputs("128x96", false);
+  net.export_onnx(t / "ms1.onnx");
+  CenterNetOnnx ms1_onnx(t / "ms1.onnx");
+  EXPECT_FALSE(ms1_onnx.config().mask_inputs_flip_test);
+  EXPECT_TRUE(ms1_onnx.config().flip_test);
+  const auto na = net.heads(im), nb = ms1_onnx.heads(im);
+  ASSERT_EQ(na.extra_masks.size(), 1u);
+  ASSERT_EQ(nb.extra_masks.size(), 1u);
+  float one_worst = 0, one_changed = 0;
+  for (std::size_t i = 0; i < na.extra_masks[0].mask.size(); ++i) {
+    one_worst = std::max(one_worst, std::abs(na.extra_masks[0].mask[i] - nb.extra_masks[0].mask[i]));
+    one_changed = std::max(one_changed, std::abs(na.extra_masks[0].mask[i] - ma.extra_masks[0].mask[i]));
+  }
+  EXPECT_LT(one_worst, 1e-4f);
+  EXPECT_GT(one_changed, 1e-3f);
 }
 
 TEST(CenterNetOnnx, ForeignFilesAreNamed) {

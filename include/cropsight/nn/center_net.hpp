@@ -79,6 +79,9 @@ struct CenterNetConfig {
   /// while the boxes stay at the size the model was trained for. Empty: one input (models
   /// written before the key load with it empty).
   std::string mask_inputs;
+  /// Whether the mask_inputs passes use the flip test too (when flip_test is on): off halves
+  /// their cost. Models written before the key load with true.
+  bool mask_inputs_flip_test = true;
 
   template <class V>
   void visit(V& v) {
@@ -108,6 +111,8 @@ struct CenterNetConfig {
     v("mask_inputs", mask_inputs,
       "further inference inputs for the mask head, comma-separated WxH (multiples of 32); mask scores averaged "
       "over them and the main input (multi-scale test); empty: none");
+    v("mask_inputs_flip_test", mask_inputs_flip_test,
+      "bool; the mask_inputs passes use the flip test too when flip_test is on (false: one pass each)");
   }
   /// The Ranges above, at least one class name, mask_thresholds empty or one number in (0, 1)
   /// per class, mask_upsampling bilinear or nearest. Throws Error(where).
@@ -116,6 +121,8 @@ struct CenterNetConfig {
   std::vector<float> mask_threshold_values(const std::string& where = "detector") const;
   /// mask_inputs as (width, height) pairs, each a multiple of 32 in [32, 4096]. Throws Error like validate().
   std::vector<std::pair<int, int>> mask_input_sizes(const std::string& where = "detector") const;
+  /// Whether the mask_inputs passes run with the flip test.
+  bool mask_passes_flip() const { return flip_test && mask_inputs_flip_test; }
   /// class_names split at commas, spaces trimmed.
   std::vector<std::string> names() const;
   int num_classes() const { return int(names().size()); }
@@ -201,8 +208,9 @@ class CenterNet final : public Detector2D {
   void set_mask_upsampling(const std::string& mode);
   /// Replaces config().flip_test.
   void set_flip_test(bool on);
-  /// Replaces config().mask_inputs ("" for none). Throws Error on a malformed list.
-  void set_mask_inputs(const std::string& list);
+  /// Replaces config().mask_inputs ("" for none) and mask_inputs_flip_test. Throws Error on a
+  /// malformed list.
+  void set_mask_inputs(const std::string& list, bool flip_test = true);
 
   /// Weights and configuration in one libtorch archive (written atomically).
   void save(const std::filesystem::path& path) const;

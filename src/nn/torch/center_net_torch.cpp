@@ -216,6 +216,7 @@ class Backend final : public detail::DetectorBackend {
     cfg_.mask_upsampling = c.mask_upsampling;
     cfg_.flip_test = c.flip_test;
     cfg_.mask_inputs = c.mask_inputs;
+    cfg_.mask_inputs_flip_test = c.mask_inputs_flip_test;
   }
 
   std::vector<detail::FoldedConv> folded_convs() const override {
@@ -305,7 +306,7 @@ class Backend final : public detail::DetectorBackend {
     void operator()(const char* k, T& f, const char*, const Range& = {}) {
       c10::IValue v;
       if (std::string(k) == "mask_thresholds" || std::string(k) == "mask_upsampling" || std::string(k) == "flip_test" ||
-          std::string(k) == "mask_inputs") {
+          std::string(k) == "mask_inputs" || std::string(k) == "mask_inputs_flip_test") {
         if (!a.try_read(std::string("meta.") + k, v)) return;
       } else {
         a.read(std::string("meta.") + k, v);
