@@ -75,8 +75,9 @@ TEST(BroccoliHeadline, ShippedOesUkModelOnTheDocumentedTestPass) {
 
 // broccoli-heads.md, "Generalisation": the shipped general model on one of its held-out randomised
 // fields (`simulate broccoli --variety random --seed 7103 --frames 30`; no model was trained or
-// tuned on it): kappa 0.954, AP50 0.874 over every labelled head, 0.952 on visible heads, mAP50:95
-// 0.868 (the model of 2026-12-04, one OES pass and no head completion: 0.966 / 0.866 / 0.943 / 0.714;
+// tuned on it): kappa 0.953, AP50 0.880 over every labelled head, 0.958 on visible heads, mAP50:95
+// 0.871 (the morning model of 2026-12-05, PCL's normals rule, C = 2, margin 0.4: 0.954 / 0.874 /
+// 0.952 / 0.868; the model of 2026-12-04, one OES pass and no head completion: 0.966 / 0.866 / 0.943 / 0.714;
 // before the 6.5 mm tolerance: 0.913 / 0.785 / 0.855 / 0.376).
 TEST(BroccoliHeadline, ShippedOesGeneralModelOnAHeldOutRandomisedField) {
   cropsight::testing::TempDir tmp;
@@ -90,8 +91,8 @@ TEST(BroccoliHeadline, ShippedOesGeneralModelOnAHeldOutRandomisedField) {
   for (int i = 0; i < reader.size(); ++i) detection.add_frame(reader.read(i));
   const auto d = detection.result();
   EXPECT_EQ(d.frames, 30);
-  EXPECT_NEAR(d.confusion.kappa(), 0.954, 0.0006);
-  EXPECT_NEAR(d.ap50, 0.874, 0.0006);
-  EXPECT_NEAR(d.ap50_visible, 0.952, 0.0006);
-  EXPECT_NEAR(d.map50_95, 0.868, 0.0006);
+  EXPECT_NEAR(d.confusion.kappa(), 0.9531, 0.00006);
+  EXPECT_NEAR(d.ap50, 0.8795, 0.00006);
+  EXPECT_NEAR(d.ap50_visible, 0.9582, 0.00006);
+  EXPECT_NEAR(d.map50_95, 0.8709, 0.00006);
 }
