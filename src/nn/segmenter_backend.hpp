@@ -41,7 +41,7 @@ class SegmenterBackend {
 // 2: PointNetConfig::lovasz_weight; 3: the detector; 4: CenterNetConfig::mask_thresholds and
 // DetectorBackend::set_mask_thresholds; 5: CenterNetConfig::mask_upsampling and flip_test,
 // DetectorBackend::set_inference in place of set_mask_thresholds; 6: CenterNetConfig::mask_inputs,
-// DetectorBackend::forward at any input size.
+// mask_inputs_flip_test and mask_dice_weight, DetectorBackend::forward at any input size.
 inline constexpr int kBackendApiVersion = 6;
 
 struct BackendApi {

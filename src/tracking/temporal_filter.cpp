@@ -173,6 +173,11 @@ void TemporalFilter::associate_detections(Step& s) const {
   Score best = score_of(s.assoc, s.det, tracked_, shift);
   const std::size_t possible = std::min(s.det.size(), tracked_.size());
   if (std::size_t(best.n) >= possible) return;
+  // Once the velocity is known, a vote needs motion_search_min_pairs pairs: with one detection
+  // (often a false one) some shift within the radius always pairs it with some head, and that
+  // jump, taken into the velocity, derails every later frame (a spain pass: 0.25 m at frame 18).
+  const int needed = has_velocity_ ? cfg_.motion_search_min_pairs : 1;
+  if (int(possible) < needed) return;
   s.out.motion_searched = true;
   const double r2 = cfg_.motion_search_radius_m * cfg_.motion_search_radius_m;
   bool searched = false;
@@ -184,6 +189,7 @@ void TemporalFilter::associate_detections(Step& s) const {
       const Score sc = score_of(a, s.det, tracked_, shift_try);
       // Strictly more pairs than the prediction explains; among shifts with as many pairs the
       // smallest residual wins.
+      if (sc.n < needed) continue;
       if (sc.n > best.n || (searched && sc.n == best.n && sc.residual < best.residual)) {
         searched = true;
         best = sc;
@@ -207,7 +213,10 @@ void TemporalFilter::correct_camera(Step& s) {
   } else {
     x_c_ = n_assoc ? Eigen::Vector3d(s.x_pred + delta / double(n_assoc)) : s.x_pred;
   }
-  if (s.steps > 0 && (n_assoc > 0 || cfg_.use_poses)) v_c_ = (x_c_ - s.x_prev) / double(s.steps);
+  if (s.steps > 0 && (n_assoc > 0 || cfg_.use_poses)) {
+    v_c_ = (x_c_ - s.x_prev) / double(s.steps);
+    has_velocity_ = true;
+  }
   s.out.associated = n_assoc;
 }
 

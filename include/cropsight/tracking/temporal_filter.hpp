@@ -68,6 +68,7 @@ struct TemporalFilterConfig {
   bool anchor_first_pose = true;
   bool motion_search = true;
   double motion_search_radius_m = 0.30;
+  int motion_search_min_pairs = 2;
   std::vector<double> initial_velocity = {0.0, 0.0, 0.0};
   std::string camera_to_field = "y,x,-z";
   int border_margin_px = 2;
@@ -106,6 +107,10 @@ struct TemporalFilterConfig {
       "bool; when the predicted camera motion associates nothing, vote for the shift that does (extension)");
     v("motion_search_radius_m", motion_search_radius_m, "m; largest camera shift per frame the vote considers",
       Range::at_least(0));
+    v("motion_search_min_pairs", motion_search_min_pairs,
+      "pairs; once the camera velocity has been estimated, a voted shift must explain at least this many "
+      "detection-head pairs (one false detection can always be paired with some head; 1 = any vote, as before)",
+      Range::at_least(1));
     v("initial_velocity", initial_velocity, "m/frame, field frame [x, y, z]; v_c before the first estimate (0)");
     v("camera_to_field", camera_to_field,
       "axes; field X,Y,Z as signed camera axes (camera looks straight down; simulator: y,x,-z)");
@@ -239,6 +244,7 @@ class TemporalFilter {
   int first_frame_ = -1, last_frame_ = -1;
   int next_id_ = 1;
   bool started_ = false, finished_ = false;
+  bool has_velocity_ = false;  // v_c_ has been estimated from associated pairs (or poses)
 };
 
 }  // namespace cropsight::tracking

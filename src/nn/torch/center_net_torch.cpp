@@ -170,6 +170,13 @@ class Backend final : public detail::DetectorBackend {
                                               F::BinaryCrossEntropyWithLogitsFuncOptions().reduction(torch::kNone))
               .mean({1, 2, 3});
       l_seg = (bce * present).sum() / present.sum().clamp_min(1);
+      if (cfg_.mask_dice_weight > 0) {  // soft Dice per class over the masked images of the batch
+        const auto p = torch::sigmoid(out[3]) * present.view({n, 1, 1, 1});
+        const auto target = t(b.mask, {n, C, oh, ow}) * present.view({n, 1, 1, 1});
+        const auto inter = (p * target).sum({0, 2, 3});
+        const auto dice = 1 - (2 * inter + 1) / (p.sum({0, 2, 3}) + target.sum({0, 2, 3}) + 1);
+        l_seg = l_seg + cfg_.mask_dice_weight * dice.mean();
+      }
     }
     const auto loss = l_hm + cfg_.size_weight * l_wh + cfg_.offset_weight * l_off + cfg_.mask_weight * l_seg;
     loss.backward();
@@ -298,15 +305,16 @@ class Backend final : public detail::DetectorBackend {
     }
   };
   // A key the archive lacks keeps its default only where a later version added it (a model
-  // written before mask_thresholds, mask_upsampling, flip_test or mask_inputs existed); any other missing key is not a
-  // cropsight model.
+  // written before mask_thresholds, mask_upsampling, flip_test, mask_inputs or mask_dice_weight existed); any other
+  // missing key is not a cropsight model.
   struct GetMeta {
     torch::serialize::InputArchive& a;
     template <class T>
     void operator()(const char* k, T& f, const char*, const Range& = {}) {
       c10::IValue v;
       if (std::string(k) == "mask_thresholds" || std::string(k) == "mask_upsampling" || std::string(k) == "flip_test" ||
-          std::string(k) == "mask_inputs" || std::string(k) == "mask_inputs_flip_test") {
+          std::string(k) == "mask_inputs" || std::string(k) == "mask_inputs_flip_test" ||
+          std::string(k) == "mask_dice_weight") {
         if (!a.try_read(std::string("meta.") + k, v)) return;
       } else {
         a.read(std::string("meta.") + k, v);
