@@ -154,6 +154,24 @@ TEST(CenterNet, OverfitsThreeTinyImages) {
   EXPECT_LT(h.mask[std::size_t(h.out_w * 14 + 1)], 0.5f);
 }
 
+// mask_dice_weight adds a soft Dice term, per class over the batch, to the mask loss: with the
+// same weights and batches the first epoch's mask loss rises by the Dice value, which lies in (0, 1]
+// (the untrained masks barely overlap their classes' pixels).
+TEST(CenterNet, DiceTermAddsToTheMaskLoss) {
+  const auto set = tiny_set();
+  auto cfg = tiny_config();
+  cfg.epochs = 1;
+  std::vector<double> mask_loss;
+  for (double w : {0.0, 1.0}) {
+    cfg.mask_dice_weight = w;
+    CenterNet net(cfg);
+    net.train(set, {}, {}, [&](const DetectorEpochLog& l) { mask_loss.push_back(l.mask_loss); });
+  }
+  ASSERT_EQ(mask_loss.size(), 2u);
+  EXPECT_GT(mask_loss[1] - mask_loss[0], 0.3);
+  EXPECT_LE(mask_loss[1] - mask_loss[0], 1.0);
+}
+
 TEST(CenterNet, SaveLoadGivesIdenticalBoxes) {
   const auto set = tiny_set();
   auto cfg = tiny_config();
