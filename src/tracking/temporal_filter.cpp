@@ -75,6 +75,7 @@ TrackedHead TemporalFilter::new_head(int frame, const Eigen::Vector3d& p) {
   h.score = cfg_.initial_score;
   h.first_frame = h.last_frame = frame;
   h.position = p;
+  if (!has_velocity_) births_.push_back({h.id, frame, x_c_});
   return h;
 }
 
@@ -147,7 +148,7 @@ void TemporalFilter::predict_camera(const std::optional<Eigen::Vector3d>& camera
   } else {
     s.x_pred = x_c_ + double(s.steps) * v_c_;
   }
-  if (!started_) first_frame_ = s.frame;
+  if (!started_) first_frame_ = s.frame, x_first_ = s.x_pred;
   started_ = true;
   last_frame_ = s.frame;
 }
@@ -214,10 +215,51 @@ void TemporalFilter::correct_camera(Step& s) {
     x_c_ = n_assoc ? Eigen::Vector3d(s.x_pred + delta / double(n_assoc)) : s.x_pred;
   }
   if (s.steps > 0 && (n_assoc > 0 || cfg_.use_poses)) {
-    v_c_ = (x_c_ - s.x_prev) / double(s.steps);
+    if (!has_velocity_ && !cfg_.use_poses && cfg_.startup_constant_velocity)
+      start_constant_velocity(s);
+    else
+      v_c_ = (x_c_ - s.x_prev) / double(s.steps);
     has_velocity_ = true;
+    births_.clear();
   }
   s.out.associated = n_assoc;
+}
+
+// 4. at the first association (startup_constant_velocity). Until now the camera estimate did not
+// move unless a detection was associated, and none was: every head was placed once, at its birth
+// frame j, with the camera estimate of that frame. A pair (detection now, head born at j) says how
+// far the camera travelled from j to now: (head position - detection offset) - camera(j). Divided
+// by the frames between, that is the velocity; pairs are averaged. Constant velocity from the first
+// frame then gives the camera now and at every birth frame, and each head born after the first
+// frame moves by the difference to the camera it was placed with. Without this, a first head seen
+// only cut by the border, then another head, left the whole map one frame's travel behind (a spain
+// validation pass: 4 cm, at the edge of the 5 cm map match); a gap of empty frames made the velocity
+// the whole gap's travel in one frame.
+void TemporalFilter::start_constant_velocity(Step& s) {
+  auto birth_of = [&](int id) -> const Birth* {
+    for (const auto& b : births_)
+      if (b.id == id) return &b;
+    return nullptr;
+  };
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  int n = 0;
+  for (std::size_t k = 0; k < s.det.size(); ++k) {
+    if (s.assoc[k] < 0) continue;
+    const TrackedHead& h = tracked_[std::size_t(s.assoc[k])];
+    const Birth* b = birth_of(h.id);
+    if (h.whole_frames() == 0 || b == nullptr || b->frame >= s.frame) continue;
+    v += (h.position - s.rel[k] - b->camera) / double(s.frame - b->frame);
+    ++n;
+  }
+  if (n == 0) {  // only heads placed by partial views: the plain estimate
+    v_c_ = (x_c_ - s.x_prev) / double(s.steps);
+    return;
+  }
+  v_c_ = v / double(n);
+  x_c_ = x_first_ + double(s.frame - first_frame_) * v_c_;
+  for (auto* set : {&tracked_, &mapped_})
+    for (auto& h : *set)
+      if (const Birth* b = birth_of(h.id)) h.position += x_first_ + double(b->frame - first_frame_) * v_c_ - b->camera;
 }
 
 // 5. Score and running averages of associated heads; unassociated detections start heads.

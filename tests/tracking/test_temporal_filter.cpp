@@ -153,6 +153,40 @@ TEST(TemporalFilter, OneFalseDetectionDoesNotMoveAKnownCamera) {
   }
 }
 
+// startup_constant_velocity: the camera estimate cannot move before a first association. A head
+// first seen in frame 1 (frame 0 empty) is placed with frame 0's camera, one frame's travel behind;
+// its association in frame 2 then gives the velocity, and constant velocity from frame 0 puts the
+// camera and that head back where they are. Off, the whole map stays 4 cm behind. A gap of empty
+// frames after the first head: the velocity is the gap's travel divided by its frames, not put
+// into one frame.
+TEST(TemporalFilter, FirstAssociationRePlacesHeadsPlacedBeforeIt) {
+  const Scene s = row(4);
+  for (bool startup : {true, false}) {
+    TemporalFilterConfig cfg;
+    cfg.startup_constant_velocity = startup;
+    TemporalFilter tf(cfg);
+    const auto map = run(tf, s, 40, [&](int f) { return f == 0 ? std::vector<int>{0, 1, 2, 3} : std::vector<int>{}; });
+    ASSERT_EQ(map.size(), s.heads.size()) << startup;
+    for (int i : match(s, map, 1e-3)) {
+      if (startup)
+        EXPECT_GE(i, 0);
+      else
+        EXPECT_LT(i, 0);  // 4 cm behind
+    }
+  }
+  // Head 0 seen in frame 0, nothing in frames 1-2 (a gap shorter than max_missed_frames), seen
+  // again in frame 3 (the vote finds the 12 cm shift, before any velocity is known): the velocity
+  // is 4 cm a frame (off: 12 cm, the gap's travel in one frame).
+  Scene one;
+  one.heads = {{{0.1, 0.0, 0.1}, 100.0}};
+  TemporalFilter tf;
+  std::mt19937 rng(1);
+  for (int f = 0; f <= 3; ++f)
+    tf.update(f, (f == 0 || f == 3) ? one.frame(f, rng) : std::vector<HeadObservation>{}, one.camera(f));
+  EXPECT_NEAR(tf.camera_velocity().x(), 0.04, 1e-6);
+  EXPECT_NEAR((tf.camera_position() - one.camera(3)).norm(), 0.0, 1e-6);
+}
+
 TEST(TemporalFilter, ShortDropoutsKeepOneHeadLongOnesSplitIt) {
   Scene s = row(3);
   {

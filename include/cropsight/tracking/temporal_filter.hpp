@@ -69,6 +69,7 @@ struct TemporalFilterConfig {
   bool motion_search = true;
   double motion_search_radius_m = 0.30;
   int motion_search_min_pairs = 2;
+  bool startup_constant_velocity = true;
   std::vector<double> initial_velocity = {0.0, 0.0, 0.0};
   std::string camera_to_field = "y,x,-z";
   int border_margin_px = 2;
@@ -111,6 +112,10 @@ struct TemporalFilterConfig {
       "pairs; once the camera velocity has been estimated, a voted shift must explain at least this many "
       "detection-head pairs (one false detection can always be paired with some head; 1 = any vote, as before)",
       Range::at_least(1));
+    v("startup_constant_velocity", startup_constant_velocity,
+      "bool; the first association after the start sets the velocity from the frames since each head was "
+      "placed and re-places the heads placed meanwhile, as a constant velocity from the first frame implies "
+      "(extension; false: from the last frame only, and heads placed before it keep the camera that did not move)");
     v("initial_velocity", initial_velocity, "m/frame, field frame [x, y, z]; v_c before the first estimate (0)");
     v("camera_to_field", camera_to_field,
       "axes; field X,Y,Z as signed camera axes (camera looks straight down; simulator: y,x,-z)");
@@ -245,6 +250,15 @@ class TemporalFilter {
   int next_id_ = 1;
   bool started_ = false, finished_ = false;
   bool has_velocity_ = false;  // v_c_ has been estimated from associated pairs (or poses)
+  // Until then (startup_constant_velocity): the first frame's camera, and where and with which
+  // camera estimate each head was placed (a head is seen only once before the first association).
+  struct Birth {
+    int id = 0, frame = 0;
+    Eigen::Vector3d camera = Eigen::Vector3d::Zero();
+  };
+  Eigen::Vector3d x_first_ = Eigen::Vector3d::Zero();
+  std::vector<Birth> births_;
+  void start_constant_velocity(Step& s);  ///< 4. at the first association (startup_constant_velocity)
 };
 
 }  // namespace cropsight::tracking
