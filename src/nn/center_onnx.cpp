@@ -28,8 +28,9 @@ struct CenterNetOnnx::Impl {
   cv::dnn::Net net;
   // cfg.mask_input_sizes(), parsed once. The one network runs them all: OpenCV DNN reshapes it
   // when the input size changes. A network per size (read from the same file) measured the same
-  // in bench_detector's OnnxMasks row (2026-12-05: 97-119 against 97-108 ms for 640x352 with the
-  // flip test + 768x448; the VM's noise is larger than any difference), so it is not kept.
+  // in bench_detector's OnnxMasks row (2026-12-05, 640x352 with the flip test + unflipped 768x448,
+  // two runs each: 99.6-119 ms with a network per size against 97.4-108 ms with one; the VM's
+  // noise is larger than any difference), so it is not kept.
   std::vector<std::pair<int, int>> extra_sizes;
 
   // One pass of a blob letterboxed to w x h (the graph is fully convolutional and its Resize nodes

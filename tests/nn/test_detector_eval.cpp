@@ -51,6 +51,18 @@ TEST(DetectorEvaluator, ImagesWithoutMasksCountForBoxesOnly) {
   EXPECT_TRUE(std::isnan(r.classes[0].iou));
 }
 
+// The pixels set in `m`, each expected inside [u0, u1) x [v0, v1).
+int pixels_on_all_inside(const GrayImage& m, int u0, int u1, int v0, int v1) {
+  int on = 0;
+  for (int v = 0; v < m.height; ++v)
+    for (int u = 0; u < m.width; ++u)
+      if (m.at(u, v)) {
+        ++on;
+        EXPECT_TRUE(u >= u0 && u < u1 && v >= v0 && v < v1) << u << "," << v;
+      }
+  return on;
+}
+
 TEST(DetectorEvaluator, MaskHeadMapsBackThroughTheLetterbox) {
   nn::CenterNetConfig cfg;
   cfg.input_width = 32, cfg.input_height = 32;
@@ -62,14 +74,7 @@ TEST(DetectorEvaluator, MaskHeadMapsBackThroughTheLetterbox) {
   // A 64x64 image is scaled by 1/2: the cell covers image pixels x 8..15, y 16..23.
   const auto m = nn::masks_from_heads(h, cfg, 64, 64, 0.5f);
   ASSERT_EQ(m.size(), 1u);
-  int on = 0;
-  for (int v = 0; v < 64; ++v)
-    for (int u = 0; u < 64; ++u)
-      if (m[0].at(u, v)) {
-        ++on;
-        EXPECT_TRUE(u >= 8 && u < 16 && v >= 16 && v < 24) << u << "," << v;
-      }
-  EXPECT_EQ(on, 64);
+  EXPECT_EQ(pixels_on_all_inside(m[0], 8, 16, 16, 24), 64);
 }
 
 // Multi-scale mask test: a pixel's score is the mean of the main head's and each extra pass's,
@@ -89,14 +94,7 @@ TEST(DetectorEvaluator, ExtraMaskPassesAreAveragedThroughTheirOwnLetterbox) {
   h.extra_masks.push_back(p);
   // 64x64 image: the main head's cells cover 8x8 pixels, the extra pass's 4x4.
   const auto m = nn::masks_from_heads(h, cfg, 64, 64, 0.55f);  // (0.2 + 1.0) / 2 = 0.6 only in that cell
-  int on = 0;
-  for (int v = 0; v < 64; ++v)
-    for (int u = 0; u < 64; ++u)
-      if (m[0].at(u, v)) {
-        ++on;
-        EXPECT_TRUE(u >= 12 && u < 16 && v >= 20 && v < 24) << u << "," << v;
-      }
-  EXPECT_EQ(on, 16);
+  EXPECT_EQ(pixels_on_all_inside(m[0], 12, 16, 20, 24), 16);
   EXPECT_EQ(nn::masks_from_heads(h, cfg, 64, 64, 0.65f)[0].data, std::vector<std::uint8_t>(64 * 64, 0));
   // Calibration bins the averaged scores: truth = exactly that 4x4 block, so the best threshold
   // lies in (0.2, 0.6] and gives IoU 1; the one nearest 0.5 of those is 0.5.
