@@ -12,7 +12,8 @@
 // many are broken or too small ("split / small"); the same for heads not cut by the image border
 // with at least `min_size` visible points ("clear"), and for the heads with >= 300 visible points
 // (the `ap50_visible` rule): found, merged, in pieces whose union would reach IoU 0.5, or neither
-// (CROPSIGHT_SEG_VERBOSE=1 lists those with their edge-labelled pixels). CROPSIGHT_SEG_MODEL=FILE
+// (CROPSIGHT_SEG_VERBOSE=1 lists those with their edge-labelled pixels; CROPSIGHT_SEG_LIST=1 lists
+// every such head with its outcome and best IoU, to compare two settings head by head). CROPSIGHT_SEG_MODEL=FILE
 // also classifies the clusters and lists the misclassified ones. CROPSIGHT_SEG_DUMP=DIR writes three
 // frames (from CROPSIGHT_SEG_DUMP_FROM, default 1) as PNG: depth (turbo), cluster borders black,
 // head outlines white, merged heads' and false positives' clusters magenta, with enlarged crops.
@@ -201,6 +202,12 @@ int probe() {
             }
           }
         }
+        if (std::getenv("CROPSIGHT_SEG_LIST") && t.indices.size() >= 300)
+          std::printf("HEAD %s %ld %d %s %.2f\n", dir.c_str(), frames, t.id,
+                      ok      ? "found"
+                      : merge ? "merged"
+                              : "other",
+                      best_iou);
         ++all;
         found += ok;
         merged += merge;

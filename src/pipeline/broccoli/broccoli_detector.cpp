@@ -6,6 +6,7 @@
 
 #include "core/cpu_dispatch.hpp"
 #include "cropsight/core/error.hpp"
+#include "cropsight/geometry/concave_creases.hpp"
 #include "cropsight/geometry/depth_filter.hpp"  // valid_indices
 #include "cropsight/geometry/integral_normals.hpp"
 #include "cropsight/geometry/organized_edges.hpp"
@@ -221,35 +222,110 @@ std::span<const BroccoliCandidate> BroccoliDetector::process(const RgbdFrame& fr
       // The organised clusterings return ascending indices already; FEC's are sorted here.
       if (!std::is_sorted(c.segment.indices.begin(), c.segment.indices.end()))
         std::sort(c.segment.indices.begin(), c.segment.indices.end());
-      feature_set_.compute(cloud_, c.segment.indices, cfg_.feature_options, c.features);
-      c.normal_points = -1;  // not counted unless detection.min_normal_points asks for it
-      c.described = true;
-      if (cfg_.detection.min_normal_points > 0) {
-        int with_normal = 0;
-        for (int i : c.segment.indices) with_normal += std::isfinite(cloud_.nx[std::size_t(i)]) ? 1 : 0;
-        c.normal_points = with_normal;
-        c.described = with_normal >= cfg_.detection.min_normal_points;
-      }
+      describe(c);
     }
   }
   {
     auto t = timer_.scope("classify");
-    const float threshold = model_ ? model_->threshold() + cfg_.detection.score_margin : 0.0f;
-    for (std::size_t k = 0; k < count_; ++k) {
-      BroccoliCandidate& c = candidates_[k];
-      // A cluster without normals has an all-zero VFH, the same vector for every such sliver: an
-      // RBF SVM answers it with whatever its nearest support vector says (measured: 1.0, a head).
-      if (!c.described) {
-        c.score = -std::numeric_limits<float>::max();
-        c.head = false;
-        continue;
-      }
-      c.score = model_ ? model_->score(c.features, scratch_) : 0.0f;
-      c.head = model_ && c.score > threshold;
-    }
+    const float threshold = head_threshold();
+    for (std::size_t k = 0; k < count_; ++k) classify(candidates_[k], threshold);
   }
+  if (cfg_.detection.split_concave_angle_deg > 0.0f && model_ && cfg_.pipeline == BroccoliVariant::oes)
+    split_rejected();
   if (cfg_.detection.grow_tolerance > 0.0f) complete_heads();
   return {candidates_.data(), count_};
+}
+
+void BroccoliDetector::describe(BroccoliCandidate& c) {
+  feature_set_.compute(cloud_, c.segment.indices, cfg_.feature_options, c.features);
+  c.normal_points = -1;  // not counted unless detection.min_normal_points asks for it
+  c.described = true;
+  if (cfg_.detection.min_normal_points > 0) {
+    int with_normal = 0;
+    for (int i : c.segment.indices) with_normal += std::isfinite(cloud_.nx[std::size_t(i)]) ? 1 : 0;
+    c.normal_points = with_normal;
+    c.described = with_normal >= cfg_.detection.min_normal_points;
+  }
+}
+
+float BroccoliDetector::head_threshold() const {
+  return model_ ? model_->threshold() + cfg_.detection.score_margin : 0.0f;
+}
+
+void BroccoliDetector::classify(BroccoliCandidate& c, float threshold) {
+  // A cluster without normals has an all-zero VFH, the same vector for every such sliver: an
+  // RBF SVM answers it with whatever its nearest support vector says (measured: 1.0, a head).
+  if (!c.described) {
+    c.score = -std::numeric_limits<float>::max();
+    c.head = false;
+    return;
+  }
+  c.score = model_ ? model_->score(c.features, scratch_) : 0.0f;
+  c.head = model_ && c.score > threshold;
+}
+
+void BroccoliDetector::split_rejected() {
+  auto t = timer_.scope("split");
+  split_targets_.clear();
+  segment_ptrs_.clear();
+  crease_marks_.assign(cloud_.size(), 0);
+  const BroccoliDetectionConfig& dc = cfg_.detection;
+  const geometry::ConcaveCreaseOptions creases{dc.split_concave_angle_deg, dc.split_concave_step};
+  for (std::size_t k = 0; k < count_; ++k) {
+    segment_ptrs_.push_back(&candidates_[k].segment);
+    const BroccoliCandidate& c = candidates_[k];
+    if (c.head || !c.described || int(c.segment.size()) < dc.split_min_points) continue;
+    split_targets_.push_back(int(k));
+    geometry::mark_concave_creases(cloud_, candidates_[k].segment.indices, creases, crease_marks_);
+  }
+  if (split_targets_.empty()) return;
+  std::vector<segmentation::SplitPiece> split =
+      segmentation::split_segments(cloud_, segment_ptrs_, split_targets_, crease_marks_, oes_frame_.distance_tolerance,
+                                   oes_frame_.min_size, oes_frame_.max_size, split_ws_);
+  // Classify the pieces; a cluster is replaced by its pieces when one of them is a head. A piece
+  // that keeps most of its cluster (all of it: no crease) is that cluster again, which is no head:
+  // it is not classified (saves most of the stage's time).
+  const float threshold = head_threshold() + dc.split_score_margin;
+  if (pieces_.size() < split.size()) pieces_.resize(split.size());
+  std::vector<char>& replace = split_replace_;
+  replace.assign(count_, 0);
+  split_scored_.assign(split.size(), 0);
+  for (std::size_t i = 0; i < split.size(); ++i) {
+    BroccoliCandidate& piece = pieces_[i];
+    const std::size_t parent = std::size_t(split[i].parent);
+    std::swap(piece.segment, split[i].segment);
+    if (double(piece.segment.size()) > double(dc.split_max_piece_fraction) * double(candidates_[parent].segment.size()))
+      continue;
+    describe(piece);
+    classify(piece, threshold);
+    split_scored_[i] = 1;
+    if (piece.head) replace[parent] = 1;
+  }
+  // The replaced cluster's pixels are freed in the owner map (the completion reads it), then the
+  // pieces take theirs: the first piece takes the cluster's slot, the others are appended.
+  std::vector<int>& slot = split_slot_;
+  slot.assign(count_, -1);
+  for (std::size_t k = 0; k < count_; ++k)
+    if (replace[k])
+      for (int i : candidates_[k].segment.indices) flood_.labels[std::size_t(i)] = -1;
+  for (std::size_t i = 0; i < split.size(); ++i) {
+    const std::size_t parent = std::size_t(split[i].parent);
+    if (!replace[parent]) continue;
+    if (!split_scored_[i]) {  // the large remainder beside a head piece (rare): scored now
+      describe(pieces_[i]);
+      classify(pieces_[i], threshold);
+    }
+    std::size_t at = count_;
+    if (slot[parent] < 0) {
+      at = parent;
+      slot[parent] = int(parent);
+    } else {
+      if (candidates_.size() <= count_) candidates_.resize(count_ + 1);
+      ++count_;
+    }
+    std::swap(candidates_[at], pieces_[i]);
+    for (int idx : candidates_[at].segment.indices) flood_.labels[std::size_t(idx)] = int(at);
+  }
 }
 
 void BroccoliDetector::complete_heads() {

@@ -10,6 +10,7 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/learning/model.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_training.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_truth.hpp"
 #include "cropsight/pipeline/broccoli/pcl_reference.hpp"
@@ -435,4 +436,67 @@ TEST(BroccoliDetector, DebrisPassAndCompletionRecoverNoisyHeads) {
     }
     EXPECT_GT(grown_heads, 0) << name << ": " << org_heads << " heads";
   }
+}
+
+// Issue 27: a head that OES joined to a leaf at the same depth is one rejected cluster. With
+// detection.split_concave_angle_deg, the rejected clusters are split at their concave creases and
+// the pieces classified: the heads already found stay as they were, the replaced clusters' pieces
+// are disjoint parts of them, and some head that had no cluster of its own gets one. Frames of a
+// wide validation field (`simulate broccoli --variety random-wide --seed 6111`), where such merges
+// are common, with the shipped general model (which has the split on).
+TEST(BroccoliDetector, ConcaveSplitFreesHeadsJoinedToLeaves) {
+  const auto frames = testdata::simulate(testdata::sim_preset("random-wide"), 6111, 12);
+  const auto model_path = cropsight::testing::source_dir() / "models" / "broccoli-oes-general.json";
+  const auto model = load_broccoli_model(model_path.string());
+  const BroccoliDetectorConfig on = broccoli_config_for_model(*model, {}, model_path.string()).detector;
+  ASSERT_GT(on.detection.split_concave_angle_deg, 0.0f) << "the shipped general model splits";
+  BroccoliDetectorConfig off = on;
+  off.detection.split_concave_angle_deg = 0.0f;
+  BroccoliDetector a(off), b(on);
+  a.set_model(model);
+  b.set_model(model);
+  int replaced = 0, recovered = 0;
+  for (const auto& f : frames) {
+    const auto ca = a.process(f);
+    const auto cb = b.process(f);
+    ASSERT_GE(cb.size(), ca.size());
+    std::vector<int> parent_of(a.cloud().size(), -1);
+    for (std::size_t k = 0; k < ca.size(); ++k)
+      for (int i : ca[k].segment.indices) parent_of[std::size_t(i)] = int(k);
+    for (std::size_t k = 0; k < ca.size(); ++k) {
+      if (ca[k].head) {  // found heads are untouched (completion grows them the same way)
+        EXPECT_EQ(cb[k].segment.indices, ca[k].segment.indices);
+        EXPECT_EQ(cb[k].score, ca[k].score);
+      } else if (cb[k].segment.indices != ca[k].segment.indices) {
+        ++replaced;
+      }
+    }
+    // Every piece lies inside one rejected cluster of the plain run (a head piece may have grown
+    // over freed pixels, which belonged to that cluster or to none).
+    std::vector<char> taken(a.cloud().size(), 0);
+    for (std::size_t k = 0; k < cb.size(); ++k) {
+      if (k < ca.size() && cb[k].segment.indices == ca[k].segment.indices) continue;
+      int parent = -1;
+      for (int i : cb[k].segment.indices) {
+        EXPECT_FALSE(taken[std::size_t(i)]) << "pieces are disjoint";
+        taken[std::size_t(i)] = 1;
+        const int p = parent_of[std::size_t(i)];
+        if (p < 0) continue;
+        if (parent < 0) parent = p;
+        EXPECT_EQ(p, parent);
+        EXPECT_FALSE(ca[std::size_t(p)].head);
+      }
+      // A head that no plain cluster covered with IoU >= 0.5, now found by a piece.
+      if (!cb[k].head) continue;
+      const auto truth = cluster_truth(cb[k].segment.indices, b.cloud().labels, 0.5f);
+      if (truth.head_id == 0) continue;
+      const auto head = std::uint16_t(truth.head_id);
+      if (head_iou(b.cloud(), cb[k].segment.indices, head) < 0.5) continue;
+      bool before = false;
+      for (const auto& c : ca) before |= head_iou(a.cloud(), c.segment.indices, head) >= 0.5;
+      recovered += !before;
+    }
+  }
+  EXPECT_GT(replaced, 0);
+  EXPECT_GT(recovered, 0) << "some head merged with a leaf is found after the split";
 }

@@ -9,10 +9,11 @@
 //       FEC: [statistical outlier removal] + Euclidean clustering (k-d tree)
 //     → features per cluster (VFH [, viewpoint angle, geometric, CVFH])
 //     → classifier score (SVM decision value / KNN vote)
+//     → [detection.split_concave_angle_deg > 0: rejected clusters split at concave creases, pieces classified]
 //     → [detection.grow_tolerance > 0: head masks grown over unclustered debris] → detections
 //
 // Every stage is timed (StageTimer, names: "cloud", "normals", "edges", "outliers",
-// "clustering", "features", "classify", "completion"). OES needs no normals to segment (unless crease edges
+// "clustering", "features", "classify", "split", "completion"). OES needs no normals to segment (unless crease edges
 // are on): it computes them after the flood fill, only for the pixels of the kept segments (the
 // only ones the features read), so its cloud() has NaN normals elsewhere. All buffers (cloud, normals' integral images,
 // edge labels, flood-fill stacks, feature vectors, candidate list) live in the detector and are reused from frame to
@@ -34,6 +35,7 @@
 #include "cropsight/pipeline/broccoli/broccoli_config.hpp"
 #include "cropsight/segmentation/flood_fill.hpp"
 #include "cropsight/segmentation/segment_growth.hpp"
+#include "cropsight/segmentation/segment_split.hpp"
 
 namespace cropsight::pipeline {
 
@@ -91,6 +93,10 @@ class BroccoliDetector {
   void segment_debris();  // oes.debris_tolerance > 0: second OES pass over what the first did not keep
   void cluster_org();
   void cluster_fec();
+  void describe(BroccoliCandidate& c);  // features (+ the normal count when min_normal_points asks for it)
+  void classify(BroccoliCandidate& c, float threshold);
+  float head_threshold() const;
+  void split_rejected();  // detection.split_concave_angle_deg > 0: rejected clusters split at concave creases
   void complete_heads();  // detection.grow_tolerance > 0: head masks grow over unclustered debris
 
   BroccoliDetectorConfig cfg_;
@@ -118,6 +124,13 @@ class BroccoliDetector {
   std::vector<int> grow_order_;
   std::vector<std::uint8_t> debris_edges_;
   std::vector<int> kept_labels_;
+  std::vector<int> split_targets_;
+  std::vector<std::uint8_t> crease_marks_;
+  segmentation::SegmentSplitWorkspace split_ws_;
+  std::vector<BroccoliCandidate> pieces_;
+  std::vector<char> split_replace_;  // per candidate: replaced by its pieces
+  std::vector<int> split_slot_;      // per candidate: the slot its first piece took, or -1
+  std::vector<char> split_scored_;   // per piece: described and classified
 };
 
 }  // namespace cropsight::pipeline
