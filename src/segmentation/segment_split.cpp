@@ -80,8 +80,9 @@ std::vector<SplitPiece> split_segments(const OrganizedCloud& cloud, std::span<co
   for (int t : targets)
     for (int i : segments[std::size_t(t)]->indices) owner[i] = -1;
   // Raster order of the first pixel, as the clusterings return their segments.
-  std::sort(out.begin(), out.end(),
-            [](const SplitPiece& a, const SplitPiece& b) { return a.segment.indices.front() < b.segment.indices.front(); });
+  std::sort(out.begin(), out.end(), [](const SplitPiece& a, const SplitPiece& b) {
+    return a.segment.indices.front() < b.segment.indices.front();
+  });
   return out;
 }
 

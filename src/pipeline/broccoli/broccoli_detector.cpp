@@ -123,8 +123,23 @@ void BroccoliDetector::make_cloud(const RgbdFrame& frame) {
       }
     }
   }
-  deproject_depth(n, frame.depth.data.data(), ray_x_.data(), ray_y_.data(), float(frame.camera.depth_scale),
-                  cfg_.depth.min_depth, max_depth, cloud_.x.data(), cloud_.y.data(), cloud_.z.data());
+  // Noise-adaptive denoising (denoise.above > 0): only a frame noisier than the threshold is filtered.
+  const std::uint16_t* depth = frame.depth.data.data();
+  noise_sigma_ = std::numeric_limits<float>::quiet_NaN();
+  denoised_frame_ = false;
+  if (cfg_.denoise.above > 0.0f) {
+    auto t = timer_.scope("denoise");
+    const float scale = float(frame.camera.depth_scale);
+    noise_sigma_ = estimate_depth_noise(frame.depth.data, w, h, scale, cfg_.depth.min_depth, max_depth, noise_bins_);
+    if (noise_sigma_ > cfg_.denoise.above) {
+      bilateral_depth(frame.depth.data, w, h, scale, cfg_.denoise.sigma_factor * noise_sigma_, cfg_.denoise.diameter,
+                      cfg_.denoise.sigma_space, denoised_);
+      depth = denoised_.data();
+      denoised_frame_ = true;
+    }
+  }
+  deproject_depth(n, depth, ray_x_.data(), ray_y_.data(), float(frame.camera.depth_scale), cfg_.depth.min_depth,
+                  max_depth, cloud_.x.data(), cloud_.y.data(), cloud_.z.data());
   if (!frame.labels.empty()) {
     if (frame.labels.width != w || frame.labels.height != h)
       throw Error("frame " + std::to_string(frame.index), "label image size differs from the depth image");

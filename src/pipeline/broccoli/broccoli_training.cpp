@@ -16,10 +16,15 @@ void require_labels(const RgbdFrame& frame) {
 bool is_head(const BroccoliCandidate& c, const OrganizedCloud& cloud, const BroccoliTruthRules& truth) {
   return cluster_truth(c.segment.indices, cloud.labels, truth.min_head_fraction).head_id != 0;
 }
+/// The detector that builds training samples: the config, without denoising unless in_training.
+BroccoliDetectorConfig training_detector(BroccoliDetectorConfig cfg) {
+  if (!cfg.denoise.in_training) cfg.denoise.above = 0.0f;
+  return cfg;
+}
 }  // namespace
 
 BroccoliDatasetBuilder::BroccoliDatasetBuilder(const BroccoliDetectorConfig& cfg, const BroccoliTruthRules& truth)
-    : detector_(cfg), truth_(truth), data_(int(detector_.feature_dimension())) {
+    : detector_(training_detector(cfg)), truth_(truth), data_(int(detector_.feature_dimension())) {
   truth_.validate("config");
 }
 

@@ -15,7 +15,7 @@ using namespace cropsight::pipeline::potato;
 
 namespace {
 
-sim::PotatoFrameTruth potato(int id, float cu, Eigen::Vector3d c) {
+sim::PotatoFrameTruth potato_truth(int id, float cu, Eigen::Vector3d c) {
   sim::PotatoFrameTruth t;
   t.id = id;
   t.box = {cu - 20, 100, cu + 20, 140, 0, 1};
@@ -77,9 +77,9 @@ TEST(PotatoEval, AngleErrorIsModulo180) {
 
 TEST(PotatoEval, ScriptedRunCountsSwitchesLossAndErrors) {
   const Eigen::Vector3d a(0, 0, 0.4), b(0.1, 0, 0.45);
-  sim::PotatoFrameTruth target = potato(1, 100, a);
+  sim::PotatoFrameTruth target = potato_truth(1, 100, a);
   target.target = true;
-  std::vector<std::vector<sim::PotatoFrameTruth>> truth(4, {target, potato(2, 300, b)});
+  std::vector<std::vector<sim::PotatoFrameTruth>> truth(4, {target, potato_truth(2, 300, b)});
   std::vector<PotatoFrameResult> run;
   for (int f = 0; f < 3; ++f) run.push_back(frame(1, truth[0][f == 2 ? 1 : 0].box, f == 2 ? b : a));  // frame 2 jumps
   run[1].target.cut = true;  // the border cuts the box: its error goes to cut_*, not x, y, z

@@ -17,6 +17,7 @@
 #include "cropsight/geometry/organized_edges.hpp"
 #include "cropsight/geometry/statistical_outlier.hpp"
 #include "cropsight/learning/classifier.hpp"
+#include "cropsight/pipeline/broccoli/depth_denoise.hpp"
 #include "cropsight/segmentation/euclidean_clustering.hpp"
 #include "cropsight/segmentation/organized_clustering.hpp"
 
@@ -161,6 +162,7 @@ struct BroccoliDetectorConfig {
   BroccoliVariant pipeline = BroccoliVariant::oes;
   std::string features = "vfh";  ///< FeatureSet spec, e.g. "vfh" or "vfh,va,geom"
   geometry::DepthRangeConfig depth;
+  DepthDenoiseConfig denoise;
   geometry::IntegralNormalConfig normals;
   geometry::OrganizedEdgeConfig edges;
   segmentation::OesConfig oes;
@@ -179,6 +181,7 @@ struct BroccoliDetectorConfig {
       "Euclidean clustering ([montes] §III)");
     v("features", features, "comma list of vfh, va, geom, cvfh (paper: vfh, [montes] §III-D)");
     v("depth", depth, "depth-range filter");
+    v("denoise", denoise, "noise-adaptive depth denoising");
     v("normals", normals, "integral-image normals");
     v("edges", edges, "organised edges (OES)");
     v("oes", oes, "OES clustering");

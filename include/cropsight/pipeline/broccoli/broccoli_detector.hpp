@@ -2,7 +2,8 @@
 // BroccoliDetector: the broccoli head pipelines of Montes et al. 2020 composed from the stage
 // modules, one frame at a time:
 //
-//   depth image → organised cloud (metres, camera frame) → depth-range filter
+//   depth image → [denoise.above > 0: a frame noisier than that is bilateral-filtered]
+//     → organised cloud (metres, camera frame) → depth-range filter
 //     → integral-image normals
 //     → OES: organised edges + flood fill bounded by edges
 //       ORG: flood fill on normal angle, grown from low-curvature points
@@ -13,7 +14,8 @@
 //     → [detection.grow_tolerance > 0: head masks grown over unclustered debris] → detections
 //
 // Every stage is timed (StageTimer, names: "cloud", "normals", "edges", "outliers",
-// "clustering", "features", "classify", "split", "completion"). OES needs no normals to segment (unless crease edges
+// "clustering", "features", "classify", "split", "completion"; "denoise", the noise estimate and filter, is
+// timed inside "cloud"). OES needs no normals to segment (unless crease edges
 // are on): it computes them after the flood fill, only for the pixels of the kept segments (the
 // only ones the features read), so its cloud() has NaN normals elsewhere. All buffers (cloud, normals' integral images,
 // edge labels, flood-fill stacks, feature vectors, candidate list) live in the detector and are reused from frame to
@@ -77,6 +79,10 @@ class BroccoliDetector {
   /// The cloud of the last processed frame (depth-filtered, with normals — OES: only on the
   /// pixels of its candidates; labels when present).
   const OrganizedCloud& cloud() const { return cloud_; }
+  /// The last frame's depth noise estimate (m; NaN unless denoise.above > 0) and whether it was
+  /// filtered.
+  float noise_sigma() const { return noise_sigma_; }
+  bool denoised() const { return denoised_frame_; }
   /// Soil depth (m, camera z) estimated for the last frame; NaN unless range.* options need it.
   float soil_depth() const { return soil_depth_; }
   /// Detections (candidates classified as heads) of the last processed frame, best score first.
@@ -128,6 +134,10 @@ class BroccoliDetector {
   std::vector<std::uint8_t> crease_marks_;
   segmentation::SegmentSplitWorkspace split_ws_;
   std::vector<BroccoliCandidate> pieces_;
+  float noise_sigma_ = std::numeric_limits<float>::quiet_NaN();
+  bool denoised_frame_ = false;
+  std::vector<std::uint32_t> noise_bins_;
+  std::vector<std::uint16_t> denoised_;
   std::vector<char> split_replace_;  // per candidate: replaced by its pieces
   std::vector<int> split_slot_;      // per candidate: the slot its first piece took, or -1
   std::vector<char> split_scored_;   // per piece: described and classified
