@@ -290,6 +290,7 @@ void BroccoliDetector::split_rejected() {
     segment_ptrs_.push_back(&candidates_[k].segment);
     const BroccoliCandidate& c = candidates_[k];
     if (c.head || !c.described || int(c.segment.size()) < dc.split_min_points) continue;
+    if (dc.split_score_window > 0.0f && c.score < head_threshold() - dc.split_score_window) continue;
     split_targets_.push_back(int(k));
     geometry::mark_concave_creases(cloud_, candidates_[k].segment.indices, creases, crease_marks_);
   }

@@ -20,7 +20,7 @@ float estimate_depth_noise(std::span<const std::uint16_t> depth, int width, int 
   histogram.assign(kBins, 0);
   const auto lo = std::uint32_t(std::ceil(min_depth / scale)), hi = std::uint32_t(std::floor(max_depth / scale));
   std::size_t count = 0;
-  for (int v = 0; v < height; v += 2) {
+  for (int v = 0; v < height; v += 4) {  // every 4th row: 27000 triples at 512x424, plenty for a median
     const std::uint16_t* row = depth.data() + std::size_t(v) * std::size_t(width);
     for (int u = 1; u + 1 < width; ++u) {
       const std::uint32_t a = row[u - 1], b = row[u], c = row[u + 1];

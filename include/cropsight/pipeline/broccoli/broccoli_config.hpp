@@ -45,6 +45,7 @@ struct BroccoliDetectionConfig {
   int split_concave_step = 3;             ///< pixels between the two normals the crease rule compares
   float split_score_margin = 0.0f;        ///< added to the head threshold for the pieces of a split
   int split_min_points = 2000;            ///< points; smaller rejected clusters are not split
+  float split_score_window = 0.0f;        ///< only clusters scoring above threshold - this are split (0 = all)
   float split_max_piece_fraction = 0.8f;  ///< pieces holding more of their cluster are not classified
 
   template <class V>
@@ -82,6 +83,10 @@ struct BroccoliDetectionConfig {
       "points; rejected clusters smaller than this are not split (ours: on the wide validation fields every head "
       "recovered by a split came from a cluster of 2300 points or more; 2000 halves the stage's time on uk fields)",
       Range::at_least(1));
+    v("split_score_window", split_score_window,
+      "score units; when > 0, only rejected clusters whose score lies within this of the head threshold are split "
+      "(a leaf with a head in it scores between a leaf and a head; ours, for speed; 0 = every rejected cluster)",
+      Range::at_least(0.0));
     v("split_max_piece_fraction", split_max_piece_fraction,
       "fraction; a piece holding more than this share of its cluster's points is the rejected cluster again and "
       "is not classified (ours: the recovered heads held 0.10-0.59 of theirs; 0.8 saves a quarter of the "

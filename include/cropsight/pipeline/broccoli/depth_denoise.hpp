@@ -39,7 +39,7 @@ struct DepthDenoiseConfig {
 };
 
 /// Robust noise sigma (m) of a 16-bit depth image (`width`·`height` values, metres = value·scale, 0
-/// = no return): 1.4826 · median |z(u-1) - 2 z(u) + z(u+1)| / sqrt(6) over every second row, using
+/// = no return): 1.4826 · median |z(u-1) - 2 z(u) + z(u+1)| / sqrt(6) over every fourth row, using
 /// only triples whose three depths lie in [min_depth, max_depth]. A plane has no second difference,
 /// so the estimate is the noise (plus the curvature of the surfaces, small at the pixel scale).
 /// NaN with fewer than 1000 such triples. Uses a histogram of 0.25 mm bins (no sort).
