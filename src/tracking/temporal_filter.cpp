@@ -374,7 +374,8 @@ void TemporalFilter::absorb(TrackedHead& into, const TrackedHead& later) const {
 void TemporalFilter::merge_lost_and_found() {
   if (!(cfg_.merge_radius_m > 0.0) || mapped_.size() < 2) return;
   // Heads in order of their first frame; each one joins the nearest earlier group (within the
-  // radius) whose track ended before it began and whose score already reaches min_track_score.
+  // radius, in the field plane with merge_in_plane) whose track ended before it began and whose
+  // score already reaches min_track_score.
   // Groups are indexed by field x in a multimap so that a long recording's thousands of heads cost
   // O(n log n), not all pairs.
   std::vector<TrackedHead> heads = std::move(mapped_);
@@ -394,7 +395,8 @@ void TemporalFilter::merge_lost_and_found() {
       // Only a head confirmed on its own is found again: fragments that each fall short of the
       // threshold (a leaf misclassified now and then at one place) must not add up to a head.
       if (g.score < cfg_.min_track_score) continue;
-      const double d = (g.position - h.position).norm();
+      const double d =
+          cfg_.merge_in_plane ? (g.position - h.position).head<2>().norm() : (g.position - h.position).norm();
       if (d <= best_d) best_d = d, best = it->second, best_it = it;
     }
     if (best == groups.size()) {

@@ -77,6 +77,7 @@ struct TemporalFilterConfig {
   bool partial_tracks = true;
   double position_cap_m = 0.02;
   double merge_radius_m = 0.05;
+  bool merge_in_plane = true;
   bool predict_missed = true;
   double predict_radius_scale = 1.3;
   int predict_min_points = 10;
@@ -141,6 +142,10 @@ struct TemporalFilterConfig {
       "it when that one reached min_track_score (the same head lost and found again; extension, default the "
       "association radius 0.05 m; 0 = off, the paper's map keeps both)",
       Range::at_least(0));
+    v("merge_in_plane", merge_in_plane,
+      "measure the merge distance in the field plane (x, y) instead of 3D: the height of a head seen only cut by "
+      "the image border is off by up to its radius (extension, default on: on the validation passes it merged one "
+      "more duplicate and cost no head; false = 3D)");
     v("predict_missed", predict_missed,
       "bool; a head in T that a frame did not detect gets a predicted point set in that frame: the frame's points "
       "in a ball around where the filter expects it (HeadMapper::predict_missed; used by ap50_temporal and written "
