@@ -11,6 +11,9 @@ void BroccoliDetectorConfig::validate(const std::string& where) const {
   classifier.validate(where);
   check_config(*this, where);  // the ranges declared in visit(), naming `where` (the file or --set)
   depth.validate();            // min <= max
+  // The split reads OES's label image and tolerance: say so rather than ignore the key.
+  if (detection.split_concave_angle_deg > 0.0f && pipeline != BroccoliVariant::oes)
+    throw Error(where, "detection.split_concave_angle_deg needs pipeline oes (0 = off for org and fec)");
 }
 
 void BroccoliTruthRules::validate(const std::string& where) const { check_config(*this, where, "detection."); }

@@ -450,6 +450,9 @@ TEST(BroccoliDetector, ConcaveSplitFreesHeadsJoinedToLeaves) {
   const auto model = load_broccoli_model(model_path.string());
   const BroccoliDetectorConfig on = broccoli_config_for_model(*model, {}, model_path.string()).detector;
   ASSERT_GT(on.detection.split_concave_angle_deg, 0.0f) << "the shipped general model splits";
+  BroccoliDetectorConfig org = on;
+  org.pipeline = BroccoliVariant::org;
+  EXPECT_THROW(org.validate("test"), Error) << "the split is OES's: another pipeline is told, not ignored";
   BroccoliDetectorConfig off = on;
   off.detection.split_concave_angle_deg = 0.0f;
   BroccoliDetector a(off), b(on);
