@@ -1,5 +1,6 @@
 #include "cropsight/pipeline/broccoli/depth_denoise.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
@@ -18,7 +19,11 @@ float estimate_depth_noise(std::span<const std::uint16_t> depth, int width, int 
   constexpr float kBin = 0.00025f;    // m
   constexpr std::size_t kBins = 400;  // up to 0.1 m; larger differences (edges) land in the last bin
   histogram.assign(kBins, 0);
-  const auto lo = std::uint32_t(std::ceil(min_depth / scale)), hi = std::uint32_t(std::floor(max_depth / scale));
+  // The window in raw units, clamped to the 16-bit range before the conversion (a tiny scale or a
+  // huge window would overflow it).
+  auto raw = [](double units) { return std::uint32_t(std::clamp(units, 0.0, 65535.0)); };
+  const std::uint32_t lo = raw(std::ceil(double(min_depth) / double(scale))),
+                      hi = raw(std::floor(double(max_depth) / double(scale)));
   std::size_t count = 0;
   for (int v = 0; v < height; v += 4) {  // every 4th row: 27000 triples at 512x424, plenty for a median
     const std::uint16_t* row = depth.data() + std::size_t(v) * std::size_t(width);

@@ -63,6 +63,8 @@ TEST(DepthDenoise, NoiseEstimateFollowsTheNoise) {
   EXPECT_LT(estimate_depth_noise(plane(0.002f, 0.001f, false), kW, kH, 0.001f, 0.5f, 1.0f, bins), 0.003f);
   // Only triples inside the window count: none at all gives NaN.
   EXPECT_TRUE(std::isnan(estimate_depth_noise(plane(0.006f, 0.001f, false), kW, kH, 0.001f, 1.2f, 2.0f, bins)));
+  // A window beyond the 16-bit range (tiny scale) is clamped, not overflowed: nothing lies in it.
+  EXPECT_TRUE(std::isnan(estimate_depth_noise(plane(0.006f, 0.001f, false), kW, kH, 1e-9f, 0.5f, 1.0f, bins)));
   EXPECT_THROW(estimate_depth_noise(plane(0.0f, 0.001f, false), kW, kH + 1, 0.001f, 0.5f, 1.0f, bins), Error);
 }
 
