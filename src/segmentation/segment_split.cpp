@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/segmentation/flood_fill.hpp"            // summarize_raster
 #include "cropsight/segmentation/organized_clustering.hpp"  // within_tolerance
 
 namespace cropsight::segmentation {
@@ -76,7 +77,7 @@ std::vector<SplitPiece> split_segments(const OrganizedCloud& cloud, std::span<co
         out[std::size_t(remap[std::size_t(-3 - code)])].segment.indices.push_back(i);
     }
   }
-  for (SplitPiece& piece : out) summarize(piece.segment, cloud);
+  for (SplitPiece& piece : out) summarize_raster(piece.segment, cloud);  // indices ascending
   for (int t : targets)
     for (int i : segments[std::size_t(t)]->indices) owner[i] = -1;
   // Raster order of the first pixel, as the clusterings return their segments.

@@ -286,11 +286,12 @@ void BroccoliDetector::split_rejected() {
   crease_marks_.assign(cloud_.size(), 0);
   const BroccoliDetectionConfig& dc = cfg_.detection;
   const geometry::ConcaveCreaseOptions creases{dc.split_concave_angle_deg, dc.split_concave_step};
+  const float head = head_threshold();
   for (std::size_t k = 0; k < count_; ++k) {
     segment_ptrs_.push_back(&candidates_[k].segment);
     const BroccoliCandidate& c = candidates_[k];
     if (c.head || !c.described || int(c.segment.size()) < dc.split_min_points) continue;
-    if (dc.split_score_window > 0.0f && c.score < head_threshold() - dc.split_score_window) continue;
+    if (dc.split_score_window > 0.0f && c.score < head - dc.split_score_window) continue;
     split_targets_.push_back(int(k));
     geometry::mark_concave_creases(cloud_, candidates_[k].segment.indices, creases, crease_marks_);
   }
@@ -301,8 +302,10 @@ void BroccoliDetector::split_rejected() {
   // Classify the pieces; a cluster is replaced by its pieces when one of them is a head. A piece
   // that keeps most of its cluster (all of it: no crease) is that cluster again, which is no head:
   // it is not classified (saves most of the stage's time).
-  const float threshold = head_threshold() + dc.split_score_margin;
+  const float threshold = head + dc.split_score_margin;
   if (pieces_.size() < split.size()) pieces_.resize(split.size());
+  // Per candidate: kKeep, kReplace (a piece is a head), kSlotTaken (its first piece took its slot).
+  enum : char { kKeep = 0, kReplace = 1, kSlotTaken = 2 };
   std::vector<char>& replace = split_replace_;
   replace.assign(count_, 0);
   split_scored_.assign(split.size(), 0);
@@ -315,26 +318,24 @@ void BroccoliDetector::split_rejected() {
     describe(piece);
     classify(piece, threshold);
     split_scored_[i] = 1;
-    if (piece.head) replace[parent] = 1;
+    if (piece.head) replace[parent] = kReplace;
   }
   // The replaced cluster's pixels are freed in the owner map (the completion reads it), then the
   // pieces take theirs: the first piece takes the cluster's slot, the others are appended.
-  std::vector<int>& slot = split_slot_;
-  slot.assign(count_, -1);
   for (std::size_t k = 0; k < count_; ++k)
-    if (replace[k])
+    if (replace[k] == kReplace)
       for (int i : candidates_[k].segment.indices) flood_.labels[std::size_t(i)] = -1;
   for (std::size_t i = 0; i < split.size(); ++i) {
     const std::size_t parent = std::size_t(split[i].parent);
-    if (!replace[parent]) continue;
+    if (replace[parent] == kKeep) continue;
     if (!split_scored_[i]) {  // the large remainder beside a head piece (rare): scored now
       describe(pieces_[i]);
       classify(pieces_[i], threshold);
     }
     std::size_t at = count_;
-    if (slot[parent] < 0) {
+    if (replace[parent] == kReplace) {
       at = parent;
-      slot[parent] = int(parent);
+      replace[parent] = kSlotTaken;
     } else {
       if (candidates_.size() <= count_) candidates_.resize(count_ + 1);
       ++count_;

@@ -138,8 +138,7 @@ class BroccoliDetector {
   bool denoised_frame_ = false;
   std::vector<std::uint32_t> noise_bins_;
   std::vector<std::uint16_t> denoised_;
-  std::vector<char> split_replace_;  // per candidate: replaced by its pieces
-  std::vector<int> split_slot_;      // per candidate: the slot its first piece took, or -1
+  std::vector<char> split_replace_;  // per candidate: kept, replaced by its pieces, slot taken
   std::vector<char> split_scored_;   // per piece: described and classified
 };
 
