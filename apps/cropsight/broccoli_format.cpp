@@ -62,6 +62,10 @@ nlohmann::json eval_json(const pipeline::BroccoliEvalResult& r) {
   j["truth_heads_visible"] = r.truth_heads_visible;
   j["ap50_visible"] = json_number(r.ap50_visible);
   j["map50_95_visible"] = json_number(r.map50_95_visible);
+  j["truth_heads_any_depth"] = r.truth_heads_any_depth;
+  j["ap50_any_depth"] = json_number(r.ap50_any_depth);
+  j["truth_heads_visible_any_depth"] = r.truth_heads_visible_any_depth;
+  j["ap50_visible_any_depth"] = json_number(r.ap50_visible_any_depth);
   j["fps"] = json_number(r.fps());
   j["ms_per_frame"] = r.frames ? r.pipeline_ms / double(r.frames) : 0.0;
   j["stages_ms"] = stages_json(r.stages, r.frames);

@@ -76,6 +76,10 @@ void run(const EvalOptions& o) {
               r.map50_95_in_view, static_cast<long long>(r.truth_heads_in_view));
   std::printf("  AP50 %.4f  mAP50:95 %.4f  visible (%lld heads with >= detection.visible_truth_points points)\n",
               r.ap50_visible, r.map50_95_visible, static_cast<long long>(r.truth_heads_visible));
+  std::printf(
+      "  AP50 %.4f  visible %.4f  at any depth (%lld / %lld heads the sensor measured, in or out of the window)\n",
+      r.ap50_any_depth, r.ap50_visible_any_depth, static_cast<long long>(r.truth_heads_any_depth),
+      static_cast<long long>(r.truth_heads_visible_any_depth));
   std::printf("  %.1f fps (%.2f ms/frame, pipeline only)\n", r.fps(), r.frames ? r.pipeline_ms / r.frames : 0.0);
   if (figures) print_tracking_summary(*figures);
 }

@@ -39,16 +39,21 @@ CROPSIGHT_AVX2_CLONES void deproject_depth(std::size_t n, const std::uint16_t* _
   }
 }
 // The `fraction` percentile of the valid (non-zero) raw depths, in metres, from a histogram of
-// 5 mm bins; NaN with fewer than 1000 valid pixels (the estimate would be noise).
-float depth_percentile(const std::vector<std::uint16_t>& depth, float scale, float fraction,
+// 5 mm bins over every 4th row (a percentile of 50 000 pixels moves by less than a bin: a quarter
+// of the cost, 0.05 ms a frame); NaN with fewer than 1000 valid pixels in the frame (estimated).
+float depth_percentile(const std::vector<std::uint16_t>& depth, int width, int height, float scale, float fraction,
                        std::vector<std::uint32_t>& hist) {
   constexpr float kBin = 0.005f;
+  constexpr int kRowStep = 4;
   const float per_raw = scale / kBin;
   hist.assign(std::size_t(65535 * per_raw) + 2, 0);
   std::size_t valid = 0;
-  for (std::uint16_t d : depth)
-    if (d) ++hist[std::size_t(float(d) * per_raw)], ++valid;
-  if (valid < 1000) return std::numeric_limits<float>::quiet_NaN();
+  for (int v = 0; v < height; v += kRowStep) {
+    const std::uint16_t* row = depth.data() + std::size_t(v) * std::size_t(width);
+    for (int u = 0; u < width; ++u)
+      if (const std::uint16_t d = row[u]) ++hist[std::size_t(float(d) * per_raw)], ++valid;
+  }
+  if (valid * kRowStep < 1000) return std::numeric_limits<float>::quiet_NaN();
   const auto target = std::size_t(double(valid) * fraction);
   std::size_t seen = 0;
   for (std::size_t b = 0; b < hist.size(); ++b) {
@@ -109,9 +114,12 @@ void BroccoliDetector::make_cloud(const RgbdFrame& frame) {
   const BroccoliRangeConfig& rc = cfg_.range;
   if (rc.soil_relative || rc.reference_range > 0.0f) {
     soil_depth_ =
-        depth_percentile(frame.depth.data, float(frame.camera.depth_scale), rc.soil_percentile, depth_histogram_);
+        depth_percentile(frame.depth.data, w, h, float(frame.camera.depth_scale), rc.soil_percentile, depth_histogram_);
     if (std::isfinite(soil_depth_)) {
-      if (rc.soil_relative) max_depth = std::max(cfg_.depth.min_depth, soil_depth_ - rc.min_height_above_soil);
+      if (rc.soil_relative) {
+        const float floor = rc.extend_only ? cfg_.depth.max_depth : cfg_.depth.min_depth;
+        max_depth = std::max(floor, soil_depth_ - rc.min_height_above_soil);
+      }
       if (rc.reference_range > 0.0f) {
         const float r = std::max(cfg_.depth.min_depth + 0.1f, soil_depth_ - rc.head_height);
         const float s = r / rc.reference_range;

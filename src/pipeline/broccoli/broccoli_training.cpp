@@ -88,6 +88,17 @@ void BroccoliEvaluator::add_frame(const RgbdFrame& frame) {
   ap_.add_frame(truth_sets_, scored);
   ap_view_.add_frame(truth_sets_, scored, cut_);
   ap_visible_.add_frame(truth_sets_, scored, small_);
+  // The same AP over every head the sensor measured, in or out of the depth window.
+  truth_instances_any_depth(frame.labels.data, frame.depth.data, frame.depth.width, frame.depth.height,
+                            rules.min_truth_points, truth_);
+  truth_sets_.resize(truth_.size());
+  small_.resize(truth_.size());
+  for (std::size_t i = 0; i < truth_.size(); ++i) {
+    truth_sets_[i] = truth_[i].indices;
+    small_[i] = truth_[i].indices.size() < visible;
+  }
+  ap_any_.add_frame(truth_sets_, scored);
+  ap_any_visible_.add_frame(truth_sets_, scored, small_);
 }
 
 BroccoliEvalResult BroccoliEvaluator::result() const {
@@ -101,6 +112,10 @@ BroccoliEvalResult BroccoliEvaluator::result() const {
   r.truth_heads_visible = ap_visible_.num_truth();
   r.ap50_visible = ap_visible_.ap(0.5);
   r.map50_95_visible = ap_visible_.map50_95();
+  r.truth_heads_any_depth = ap_any_.num_truth();
+  r.ap50_any_depth = ap_any_.ap(0.5);
+  r.truth_heads_visible_any_depth = ap_any_visible_.num_truth();
+  r.ap50_visible_any_depth = ap_any_visible_.ap(0.5);
   r.stages = pipeline_.detector().timer().stages();
   return r;
 }

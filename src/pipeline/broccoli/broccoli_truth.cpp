@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <stdexcept>
 
 namespace cropsight::pipeline {
 
@@ -34,19 +35,23 @@ ClusterTruth cluster_truth(std::span<const int> indices, std::span<const std::ui
   return t;
 }
 
-void truth_instances(const OrganizedCloud& cloud, int min_points, std::vector<TruthInstance>& out) {
+namespace {
+// Point sets of the labelled ids over the pixels `valid(i)` accepts; see truth_instances.
+template <class Valid>
+void collect_instances(std::span<const std::uint16_t> labels, int w, int h, int min_points, Valid valid,
+                       std::vector<TruthInstance>& out) {
   for (auto& inst : out) inst.indices.clear();
   std::size_t used = 0;
-  if (!cloud.has_labels()) {
+  if (labels.empty()) {
     out.resize(0);
     return;
   }
   // Ids are sparse (1..65535): map id → slot through a sorted list of the ids seen.
   std::vector<std::pair<int, std::size_t>> slot_of;
-  const int n = int(cloud.size());
+  const int n = w * h;
   for (int i = 0; i < n; ++i) {
-    const int id = cloud.labels[std::size_t(i)];
-    if (id == 0 || !cloud.valid(std::size_t(i))) continue;
+    const int id = labels[std::size_t(i)];
+    if (id == 0 || !valid(std::size_t(i))) continue;
     auto it = std::lower_bound(slot_of.begin(), slot_of.end(), std::make_pair(id, std::size_t(0)));
     std::size_t slot;
     if (it != slot_of.end() && it->first == id) {
@@ -62,9 +67,8 @@ void truth_instances(const OrganizedCloud& cloud, int min_points, std::vector<Tr
   }
   // Heads with a labelled pixel on the image border continue outside the view.
   std::vector<int> border_ids;
-  const int w = cloud.width, h = cloud.height;
   auto border = [&](int i) {
-    const int id = cloud.labels[std::size_t(i)];
+    const int id = labels[std::size_t(i)];
     if (id != 0) border_ids.push_back(id);
   };
   for (int u = 0; u < w; ++u) border(u), border((h - 1) * w + u);
@@ -78,6 +82,29 @@ void truth_instances(const OrganizedCloud& cloud, int min_points, std::vector<Tr
   for (const auto& [id, slot] : slot_of)
     if (int(out[slot].indices.size()) >= std::max(1, min_points)) kept.push_back(std::move(out[slot]));
   out = std::move(kept);
+}
+}  // namespace
+
+void truth_instances(const OrganizedCloud& cloud, int min_points, std::vector<TruthInstance>& out) {
+  if (!cloud.has_labels()) {
+    out.resize(0);
+    return;
+  }
+  collect_instances(
+      cloud.labels, cloud.width, cloud.height, min_points, [&](std::size_t i) { return cloud.valid(i); }, out);
+}
+
+void truth_instances_any_depth(std::span<const std::uint16_t> labels, std::span<const std::uint16_t> depth, int width,
+                               int height, int min_points, std::vector<TruthInstance>& out) {
+  const std::size_t n = std::size_t(std::max(0, width)) * std::size_t(std::max(0, height));
+  if (labels.empty()) {
+    out.resize(0);
+    return;
+  }
+  if (labels.size() != n || depth.size() != n)
+    throw std::invalid_argument("truth_instances_any_depth: label and depth images must hold width x height pixels");
+  collect_instances(
+      labels, width, height, min_points, [&](std::size_t i) { return depth[i] != 0; }, out);
 }
 
 }  // namespace cropsight::pipeline

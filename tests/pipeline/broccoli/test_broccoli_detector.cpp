@@ -299,6 +299,65 @@ TEST(BroccoliRange, SoilRelativeWindowFollowsTheCameraHeight) {
   EXPECT_GT(range_head_points(b, frames[0]), 2000);
 }
 
+// range.extend_only: the far end is max(depth.max_depth, soil - min_height_above_soil). A high
+// camera gets the soil-relative window (heads beyond 1.0 m kept); a low one keeps the paper's
+// 1.0 m window where the soil-relative end (soil - 0.25 m) would cut the low heads' tops.
+TEST(BroccoliRange, ExtendOnlyGrowsTheWindowButNeverNarrowsIt) {
+  auto finite = [](const BroccoliDetector& d) {
+    long n = 0;
+    for (float z : d.cloud().z) n += std::isfinite(z);
+    return n;
+  };
+  BroccoliDetectorConfig fixed = preset("broccoli-oes-uk"), rel = fixed, ext = fixed;
+  rel.range.soil_relative = ext.range.soil_relative = true;
+  ext.range.extend_only = true;
+  for (const double height : {1.55, 1.10}) {
+    SCOPED_TRACE(height);
+    sim::BroccoliSimConfig sim_cfg;
+    sim_cfg.camera.height_m = height;
+    const auto frames = testdata::simulate(sim_cfg, 23, 1);
+    BroccoliDetector a(fixed), b(rel), c(ext);
+    a.process(frames[0]);
+    b.process(frames[0]);
+    c.process(frames[0]);
+    if (height > 1.5) {
+      EXPECT_EQ(finite(c), finite(b));  // soil - 0.25 m is beyond 1.0 m: the soil-relative window
+      EXPECT_GT(range_head_points(c, frames[0]), 2000);
+      EXPECT_LT(range_head_points(a, frames[0]), 50);
+    } else {
+      EXPECT_EQ(finite(c), finite(a));  // soil - 0.25 m is nearer than 1.0 m: the paper's window
+      EXPECT_LT(finite(b), finite(a));
+    }
+  }
+}
+
+// The evaluator's any-depth figures count the heads the window leaves out: with a 1.55 m camera
+// and the paper's window no head is in range (ap50 has nothing to count) while every head the
+// sensor sees is a miss at any depth; the extended window brings them back into both.
+TEST(BroccoliRange, AnyDepthFiguresCountHeadsOutsideTheWindow) {
+  sim::BroccoliSimConfig sim_cfg;
+  sim_cfg.camera.height_m = 1.55;
+  const auto frames = testdata::simulate(sim_cfg, 21, 2);
+  const auto model_path = cropsight::testing::source_dir() / "models" / "broccoli-oes-general.json";
+  const auto model = std::make_shared<const learning::Model>(learning::load_model(model_path.string()));
+  auto run = [&](bool extend) {
+    BroccoliPipelineConfig cfg = broccoli_config_for_model(*model, {}, model_path.string());
+    cfg.detector.range.soil_relative = cfg.detector.range.extend_only = extend;
+    cfg.track = false;
+    BroccoliPipeline pipe(cfg, model);
+    BroccoliEvaluator ev(pipe);
+    for (const auto& f : frames) ev.add_frame(f);
+    return ev.result();
+  };
+  const BroccoliEvalResult fixed = run(false), extended = run(true);
+  EXPECT_EQ(fixed.truth_heads, 0);
+  EXPECT_GT(fixed.truth_heads_any_depth, 0);
+  EXPECT_EQ(fixed.ap50_any_depth, 0.0);
+  EXPECT_EQ(extended.truth_heads_any_depth, fixed.truth_heads_any_depth);  // the sensor's view is the same
+  EXPECT_GT(extended.truth_heads, 0);
+  EXPECT_LE(extended.truth_heads, extended.truth_heads_any_depth);
+}
+
 // At the reference range the scaled thresholds are the configured ones; options off = the
 // detector as before (same candidates).
 TEST(BroccoliRange, ScalingIsNeutralAtTheReferenceRange) {

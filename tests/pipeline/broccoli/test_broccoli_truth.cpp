@@ -59,3 +59,30 @@ TEST(BroccoliTruth, HeadsTouchingTheImageBorderAreMarked) {
   EXPECT_TRUE(inst[1].cut_by_border);
   EXPECT_EQ(inst[1].indices, std::vector<int>{6});
 }
+
+// The any-depth truth keeps every labelled pixel with a sensor return, also those the depth
+// window dropped (NaN in the cloud): the same sets as truth_instances when nothing was dropped.
+TEST(BroccoliTruth, AnyDepthInstancesKeepHeadsTheWindowDropped) {
+  OrganizedCloud c(4, 2);
+  c.labels = {7, 7, 0, 2, 7, 2, 2, 0};
+  const std::vector<std::uint16_t> depth{1200, 0, 900, 1100, 1200, 1100, 1100, 900};  // mm; pixel 1: no return
+  for (int i = 0; i < 8; ++i)
+    c.x[i] = c.y[i] = 0.0f, c.z[i] = depth[std::size_t(i)] ? 0.001f * depth[std::size_t(i)] : NAN;
+  std::vector<TruthInstance> window, any;
+  truth_instances(c, 0, window);
+  truth_instances_any_depth(c.labels, depth, 4, 2, 0, any);
+  ASSERT_EQ(any.size(), window.size());
+  for (std::size_t k = 0; k < any.size(); ++k) EXPECT_EQ(any[k].indices, window[k].indices);
+  for (int i = 0; i < 8; ++i)
+    if (c.z[std::size_t(i)] > 1.0f) c.z[std::size_t(i)] = NAN;  // a 1.0 m window drops head 7 and head 2
+  truth_instances(c, 0, window);
+  EXPECT_TRUE(window.empty());
+  truth_instances_any_depth(c.labels, depth, 4, 2, 0, any);
+  ASSERT_EQ(any.size(), 2u);
+  EXPECT_EQ(any[0].indices, (std::vector<int>{3, 5, 6}));
+  EXPECT_EQ(any[1].indices, (std::vector<int>{0, 4}));
+  EXPECT_THROW(truth_instances_any_depth(c.labels, std::vector<std::uint16_t>(7, 1000), 4, 2, 0, any),
+               std::invalid_argument);
+  truth_instances_any_depth({}, depth, 4, 2, 0, any);  // no label image: no truth
+  EXPECT_TRUE(any.empty());
+}

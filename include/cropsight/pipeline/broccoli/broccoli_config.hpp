@@ -106,6 +106,7 @@ struct BroccoliRangeConfig {
   float min_height_above_soil = 0.25f;  ///< m; points nearer the soil than this are dropped
   float reference_range = 0.0f;         ///< m; > 0: scale OES thresholds by the heads' range over this
   float head_height = 0.45f;            ///< m; the heads' typical height above the soil (their range = soil - this)
+  bool extend_only = false;             ///< with soil_relative: the far end never comes nearer than depth.max_depth
 
   template <class V>
   void visit(V& v) {
@@ -128,6 +129,10 @@ struct BroccoliRangeConfig {
       Range::within(0.0, 5.0));
     v("head_height", head_height, "m; typical head apex height above the soil for reference_range",
       Range::within(0.0, 2.0));
+    v("extend_only", extend_only,
+      "with soil_relative: the far end is max(depth.max_depth, soil depth - min_height_above_soil), so the window "
+      "only grows for high cameras (heads beyond the paper's 1.0 m) and stays the paper's for low ones, where "
+      "low heads sit less than min_height_above_soil over the soil");
   }
 };
 

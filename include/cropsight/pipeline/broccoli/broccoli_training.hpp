@@ -59,6 +59,10 @@ struct BroccoliEvalResult {
   /// Same with heads of fewer than detection.visible_truth_points visible points ignored.
   double ap50_visible = 0.0, map50_95_visible = 0.0;
   std::int64_t truth_heads_visible = 0;
+  /// ap50 and ap50_visible with the truth of every pixel the sensor measured, whatever the depth
+  /// window (truth_instances_any_depth): a head outside the window is a miss here, not uncounted.
+  double ap50_any_depth = 0.0, ap50_visible_any_depth = 0.0;
+  std::int64_t truth_heads_any_depth = 0, truth_heads_visible_any_depth = 0;
   double pipeline_ms = 0.0;  ///< total wall-clock time in BroccoliDetector::process (I/O excluded)
   double fps() const { return pipeline_ms > 0 ? 1000.0 * double(frames) / pipeline_ms : 0.0; }
   std::vector<StageTimer::Stage> stages;  ///< per-stage totals
@@ -77,7 +81,7 @@ class BroccoliEvaluator {
  private:
   BroccoliPipeline& pipeline_;
   BroccoliEvalResult r_;
-  eval::DetectionApAccumulator ap_, ap_view_, ap_visible_;
+  eval::DetectionApAccumulator ap_, ap_view_, ap_visible_, ap_any_, ap_any_visible_;
   std::vector<bool> cut_, small_;
   std::vector<TruthInstance> truth_;
   std::vector<std::vector<int>> truth_sets_;

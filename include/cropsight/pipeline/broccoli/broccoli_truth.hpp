@@ -38,4 +38,11 @@ struct TruthInstance {
 /// Reuses `out`'s storage.
 void truth_instances(const OrganizedCloud& cloud, int min_points, std::vector<TruthInstance>& out);
 
+/// The same point sets over every pixel the sensor measured (`depth` > 0), whatever the detector's
+/// depth window: the truth of the `*_any_depth` figures, where a head the window leaves out (a
+/// camera higher than the window assumes) counts as a miss instead of not counting. `labels` and
+/// `depth` hold width·height pixels (throws std::invalid_argument when their sizes differ).
+void truth_instances_any_depth(std::span<const std::uint16_t> labels, std::span<const std::uint16_t> depth, int width,
+                               int height, int min_points, std::vector<TruthInstance>& out);
+
 }  // namespace cropsight::pipeline
