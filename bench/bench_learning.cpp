@@ -3,7 +3,8 @@
 // the learning tests' Gaussian data (tests/learning/test_learning_common.hpp); 64 vectors per
 // iteration. Argument 1: the training data's columns 154..307 are 0, as the VFH bins no training
 // cluster fills (about half of them in the shipped broccoli models); the scorer then skips them
-// in its dot products (argument 0: every column is used).
+// in its dot products (argument 0: every column is used). BM_SvmScoreRows: the same vectors through
+// Classifier::score_rows in one call.
 //   build/bin/bench_learning --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -50,6 +51,17 @@ void BM_SvmScoreOurs(benchmark::State& st) {
     for (std::size_t i = 0; i < f.test.size(); ++i) benchmark::DoNotOptimize(f.clf->score(f.test.row(i)));
   st.counters["support_vectors"] = double(f.clf->model_size());
 }
+// The same 64 vectors through score_rows (support vectors in L1-sized blocks, read once for all
+// of them): the detector's classify stage scores a frame's clusters this way.
+void BM_SvmScoreRows(benchmark::State& st) {
+  const auto& f = fx(st.range(0) != 0);
+  std::vector<float> out(f.test.size());
+  for (auto _ : st) {
+    f.clf->score_rows(f.test.values.data(), f.test.size(), out.data());
+    benchmark::DoNotOptimize(out.data());
+  }
+  st.counters["support_vectors"] = double(f.clf->model_size());
+}
 void BM_SvmScoreLibsvm(benchmark::State& st) {
   const auto& f = fx(st.range(0) != 0);
   const auto& svm = dynamic_cast<const detail::SvmClassifier&>(*f.clf);
@@ -60,6 +72,7 @@ void BM_SvmScoreLibsvm(benchmark::State& st) {
 }  // namespace
 
 BENCHMARK(BM_SvmScoreOurs)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SvmScoreRows)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_SvmScoreLibsvm)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_MAIN();

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <stdexcept>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
@@ -40,6 +41,16 @@ float Model::score(std::span<const float> x, std::vector<float>& scratch) const 
   scratch.resize(x.size());
   standardizer.apply(x.data(), scratch.data());
   return classifier->score(scratch.data());
+}
+
+void Model::score_rows(std::span<const float> x, std::span<float> out, std::vector<float>& scratch) const {
+  if (out.empty()) return;
+  const std::size_t dim = x.size() / out.size();
+  if (dim == 0 || dim * out.size() != x.size() || int(dim) != classifier->dim())
+    throw std::invalid_argument("Model::score_rows: x must hold out.size() rows of the classifier's dimension");
+  scratch.resize(x.size());
+  for (std::size_t r = 0; r < out.size(); ++r) standardizer.apply(x.data() + r * dim, scratch.data() + r * dim);
+  classifier->score_rows(scratch.data(), out.size(), out.data());
 }
 
 Model train_model(const Dataset& data, const ClassifierParams& params, ModelInfo info) {

@@ -13,6 +13,7 @@
 #include "core/cpu_dispatch.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
+#include "learning/rbf_blocks.hpp"
 #include "learning/temp_file.hpp"
 
 namespace cropsight::learning::detail {
@@ -48,12 +49,7 @@ __attribute__((always_inline)) inline float rbf_sum_impl(int n, int stride, cons
   }
   return s;
 }
-// AVX2 build of the kernel (8 lanes), used when cpu_has_avx2_fma() (read once per classifier);
-// the baseline one uses 4 lanes (GCC lowers 8-lane vectors to spills without AVX).
-CROPSIGHT_TARGET_AVX2 float rbf_sum_avx2(int n, int stride, const float* sv, const float* norm2, const float* coef,
-                                         const float* z, float z2, float g) {
-  return rbf_sum_impl<v8f, 8>(n, stride, sv, norm2, coef, z, z2, g);
-}
+// The baseline build of the kernel (4 lanes); CPUs with AVX2 + FMA run RbfBlocks instead.
 float rbf_sum_base(int n, int stride, const float* sv, const float* norm2, const float* coef, const float* z, float z2,
                    float g) {
   return rbf_sum_impl<v4f, 4>(n, stride, sv, norm2, coef, z, z2, g);
@@ -260,14 +256,27 @@ void SvmClassifier::load_text(const std::string& text, const std::string& where)
   for (int i = 0; i < l; ++i)
     for (std::size_t k = 0; k < active_.size(); ++k)
       svp_[std::size_t(i) * std::size_t(svp_stride_) + k] = sv(i, active_[k]);
-  avx2_ = cropsight::detail::cpu_has_avx2_fma();
+  // CPUs with AVX2 + FMA: the same support vectors in RbfBlocks' layout instead (rbf_blocks.hpp).
+  // svp_ stays: baseline_score() runs the baseline kernel on this CPU too (tests).
+  if (RbfBlocks::available())
+    blocks_ = RbfBlocks(svp_.data(), l, svp_stride_, coef_.data(), sv_norm2_.data(), float(gamma_));
 } catch (...) {
   if (model_) svm_free_and_destroy_model(&model_);
   throw;
 }
 
-float SvmClassifier::score(const float* x) const {
-  const Eigen::Map<const Eigen::VectorXf> z(x, dim_);
+float SvmClassifier::gather_active(const float* x, float* zp) const {
+  const std::size_t na = active_.size();
+  for (std::size_t k = 0; k < na; ++k) zp[k] = x[active_[k]];
+  std::fill(zp + na, zp + svp_stride_, 0.0f);
+  return Eigen::Map<const Eigen::VectorXf>(x, dim_).squaredNorm();
+}
+
+float SvmClassifier::score(const float* x) const { return score_with(x, false); }
+
+float SvmClassifier::baseline_score(const float* x) const { return score_with(x, true); }
+
+float SvmClassifier::score_with(const float* x, bool baseline) const {
   float dec;
   if (rbf_) {
     // K(sv, z) = exp(-γ |sv − z|²) with |sv − z|² = |sv|² + |z|² − 2 sv·z: one vectorised dot
@@ -276,17 +285,32 @@ float SvmClassifier::score(const float* x) const {
     float buf[1024];
     std::vector<float> heap;
     float* zp = svp_stride_ <= 1024 ? buf : (heap.resize(std::size_t(svp_stride_)), heap.data());
-    const std::size_t na = active_.size();
-    for (std::size_t k = 0; k < na; ++k) zp[k] = x[active_[k]];
-    std::fill(zp + na, zp + svp_stride_, 0.0f);
-    const float z2 = z.squaredNorm();
-    dec = (avx2_ ? rbf_sum_avx2 : rbf_sum_base)(int(coef_.size()), svp_stride_, svp_.data(), sv_norm2_.data(),
-                                                coef_.data(), zp, z2, float(gamma_)) -
-          rho_;
+    const float z2 = gather_active(x, zp);
+    if (!blocks_.empty() && !baseline) {
+      float sum = 0.0f;
+      blocks_.sums(zp, &z2, 1, &sum);
+      dec = sum - rho_;
+    } else {
+      dec = rbf_sum_base(int(coef_.size()), svp_stride_, svp_.data(), sv_norm2_.data(), coef_.data(), zp, z2,
+                         float(gamma_)) -
+            rho_;
+    }
   } else {
-    dec = w_.dot(z) - rho_;
+    dec = w_.dot(Eigen::Map<const Eigen::VectorXf>(x, dim_)) - rho_;
   }
   return sign_ * dec;
+}
+
+void SvmClassifier::score_rows(const float* x, std::size_t rows, float* out) const {
+  if (!rbf_ || blocks_.empty() || rows < 2) {
+    Classifier::score_rows(x, rows, out);
+    return;
+  }
+  const std::size_t stride = std::size_t(svp_stride_);
+  std::vector<float> zp(rows * stride), z2(rows);
+  for (std::size_t r = 0; r < rows; ++r) z2[r] = gather_active(x + r * std::size_t(dim_), zp.data() + r * stride);
+  blocks_.sums(zp.data(), z2.data(), rows, out);
+  for (std::size_t r = 0; r < rows; ++r) out[r] = sign_ * (out[r] - rho_);
 }
 
 double SvmClassifier::libsvm_score(const float* x) const {

@@ -4,16 +4,18 @@
 //
 // Training and the saved model are libsvm's. For scoring, the support vectors are copied once
 // into dense rows: libsvm's sparse svm_node lists cost a branch per feature and the feature
-// vectors here are dense (VFH: 308 values), so dense dot products over the support vectors
-// (8-lane vectors when the CPU has AVX2, else 4) give the same decision value (to float rounding)
-// several times faster; the RBF dot products skip the columns that are 0 in every support vector
-// (empty VFH bins). Unit tests check the two agree.
+// vectors here are dense (VFH: 308 values), so dense dot products over the support vectors give
+// the same decision value (to float rounding) several times faster; the RBF dot products skip the
+// columns that are 0 in every support vector (empty VFH bins). On CPUs with AVX2 + FMA the RBF
+// kernel is RbfBlocks (blocks of eight support vectors, eight exponentials at a time, several
+// vectors per pass: score_rows), else 4-lane rows. Unit tests check both against libsvm.
 #include <Eigen/Core>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "cropsight/learning/classifier.hpp"
+#include "learning/rbf_blocks.hpp"
 
 struct svm_model;
 
@@ -31,9 +33,18 @@ class SvmClassifier final : public Classifier {
   std::string type() const override { return type_; }
   int dim() const override { return dim_; }
   float score(const float* x) const override;
+  void score_rows(const float* x, std::size_t rows, float* out) const override;
   float threshold() const override { return 0.0f; }
   std::string serialize() const override { return text_; }
   std::size_t model_size() const override { return std::size_t(coef_.size()); }
+
+  /// x's active_ columns, zero-padded to svp_stride_ floats, into zp; returns |x|² over every column.
+  float gather_active(const float* x, float* zp) const;
+  float score_with(const float* x, bool baseline) const;
+
+  /// score() through the 4-lane row kernel that CPUs without AVX2 + FMA run (tests compare it
+  /// with libsvm on any CPU).
+  float baseline_score(const float* x) const;
 
   /// libsvm's own decision value for x, sign-corrected like score() (reference for tests).
   double libsvm_score(const float* x) const;
@@ -53,7 +64,7 @@ class SvmClassifier final : public Classifier {
   std::vector<int> active_;   ///< columns where some support vector is non-zero (RBF dot products)
   std::vector<float> svp_;    ///< support vectors × active_ columns, rows zero-padded to svp_stride_ floats
   int svp_stride_ = 0;
-  bool avx2_ = false;           ///< cpu_has_avx2_fma(): score() runs the 8-lane kernel
+  RbfBlocks blocks_;            ///< the support vectors for the AVX2 + FMA kernel; empty without it
   Eigen::VectorXf w_;           ///< Σ coef_i sv_i (linear kernel: the decision is w·x − ρ)
   std::string text_;            ///< libsvm model file text
   svm_model* model_ = nullptr;  ///< loaded from text_ (owns its memory); for libsvm_score()

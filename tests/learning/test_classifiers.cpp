@@ -111,6 +111,32 @@ TEST(Svm, DenseRbfScoreMatchesLibsvmAtVfhAndLongDimensions) {
     for (std::size_t i = 0; i < test.size(); ++i) {
       const double ref = svm.libsvm_score(test.row(i));
       EXPECT_NEAR(svm.score(test.row(i)), ref, 1e-4 * (1.0 + std::abs(ref))) << "dim " << dim << " sample " << i;
+      EXPECT_NEAR(svm.baseline_score(test.row(i)), ref, 1e-4 * (1.0 + std::abs(ref)))
+          << "dim " << dim << " sample " << i;
+    }
+  }
+}
+
+// score_rows (support vectors in blocks, two of them by two vectors per step) must give score()'s
+// bits for every row, for odd and even row counts, block tails and both kernels' layouts; the
+// KNN and linear kernels use the default loop.
+TEST(Svm, ScoreRowsIsBitIdenticalToScorePerRow) {
+  for (int dim : {24, 308}) {
+    Dataset train = testdata::gaussians(300, dim, 1.0, 31);
+    for (std::size_t i = 0; i < train.size(); ++i)
+      for (int j = dim / 2; j < dim; j += 3) train.values[i * std::size_t(dim) + std::size_t(j)] = 0.0f;
+    const Dataset test = testdata::gaussians(67, dim, 1.0, 32);
+    for (const char* type : {"svm-rbf", "svm-linear", "knn"}) {
+      ClassifierParams p;
+      p.type = type;
+      p.rbf_gamma = 1.0 / dim;
+      const auto clf = train_classifier(train, p);
+      for (std::size_t rows : {std::size_t(0), std::size_t(1), std::size_t(2), std::size_t(33), test.size()}) {
+        std::vector<float> out(rows, -1.0f);
+        clf->score_rows(test.values.data(), rows, out.data());
+        for (std::size_t r = 0; r < rows; ++r)
+          ASSERT_EQ(out[r], clf->score(test.row(r))) << type << " dim " << dim << " rows " << rows << " row " << r;
+      }
     }
   }
 }
@@ -133,6 +159,7 @@ TEST(Svm, DenseRbfScoreMatchesLibsvmWhenTrainingLeavesColumnsEmpty) {
   for (std::size_t i = 0; i < test.size(); ++i) {
     const double ref = svm.libsvm_score(test.row(i));
     EXPECT_NEAR(svm.score(test.row(i)), ref, 1e-4 * (1.0 + std::abs(ref))) << "sample " << i;
+    EXPECT_NEAR(svm.baseline_score(test.row(i)), ref, 1e-4 * (1.0 + std::abs(ref))) << "sample " << i;
   }
 }
 

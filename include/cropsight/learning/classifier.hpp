@@ -9,6 +9,7 @@
 //
 // Classifiers see standardised features (see Standardizer / Model); they do not standardise.
 // Scoring is const and thread-safe.
+#include <cstddef>
 #include <memory>
 #include <string>
 
@@ -52,6 +53,13 @@ class Classifier {
   virtual int dim() const = 0;
   /// Score of one standardised feature vector of dim() values.
   virtual float score(const float* x) const = 0;
+  /// score() of `rows` standardised vectors stored one after another in `x` (rows·dim() values),
+  /// written to out[0..rows): bit-identical to calling score() per row. The RBF SVM scores them
+  /// together (each block of support vectors is read once for all rows, which score() per row
+  /// reads from L2 every time); the default loops over score(). Thread-safe (const).
+  virtual void score_rows(const float* x, std::size_t rows, float* out) const {
+    for (std::size_t r = 0; r < rows; ++r) out[r] = score(x + r * std::size_t(dim()));
+  }
   /// Score above which a sample is classified positive (0 for SVMs, 0.5 for KNN).
   virtual float threshold() const = 0;
   bool predict(const float* x) const { return score(x) > threshold(); }

@@ -47,6 +47,10 @@ class Model {
   /// Score of one raw (unstandardised) feature vector; `scratch` is resized to dim and reused,
   /// so a caller that keeps it allocates nothing per call.
   float score(std::span<const float> x, std::vector<float>& scratch) const;
+  /// score() of the x.size() / out.size() raw vectors stored one after another in `x`, into `out`
+  /// (bit-identical to score() per vector; the RBF SVM scores them together, see
+  /// Classifier::score_rows). Throws std::invalid_argument when x.size() is not out.size() · dim.
+  void score_rows(std::span<const float> x, std::span<float> out, std::vector<float>& scratch) const;
   float threshold() const { return classifier->threshold(); }
 };
 

@@ -250,8 +250,9 @@ std::span<const BroccoliCandidate> BroccoliDetector::process(const RgbdFrame& fr
   }
   {
     auto t = timer_.scope("classify");
-    const float threshold = head_threshold();
-    for (std::size_t k = 0; k < count_; ++k) classify(candidates_[k], threshold);
+    batch_input_.clear();
+    for (std::size_t k = 0; k < count_; ++k) batch_input_.push_back(&candidates_[k]);
+    classify_all(batch_input_, head_threshold());
   }
   if (cfg_.detection.split_concave_angle_deg > 0.0f && model_ && cfg_.pipeline == BroccoliVariant::oes)
     split_rejected();
@@ -287,6 +288,26 @@ void BroccoliDetector::classify(BroccoliCandidate& c, float threshold) {
   c.head = model_ && c.score > threshold;
 }
 
+void BroccoliDetector::classify_all(std::span<BroccoliCandidate* const> cands, float threshold) {
+  batch_.clear();
+  batch_rows_.clear();
+  for (BroccoliCandidate* c : cands) {
+    if (!model_ || !c->described) {
+      classify(*c, threshold);
+      continue;
+    }
+    batch_.push_back(c);
+    batch_rows_.insert(batch_rows_.end(), c->features.begin(), c->features.end());
+  }
+  if (batch_.empty()) return;
+  batch_scores_.resize(batch_.size());
+  model_->score_rows(batch_rows_, batch_scores_, scratch_);
+  for (std::size_t k = 0; k < batch_.size(); ++k) {
+    batch_[k]->score = batch_scores_[k];
+    batch_[k]->head = batch_scores_[k] > threshold;
+  }
+}
+
 void BroccoliDetector::split_rejected() {
   auto t = timer_.scope("split");
   split_targets_.clear();
@@ -317,6 +338,7 @@ void BroccoliDetector::split_rejected() {
   std::vector<char>& replace = split_replace_;
   replace.assign(count_, 0);
   split_scored_.assign(split.size(), 0);
+  batch_input_.clear();
   for (std::size_t i = 0; i < split.size(); ++i) {
     BroccoliCandidate& piece = pieces_[i];
     const std::size_t parent = std::size_t(split[i].parent);
@@ -324,10 +346,12 @@ void BroccoliDetector::split_rejected() {
     if (double(piece.segment.size()) > double(dc.split_max_piece_fraction) * double(candidates_[parent].segment.size()))
       continue;
     describe(piece);
-    classify(piece, threshold);
+    batch_input_.push_back(&piece);
     split_scored_[i] = 1;
-    if (piece.head) replace[parent] = kReplace;
   }
+  classify_all(batch_input_, threshold);
+  for (std::size_t i = 0; i < split.size(); ++i)
+    if (split_scored_[i] && pieces_[i].head) replace[std::size_t(split[i].parent)] = kReplace;
   // The replaced cluster's pixels are freed in the owner map (the completion reads it), then the
   // pieces take theirs: the first piece takes the cluster's slot, the others are appended.
   for (std::size_t k = 0; k < count_; ++k)

@@ -101,6 +101,9 @@ class BroccoliDetector {
   void cluster_fec();
   void describe(BroccoliCandidate& c);  // features (+ the normal count when min_normal_points asks for it)
   void classify(BroccoliCandidate& c, float threshold);
+  // classify() of every candidate in `cands`, the described ones scored together
+  // (learning::Model::score_rows: the same scores, the support vectors read once per block).
+  void classify_all(std::span<BroccoliCandidate* const> cands, float threshold);
   float head_threshold() const;
   void split_rejected();  // detection.split_concave_angle_deg > 0: rejected clusters split at concave creases
   void complete_heads();  // detection.grow_tolerance > 0: head masks grow over unclustered debris
@@ -122,6 +125,8 @@ class BroccoliDetector {
   std::vector<BroccoliCandidate> candidates_;  // a pool: only grows, so its buffers are reused
   std::size_t count_ = 0;                      // candidates of the last frame
   std::vector<float> scratch_;
+  std::vector<BroccoliCandidate*> batch_, batch_input_;  // classify_all: the scored ones; its input
+  std::vector<float> batch_rows_, batch_scores_;
   float soil_depth_ = std::numeric_limits<float>::quiet_NaN();
   segmentation::OesConfig oes_frame_;  // cfg_.oes, scaled to the frame's range when range.reference_range > 0
   std::vector<std::uint32_t> depth_histogram_;
