@@ -3,7 +3,7 @@
 // simulator's plant geometry and the OES/ORG presets on training seeds (docs/simulator.md,
 // docs/pipelines/broccoli-heads.md "Tuning"). Run with
 //
-//   CROPSIGHT_SEG_PROBE=seq1[,seq2] CROPSIGHT_SEG_PRESET=broccoli-oes-uk [CROPSIGHT_SEG_FRAMES=10]
+//   CROPSIGHT_SEG_PROBE=seq1[,seq2] [CROPSIGHT_SEG_PRESET=broccoli-oes-uk] [CROPSIGHT_SEG_FRAMES=10]
 //   [CROPSIGHT_SEG_SET="key=value;key=value"] build/bin/broccoli_segmentation_probe
 //
 // Per labelled head instance (every head with a visible point in a frame, as AP counts them) it
@@ -14,11 +14,13 @@
 // (the `ap50_visible` rule): found, merged, in pieces whose union would reach IoU 0.5, or neither
 // (CROPSIGHT_SEG_VERBOSE=1 lists those with their edge-labelled pixels; CROPSIGHT_SEG_LIST=1 lists
 // every such head with its outcome and best IoU, to compare two settings head by head). CROPSIGHT_SEG_MODEL=FILE
-// also classifies the clusters and lists the misclassified ones. CROPSIGHT_SEG_DUMP=DIR writes three
-// frames (from CROPSIGHT_SEG_DUMP_FROM, default 1) as PNG: depth (turbo), cluster borders black,
-// head outlines white, merged heads' and false positives' clusters magenta, with enlarged crops.
+// also classifies the clusters and lists the misclassified ones; without CROPSIGHT_SEG_PRESET the
+// detector then runs the model's recorded configuration, as `eval broccoli --model` does. CROPSIGHT_SEG_DUMP=DIR writes
+// three frames (from CROPSIGHT_SEG_DUMP_FROM, default 1) as PNG: depth (turbo), cluster borders black, head outlines
+// white, merged heads' and false positives' clusters magenta, with enlarged crops.
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -30,6 +32,7 @@
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/learning/model.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_detector.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_truth.hpp"
 
 using namespace cropsight;
@@ -100,25 +103,35 @@ int probe() {
     return 2;
   }
   const char* preset_env = std::getenv("CROPSIGHT_SEG_PRESET");
-  const std::string preset = preset_env ? preset_env : "broccoli-oes-uk";
+  const char* model_env = std::getenv("CROPSIGHT_SEG_MODEL");
   const int max_frames = std::getenv("CROPSIGHT_SEG_FRAMES") ? std::atoi(std::getenv("CROPSIGHT_SEG_FRAMES")) : 10;
-  ConfigMap values = io::load_config_map(io::find_preset(preset));
+  ConfigMap overrides;
   if (const char* set = std::getenv("CROPSIGHT_SEG_SET"))
     for (const auto& kv : split(set, ';')) {
       const auto eq = kv.find('=');
       if (eq == std::string::npos) throw Error("CROPSIGHT_SEG_SET", "expected key=value, got '" + kv + "'");
-      values[kv.substr(0, eq)] = kv.substr(eq + 1);
+      overrides[kv.substr(0, eq)] = kv.substr(eq + 1);
     }
+  // With a model and no preset, the detector runs the model's recorded configuration (as `eval
+  // broccoli --model` does); otherwise the preset's (default broccoli-oes-uk). CROPSIGHT_SEG_SET on top.
+  std::shared_ptr<learning::Model> model;
+  if (model_env) model = std::make_shared<learning::Model>(learning::load_model(model_env));
+  const std::string preset = preset_env ? preset_env : model ? std::string(model_env) : "broccoli-oes-uk";
   BroccoliDetectorConfig cfg;
-  apply_config(cfg, values, preset);
+  if (model && !preset_env) {
+    cfg = broccoli_config_for_model(*model, overrides, model_env, "CROPSIGHT_SEG_SET").detector;
+  } else {
+    ConfigMap values = io::load_config_map(io::find_preset(preset));
+    for (const auto& [k, v] : overrides) values[k] = v;
+    apply_config(cfg, values, preset);
+  }
   cfg.validate(preset);
   const int min_size = cfg.pipeline == BroccoliVariant::oes   ? cfg.oes.min_size
                        : cfg.pipeline == BroccoliVariant::org ? cfg.org.min_size
                                                               : cfg.fec.min_size;
   BroccoliDetector det(cfg);
   // With CROPSIGHT_SEG_MODEL, also lists the misclassified clusters (size, share of their majority head).
-  if (const char* m = std::getenv("CROPSIGHT_SEG_MODEL"))
-    det.set_model(std::make_shared<learning::Model>(learning::load_model(m)), m);
+  if (model) det.set_model(model, model_env);
   long all = 0, found = 0, merged = 0, clear = 0, clear_found = 0, clear_merged = 0, clear_split = 0, clusters = 0,
        frames = 0;
   // Heads with >= 300 visible points (the `ap50_visible` rule) that are not found: merged, in
