@@ -245,6 +245,13 @@ std::span<const BroccoliCandidate> BroccoliDetector::process(const RgbdFrame& fr
       // The organised clusterings return ascending indices already; FEC's are sorted here.
       if (!std::is_sorted(c.segment.indices.begin(), c.segment.indices.end()))
         std::sort(c.segment.indices.begin(), c.segment.indices.end());
+      const int oversized_above = cfg_.detection.split_oversized_above;
+      c.oversized = oversized_above > 0 && int(c.segment.size()) > oversized_above;
+      if (c.oversized) {
+        c.described = false;  // never a head: the lowest score, and only the split looks inside it
+        c.normal_points = -1;
+        continue;
+      }
       describe(c);
     }
   }
@@ -319,8 +326,10 @@ void BroccoliDetector::split_rejected() {
   for (std::size_t k = 0; k < count_; ++k) {
     segment_ptrs_.push_back(&candidates_[k].segment);
     const BroccoliCandidate& c = candidates_[k];
-    if (c.head || !c.described || int(c.segment.size()) < dc.split_min_points) continue;
-    if (dc.split_score_window > 0.0f && c.score < head - dc.split_score_window) continue;
+    if (!c.oversized) {
+      if (c.head || !c.described || int(c.segment.size()) < dc.split_min_points) continue;
+      if (dc.split_score_window > 0.0f && c.score < head - dc.split_score_window) continue;
+    }
     split_targets_.push_back(int(k));
     geometry::mark_concave_creases(cloud_, candidates_[k].segment.indices, creases, crease_marks_);
   }
@@ -343,6 +352,7 @@ void BroccoliDetector::split_rejected() {
     BroccoliCandidate& piece = pieces_[i];
     const std::size_t parent = std::size_t(split[i].parent);
     std::swap(piece.segment, split[i].segment);
+    piece.oversized = false;  // the slot may hold a candidate of an earlier frame
     if (double(piece.segment.size()) > double(dc.split_max_piece_fraction) * double(candidates_[parent].segment.size()))
       continue;
     describe(piece);

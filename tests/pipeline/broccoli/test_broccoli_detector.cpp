@@ -562,3 +562,50 @@ TEST(BroccoliDetector, ConcaveSplitFreesHeadsJoinedToLeaves) {
   EXPECT_GT(replaced, 0);
   EXPECT_GT(recovered, 0) << "some head merged with a leaf is found after the split";
 }
+
+// detection.split_oversized_above: a region over it (here 10000 points, the paper's max_size; the
+// first pass keeps regions up to 40000) is never described or classified, only split; on a high
+// camera's field (validation seed 6109, camera 1.46 m) some head inside such a region comes out,
+// which the paper's max_size (10000, regions above it dropped) never finds.
+TEST(BroccoliDetector, OversizedRegionsAreOnlySplit) {
+  const auto frames = testdata::simulate(testdata::sim_preset("random-wide"), 6109, 12);
+  const auto model_path = cropsight::testing::source_dir() / "models" / "broccoli-oes-general.json";
+  const auto model = load_broccoli_model(model_path.string());
+  BroccoliDetectorConfig on = broccoli_config_for_model(*model, {}, model_path.string()).detector;
+  on.oes.max_size = 40000;
+  on.detection.split_oversized_above = 10000;
+  BroccoliDetectorConfig off = on;
+  off.detection.split_oversized_above = 0;
+  off.oes.max_size = 10000;
+  BroccoliDetector a(off), b(on);
+  a.set_model(model);
+  b.set_model(model);
+  int oversized = 0, recovered = 0;
+  for (const auto& f : frames) {
+    const auto ca = a.process(f);
+    const auto cb = b.process(f);
+    for (const auto& c : ca) EXPECT_FALSE(c.oversized);
+    for (const auto& c : cb) {
+      if (!c.oversized) continue;
+      ++oversized;
+      EXPECT_GT(c.segment.size(), 10000u);
+      EXPECT_FALSE(c.described);
+      EXPECT_FALSE(c.head);
+      EXPECT_EQ(c.score, -std::numeric_limits<float>::max());
+    }
+    // Heads found (IoU >= 0.5) with the option that no cluster of the plain run found.
+    for (const auto& c : cb) {
+      if (!c.head) continue;
+      const auto truth = cluster_truth(c.segment.indices, b.cloud().labels, 0.5f);
+      if (truth.head_id == 0) continue;
+      const auto head = std::uint16_t(truth.head_id);
+      if (head_iou(b.cloud(), c.segment.indices, head) < 0.5) continue;
+      bool before = false;
+      for (const auto& p : ca) before |= head_iou(a.cloud(), p.segment.indices, head) >= 0.5;
+      recovered += !before;
+    }
+  }
+  EXPECT_GT(oversized, 0) << "the field has regions over 10000 points";
+  EXPECT_GT(recovered, 0) << "some head inside an oversized region is found after the split (oversized " << oversized
+                          << ")";
+}

@@ -47,6 +47,7 @@ struct BroccoliDetectionConfig {
   int split_min_points = 2000;            ///< points; smaller rejected clusters are not split
   float split_score_window = 0.0f;        ///< only clusters scoring above threshold - this are split (0 = all)
   float split_max_piece_fraction = 0.8f;  ///< pieces holding more of their cluster are not classified
+  int split_oversized_above = 0;          ///< points; > 0: larger clusters skip the classifier and go to the split
 
   template <class V>
   void visit(V& v) {
@@ -93,6 +94,12 @@ struct BroccoliDetectionConfig {
       "is not classified (ours: the recovered heads held 0.10-0.59 of theirs; at 0.8, 23 % of the pieces on the wide "
       "validation fields are not classified)",
       Range::within(0.0, 1.0));
+    v("split_oversized_above", split_oversized_above,
+      "points; when > 0 (with split_concave_angle_deg), a cluster larger than this is not described or classified "
+      "(no head is that large: the paper's oes.max_size 10000) but goes to the concave-crease split whatever its "
+      "score, so that a head inside a large leaf region can come out of it; raise oes.max_size above this for "
+      "such regions to reach the detector (ours, issue 27; 0 = off)",
+      Range::at_least(0));
   }
 };
 

@@ -52,6 +52,7 @@ struct BroccoliCandidate {
   bool head = false;            ///< score > threshold + margin
   int normal_points = -1;       ///< points of the segment with a normal (-1: not counted, min_normal_points 0)
   bool described = true;        ///< normal_points >= detection.min_normal_points (else never a head)
+  bool oversized = false;       ///< over detection.split_oversized_above: not described, only split
 };
 
 class BroccoliDetector {
