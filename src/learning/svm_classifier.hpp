@@ -7,7 +7,7 @@
 // vectors here are dense (VFH: 308 values), so dense dot products over the support vectors give
 // the same decision value (to float rounding) several times faster; the RBF dot products skip the
 // columns that are 0 in every support vector (empty VFH bins). On CPUs with AVX2 + FMA the RBF
-// kernel is RbfBlocks (blocks of eight support vectors, eight exponentials at a time, several
+// kernel is RbfBlocks (blocks of 16 support vectors, eight exponentials at a time, several
 // vectors per pass: score_rows), else 4-lane rows. Unit tests check both against libsvm.
 #include <Eigen/Core>
 #include <memory>
@@ -38,10 +38,6 @@ class SvmClassifier final : public Classifier {
   std::string serialize() const override { return text_; }
   std::size_t model_size() const override { return std::size_t(coef_.size()); }
 
-  /// x's active_ columns, zero-padded to svp_stride_ floats, into zp; returns |x|² over every column.
-  float gather_active(const float* x, float* zp) const;
-  float score_with(const float* x, bool baseline) const;
-
   /// score() through the 4-lane row kernel that CPUs without AVX2 + FMA run (tests compare it
   /// with libsvm on any CPU).
   float baseline_score(const float* x) const;
@@ -52,6 +48,10 @@ class SvmClassifier final : public Classifier {
 
  private:
   void load_text(const std::string& text, const std::string& where);
+  /// x's active_ columns, zero-padded to svp_stride_ floats, into zp; returns |x|² over every column.
+  float gather_active(const float* x, float* zp) const;
+  /// score(), through the baseline row kernel when `baseline` (else RbfBlocks where built).
+  float score_with(const float* x, bool baseline) const;
 
   std::string type_;
   int dim_ = 0;

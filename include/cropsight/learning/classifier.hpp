@@ -55,8 +55,8 @@ class Classifier {
   virtual float score(const float* x) const = 0;
   /// score() of `rows` standardised vectors stored one after another in `x` (rows·dim() values),
   /// written to out[0..rows): bit-identical to calling score() per row. The RBF SVM scores them
-  /// together (each block of support vectors is read once for all rows, which score() per row
-  /// reads from L2 every time); the default loops over score(). Thread-safe (const).
+  /// together (each block of support vectors read once for all rows instead of once per row); the
+  /// default loops over score(). Thread-safe (const).
   virtual void score_rows(const float* x, std::size_t rows, float* out) const {
     for (std::size_t r = 0; r < rows; ++r) out[r] = score(x + r * std::size_t(dim()));
   }

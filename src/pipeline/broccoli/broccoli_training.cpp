@@ -75,28 +75,27 @@ void BroccoliEvaluator::add_frame(const RgbdFrame& frame) {
     r_.detections += c.head;
     scored.push_back({c.score, c.segment.indices});
   }
-  truth_instances(det.cloud(), rules.min_truth_points, truth_);
-  truth_sets_.resize(truth_.size());
-  cut_.resize(truth_.size());
-  small_.resize(truth_.size());
+  // truth_sets_ and small_ (heads under visible_truth_points) from truth_.
   const std::size_t visible = std::size_t(rules.visible_truth_points);
-  for (std::size_t i = 0; i < truth_.size(); ++i) {
-    truth_sets_[i] = truth_[i].indices;
-    cut_[i] = truth_[i].cut_by_border;
-    small_[i] = truth_[i].indices.size() < visible;
-  }
+  auto take_truth = [&] {
+    truth_sets_.resize(truth_.size());
+    small_.resize(truth_.size());
+    for (std::size_t i = 0; i < truth_.size(); ++i) {
+      truth_sets_[i] = truth_[i].indices;
+      small_[i] = truth_[i].indices.size() < visible;
+    }
+  };
+  truth_instances(det.cloud(), rules.min_truth_points, truth_);
+  take_truth();
+  cut_.resize(truth_.size());
+  for (std::size_t i = 0; i < truth_.size(); ++i) cut_[i] = truth_[i].cut_by_border;
   ap_.add_frame(truth_sets_, scored);
   ap_view_.add_frame(truth_sets_, scored, cut_);
   ap_visible_.add_frame(truth_sets_, scored, small_);
   // The same AP over every head the sensor measured, in or out of the depth window.
   truth_instances_any_depth(frame.labels.data, frame.depth.data, frame.depth.width, frame.depth.height,
                             rules.min_truth_points, truth_);
-  truth_sets_.resize(truth_.size());
-  small_.resize(truth_.size());
-  for (std::size_t i = 0; i < truth_.size(); ++i) {
-    truth_sets_[i] = truth_[i].indices;
-    small_[i] = truth_[i].indices.size() < visible;
-  }
+  take_truth();
   ap_any_.add_frame(truth_sets_, scored);
   ap_any_visible_.add_frame(truth_sets_, scored, small_);
 }

@@ -37,15 +37,12 @@ ClusterTruth cluster_truth(std::span<const int> indices, std::span<const std::ui
 
 namespace {
 // Point sets of the labelled ids over the pixels `valid(i)` accepts; see truth_instances.
+// `labels` holds w·h ids (the callers check it).
 template <class Valid>
 void collect_instances(std::span<const std::uint16_t> labels, int w, int h, int min_points, Valid valid,
                        std::vector<TruthInstance>& out) {
   for (auto& inst : out) inst.indices.clear();
   std::size_t used = 0;
-  if (labels.empty()) {
-    out.resize(0);
-    return;
-  }
   // Ids are sparse (1..65535): map id → slot through a sorted list of the ids seen.
   std::vector<std::pair<int, std::size_t>> slot_of;
   const int n = w * h;

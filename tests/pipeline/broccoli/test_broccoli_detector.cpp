@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <span>
 
 #include "broccoli_sim_frames.hpp"
 #include "cropsight/core/error.hpp"
@@ -382,6 +383,20 @@ double head_iou(const OrganizedCloud& cloud, const std::vector<int>& indices, st
   for (std::size_t i = 0; i < cloud.labels.size(); ++i) truth += cloud.labels[i] == head && std::isfinite(cloud.z[i]);
   return double(inter) / double(long(indices.size()) + truth - inter);
 }
+
+// True when `c`, a candidate of detector `with`, is a head that covers a labelled head with IoU
+// >= 0.5 and no candidate in `plain` (of detector `without`, same frame) covers that head so.
+bool found_only_with(const BroccoliCandidate& c, const BroccoliDetector& with, const BroccoliDetector& without,
+                     std::span<const BroccoliCandidate> plain) {
+  if (!c.head) return false;
+  const auto truth = cluster_truth(c.segment.indices, with.cloud().labels, 0.5f);
+  if (truth.head_id == 0) return false;
+  const auto head = std::uint16_t(truth.head_id);
+  if (head_iou(with.cloud(), c.segment.indices, head) < 0.5) return false;
+  for (const auto& p : plain)
+    if (head_iou(without.cloud(), p.segment.indices, head) >= 0.5) return false;
+  return true;
+}
 }  // namespace
 
 // Issue 27: under ToF noise a head breaks into one kept piece and debris below min_size. The
@@ -549,14 +564,7 @@ TEST(BroccoliDetector, ConcaveSplitFreesHeadsJoinedToLeaves) {
         EXPECT_FALSE(ca[std::size_t(p)].head);
       }
       // A head that no plain cluster covered with IoU >= 0.5, now found by a piece.
-      if (!cb[k].head) continue;
-      const auto truth = cluster_truth(cb[k].segment.indices, b.cloud().labels, 0.5f);
-      if (truth.head_id == 0) continue;
-      const auto head = std::uint16_t(truth.head_id);
-      if (head_iou(b.cloud(), cb[k].segment.indices, head) < 0.5) continue;
-      bool before = false;
-      for (const auto& c : ca) before |= head_iou(a.cloud(), c.segment.indices, head) >= 0.5;
-      recovered += !before;
+      recovered += found_only_with(cb[k], b, a, ca);
     }
   }
   EXPECT_GT(replaced, 0);
@@ -594,16 +602,7 @@ TEST(BroccoliDetector, OversizedRegionsAreOnlySplit) {
       EXPECT_EQ(c.score, -std::numeric_limits<float>::max());
     }
     // Heads found (IoU >= 0.5) with the option that no cluster of the plain run found.
-    for (const auto& c : cb) {
-      if (!c.head) continue;
-      const auto truth = cluster_truth(c.segment.indices, b.cloud().labels, 0.5f);
-      if (truth.head_id == 0) continue;
-      const auto head = std::uint16_t(truth.head_id);
-      if (head_iou(b.cloud(), c.segment.indices, head) < 0.5) continue;
-      bool before = false;
-      for (const auto& p : ca) before |= head_iou(a.cloud(), p.segment.indices, head) >= 0.5;
-      recovered += !before;
-    }
+    for (const auto& c : cb) recovered += found_only_with(c, b, a, ca);
   }
   EXPECT_GT(oversized, 0) << "the field has regions over 10000 points";
   EXPECT_GT(recovered, 0) << "some head inside an oversized region is found after the split (oversized " << oversized
