@@ -16,6 +16,7 @@ namespace eval_potato_orientation_cmd {
 struct Options {
   CommonOptions common;
   std::string rgb, depth, segmentation = "ours", axis = "pca", input = "depth";
+  bool shots = false;  ///< also list every shot's estimate and error
 };
 
 nlohmann::json to_json(const eval::OrientationStats& s) {
@@ -53,6 +54,21 @@ void run(const Options& o) {
   j["per_potato"] = groups(e.per_potato);
   j["boxes"] = "BoardBlobDetector on the RGB image";
   j["rule"] = "absolute error modulo 180 deg; a shot without box or mask counts 90 deg";
+  if (o.shots) {
+    nlohmann::json list = nlohmann::json::array();
+    for (std::size_t i = 0; i < e.samples.size(); ++i) {
+      const auto& s = e.samples[i];
+      list.push_back({{"file", s.file},
+                      {"potato", s.potato},
+                      {"light", s.light},
+                      {"truth_deg", json_number(s.truth_deg)},
+                      {"ok", s.ok},
+                      {"estimate_deg", json_number(s.estimate_deg)},
+                      {"error_deg", json_number(e.errors_deg[i])},
+                      {"ms", json_number(s.ms)}});
+    }
+    j["shots"] = std::move(list);
+  }
   if (o.common.json) {
     print_json(j);
     return;
@@ -63,6 +79,13 @@ void run(const Options& o) {
   for (const auto* g : {&e.per_light, &e.per_angle, &e.per_potato})
     for (const auto& s : *g)
       std::printf("  %-8s n=%d MAE %.2f std %.2f\n", s.key.c_str(), s.count, s.mae_deg, s.std_deg);
+  if (!o.shots) return;
+  for (std::size_t i = 0; i < e.samples.size(); ++i) {
+    const auto& s = e.samples[i];
+    std::printf("  potato %d %-5s truth %5.1f estimate %s error %5.1f deg  %s\n", s.potato, s.light.c_str(),
+                s.truth_deg, s.ok ? std::to_string(s.estimate_deg).substr(0, 5).c_str() : "  -  ", e.errors_deg[i],
+                s.file.c_str());
+  }
 }
 
 }  // namespace eval_potato_orientation_cmd
@@ -77,6 +100,7 @@ void add_eval_potato_orientation(CLI::App& eval) {
   cmd->add_option("--segmentation", o->segmentation, "canny | kmeans | ours")->capture_default_str();
   cmd->add_option("--axis", o->axis, "pca | ellipse")->capture_default_str();
   cmd->add_option("--input", o->input, "rgb | depth")->capture_default_str();
+  cmd->add_flag("--shots", o->shots, "Also list each shot: file, potato, light, truth, estimate, error (deg)");
   add_json_flag(cmd, o->common);
   add_config_options(cmd, o->common);
   cmd->callback([o] { run(*o); });
