@@ -1,13 +1,15 @@
 // cropsight eval potato-orientation (issue 22, paper Table 4.3): the orientation error (modulo
 // 180°) of one segmentation + axis + input combination on the paper's folder layout. The
 // evaluation is pipeline::potato::evaluate_orientation(); this file parses and formats.
-// The boxes come from BoardBlobDetector (one colour blob on the white board) until the potato
-// detector lands.
+// The boxes come from the potato preset's detector (--boxes detector, the paper's protocol) or from
+// BoardBlobDetector (one colour blob on the white board, --boxes board).
 #include <cstdio>
+#include <memory>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/pipeline/potato/orientation_dataset.hpp"
+#include "cropsight/pipeline/potato/potato_pipeline.hpp"
 
 namespace cropsight::cli {
 
@@ -17,6 +19,7 @@ struct Options {
   CommonOptions common;
   std::string rgb, depth, segmentation = "ours", axis = "pca", input = "depth";
   bool shots = false;  ///< also list every shot's estimate and error
+  std::string boxes = "detector", detector_config = "potato";
 };
 
 nlohmann::json to_json(const eval::OrientationStats& s) {
@@ -41,9 +44,18 @@ void run(const Options& o) {
   measure::OrientationConfig cfg;
   apply_config(cfg, m, "--set");
   measure::validate(cfg, "--set");
-  pipeline::potato::BoardBlobDetector detector;
+  std::unique_ptr<Detector2D> detector;
+  std::string boxes;
+  if (o.boxes == "board") {
+    detector = std::make_unique<pipeline::potato::BoardBlobDetector>();
+    boxes = "BoardBlobDetector on the RGB image";
+  } else {
+    detector = pipeline::potato::make_potato_detector(pipeline::potato::load_potato_config(o.detector_config).detector,
+                                                      o.detector_config);
+    boxes = "the " + o.detector_config + " preset's detector on the RGB image";
+  }
   const auto e =
-      pipeline::potato::evaluate_orientation(pipeline::potato::list_orientation_shots(o.rgb, o.depth), detector, cfg);
+      pipeline::potato::evaluate_orientation(pipeline::potato::list_orientation_shots(o.rgb, o.depth), *detector, cfg);
   nlohmann::json j = to_json(e.all);
   j["segmentation"] = o.segmentation;
   j["axis"] = o.axis;
@@ -52,7 +64,7 @@ void run(const Options& o) {
   j["per_light"] = groups(e.per_light);
   j["per_angle"] = groups(e.per_angle);
   j["per_potato"] = groups(e.per_potato);
-  j["boxes"] = "BoardBlobDetector on the RGB image";
+  j["boxes"] = boxes;
   j["rule"] = "absolute error modulo 180 deg; a shot without box or mask counts 90 deg";
   if (o.shots) {
     nlohmann::json list = nlohmann::json::array();
@@ -100,6 +112,13 @@ void add_eval_potato_orientation(CLI::App& eval) {
   cmd->add_option("--segmentation", o->segmentation, "canny | kmeans | ours")->capture_default_str();
   cmd->add_option("--axis", o->axis, "pca | ellipse")->capture_default_str();
   cmd->add_option("--input", o->input, "rgb | depth")->capture_default_str();
+  cmd->add_option("--boxes", o->boxes,
+                  "Box source: detector (the --detector-config preset's detector, the paper's protocol) | board "
+                  "(BoardBlobDetector: one colour blob on a white board)")
+      ->check(CLI::IsMember({"detector", "board"}))
+      ->capture_default_str();
+  cmd->add_option("--detector-config", o->detector_config, "Potato preset (or YAML) whose detector gives the boxes")
+      ->capture_default_str();
   cmd->add_flag("--shots", o->shots, "Also list each shot: file, potato, light, truth, estimate, error (deg)");
   add_json_flag(cmd, o->common);
   add_config_options(cmd, o->common);

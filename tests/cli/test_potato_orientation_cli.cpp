@@ -26,17 +26,19 @@ void draw_shot(const fs::path& root, int angle_deg, int number) {
   fs::create_directories(root / "rgb" / (a + "_high_rgb"));
   fs::create_directories(root / "depth" / (a + "_high_depth"));
   const std::string name = "image" + std::to_string(number) + ".png";
+  cv::Mat lab(1, 1, CV_8UC3, cv::Scalar(110, 137, 153)), skin;  // the shipped colour model's mean
+  cv::cvtColor(lab, skin, cv::COLOR_Lab2BGR);
   cv::Mat rgb(480, 640, CV_8UC3, cv::Scalar(225, 228, 230));  // BGR: a white board
-  cv::ellipse(rgb, {320, 240}, {60, 38}, -angle_deg, 0, 360, cv::Scalar(70, 160, 200), cv::FILLED);
+  cv::ellipse(rgb, {320, 240}, {60, 38}, -angle_deg, 0, 360, cv::Scalar(skin.at<cv::Vec3b>(0, 0)), cv::FILLED);
   cv::imwrite((root / "rgb" / (a + "_high_rgb") / name).string(), rgb);
-  cv::Mat depth(480, 640, CV_8UC3, cv::Scalar(160, 40, 0));  // BGR: far = blue
+  cv::Mat depth(480, 640, CV_8UC3, cv::Scalar(160, 40, 0));                                         // BGR: far = blue
   cv::ellipse(depth, {320, 240}, {60, 38}, -angle_deg, 0, 360, cv::Scalar(0, 0, 230), cv::FILLED);  // near = red
   cv::imwrite((root / "depth" / (a + "_high_depth") / name).string(), depth);
 }
 
-std::string command(const fs::path& root, const std::string& input) {
+std::string command(const fs::path& root, const std::string& input, const std::string& boxes = "detector") {
   return "eval potato-orientation --rgb " + shell_quoted(root / "rgb") + " --depth " + shell_quoted(root / "depth") +
-         " --input " + input + " --shots --json";
+         " --input " + input + " --boxes " + boxes + " --shots --json";
 }
 }  // namespace
 
@@ -44,26 +46,30 @@ TEST(PotatoOrientationCli, ShotsListTheDrawnAngles) {
   TempDir tmp;
   draw_shot(tmp.path(), 30, 1);
   draw_shot(tmp.path(), 120, 2);
-  for (const char* input : {"depth", "rgb"}) {
-    const auto r = run_cli(command(tmp.path(), input));
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    const auto j = nlohmann::json::parse(r.out);
-    EXPECT_EQ(j["count"], 2) << input;
-    EXPECT_EQ(j["failures"], 0) << input;
-    ASSERT_EQ(j["shots"].size(), 2u) << input;
-    double sum = 0;
-    for (const auto& s : j["shots"]) {
-      EXPECT_TRUE(s["ok"].get<bool>()) << input;
-      const double truth = s["truth_deg"], estimate = s["estimate_deg"], error = s["error_deg"];
-      EXPECT_TRUE(truth == 30.0 || truth == 120.0) << truth;
-      EXPECT_LT(error, 2.0) << input << " " << truth;
-      EXPECT_NEAR(std::abs(estimate - truth), error, 1e-6) << input;  // no wrap-around at these angles
-      EXPECT_NE(s["file"].get<std::string>().find(input == std::string("depth") ? "_depth" : "_rgb"),
+  for (const std::string boxes : {"detector", "board"})
+    for (const char* input : {"depth", "rgb"}) {
+      SCOPED_TRACE(boxes);
+      const auto r = run_cli(command(tmp.path(), input, boxes));
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      const auto j = nlohmann::json::parse(r.out);
+      EXPECT_EQ(j["count"], 2) << input;
+      EXPECT_EQ(j["failures"], 0) << input;
+      ASSERT_EQ(j["shots"].size(), 2u) << input;
+      double sum = 0;
+      for (const auto& s : j["shots"]) {
+        EXPECT_TRUE(s["ok"].get<bool>()) << input;
+        const double truth = s["truth_deg"], estimate = s["estimate_deg"], error = s["error_deg"];
+        EXPECT_TRUE(truth == 30.0 || truth == 120.0) << truth;
+        EXPECT_LT(error, 2.0) << input << " " << truth;
+        EXPECT_NEAR(std::abs(estimate - truth), error, 1e-6) << input;  // no wrap-around at these angles
+        EXPECT_NE(s["file"].get<std::string>().find(input == std::string("depth") ? "_depth" : "_rgb"),
+                  std::string::npos);
+        sum += error;
+      }
+      EXPECT_NEAR(j["mae_deg"].get<double>(), sum / 2, 1e-6) << input;
+      EXPECT_NE(j["boxes"].get<std::string>().find(boxes == "board" ? "BoardBlob" : "potato preset"),
                 std::string::npos);
-      sum += error;
     }
-    EXPECT_NEAR(j["mae_deg"].get<double>(), sum / 2, 1e-6) << input;
-  }
   // Without --shots there is no list.
   const auto plain = run_cli("eval potato-orientation --rgb " + shell_quoted(tmp.path() / "rgb") + " --depth " +
                              shell_quoted(tmp.path() / "depth") + " --json");
@@ -81,6 +87,10 @@ TEST(PotatoOrientationCli, BadInputIsOneLineNamingTheFile) {
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("image1.png"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  // An unknown box source.
+  r = run_cli(command(tmp.path(), "rgb", "oracle"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--boxes"), std::string::npos) << r.err;
   // No depth partner at all.
   fs::remove(depth);
   r = run_cli(command(tmp.path(), "depth"));

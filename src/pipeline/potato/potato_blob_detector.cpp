@@ -28,6 +28,9 @@ struct PotatoBlobDetector::Impl {
   // quadratic form and an exp.
   std::vector<std::uint8_t> lut = std::vector<std::uint8_t>(256 * 256);
   std::array<std::uint8_t, 256> l_ok{};
+  // Saturation test in whole 8-bit units: chroma per (a*, b*) against min_saturation x L per lightness.
+  std::vector<std::uint8_t> chroma = std::vector<std::uint8_t>(256 * 256);
+  std::array<std::uint8_t, 256> min_chroma{};
   cv::Mat lab, like, mask, labels, stats, centroids;
   GrayImage last_mask;
 };
@@ -46,7 +49,14 @@ PotatoBlobDetector::PotatoBlobDetector(const PotatoBlobConfig& cfg) : impl_(std:
       impl_->lut[std::size_t(a) * 256 + std::size_t(b)] =
           d2 < t2 ? std::uint8_t(std::max(1.0, std::round(255.0 * std::exp(-0.5 * d2)))) : 0;
     }
-  for (int l = 0; l < 256; ++l) impl_->l_ok[std::size_t(l)] = l >= cfg.min_lightness && l <= cfg.max_lightness;
+  for (int l = 0; l < 256; ++l) {
+    impl_->l_ok[std::size_t(l)] = l >= cfg.min_lightness && l <= cfg.max_lightness;
+    impl_->min_chroma[std::size_t(l)] = std::uint8_t(std::min(255.0, std::round(cfg.min_saturation * l)));
+  }
+  for (int a = 0; a < 256; ++a)
+    for (int b = 0; b < 256; ++b)
+      impl_->chroma[std::size_t(a) * 256 + std::size_t(b)] =
+          std::uint8_t(std::min(255.0, std::round(std::hypot(a - 128.0, b - 128.0))));
 }
 
 PotatoBlobDetector::~PotatoBlobDetector() = default;
@@ -135,7 +145,8 @@ std::vector<Detection2D> PotatoBlobDetector::detect(const DetectorInput& in) {
     std::uint8_t* mk = m.mask.ptr<std::uint8_t>(v);
     const float* z = depth ? depth->row(v) : nullptr;
     for (int u = 0; u < w; ++u) {
-      std::uint8_t value = m.l_ok[p[u][0]] ? m.lut[std::size_t(p[u][1]) * 256 + p[u][2]] : 0;
+      const std::size_t ab = std::size_t(p[u][1]) * 256 + p[u][2];
+      std::uint8_t value = m.l_ok[p[u][0]] && m.chroma[ab] >= m.min_chroma[p[u][0]] ? m.lut[ab] : 0;
       if (z && value) {
         const float d = z[u];
         const bool in_range = d >= cfg.depth_min_m && d <= cfg.depth_max_m;

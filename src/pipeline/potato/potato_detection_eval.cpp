@@ -24,7 +24,12 @@ std::vector<AnnotatedImage> load_annotated_images(const fs::path& images_dir, co
     a.truth = io::read_voc(x);
     a.stem = x.stem().string();
     std::vector<fs::path> candidates;
-    if (!a.truth.filename.empty()) candidates.push_back(images_dir / fs::path(a.truth.filename).filename());
+    if (!a.truth.filename.empty()) {
+      // A relative path (<filename>0_high_rgb/image2.png</filename>) names an image in a subfolder.
+      if (const fs::path f(a.truth.filename); f.is_relative() && f.has_parent_path())
+        candidates.push_back(images_dir / f);
+      candidates.push_back(images_dir / fs::path(a.truth.filename).filename());
+    }
     candidates.push_back(images_dir / (a.stem + ".jpg"));
     candidates.push_back(images_dir / (a.stem + ".png"));
     for (const fs::path& c : candidates)

@@ -205,16 +205,16 @@ TEST(PotatoBlobDetector, ConfigIsChecked) {
   EXPECT_THROW(PotatoBlobDetector{cfg}, Error);
 }
 
-// The 11 shared images with their truth boxes (as Detection2D for the colour fit).
+// One shared real scene: annotated images with their truth boxes (as Detection2D for the colour fit).
 struct SharedSet {
   std::vector<pipeline::potato::AnnotatedImage> set;
   std::vector<ColorImage> images;
   std::vector<std::vector<Detection2D>> boxes;
 };
 
-SharedSet load_shared(const std::filesystem::path& dir) {
+SharedSet load_set(const std::filesystem::path& images, const std::filesystem::path& annotations) {
   SharedSet s;
-  s.set = pipeline::potato::load_annotated_images(dir / "images", dir / "annotations_voc");
+  s.set = pipeline::potato::load_annotated_images(images, annotations);
   for (const auto& a : s.set) {
     s.images.push_back(io::read_color(a.image));
     s.boxes.emplace_back();
@@ -227,49 +227,97 @@ SharedSet load_shared(const std::filesystem::path& dir) {
   return s;
 }
 
-// AP of `base` with the colour model refit on the other 10 images for each one (leave-one-image-out).
-eval::VocApSummary leave_one_out(const SharedSet& s, const PotatoBlobConfig& base) {
-  std::vector<eval::VocImage> loo(s.set.size());
-  for (std::size_t i = 0; i < s.set.size(); ++i) {
+// The 11 detection images (about 1 m, a sheet in front of a room) and the 15 orientation shots
+// (0.3 m, a white board; boxes drawn for the project in data/potato-orientation-boxes).
+std::filesystem::path shared_detection_dir() { return cropsight::testing::shared_data_dir() / "potato" / "detection"; }
+std::filesystem::path shared_orientation_rgb_dir() {
+  return cropsight::testing::shared_data_dir() / "potato" / "orientation" / "rgb";
+}
+SharedSet load_detection_set() {
+  return load_set(shared_detection_dir() / "images", shared_detection_dir() / "annotations_voc");
+}
+SharedSet load_orientation_set() {
+  return load_set(shared_orientation_rgb_dir(), cropsight::testing::source_dir() / "data" / "potato-orientation-boxes");
+}
+
+// Images of both scenes in one list, with the scene of each (0 detection, 1 orientation).
+struct Pooled {
+  std::vector<const ColorImage*> images;
+  std::vector<std::vector<Detection2D>> boxes;
+  std::vector<std::vector<eval::VocBox>> truth;
+  std::vector<int> scene;
+};
+
+Pooled pool(const std::vector<const SharedSet*>& sets) {
+  Pooled p;
+  for (std::size_t k = 0; k < sets.size(); ++k)
+    for (std::size_t i = 0; i < sets[k]->set.size(); ++i) {
+      p.images.push_back(&sets[k]->images[i]);
+      p.boxes.push_back(sets[k]->boxes[i]);
+      p.truth.push_back(pipeline::potato::truth_boxes(sets[k]->set[i].truth));
+      p.scene.push_back(int(k));
+    }
+  return p;
+}
+
+// AP per scene of `base` with the colour model refit on all the other images of both scenes for
+// each one (leave-one-image-out).
+std::array<eval::VocApSummary, 2> leave_one_out(const Pooled& p, const PotatoBlobConfig& base) {
+  std::array<std::vector<eval::VocImage>, 2> per_scene;
+  for (std::size_t i = 0; i < p.images.size(); ++i) {
     std::vector<const ColorImage*> train_images;
     std::vector<std::vector<Detection2D>> train_boxes;
-    for (std::size_t j = 0; j < s.set.size(); ++j)
-      if (j != i) train_images.push_back(&s.images[j]), train_boxes.push_back(s.boxes[j]);
+    for (std::size_t j = 0; j < p.images.size(); ++j)
+      if (j != i) train_images.push_back(p.images[j]), train_boxes.push_back(p.boxes[j]);
     PotatoBlobConfig cfg = base;
     pipeline::potato::fit_potato_colour(train_images, train_boxes).apply_to(cfg);
     PotatoBlobDetector det(cfg);
-    loo[i].truth = pipeline::potato::truth_boxes(s.set[i].truth);
-    loo[i].detections = pipeline::potato::detection_boxes(det.detect({&s.images[i], nullptr}));
+    eval::VocImage v;
+    v.truth = p.truth[i];
+    v.detections = pipeline::potato::detection_boxes(det.detect({p.images[i], nullptr}));
+    per_scene[std::size_t(p.scene[i])].push_back(std::move(v));
   }
-  return eval::voc_ap_summary(loo);
+  return {eval::voc_ap_summary(per_scene[0]), eval::voc_ap_summary(per_scene[1])};
 }
 
-// AP50 on the 11 shared images. The colour model is refit on the other 10 images for each one
-// (leave-one-image-out); the morphology, split and score thresholds were chosen on all 11 images,
-// so this is not a held-out figure for them (the judges' 20 images are).
-TEST(PotatoBlobDetector, SharedImagesLeaveOneOut) {
-  const auto dir = cropsight::testing::shared_data_dir() / "potato" / "detection";
-  CROPSIGHT_REQUIRE_DATA(dir);
-  const SharedSet s = load_shared(dir);
-  std::vector<eval::VocImage> fixed(s.set.size());
-  PotatoBlobDetector shipped;
+eval::VocApSummary score(const SharedSet& s, const PotatoBlobConfig& cfg) {
+  PotatoBlobDetector det(cfg);
+  std::vector<eval::VocImage> v(s.set.size());
   for (std::size_t i = 0; i < s.set.size(); ++i) {
-    fixed[i].truth = pipeline::potato::truth_boxes(s.set[i].truth);
-    fixed[i].detections = pipeline::potato::detection_boxes(shipped.detect({&s.images[i], nullptr}));
+    v[i].truth = pipeline::potato::truth_boxes(s.set[i].truth);
+    v[i].detections = pipeline::potato::detection_boxes(det.detect({&s.images[i], nullptr}));
   }
-  const auto s_loo = leave_one_out(s, PotatoBlobConfig{}), s_fixed = eval::voc_ap_summary(fixed);
-  std::printf("[ classical ] 11 images, colour leave-one-out: AP50 %.4f AP75 %.4f mAP50:95 %.4f\n", s_loo.ap50,
-              s_loo.ap75, s_loo.map50_95);
-  std::printf("[ classical ] 11 images, shipped defaults (fit on all 11): AP50 %.4f AP75 %.4f mAP50:95 %.4f\n",
-              s_fixed.ap50, s_fixed.ap75, s_fixed.map50_95);
-  EXPECT_GT(s_loo.ap50, 0.9);    // measured 0.919 when written (0.807 before the concavity split)
-  EXPECT_GT(s_loo.ap75, 0.65);   // measured 0.704 (0.470 before)
-  EXPECT_GT(s_fixed.ap50, 0.9);  // measured 0.929 (0.788 before)
+  return eval::voc_ap_summary(v);
+}
 
-  // The shipped colour model is the fit on all 11 images (to the printed digits).
-  std::vector<const ColorImage*> all;
-  for (const auto& im : s.images) all.push_back(&im);
-  const auto fit = pipeline::potato::fit_potato_colour(all, s.boxes);
+// AP50 on the two shared scenes. The colour model is refit on the other 25 images for each one
+// (leave-one-image-out); the morphology, split, saturation and score thresholds were chosen on
+// these images, so no figure here is held out for them (the judges' images are).
+TEST(PotatoBlobDetector, SharedImagesLeaveOneOut) {
+  CROPSIGHT_REQUIRE_DATA(shared_detection_dir());
+  CROPSIGHT_REQUIRE_DATA(shared_orientation_rgb_dir());
+  const SharedSet det = load_detection_set(), ori = load_orientation_set();
+  const Pooled p = pool({&det, &ori});
+  const auto loo = leave_one_out(p, PotatoBlobConfig{});
+  const auto fixed_det = score(det, PotatoBlobConfig{}), fixed_ori = score(ori, PotatoBlobConfig{});
+  std::printf("[ classical ] detection images (11), colour leave-one-out: AP50 %.4f AP75 %.4f mAP50:95 %.4f\n",
+              loo[0].ap50, loo[0].ap75, loo[0].map50_95);
+  std::printf("[ classical ] orientation shots (15), colour leave-one-out: AP50 %.4f AP75 %.4f mAP50:95 %.4f\n",
+              loo[1].ap50, loo[1].ap75, loo[1].map50_95);
+  std::printf(
+      "[ classical ] shipped defaults (fit on all 26): detection AP50 %.4f AP75 %.4f, orientation AP50 %.4f "
+      "AP75 %.4f\n",
+      fixed_det.ap50, fixed_det.ap75, fixed_ori.ap50, fixed_ori.ap75);
+  // Measured when written (2026-12-05): 0.922, 0.980, 0.925, 0.983. Before (the fit on the 11
+  // detection images alone, no saturation test): 0.911 leave-one-out and 0.923 on the detection
+  // images, 0.221 on the orientation shots.
+  EXPECT_GT(loo[0].ap50, 0.9);
+  EXPECT_GT(loo[1].ap50, 0.7);
+  EXPECT_GT(fixed_det.ap50, 0.9);
+  EXPECT_GT(fixed_ori.ap50, 0.7);
+
+  // The shipped colour model is the fit on all 26 images (to the printed digits).
+  const auto fit = pipeline::potato::fit_potato_colour(p.images, p.boxes);
   const PotatoBlobConfig def;
   EXPECT_NEAR(fit.mean_a, def.mean_a, 0.01);
   EXPECT_NEAR(fit.mean_b, def.mean_b, 0.01);
@@ -278,19 +326,47 @@ TEST(PotatoBlobDetector, SharedImagesLeaveOneOut) {
   EXPECT_NEAR(fit.cov_bb, def.cov_bb, 0.01);
 }
 
+// Across scenes: the colour fitted on one scene alone, scored on the other (held out for the colour
+// model; the other thresholds as shipped). The fit on the detection images misses the orientation
+// shots' skin (more red, under another light), while the fit on the shots holds on the detection
+// images: the reason the shipped model pools both.
+TEST(PotatoBlobDetector, ColourFitAcrossScenes) {
+  CROPSIGHT_REQUIRE_DATA(shared_detection_dir());
+  CROPSIGHT_REQUIRE_DATA(shared_orientation_rgb_dir());
+  const SharedSet det = load_detection_set(), ori = load_orientation_set();
+  auto fitted_on = [](const SharedSet& s) {
+    std::vector<const ColorImage*> im;
+    for (const auto& i : s.images) im.push_back(&i);
+    PotatoBlobConfig cfg;
+    pipeline::potato::fit_potato_colour(im, s.boxes).apply_to(cfg);
+    return cfg;
+  };
+  const auto det_on_ori = score(ori, fitted_on(det)), ori_on_det = score(det, fitted_on(ori));
+  std::printf("[ classical ] colour fit on the detection images, scored on the orientation shots: AP50 %.4f\n",
+              det_on_ori.ap50);
+  std::printf("[ classical ] colour fit on the orientation shots, scored on the detection images: AP50 %.4f\n",
+              ori_on_det.ap50);
+  EXPECT_GT(ori_on_det.ap50, 0.85);  // measured 0.870
+  // Measured 0.510 against 0.983 for the shipped (pooled) fit: one scene's fit does not carry to the other.
+  EXPECT_LT(det_on_ori.ap50 + 0.2, score(ori, PotatoBlobConfig{}).ap50);
+}
+
 // The leave-one-out figures of the thresholds chosen on these images, one at a time around the
 // preset (the table in docs/pipelines/potatoes.md). Prints only: a sweep, not a check.
 // build/bin/test_pipeline --gtest_also_run_disabled_tests --gtest_filter='*DISABLED_SharedImagesSweep'
 TEST(PotatoBlobDetector, DISABLED_SharedImagesSweep) {
-  const auto dir = cropsight::testing::shared_data_dir() / "potato" / "detection";
-  CROPSIGHT_REQUIRE_DATA(dir);
-  const SharedSet s = load_shared(dir);
+  CROPSIGHT_REQUIRE_DATA(shared_detection_dir());
+  CROPSIGHT_REQUIRE_DATA(shared_orientation_rgb_dir());
+  const SharedSet det = load_detection_set(), ori = load_orientation_set();
+  const Pooled s = pool({&det, &ori});
   auto run = [&](const char* key, std::initializer_list<double> values, auto set) {
     for (const double v : values) {
       PotatoBlobConfig cfg;
       set(cfg, v);
       const auto r = leave_one_out(s, cfg);
-      std::printf("[ sweep ] %s %g: leave-one-out AP50 %.4f AP75 %.4f\n", key, v, r.ap50, r.ap75);
+      std::printf(
+          "[ sweep ] %s %g: leave-one-out AP50 %.4f AP75 %.4f (detection images), %.4f %.4f (orientation shots)\n", key,
+          v, r[0].ap50, r[0].ap75, r[1].ap50, r[1].ap75);
     }
   };
   run("split_concavity_depth", {0, 0.3, 0.4, 0.5, 0.6, 0.7},
@@ -301,6 +377,8 @@ TEST(PotatoBlobDetector, DISABLED_SharedImagesSweep) {
   run("split_max_depth", {1, 2, 3}, [](PotatoBlobConfig& c, double v) { c.split_max_depth = int(v); });
   run("split_min_part_fraction", {0.1, 0.15, 0.25},
       [](PotatoBlobConfig& c, double v) { c.split_min_part_fraction = v; });
+  run("min_saturation", {0, 0.1, 0.11, 0.12, 0.13, 0.14, 0.15, 0.16},
+      [](PotatoBlobConfig& c, double v) { c.min_saturation = v; });
 }
 
 }  // namespace

@@ -9,8 +9,11 @@
 // (mean and covariance of a*, b* in OpenCV's 8-bit Lab scale, 128 = neutral); a pixel is
 // foreground when its Mahalanobis distance is below `max_colour_distance`. Lightness only bounds
 // out black and blown-out pixels, because shading on a potato changes L far more than chroma.
-// Defaults: the Gaussian fitted to the inner ellipses (70 % of the box) of the 32 annotated
-// potatoes of the 11 shared images (tools: see docs; leave-one-image-out figures in the report).
+// Defaults: the Gaussian fitted to the inner ellipses (70 % of the box) of the annotated potatoes
+// of both shared real scenes: the 32 of the 11 detection images (about 1 m, in front of a sheet)
+// and the 15 orientation shots (0.3 m, a white board; boxes drawn for this in
+// data/potato-orientation-boxes). A fit on one scene alone misses the other's skin colour
+// (docs/pipelines/potatoes.md, "Detection").
 //
 // Touching potatoes: a blob whose outline has a notch deeper than `split_concavity_depth` x its
 // inscribed radius is cut from that notch to where the parts come out most convex, when both parts
@@ -36,12 +39,18 @@ namespace cropsight::pipeline::potato {
 
 struct PotatoBlobConfig {
   // Colour model: OpenCV 8-bit Lab (a*, b* offset by 128).
-  double mean_a = 134.38;  ///< fitted on the shared images (see above)
-  double mean_b = 150.98;
-  double cov_aa = 6.48, cov_ab = 4.25, cov_bb = 32.04;
+  double mean_a = 137.00;  ///< fitted on the shared images of both real scenes (see above)
+  double mean_b = 153.19;
+  double cov_aa = 15.22, cov_ab = 11.64, cov_bb = 43.22;
   double max_colour_distance = 3.0;  ///< Mahalanobis; 3 keeps 99 % of the fitted potato pixels
-  int min_lightness = 20;            ///< 8-bit L; darker pixels (shadows, clothes) are background
-  int max_lightness = 235;           ///< brighter ones (specular highlights of the sheet) too
+  /// A pixel's saturation, chroma / lightness (chroma: distance of (a*, b*) from the neutral
+  /// (128, 128); both 8-bit Lab, compared in whole units), must reach this. The Gaussian is long
+  /// towards neutral (shaded skin), which lets in a potato's own shadow on a white board at close
+  /// range (saturation 0.12-0.14 there, the skin 0.2-0.4; the board 0.01): a shaded potato is dark
+  /// but keeps its colour. 0 = off.
+  double min_saturation = 0.13;
+  int min_lightness = 20;   ///< 8-bit L; darker pixels (shadows, clothes) are background
+  int max_lightness = 235;  ///< brighter ones (specular highlights of the sheet) too
   // Range foreground (used only when the input has metric depth).
   double depth_min_m = 0.2;      ///< the D415 returns nothing nearer; nearer returns are noise
   double depth_max_m = 1.2;      ///< beyond: the sheet / the room (harvest approach at 0.3-0.5 m)
@@ -77,6 +86,10 @@ struct PotatoBlobConfig {
     v("cov_ab", cov_ab, "(8-bit Lab)^2; covariance of a* and b* (the matrix must be positive definite)");
     v("cov_bb", cov_bb, "(8-bit Lab)^2; variance of b* of the skin colour", Range::above(0));
     v("max_colour_distance", max_colour_distance, "Mahalanobis distance; colour foreground threshold", Range::above(0));
+    v("min_saturation", min_saturation,
+      "ratio; smallest chroma / lightness of a potato pixel (chroma: distance of a*, b* from neutral 128, 128, 8-bit "
+      "Lab): a shadow on a white board is as grey as the board; 0 = off (not in the paper)",
+      Range::within(0, 10));
     v("min_lightness", min_lightness, "8-bit L; darker pixels are background", Range::within(0, 255));
     v("max_lightness", max_lightness, "8-bit L; brighter pixels are background", Range::within(0, 255));
     v("depth_min_m", depth_min_m, "m; nearer depth is background (D415 minimum range)", Range::at_least(0));

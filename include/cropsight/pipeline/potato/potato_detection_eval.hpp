@@ -4,9 +4,9 @@
 // text format or by running a Detector2D on every image.
 //
 // Layout: annotations_dir/*.xml (sorted by name: the image order of the ranking, as pascalvoc.py
-// sorts its files); each names its image by <filename>, looked up in images_dir (falling back to
-// <stem>.jpg / <stem>.png). Saved detections: detections_dir/<stem>.txt for every annotation. Only
-// objects and detections labelled `class_name` count.
+// sorts its files); each names its image by <filename>, looked up in images_dir (a relative path
+// names a subfolder of it; then the file name alone; then <stem>.jpg / <stem>.png). Saved detections:
+// detections_dir/<stem>.txt for every annotation. Only objects and detections labelled `class_name` count.
 #include <filesystem>
 #include <string>
 #include <vector>
