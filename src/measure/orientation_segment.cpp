@@ -69,7 +69,9 @@ void stretch_contrast(cv::Mat& grey, double percent) {
 
 }  // namespace
 
-cv::Mat component_nearest_centre(const cv::Mat& mask) {
+// `part_fraction` > 0: also the other components that lie mostly inside `inner` (the detector's box
+// in the mask's frame) and hold at least that fraction of the central one's pixels, each filled.
+cv::Mat component_nearest_centre(const cv::Mat& mask, double part_fraction = 0, cv::Rect inner = {}) {
   cv::Mat labels, stats, centroids;
   const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
   if (n <= 1) return cv::Mat::zeros(mask.size(), CV_8UC1);
@@ -89,7 +91,17 @@ cv::Mat component_nearest_centre(const cv::Mat& mask) {
         (nearest[std::size_t(k)] == nearest[std::size_t(best)] &&
          stats.at<int>(k, cv::CC_STAT_AREA) > stats.at<int>(best, cv::CC_STAT_AREA)))
       best = k;
-  return fill_largest_contour(labels == best);
+  cv::Mat out = fill_largest_contour(labels == best);
+  if (part_fraction <= 0) return out;
+  const double central = stats.at<int>(best, cv::CC_STAT_AREA);
+  for (int k = 1; k < n; ++k) {
+    const int area = stats.at<int>(k, cv::CC_STAT_AREA);
+    if (k == best || area < part_fraction * central) continue;
+    const cv::Mat part = labels == k;
+    if (cv::countNonZero(part(inner & cv::Rect(0, 0, mask.cols, mask.rows))) < 0.8 * area) continue;
+    out |= fill_largest_contour(part);
+  }
+  return out;
 }
 
 cv::Mat segment_canny(const cv::Mat& rgb, const OrientationConfig& cfg) {
@@ -171,7 +183,10 @@ cv::Mat segment_ours(const cv::Mat& rgb, const OrientationConfig& cfg) {
   if (kc > 1) cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, cv::getStructuringElement(cv::MORPH_ELLIPSE, {kc, kc}));
   const int k = std::max(1, int(std::lround(cfg.ours_opening_fraction * box_side)) | 1);
   if (k > 1) cv::morphologyEx(mask, mask, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_ELLIPSE, {k, k}));
-  return component_nearest_centre(mask);
+  // The detector's box inside the widened one (the margin on each side).
+  const int mx = int(std::lround(rgb.cols * cfg.box_margin / (1.0 + 2.0 * cfg.box_margin))),
+            my = int(std::lround(rgb.rows * cfg.box_margin / (1.0 + 2.0 * cfg.box_margin)));
+  return component_nearest_centre(mask, cfg.ours_part_fraction, cv::Rect(mx, my, rgb.cols - 2 * mx, rgb.rows - 2 * my));
 }
 
 }  // namespace cropsight::measure::detail

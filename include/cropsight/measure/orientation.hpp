@@ -69,6 +69,10 @@ struct OrientationConfig {
   double ours_opening_fraction = 0.12;
   double ours_closing_fraction = 0.12;
   int ours_black_value = 40;
+  /// ours: a root or string across the potato cuts its mask in two. Besides the part nearest the
+  /// box centre, every part that lies mostly (>= 80 %) inside the detector's box and holds at least
+  /// this fraction of that part's pixels is kept. 0 = the nearest part alone.
+  double ours_part_fraction = 0.2;
   // all
   int border_px = 2;
   int min_mask_pixels = 30;
@@ -122,6 +126,11 @@ struct OrientationConfig {
     v("ours_black_value", ours_black_value,
       "grey level; ours, input=depth: pixels whose brightest channel is below this are 'no depth' (background)",
       Range::within(0, 255));
+    v("ours_part_fraction", ours_part_fraction,
+      "fraction of the central part's pixels; ours: other mask parts lying mostly inside the detector's box with at "
+      "least this many pixels are the same potato cut by a root or string across it, and are kept; 0 = the part "
+      "nearest the box centre alone (not in the paper)",
+      Range::within(0.0, 1.0));
     v("border_px", border_px,
       "px; width of the widened box's border that stands for background (kmeans cluster rule, ours on RGB)",
       Range::within(1, 50));

@@ -6,6 +6,9 @@
 //     --gtest_filter='OrientationSim.DISABLED_*'
 #include <gtest/gtest.h>
 
+#include <array>
+#include <tuple>
+
 #include <cstdio>
 #include <cstdlib>
 #include <map>
@@ -46,17 +49,24 @@ TEST(OrientationSim, DISABLED_MeasureHeldOutApproaches) {
           if (p.visible_pixels < 1500 || p.box.x1 < 2 || p.box.y1 < 2 || p.box.x2 > f.color.width - 2 ||
               p.box.y2 > f.color.height - 2 || p.width_m > 0.85 * p.length_m)
             continue;
+          // `ours` twice: as configured, and with the mask part nearest the box centre alone.
+          const std::array<std::tuple<M, double, const char*>, 4> variants{
+              {{M::canny, 0.0, "canny"},
+               {M::kmeans, 0.0, "kmeans"},
+               {M::ours, measure::OrientationConfig{}.ours_part_fraction, "ours"},
+               {M::ours, 0.0, "ours-nearest-part"}}};
           for (I in : {I::depth, I::rgb})
-            for (M seg : {M::canny, M::kmeans, M::ours}) {
+            for (const auto& [seg, part_fraction, name] : variants) {
               measure::OrientationConfig oc;
               oc.input = in;
               oc.segmentation = seg;
+              oc.ours_part_fraction = part_fraction;
               const auto r = measure::estimate_orientation(in == I::depth ? colour_depth : f.color, p.box, oc);
               const double e = r.ok ? eval::axis_angle_error_deg(p.angle_rad * 180 / std::numbers::pi,
                                                                  r.angle_rad * 180 / std::numbers::pi)
                                     : 90.0;
               for (const std::string& k : {std::string(config_name(scene)), std::string("all")}) {
-                auto& m = mae[k + " " + config_name(in) + " " + config_name(seg)];
+                auto& m = mae[k + " " + config_name(in) + " " + std::string(name)];
                 m.first += e;
                 ++m.second;
               }

@@ -2,8 +2,10 @@
 // background, per image, on the detection set (VOC boxes) and on the orientation shots (boxes of
 // BoardBlobDetector). Shows whether the skin colour model holds across the two real scenes, and
 // whether a white reference taken from the image explains the difference.
-// Usage: potato_colour_probe DETECTION_DIR ORIENTATION_DIR [OVERLAY_DIR]
-//        potato_colour_probe --fit IMAGES ANNOTATIONS   (the skin colour fit of one VOC set)
+// Usage: potato_probe DETECTION_DIR ORIENTATION_DIR [OVERLAY_DIR]
+//        potato_probe --fit IMAGES ANNOTATIONS   (the skin colour fit of one VOC set)
+//        potato_probe --lab IMAGE x y [x y ...]  (Lab, chroma and saturation of 5x5 means)
+//        potato_probe --orient IMAGE x1 y1 x2 y2 rgb|depth OUT.png  (the orientation mask of one box)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +15,7 @@
 #include <vector>
 
 #include "cropsight/io/image_io.hpp"
+#include "cropsight/measure/orientation.hpp"
 #include "cropsight/pipeline/potato/orientation_dataset.hpp"
 #include "cropsight/pipeline/potato/potato_colour_fit.hpp"
 #include "cropsight/pipeline/potato/potato_detection_eval.hpp"
@@ -76,6 +79,22 @@ void print_fit(const char* name, const std::vector<ColorImage>& ims,
 }
 
 int main(int argc, char** argv) {
+  if (argc == 9 && std::string(argv[1]) == "--orient") {
+    const auto im = io::read_color(argv[2]);
+    const Detection2D box{float(std::atof(argv[3])),
+                          float(std::atof(argv[4])),
+                          float(std::atof(argv[5])),
+                          float(std::atof(argv[6])),
+                          0,
+                          1.f};
+    measure::OrientationConfig cfg;
+    cfg.input = std::string(argv[7]) == "rgb" ? measure::OrientationInput::rgb : measure::OrientationInput::depth;
+    const auto r = measure::estimate_orientation(im, box, cfg, argv[2]);
+    std::printf("ok %d angle %.1f deg, mask %dx%d at (%d, %d)\n", int(r.ok), r.angle_rad * 180 / 3.14159265358979,
+                r.mask.width, r.mask.height, r.roi_x, r.roi_y);
+    cv::imwrite(argv[8], cv::Mat(r.mask.height, r.mask.width, CV_8UC1, const_cast<std::uint8_t*>(r.mask.data.data())));
+    return 0;
+  }
   if (argc >= 5 && std::string(argv[1]) == "--lab") {  // --lab IMAGE x y [x y ...]: Lab of 5x5 means at points
     const auto im = io::read_color(argv[2]);
     cv::Mat lab;
