@@ -1,8 +1,9 @@
 // cropsight eval potato-orientation (issue 22, paper Table 4.3): the orientation error (modulo
 // 180°) of one segmentation + axis + input combination on the paper's folder layout. The
 // evaluation is pipeline::potato::evaluate_orientation(); this file parses and formats.
-// The boxes come from the potato preset's detector (--boxes detector, the paper's protocol) or from
-// BoardBlobDetector (one colour blob on the white board, --boxes board).
+// The boxes come from BoardBlobDetector (one colour blob on the white board; --boxes board, the
+// default: the better measured on the shared shots) or from the potato preset's detector (--boxes
+// detector, the paper's protocol).
 #include <cstdio>
 #include <memory>
 
@@ -19,7 +20,7 @@ struct Options {
   CommonOptions common;
   std::string rgb, depth, segmentation = "ours", axis = "pca", input = "depth";
   bool shots = false;  ///< also list every shot's estimate and error
-  std::string boxes = "detector", detector_config = "potato";
+  std::string boxes = "board", detector_config = "potato";
 };
 
 nlohmann::json to_json(const eval::OrientationStats& s) {
@@ -113,8 +114,8 @@ void add_eval_potato_orientation(CLI::App& eval) {
   cmd->add_option("--axis", o->axis, "pca | ellipse")->capture_default_str();
   cmd->add_option("--input", o->input, "rgb | depth")->capture_default_str();
   cmd->add_option("--boxes", o->boxes,
-                  "Box source: detector (the --detector-config preset's detector, the paper's protocol) | board "
-                  "(BoardBlobDetector: one colour blob on a white board)")
+                  "Box source: board (BoardBlobDetector: one colour blob on a white board) | detector (the "
+                  "--detector-config preset's detector, the paper's protocol)")
       ->check(CLI::IsMember({"detector", "board"}))
       ->capture_default_str();
   cmd->add_option("--detector-config", o->detector_config, "Potato preset (or YAML) whose detector gives the boxes")

@@ -75,6 +75,7 @@ TEST(PotatoOrientationCli, ShotsListTheDrawnAngles) {
                              shell_quoted(tmp.path() / "depth") + " --json");
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   EXPECT_FALSE(nlohmann::json::parse(plain.out).contains("shots"));
+  EXPECT_NE(nlohmann::json::parse(plain.out)["boxes"].get<std::string>().find("BoardBlob"), std::string::npos);
 }
 
 TEST(PotatoOrientationCli, BadInputIsOneLineNamingTheFile) {
