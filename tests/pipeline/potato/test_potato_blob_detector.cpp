@@ -195,6 +195,36 @@ TEST(PotatoBlobDetector, DepthCompletesTheBoxOfAShadedPotato) {
   EXPECT_NEAR(iou(flat[0], colour_only[0]), 1.0, 1e-6);
 }
 
+// A potato on a white board at close range with its shadow beside it: the shadow has the skin's
+// hue, inside the colour model, but is grey (saturation chroma / L about 0.1, the skin's 0.26), as
+// measured on the shared orientation shots. The saturation test keeps it out of the box.
+TEST(PotatoBlobDetector, SaturationKeepsTheGreyShadowOutOfTheBox) {
+  auto lab_to_rgb = [](double l, double a, double b) {
+    cv::Mat lab(1, 1, CV_8UC3, cv::Scalar(l, a, b)), rgb;
+    cv::cvtColor(lab, rgb, cv::COLOR_Lab2RGB);
+    const cv::Vec3b p = rgb.at<cv::Vec3b>(0, 0);
+    return cv::Scalar(p[0], p[1], p[2]);
+  };
+  cv::Mat m(240, 320, CV_8UC3, lab_to_rgb(225, 128, 128));
+  cv::ellipse(m, {150, 120}, {50, 34}, 0, 0, 360, lab_to_rgb(90, 131, 137), cv::FILLED);  // the shadow, left
+  cv::ellipse(m, {175, 120}, {50, 34}, 0, 0, 360, lab_to_rgb(110, 137, 153), cv::FILLED);
+  const ColorImage im = to_image(m);
+  const Detection2D truth{125, 86, 225, 154, 0, 1.f};
+  PotatoBlobConfig cfg;
+  ASSERT_GT(cfg.min_saturation, 0.105);  // the shadow's 9.5 / 90
+  {
+    PotatoBlobDetector det(cfg);
+    const auto d = det.detect({&im, nullptr});
+    ASSERT_FALSE(d.empty());
+    EXPECT_GT(iou(d[0], truth), 0.85) << d[0].x1 << " " << d[0].x2;
+  }
+  cfg.min_saturation = 0;  // the shadow joins the potato and the box grows over it
+  PotatoBlobDetector det(cfg);
+  const auto d = det.detect({&im, nullptr});
+  ASSERT_FALSE(d.empty());
+  EXPECT_LT(iou(d[0], truth), 0.85) << d[0].x1 << " " << d[0].x2;
+}
+
 TEST(PotatoBlobDetector, ConfigIsChecked) {
   PotatoBlobConfig cfg;
   EXPECT_THROW(apply_config(cfg, {{"detector.colour_distance", "3"}}, "--set", "detector."), Error);
