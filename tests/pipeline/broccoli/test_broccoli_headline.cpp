@@ -75,10 +75,9 @@ TEST(BroccoliHeadline, ShippedOesUkModelOnTheDocumentedTestPass) {
 
 // broccoli-heads.md, "Generalisation": the shipped general model on one of its held-out randomised
 // fields (`simulate broccoli --variety random --seed 7103 --frames 30`; no model was trained or
-// tuned on it): kappa 0.957, AP50 0.882 over every labelled head, 0.961 on visible heads, mAP50:95
-// 0.877 with the OES tolerance of 7 mm and margin 0.2 (the model of 2026-12-05, 22:58 UTC; with
-// margin 0.4: 0.953 / 0.882 / 0.961 / 0.875; with 6.5 mm: 0.953 / 0.881 / 0.960 / 0.871), the far
-// end of the depth window at max(1.0 m, soil - 0.25 m),
+// tuned on it): kappa 0.953, AP50 0.882 over every labelled head, 0.961 on visible heads, mAP50:95
+// 0.875 with the OES tolerance of 7 mm (the model of 2026-12-05, 22:38 UTC; with 6.5 mm: 0.953 /
+// 0.881 / 0.960 / 0.871), the far end of the depth window at max(1.0 m, soil - 0.25 m), margin 0.4,
 // C = 0.5 and regions over 10000 points split (the same to three decimals without that; with C = 0.125: 0.943 /
 // 0.880 / 0.959 / 0.869; the 11:25 UTC model of 2026-12-05, the paper's fixed 1.0 m window,
 // margin 0.2: 0.953 / 0.880 / 0.958 / 0.871; the morning model of 2026-12-05, PCL's normals rule, C = 2, margin 0.4:
@@ -96,8 +95,8 @@ TEST(BroccoliHeadline, ShippedOesGeneralModelOnAHeldOutRandomisedField) {
   for (int i = 0; i < reader.size(); ++i) detection.add_frame(reader.read(i));
   const auto d = detection.result();
   EXPECT_EQ(d.frames, 30);
-  EXPECT_NEAR(d.confusion.kappa(), 0.9575, 0.00006);
+  EXPECT_NEAR(d.confusion.kappa(), 0.9526, 0.00006);
   EXPECT_NEAR(d.ap50, 0.8822, 0.00006);
   EXPECT_NEAR(d.ap50_visible, 0.9611, 0.00006);
-  EXPECT_NEAR(d.map50_95, 0.8767, 0.00006);
+  EXPECT_NEAR(d.map50_95, 0.8751, 0.00006);
 }
