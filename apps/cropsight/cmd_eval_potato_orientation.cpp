@@ -95,9 +95,12 @@ void run(const Options& o) {
   if (!o.shots) return;
   for (std::size_t i = 0; i < e.samples.size(); ++i) {
     const auto& s = e.samples[i];
-    std::printf("  potato %d %-5s truth %5.1f estimate %s error %5.1f deg  %s\n", s.potato, s.light.c_str(),
-                s.truth_deg, s.ok ? std::to_string(s.estimate_deg).substr(0, 5).c_str() : "  -  ", e.errors_deg[i],
-                s.file.c_str());
+    if (s.ok)
+      std::printf("  potato %d %-5s truth %5.1f estimate %5.1f error %5.1f deg  %s\n", s.potato, s.light.c_str(),
+                  s.truth_deg, s.estimate_deg, e.errors_deg[i], s.file.c_str());
+    else
+      std::printf("  potato %d %-5s truth %5.1f no estimate (counted %.0f deg)  %s\n", s.potato, s.light.c_str(),
+                  s.truth_deg, e.errors_deg[i], s.file.c_str());
   }
 }
 

@@ -197,16 +197,27 @@ TEST(Orientation, CannyOnADimRgbShotFindsThePotato) {
   }
 }
 
+// Distance of pixel (u, v)'s centre from a straight line across the potato at `deg` (the potato's
+// angle) + `turn_deg`, through the point `off` along the potato's axis from its centre (oblique and
+// off the centre, so that it cuts the mask into unequal parts).
+struct LineAcross {
+  double ox, oy, s;
+  LineAcross(double deg, double turn_deg, double off)
+      : ox(kCx + off * std::cos(deg * kPi / 180.0)),
+        oy(kCy - off * std::sin(deg * kPi / 180.0)),
+        s((deg + turn_deg) * kPi / 180.0) {}
+  double distance(int u, int v) const { return std::abs((u + 0.5 - ox) * std::sin(s) + (v + 0.5 - oy) * std::cos(s)); }
+};
+
 // A light string (board-coloured) across the potato splits the chroma mask in two; ours closes
 // the gap on RGB, so the mask is the whole potato and the angle is the potato's.
 TEST(Orientation, OursOnRgbBridgesAStringAcrossThePotato) {
   for (double deg : {0.0, 30.0, 90.0, 135.0}) {
     ColorImage im = synthetic_rgb(deg, false);
-    const double s = (deg + 60) * kPi / 180.0, off = 0.35 * kA;  // oblique, off the centre
-    const double ox = kCx + off * std::cos(deg * kPi / 180.0), oy = kCy - off * std::sin(deg * kPi / 180.0);
+    const LineAcross string(deg, 60, 0.35 * kA);
     for (int v = 0; v < im.height; ++v)
       for (int u = 0; u < im.width; ++u)
-        if (std::abs((u + 0.5 - ox) * std::sin(s) + (v + 0.5 - oy) * std::cos(s)) < 3.0) im.at(u, v) = {225, 223, 218};
+        if (string.distance(u, v) < 3.0) im.at(u, v) = {225, 223, 218};
     OrientationConfig cfg;
     cfg.input = OrientationInput::rgb;
     const OrientationResult r = estimate_orientation(im, box_of(deg), cfg);
@@ -226,11 +237,10 @@ TEST(Orientation, OursOnRgbBridgesAStringAcrossThePotato) {
 TEST(Orientation, OursOnDepthKeepsBothPartsOfAPotatoCutByARoot) {
   for (double deg : {0.0, 30.0, 90.0, 135.0}) {
     ColorImage im = synthetic_depth(deg, false);
-    const double s = (deg + 55) * kPi / 180.0, off = 0.3 * kA;  // oblique, off the centre
-    const double ox = kCx + off * std::cos(deg * kPi / 180.0), oy = kCy - off * std::sin(deg * kPi / 180.0);
+    const LineAcross root(deg, 55, 0.3 * kA);
     for (int v = 0; v < im.height; ++v)
       for (int u = 0; u < im.width; ++u) {
-        const double d = std::abs((u + 0.5 - ox) * std::sin(s) + (v + 0.5 - oy) * std::cos(s));
+        const double d = root.distance(u, v);
         if (d < 2.0)
           im.at(u, v) = jet(1.0);  // the root, nearest
         else if (d < 4.0)
