@@ -186,7 +186,32 @@ cv::Mat segment_ours(const cv::Mat& rgb, const OrientationConfig& cfg) {
   // The detector's box inside the widened one (the margin on each side).
   const int mx = int(std::lround(rgb.cols * cfg.box_margin / (1.0 + 2.0 * cfg.box_margin))),
             my = int(std::lround(rgb.rows * cfg.box_margin / (1.0 + 2.0 * cfg.box_margin)));
-  return component_nearest_centre(mask, cfg.ours_part_fraction, cv::Rect(mx, my, rgb.cols - 2 * mx, rgb.rows - 2 * my));
+  const cv::Rect inner(mx, my, rgb.cols - 2 * mx, rgb.rows - 2 * my);
+  cv::Mat potato = component_nearest_centre(mask, cfg.ours_part_fraction, inner);
+  if (cfg.input != OrientationInput::depth || !(cfg.ours_no_depth_fill_fraction > 0) || potato.empty()) return potato;
+  // No-depth pixels inside the detector's box that touch the potato are potato the sensor missed
+  // (a string's shadow, a dim or grazing patch): the box comes from the RGB image, which sees it.
+  // An opening first keeps only the wide no-depth patches: strings, and the D415's shadow band
+  // beside a near object, are thin, and joining them would tilt the axis.
+  cv::Mat no_depth = cv::Mat::zeros(mask.size(), CV_8UC1);
+  no_depth(inner).setTo(255, valid(inner) == 0);
+  if (cv::countNonZero(no_depth) == 0) return potato;
+  const int kf = std::max(1, int(std::lround(cfg.ours_no_depth_fill_fraction * box_side)) | 1);
+  if (kf > 1)
+    cv::morphologyEx(no_depth, no_depth, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_ELLIPSE, {kf, kf}));
+  cv::Mat labels;
+  const int n = cv::connectedComponents(no_depth, labels, 8, CV_32S);
+  if (n <= 1) return potato;
+  cv::Mat near;
+  cv::dilate(potato, near, cv::Mat());  // 3x3: the pixels next to the potato
+  std::vector<std::uint8_t> touches(std::size_t(n), 0);
+  for (int v = 0; v < labels.rows; ++v)
+    for (int u = 0; u < labels.cols; ++u)
+      if (const int l = labels.at<int>(v, u); l > 0 && near.at<std::uint8_t>(v, u)) touches[std::size_t(l)] = 1;
+  for (int v = 0; v < labels.rows; ++v)
+    for (int u = 0; u < labels.cols; ++u)
+      if (touches[std::size_t(labels.at<int>(v, u))] && labels.at<int>(v, u) > 0) potato.at<std::uint8_t>(v, u) = 255;
+  return fill_largest_contour(potato);
 }
 
 }  // namespace cropsight::measure::detail

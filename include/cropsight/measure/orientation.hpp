@@ -73,6 +73,10 @@ struct OrientationConfig {
   /// box centre, every part that lies mostly (>= 80 %) inside the detector's box and holds at least
   /// this fraction of that part's pixels is kept. 0 = the nearest part alone.
   double ours_part_fraction = 0.2;
+  /// ours, input=depth: no-depth pixels inside the detector's box that survive an elliptic opening
+  /// of this fraction of the box's smaller side, and whose component touches the potato mask, join
+  /// it. 0 = off.
+  double ours_no_depth_fill_fraction = 0.2;
   // all
   int border_px = 2;
   int min_mask_pixels = 30;
@@ -130,6 +134,11 @@ struct OrientationConfig {
       "fraction of the central part's pixels; ours: other mask parts lying mostly inside the detector's box with at "
       "least this many pixels are the same potato cut by a root or string across it, and are kept; 0 = the part "
       "nearest the box centre alone (not in the paper)",
+      Range::within(0.0, 1.0));
+    v("ours_no_depth_fill_fraction", ours_no_depth_fill_fraction,
+      "fraction of the box's smaller side; ours, input=depth: no-depth (black) pixels inside the detector's box that "
+      "survive an elliptic opening of this side (strings and the sensor's shadow band beside the potato are thinner) "
+      "and touch the potato mask are potato the sensor missed, and join it; 0 = off (not in the paper)",
       Range::within(0.0, 1.0));
     v("border_px", border_px,
       "px; width of the widened box's border that stands for background (kmeans cluster rule, ours on RGB)",

@@ -49,18 +49,22 @@ TEST(OrientationSim, DISABLED_MeasureHeldOutApproaches) {
           if (p.visible_pixels < 1500 || p.box.x1 < 2 || p.box.y1 < 2 || p.box.x2 > f.color.width - 2 ||
               p.box.y2 > f.color.height - 2 || p.width_m > 0.85 * p.length_m)
             continue;
-          // `ours` twice: as configured, and with the mask part nearest the box centre alone.
-          const std::array<std::tuple<M, double, const char*>, 4> variants{
-              {{M::canny, 0.0, "canny"},
-               {M::kmeans, 0.0, "kmeans"},
-               {M::ours, measure::OrientationConfig{}.ours_part_fraction, "ours"},
-               {M::ours, 0.0, "ours-nearest-part"}}};
+          // `ours` three times: as configured, with the mask part nearest the box centre alone, and
+          // without the no-depth fill.
+          const measure::OrientationConfig defaults;
+          const std::array<std::tuple<M, double, double, const char*>, 5> variants{
+              {{M::canny, 0.0, 0.0, "canny"},
+               {M::kmeans, 0.0, 0.0, "kmeans"},
+               {M::ours, defaults.ours_part_fraction, defaults.ours_no_depth_fill_fraction, "ours"},
+               {M::ours, 0.0, defaults.ours_no_depth_fill_fraction, "ours-nearest-part"},
+               {M::ours, defaults.ours_part_fraction, 0.0, "ours-no-depth-fill"}}};
           for (I in : {I::depth, I::rgb})
-            for (const auto& [seg, part_fraction, name] : variants) {
+            for (const auto& [seg, part_fraction, fill, name] : variants) {
               measure::OrientationConfig oc;
               oc.input = in;
               oc.segmentation = seg;
               oc.ours_part_fraction = part_fraction;
+              oc.ours_no_depth_fill_fraction = fill;
               const auto r = measure::estimate_orientation(in == I::depth ? colour_depth : f.color, p.box, oc);
               const double e = r.ok ? eval::axis_angle_error_deg(p.angle_rad * 180 / std::numbers::pi,
                                                                  r.angle_rad * 180 / std::numbers::pi)
