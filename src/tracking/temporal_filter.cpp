@@ -442,8 +442,35 @@ std::vector<TrackedHead> TemporalFilter::finish() {
     const bool cut = h.first_frame == first_frame_ || h.last_frame == last_frame_;
     if (h.score >= (cut ? edge : cfg_.min_track_score)) map.push_back(h);
   }
+  if (cfg_.overlap_suppression > 0.0) suppress_overlaps(map);
   std::sort(map.begin(), map.end(), [](const TrackedHead& a, const TrackedHead& b) { return a.id < b.id; });
   return map;
+}
+
+void TemporalFilter::suppress_overlaps(std::vector<TrackedHead>& map) const {
+  // Strongest first (score, then more frames, then the older track); each head is kept unless a kept
+  // one overlaps it. A few dozen heads per pass: the quadratic scan costs nothing.
+  std::sort(map.begin(), map.end(), [](const TrackedHead& a, const TrackedHead& b) {
+    if (a.score != b.score) return a.score > b.score;
+    if (a.frames_seen != b.frames_seen) return a.frames_seen > b.frames_seen;
+    return a.id < b.id;
+  });
+  std::vector<TrackedHead> kept;
+  for (const TrackedHead& h : map) {
+    bool overlaps = false;
+    for (const TrackedHead& k : kept) {
+      const double da = h.diameter_mm > 0.0 ? h.diameter_mm : k.diameter_mm;
+      const double db = k.diameter_mm > 0.0 ? k.diameter_mm : h.diameter_mm;
+      if (!(da > 0.0)) continue;  // neither size is known
+      const double limit_m = cfg_.overlap_suppression * 0.5 * (da + db) / 1000.0;
+      if ((h.position - k.position).head<2>().norm() < limit_m) {
+        overlaps = true;
+        break;
+      }
+    }
+    if (!overlaps) kept.push_back(h);
+  }
+  map.swap(kept);
 }
 
 std::vector<TrackedHead> TemporalFilter::all_heads() const {
