@@ -449,26 +449,32 @@ std::vector<TrackedHead> TemporalFilter::finish() {
 
 void TemporalFilter::suppress_overlaps(std::vector<TrackedHead>& map) const {
   // Strongest first (score, then more frames, then the older track); each head is kept unless a kept
-  // one overlaps it. A few dozen heads per pass: the quadratic scan costs nothing.
+  // one overlaps it. The kept heads are indexed by x, so that a map of a long recording (thousands of
+  // heads) is checked against its neighbours only.
   std::sort(map.begin(), map.end(), [](const TrackedHead& a, const TrackedHead& b) {
     if (a.score != b.score) return a.score > b.score;
     if (a.frames_seen != b.frames_seen) return a.frames_seen > b.frames_seen;
     return a.id < b.id;
   });
+  double widest_mm = 0.0;
+  for (const TrackedHead& h : map) widest_mm = std::max(widest_mm, h.diameter_mm);
+  const double reach_m = cfg_.overlap_suppression * widest_mm / 1000.0;  // no limit exceeds it
   std::vector<TrackedHead> kept;
+  std::multimap<double, std::size_t> by_x;  // kept heads by field x
   for (const TrackedHead& h : map) {
     bool overlaps = false;
-    for (const TrackedHead& k : kept) {
+    for (auto it = by_x.lower_bound(h.position.x() - reach_m);
+         !overlaps && it != by_x.end() && it->first <= h.position.x() + reach_m; ++it) {
+      const TrackedHead& k = kept[it->second];
       const double da = h.diameter_mm > 0.0 ? h.diameter_mm : k.diameter_mm;
       const double db = k.diameter_mm > 0.0 ? k.diameter_mm : h.diameter_mm;
       if (!(da > 0.0)) continue;  // neither size is known
       const double limit_m = cfg_.overlap_suppression * 0.5 * (da + db) / 1000.0;
-      if ((h.position - k.position).head<2>().norm() < limit_m) {
-        overlaps = true;
-        break;
-      }
+      overlaps = (h.position - k.position).head<2>().norm() < limit_m;
     }
-    if (!overlaps) kept.push_back(h);
+    if (overlaps) continue;
+    by_x.emplace(h.position.x(), kept.size());
+    kept.push_back(h);
   }
   map.swap(kept);
 }
