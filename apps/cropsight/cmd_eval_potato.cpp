@@ -74,6 +74,8 @@ void run(const Options& o) {
         {"width_mae_mm", json_number(e.width_mae_mm)},
         {"angle_mae_deg", json_number(e.angle_mae_deg)},
         {"angles", e.angles},
+        {"angle_mae_full_view_deg", json_number(e.angle_mae_full_view_deg)},
+        {"angles_full_view", e.angles_full_view},
         {"ms_per_frame",
          {{"detect", json_number(t.detect)},
           {"locate", json_number(t.locate)},
@@ -92,8 +94,10 @@ void run(const Options& o) {
       e.target_switches, e.lost_events);
   for (const auto& [name, a] : {std::pair{"x", e.x}, std::pair{"y", e.y}, std::pair{"z", e.z}})
     std::printf("position %s (full view): mean %+.2f  MAE %.2f  std %.2f mm\n", name, a.mean_mm, a.mae_mm, a.std_mm);
-  std::printf("size MAE: length %.2f mm, width %.2f mm; angle MAE %.2f deg (%d frames)\n", e.length_mae_mm,
-              e.width_mae_mm, e.angle_mae_deg, e.angles);
+  std::printf(
+      "size MAE: length %.2f mm, width %.2f mm; angle MAE %.2f deg (%d frames; %.2f deg over the %d in full "
+      "view)\n",
+      e.length_mae_mm, e.width_mae_mm, e.angle_mae_deg, e.angles, e.angle_mae_full_view_deg, e.angles_full_view);
   std::printf("ms per frame: detect %.2f  locate %.2f  track %.2f  orient %.2f  total %.2f (max %.2f)\n", t.detect,
               t.locate, t.track, t.orient, t.total, t.max_total);
 }

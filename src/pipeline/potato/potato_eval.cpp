@@ -33,7 +33,7 @@ PotatoEvaluation evaluate_potato_run(const std::vector<PotatoFrameResult>& run,
   if (run.size() != truth.size()) throw Error("potato evaluation", "run and truth have different frame counts");
   PotatoEvaluation ev;
   ev.frames = int(run.size());
-  std::vector<double> ex, ey, ez, el, ew, ea, cx, cy, cz;
+  std::vector<double> ex, ey, ez, el, ew, ea, ea_full, cx, cy, cz;
   std::map<int, int> potato_of_target;  // target id -> matched potato id
   for (std::size_t f = 0; f < run.size(); ++f) {
     const HarvestTarget& r = run[f].target;
@@ -83,6 +83,7 @@ PotatoEvaluation evaluate_potato_run(const std::vector<PotatoFrameResult>& run,
     if (r.angle_ok) {
       row.angle_error_deg = axis_angle_error(r.angle, best->angle_rad) * 180.0 / M_PI;
       ea.push_back(row.angle_error_deg);
+      if (!r.cut) ea_full.push_back(row.angle_error_deg);
     }
   }
   ev.x = summarise(ex);
@@ -95,6 +96,8 @@ PotatoEvaluation evaluate_potato_run(const std::vector<PotatoFrameResult>& run,
   ev.width_mae_mm = summarise(ew).mae_mm;
   ev.angle_mae_deg = summarise(ea).mae_mm;
   ev.angles = int(ea.size());
+  ev.angle_mae_full_view_deg = summarise(ea_full).mae_mm;
+  ev.angles_full_view = int(ea_full.size());
   return ev;
 }
 

@@ -100,6 +100,8 @@ TEST(PotatoEval, ScriptedRunCountsSwitchesLossAndErrors) {
   EXPECT_NEAR(ev.z.std_mm, 0, 1e-3);
   EXPECT_NEAR(ev.length_mae_mm, 1, 1e-3);
   EXPECT_NEAR(ev.angle_mae_deg, 0.2 * 180 / M_PI, 1e-4);
+  EXPECT_EQ(ev.angles_full_view, ev.angles - 1);  // frame 1's box is cut by the border
+  EXPECT_NEAR(ev.angle_mae_full_view_deg, 0.2 * 180 / M_PI, 1e-4);
   const PotatoStageTimes ms = stage_times(run);
   EXPECT_NEAR(ms.detect, 1.5, 1e-9);  // three frames of 2 ms, one of 0
   EXPECT_NEAR(ms.total, 4.875, 1e-9);

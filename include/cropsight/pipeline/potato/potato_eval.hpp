@@ -46,7 +46,11 @@ struct PotatoEvaluation {
   double length_mae_mm = 0, width_mae_mm = 0;  ///< box's longer / shorter metric side vs the potato's axes
   double angle_mae_deg = 0;                    ///< modulo 180 deg
   int angles = 0;                              ///< frames with an angle (angle_ok)
-  std::vector<PotatoFrameScore> per_frame;     ///< one per frame
+  /// The same over the frames whose box the image border does not cut: the angle of a potato seen in
+  /// part is the visible part's, and an arm grips only a potato in full view.
+  double angle_mae_full_view_deg = 0;
+  int angles_full_view = 0;
+  std::vector<PotatoFrameScore> per_frame;  ///< one per frame
 };
 
 /// Milliseconds per frame of each stage of PotatoPipeline::process, means over the frames.
