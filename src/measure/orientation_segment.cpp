@@ -215,9 +215,10 @@ cv::Mat segment_ours(const cv::Mat& rgb, const OrientationConfig& cfg) {
   for (int v = 0; v < labels.rows; ++v)
     for (int u = 0; u < labels.cols; ++u)
       if (const int l = labels.at<int>(v, u); l > 0 && near.at<std::uint8_t>(v, u)) touches[std::size_t(l)] = 1;
+  // touches[0] (not a no-depth patch) is never set above.
   for (int v = 0; v < labels.rows; ++v)
     for (int u = 0; u < labels.cols; ++u)
-      if (touches[std::size_t(labels.at<int>(v, u))] && labels.at<int>(v, u) > 0) potato.at<std::uint8_t>(v, u) = 255;
+      if (touches[std::size_t(labels.at<int>(v, u))]) potato.at<std::uint8_t>(v, u) = 255;
   return fill_largest_contour(potato);
 }
 
