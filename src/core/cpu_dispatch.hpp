@@ -3,13 +3,18 @@
 // baseline, SSE2; -march=native only on request). Three forms, one CPU check:
 //
 // 1. CROPSIGHT_AVX2_CLONES on a function (GCC/Clang target_clones): the compiler builds the
-//    function twice, for AVX2 and for the baseline, and the loader's resolver picks one when the
-//    program starts (the call costs nothing more than an indirect call). Use it for one
-//    self-contained loop over plain arrays that the compiler vectorises by itself (integral
-//    normals, organised edges, organised clustering, VFH bins, the broccoli deprojection). Only
-//    that function and what it inlines are cloned: a function it calls stays baseline. No FMA
-//    in the clone: a*b+c is not contracted, so both clones give the same values lane by lane and
-//    results do not depend on the CPU.
+//    function three times, for x86-64-v4 (AVX-512), for AVX2 and for the baseline, and the
+//    loader's resolver picks one when the program starts (the call costs nothing more than an
+//    indirect call). Use it for one self-contained loop over plain arrays that the compiler
+//    vectorises by itself (integral normals, organised edges, organised clustering, VFH bins, the
+//    broccoli deprojection). Only that function and what it inlines are cloned: a function it
+//    calls stays baseline. No FMA in any clone: x86-64-v4 has FMA instructions, so every
+//    translation unit holding a clone is compiled with -ffp-contract=off (set in its
+//    CMakeLists.txt) and a*b+c is never contracted; all clones then give the same values lane by
+//    lane and results do not depend on the CPU (checked: `detect broccoli` writes the same bytes
+//    with and without the AVX-512 clone, OES / ORG / FEC). The AVX-512 clone was added for
+//    issue 27's OES speed: 1.07-1.14x on an AMD EPYC (Zen 4) VM, docs/pipelines/broccoli-heads.md,
+//    "Timing".
 //
 // 2. CROPSIGHT_TARGET_AVX2 on an explicit variant that the caller picks with
 //    `if (cpu_has_avx2_fma())`: for a kernel written by hand in two shapes (GCC vector types of
@@ -43,7 +48,7 @@
 // the loader relocates, before TSan's runtime is up: SIGSEGV at start. Baseline loop there too.
 #define CROPSIGHT_AVX2_CLONES
 #else
-#define CROPSIGHT_AVX2_CLONES __attribute__((target_clones("avx2", "default")))
+#define CROPSIGHT_AVX2_CLONES __attribute__((target_clones("arch=x86-64-v4", "avx2", "default")))
 #endif
 #define CROPSIGHT_TARGET_AVX2 __attribute__((target("avx2,popcnt")))
 #else
