@@ -237,8 +237,8 @@ void nan_rows(OrganizedCloud& cloud, int v0, int v1) {
 // right (H) and lower (V) neighbour, and a failed test marks both pixels. So the last column is
 // only compared with its left neighbour and the last row with the row above. Computed per row
 // as flags (branch-free, vectorised), then combined. change[i] = 1: no depth change at pixel i.
-CROPSIGHT_AVX2_CLONES void depth_change_map(const float* Z, int w, int h, float factor, bool nan_breaks, std::vector<std::uint8_t>& change,
-                      std::vector<std::uint8_t>& flags) {
+CROPSIGHT_AVX2_CLONES void depth_change_map(const float* Z, int w, int h, float factor, bool nan_breaks,
+                                            std::vector<std::uint8_t>& change, std::vector<std::uint8_t>& flags) {
   const bool nan_ok = !nan_breaks;
   change.assign(std::size_t(w) * std::size_t(h), 1);
   flags.assign(3 * std::size_t(w), 0);
@@ -355,8 +355,8 @@ struct RowLists {
 // `sel`); writes their columns and window sizes int(min(distance, smoothing)), returns how many.
 // Branch-free (& instead of &&: the tests are cheap and their outcome changes often along a
 // row); NaN points have distance 0, so the window test also skips them.
-CROPSIGHT_AVX2_CLONES int list_row(const float* Z, const float* dist, const int* sel, std::size_t o, int w, int S, float smoothing, int* cols,
-             int* sizes) {
+CROPSIGHT_AVX2_CLONES int list_row(const float* Z, const float* dist, const int* sel, std::size_t o, int w, int S,
+                                   float smoothing, int* cols, int* sizes) {
   int count = 0;
   if (sel) {
     for (int u = S; u < w - S; ++u) {
