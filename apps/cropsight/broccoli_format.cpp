@@ -78,6 +78,7 @@ nlohmann::json tracking_json(const pipeline::BroccoliTrackingFigures& f) {
   if (!f.map_aligned)
     j["map_note"] = "a sequence has no poses.csv: the map cannot be placed in the truth's field frame";
   j["map_precision"] = json_number(f.map_aligned ? f.map_precision : nan);
+  j["map_precision_visible"] = json_number(f.map_aligned ? f.map_precision_visible : nan);
   j["map_recall"] = json_number(f.map_aligned ? f.map_recall : nan);
   j["duplicate_rate"] = json_number(f.map_aligned ? f.duplicate_rate : nan);
   j["count_error"] = f.count_error;
@@ -85,6 +86,7 @@ nlohmann::json tracking_json(const pipeline::BroccoliTrackingFigures& f) {
   j["map_heads"] = f.map_heads;
   j["map_true_heads"] = f.map_true_heads;
   j["map_matched"] = f.map_matched;
+  j["map_ignored"] = f.map_ignored;
   j["map_min_visible_points"] = f.map_min_visible_points;
   j["size_estimator"] = f.size_estimator;
   j["size_mede_mm"] = json_number(f.head_size.mede_mm);
@@ -163,6 +165,8 @@ void print_tracking_summary(const pipeline::BroccoliTrackingFigures& f) {
   std::printf("  map: precision %.3f  recall %.3f  duplicates %.3f  count error %+d (%d heads mapped, %d true)\n",
               f.map_aligned ? f.map_precision : nan, f.map_aligned ? f.map_recall : nan,
               f.map_aligned ? f.duplicate_rate : nan, f.count_error, f.map_heads, f.map_true_heads);
+  std::printf("  map, heads too little seen ignored: precision %.3f (%d mapped heads at such heads)\n",
+              f.map_aligned ? f.map_precision_visible : nan, f.map_ignored);
   std::printf("  size (%s, per head): MEDE %.1f mm  MAD %.1f mm  r %.3f  (%d heads)\n", f.size_estimator.c_str(),
               f.head_size.mede_mm, f.head_size.mad_mm, f.head_size.pearson_r, f.head_size.n);
   std::printf("  size per frame: MEDE %.1f mm  MAD %.1f mm  r %.3f\n", f.frame_size.mede_mm, f.frame_size.mad_mm,

@@ -77,14 +77,15 @@ std::vector<int> hungarian(const std::vector<double>& cost, int rows, int cols) 
 }
 
 MapMetrics map_metrics(const std::vector<Eigen::Vector3d>& map, const std::vector<Eigen::Vector3d>& truth,
-                       const MapMatchConfig& cfg) {
+                       const MapMatchConfig& cfg, const std::vector<Eigen::Vector3d>& ignore) {
   if (!(cfg.radius_m > 0)) throw Error("map metrics", "match radius must be positive");
   const int n = int(map.size()), m = int(truth.size());
-  auto dist = [&](int i, int j) {
-    Eigen::Vector3d d = map[std::size_t(i)] - truth[std::size_t(j)];
+  auto dist_to = [&](int i, const Eigen::Vector3d& p) {
+    Eigen::Vector3d d = map[std::size_t(i)] - p;
     if (!cfg.use_z) d.z() = 0.0;
     return d.norm();
   };
+  auto dist = [&](int i, int j) { return dist_to(i, truth[std::size_t(j)]); };
   // Infeasible pairs cost more than any sum of feasible ones, so the optimum first maximises the
   // number of feasible pairs, then minimises their total distance.
   const double big = cfg.radius_m * double(std::max(n, m) + 1) * 4.0 + 1.0;
@@ -113,14 +114,21 @@ MapMetrics map_metrics(const std::vector<Eigen::Vector3d>& map, const std::vecto
   r.matched = int(r.matches.size());
   for (int i = 0; i < n; ++i) {
     if (map_matched[std::size_t(i)]) continue;
-    for (int j = 0; j < m; ++j)
-      if (truth_matched[std::size_t(j)] && dist(i, j) <= cfg.radius_m) {
-        ++r.duplicates;
+    bool duplicate = false;
+    for (int j = 0; j < m && !duplicate; ++j) duplicate = truth_matched[std::size_t(j)] && dist(i, j) <= cfg.radius_m;
+    if (duplicate) {
+      ++r.duplicates;
+      continue;
+    }
+    for (const auto& p : ignore)
+      if (dist_to(i, p) <= cfg.radius_m) {
+        ++r.ignored;
         break;
       }
   }
   const double nan = std::numeric_limits<double>::quiet_NaN();
   r.precision = n ? double(r.matched) / n : nan;
+  r.precision_visible = n > r.ignored ? double(r.matched) / (n - r.ignored) : nan;
   r.recall = m ? double(r.matched) / m : nan;
   r.duplicate_rate = n ? double(r.duplicates) / n : nan;
   r.count_error = n - m;

@@ -18,6 +18,7 @@ std::string fixed3(double v) {
 std::vector<std::pair<std::string, std::string>> key_figures(const pipeline::BroccoliTrackingFigures& f) {
   auto map_fig = [&](double v) { return f.map_aligned ? fixed3(v) : std::string("n/a"); };
   return {{"map_precision", map_fig(f.map_precision)},
+          {"map_precision_visible", map_fig(f.map_precision_visible)},
           {"map_recall", map_fig(f.map_recall)},
           {"duplicate_rate", map_fig(f.duplicate_rate)},
           {"count_error", std::to_string(f.count_error)},

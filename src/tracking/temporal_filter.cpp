@@ -416,10 +416,17 @@ double TemporalFilter::edge_threshold() const {
   return cfg_.edge_track_score < 0.0 ? cfg_.min_track_score : std::min(cfg_.edge_track_score, cfg_.min_track_score);
 }
 
+bool TemporalFilter::passes_edge_rule(const TrackedHead& h) const {
+  // A head the recording cut may have been in view for one or two frames only: one detection the
+  // classifier is sure of is then evidence enough (edge_single_detection_score), where a track in
+  // the middle of the recording would have had frames to repeat it.
+  return h.score >= edge_threshold() || h.mean_detection_score >= cfg_.edge_single_detection_score;
+}
+
 bool TemporalFilter::confirmed_now(const TrackedHead& h) const {
   // Online the recording's first frame is known, its last is not: only a head seen in the first
-  // frame gets the lower edge threshold here.
-  return h.score >= (h.first_frame == first_frame_ ? edge_threshold() : cfg_.min_track_score);
+  // frame gets the edge rule here.
+  return h.first_frame == first_frame_ ? passes_edge_rule(h) : h.score >= cfg_.min_track_score;
 }
 
 bool TemporalFilter::confirmed_now(int id) const {
@@ -436,11 +443,11 @@ std::vector<TrackedHead> TemporalFilter::finish() {
   merge_lost_and_found();
   std::vector<TrackedHead> map;
   // Heads whose track the recording cut (seen in its first or last frame) need edge_track_score,
-  // never more than min_track_score; < 0 keeps the paper's single threshold.
-  const double edge = edge_threshold();
+  // never more than min_track_score (< 0 keeps the paper's single threshold), or one detection
+  // scored at least edge_single_detection_score.
   for (const auto& h : mapped_) {
     const bool cut = h.first_frame == first_frame_ || h.last_frame == last_frame_;
-    if (h.score >= (cut ? edge : cfg_.min_track_score)) map.push_back(h);
+    if (cut ? passes_edge_rule(h) : h.score >= cfg_.min_track_score) map.push_back(h);
   }
   if (cfg_.overlap_suppression > 0.0) suppress_overlaps(map);
   std::sort(map.begin(), map.end(), [](const TrackedHead& a, const TrackedHead& b) { return a.id < b.id; });

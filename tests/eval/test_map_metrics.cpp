@@ -66,6 +66,29 @@ TEST(MapMetrics, EmptyInputs) {
   EXPECT_THROW(map_metrics({}, {}, MapMatchConfig{0.0, false}), Error);
 }
 
+TEST(MapMetrics, HeadsAtIgnoreRegionsAreNeitherTrueNorFalse) {
+  // t0 and t1 required; s a head too little seen to be required (an ignore region). Map: t0, t1,
+  // a head at s, a duplicate of t0 that is also near s, and a head far from everything.
+  const std::vector<Eigen::Vector3d> truth{P(0), P(0.5)};
+  const std::vector<Eigen::Vector3d> ignore{P(0.06), P(3.0)};
+  const std::vector<Eigen::Vector3d> map{P(0.0), P(0.5), P(0.09), P(0.03), P(2.0)};
+  const auto r = map_metrics(map, truth, {}, ignore);
+  EXPECT_EQ(r.matched, 2);
+  EXPECT_EQ(r.duplicates, 1);  // P(0.03) is t0's duplicate first: duplicates stay false heads
+  EXPECT_EQ(r.ignored, 1);     // P(0.09): 0.03 from s, 0.09 from t0
+  EXPECT_DOUBLE_EQ(r.precision, 2.0 / 5.0);
+  EXPECT_DOUBLE_EQ(r.precision_visible, 2.0 / 4.0);
+  EXPECT_DOUBLE_EQ(r.recall, 1.0);
+  // Without ignore regions the two precisions agree; an ignore region never changes recall.
+  const auto plain = map_metrics(map, truth);
+  EXPECT_EQ(plain.ignored, 0);
+  EXPECT_DOUBLE_EQ(plain.precision_visible, plain.precision);
+  // Only ignored heads: precision_visible undefined, precision 0.
+  const auto only = map_metrics({P(0.06)}, {}, {}, {P(0.06)});
+  EXPECT_EQ(only.ignored, 1);
+  EXPECT_TRUE(std::isnan(only.precision_visible));
+  EXPECT_DOUBLE_EQ(only.precision, 0.0);
+}
 TEST(MapMetrics, HungarianIsOptimalOnRandomMatrices) {
   // Against brute force over all permutations (3×3 .. 4×6, both orientations).
   std::mt19937 rng(4);

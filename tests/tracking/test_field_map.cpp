@@ -144,7 +144,7 @@ TEST(HeadMapper, DetectionsAtTheBorderArePartial) {
   d[0].indices = edge;
   d[0].centroid = {-0.08f, 0.0f, 0.7f};
   d[0].box = {0, 10, 8, 20};  // touches the left border
-  d[0].score = 1.0f;
+  d[0].score = 0.5f;          // below tracking.edge_single_detection_score (1.0)
   mapper.add_frame(0, c, d);
   EXPECT_EQ(d[0].size_m, 0.0f);  // not measured
   EXPECT_EQ(d[0].track_id, 1);   // it started a head (partial_tracks)...

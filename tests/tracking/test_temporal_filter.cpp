@@ -1,8 +1,12 @@
 // Temporal filter on scripted detections: a camera 0.7 m above a row of heads moving along field X.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
+#include <map>
 #include <random>
+#include <string>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/tracking/temporal_filter.hpp"
@@ -304,7 +308,8 @@ TEST(TemporalFilter, TracksCutByTheRecordingNeedFewerFrames) {
     if (f < 28) h.push_back(2);
     return h;
   };
-  TemporalFilterConfig cfg;  // min_track_score 3, edge_track_score 2
+  TemporalFilterConfig cfg;                // min_track_score 3, edge_track_score 2
+  cfg.edge_single_detection_score = 1e30;  // the frame count alone (the score rule: its own test)
   TemporalFilter tf(cfg);
   const auto map = run(tf, s, 30, hide);
   const auto m = match(s, map);
@@ -553,6 +558,7 @@ TEST(TemporalFilter, ConfirmedNowKnowsOnlyTheFramesSoFar) {
   cfg.use_poses = true;
   cfg.min_track_score = 3.0;
   cfg.edge_track_score = 2.0;
+  cfg.edge_single_detection_score = 1e30;  // frames only (the score rule: OneSureDetection... below)
   TemporalFilter f(cfg);
   const Eigen::Vector3d cam(0.0, 0.0, 0.8);
   auto obs = [](float x) {
@@ -582,4 +588,53 @@ TEST(TemporalFilter, ConfirmedNowKnowsOnlyTheFramesSoFar) {
   const auto map = f.finish();
   EXPECT_EQ(map.size(), 3u);
   EXPECT_TRUE(std::any_of(map.begin(), map.end(), [&](const TrackedHead& h) { return h.id == c_ids[0]; }));
+}
+
+// edge_single_detection_score: a head the recording cut may have been in view for one frame; one
+// detection the classifier is sure of then maps it, a doubtful one does not, and a head in the
+// middle of the recording still needs min_track_score however sure its one detection was.
+TEST(TemporalFilter, OneSureDetectionMapsAHeadTheRecordingCut) {
+  TemporalFilterConfig cfg;
+  cfg.use_poses = true;
+  cfg.min_track_score = 3.0;
+  cfg.edge_track_score = 2.0;
+  cfg.edge_single_detection_score = 1.0;
+  const Eigen::Vector3d cam(0.0, 0.0, 0.8);
+  auto obs = [](float x, float score) {
+    HeadObservation o;
+    o.centroid = Eigen::Vector3f(x, 0.0f, 0.7f);
+    o.score = score;
+    return o;
+  };
+  // Frame 0 only: S (sure, 1.5) and D (doubtful, 0.5). Frame 2 only: M (sure, 3.0) mid-recording.
+  // Frame 4, the last: E (sure, 1.2) and F (doubtful, 0.9). A steady head at x = -0.3 in every frame.
+  const std::vector<std::vector<HeadObservation>> frames{{obs(-0.3f, 2.0f), obs(-0.1f, 1.5f), obs(0.1f, 0.5f)},
+                                                         {obs(-0.3f, 2.0f)},
+                                                         {obs(-0.3f, 2.0f), obs(0.3f, 3.0f)},
+                                                         {obs(-0.3f, 2.0f)},
+                                                         {obs(-0.3f, 2.0f), obs(0.5f, 1.2f), obs(0.7f, 0.9f)}};
+  // Returns the map as labels of the heads it holds, and which frame-0 heads were confirmed online.
+  auto run_with = [&](double single) {
+    cfg.edge_single_detection_score = single;
+    TemporalFilter f(cfg);
+    const std::vector<std::vector<char>> names{{'h', 'S', 'D'}, {'h'}, {'h', 'M'}, {'h'}, {'h', 'E', 'F'}};
+    std::map<int, char> name_of;
+    std::vector<bool> first_now;
+    for (int frame = 0; frame < 5; ++frame) {
+      const auto a = f.update(frame, frames[std::size_t(frame)], cam);
+      for (std::size_t k = 0; k < a.track_ids.size(); ++k) name_of[a.track_ids[k]] = names[std::size_t(frame)][k];
+      if (frame == 0)
+        for (int id : a.track_ids) first_now.push_back(f.confirmed_now(id));
+    }
+    std::string mapped;
+    for (const auto& h : f.finish()) mapped += name_of.at(h.id);
+    std::sort(mapped.begin(), mapped.end());
+    return std::make_pair(mapped, first_now);
+  };
+  const auto [sure, sure_now] = run_with(1.0);
+  EXPECT_EQ(sure, "ESh");  // the steady head, S and E; not D, F (doubtful), not M (mid-recording)
+  EXPECT_EQ(sure_now, (std::vector<bool>{true, true, false}));  // online at frame 0: steady and S
+  const auto [off, off_now] = run_with(1e30);
+  EXPECT_EQ(off, "h");  // frames only: one detection is never enough
+  EXPECT_EQ(off_now, (std::vector<bool>{false, false, false}));
 }

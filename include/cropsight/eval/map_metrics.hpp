@@ -14,6 +14,12 @@
 //                    radius_m of a true head that another map head matched (the same head
 //                    mapped twice); NaN with an empty map
 //   count_error    = map heads − true heads (signed); count_error_rel = count_error / true heads
+//
+// Ignore regions (optional `ignore`: heads that exist but are too little seen to be required, e.g.
+// fewer than detection.visible_truth_points visible points in every frame): an unmatched map head
+// that is not a duplicate and lies within radius_m of one is `ignored`, neither a true nor a false
+// head, the rule the detection AP's visible figures use. precision_visible = matched / (map heads
+// − ignored); `precision` keeps counting such a head as false. Recall never depends on them.
 #include <Eigen/Core>
 #include <vector>
 
@@ -31,7 +37,9 @@ struct MapMatch {
 
 struct MapMetrics {
   int map_heads = 0, true_heads = 0, matched = 0, duplicates = 0;
+  int ignored = 0;  ///< unmatched, non-duplicate map heads at an ignore region
   double precision = 0.0, recall = 0.0, duplicate_rate = 0.0;
+  double precision_visible = 0.0;  ///< matched / (map heads − ignored); NaN when that is 0
   int count_error = 0;
   double count_error_rel = 0.0;
   double mean_distance_m = 0.0;   ///< over matched pairs (NaN when none)
@@ -43,7 +51,8 @@ struct MapMetrics {
 /// rows × cols. Exposed for tests.
 std::vector<int> hungarian(const std::vector<double>& cost, int rows, int cols);
 
+/// Positions in metres, one frame for all three lists (the field frame).
 MapMetrics map_metrics(const std::vector<Eigen::Vector3d>& map, const std::vector<Eigen::Vector3d>& truth,
-                       const MapMatchConfig& cfg = {});
+                       const MapMatchConfig& cfg = {}, const std::vector<Eigen::Vector3d>& ignore = {});
 
 }  // namespace cropsight::eval

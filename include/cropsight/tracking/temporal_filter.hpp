@@ -19,7 +19,9 @@
 //   6. heads undetected for max_missed_frames frames move from T to M.
 // At the end T moves to M and heads whose score is below min_track_score are dropped. Extension: a
 // head seen in the recording's first or last frame had frames the recording never showed (it was
-// leaving or entering the view), so it needs only edge_track_score (default 2) instead.
+// leaving or entering the view), so it needs only edge_track_score (default 2) instead, or, when
+// it was in view too briefly to be detected twice, detections whose mean classifier score reaches
+// edge_single_detection_score (default 1.0).
 // Extension (merge_radius_m, default 0.05 m): before the threshold, a head whose track began after
 // another one's ended, within merge_radius_m of it, when that one reached min_track_score on its
 // own, is the same head lost for max_missed_frames frames and found again (a leaf hid it, the
@@ -63,6 +65,7 @@ struct TemporalFilterConfig {
   double score_increment = 1.0;
   double min_track_score = 3.0;
   double edge_track_score = 2.0;
+  double edge_single_detection_score = 1.0;
   double min_detection_score = -1e30;
   bool use_poses = false;
   bool anchor_first_pose = true;
@@ -100,6 +103,11 @@ struct TemporalFilterConfig {
     v("edge_track_score", edge_track_score,
       "1; the threshold for heads seen in the sequence's first or last frame, whose track the recording cut "
       "(extension, never above min_track_score; < 0: min_track_score, the paper's single threshold)",
+      Range{});
+    v("edge_single_detection_score", edge_single_detection_score,
+      "classifier score; a head whose track the recording cut enters the map below edge_track_score (e.g. "
+      "detected once) when its detections' mean score is at least this (extension, 1.0 chosen on validation "
+      "passes, docs/pipelines/broccoli-heads.md; 1e30: never, the rule before 2026-12-06)",
       Range{});
     v("min_detection_score", min_detection_score,
       "classifier score; detections below it are ignored by the tracker (default: keep all)", Range{});
@@ -253,6 +261,7 @@ class TemporalFilter {
   void suppress_overlaps(std::vector<TrackedHead>& map) const;  ///< overlap_suppression (see the config)
   void absorb(TrackedHead& into, const TrackedHead& later) const;
   double edge_threshold() const;  ///< edge_track_score, never above min_track_score (< 0: min_track_score)
+  bool passes_edge_rule(const TrackedHead& h) const;  ///< a cut track's rule: edge threshold, or one strong detection
 
   TemporalFilterConfig cfg_;
   measure::HeadSizer sizer_;

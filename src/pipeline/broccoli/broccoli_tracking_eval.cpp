@@ -179,16 +179,22 @@ void BroccoliTrackingEvaluator::add_sizes(const tracking::HeadMapper& mapper) {
 void BroccoliTrackingEvaluator::add_map(const std::vector<tracking::TrackedHead>& map) {
   if (!has_poses_ || !aligned_cfg_) map_unaligned_ = true;
   std::vector<Eigen::Vector3d> est, truth;
+  std::vector<Eigen::Vector3d> too_little_seen;  // ignore regions (map_precision_visible)
   std::vector<const io::InstanceTruth*> truth_inst;
   for (const auto& h : map) est.push_back(h.position);
   for (const auto& [id, pts] : visible_) {
     const auto* t = truth_->find(id);
-    if (!t || pts < opt_.map_min_points) continue;
+    if (!t) continue;
+    if (pts < opt_.map_min_points) {
+      too_little_seen.push_back(t->position);
+      continue;
+    }
     truth.push_back(t->position);
     truth_inst.push_back(t);
   }
-  const auto mm = eval::map_metrics(est, truth);
+  const auto mm = eval::map_metrics(est, truth, {}, too_little_seen);
   map_heads_ += mm.map_heads;
+  ignored_ += mm.ignored;
   true_heads_ += mm.true_heads;
   matched_ += mm.matched;
   duplicates_ += mm.duplicates;
@@ -229,6 +235,8 @@ BroccoliTrackingFigures BroccoliTrackingEvaluator::result() const {
   r.frames = frames_seen_;
   r.map_aligned = !map_unaligned_;
   r.map_precision = map_unaligned_ || !map_heads_ ? kNan : double(matched_) / map_heads_;
+  r.map_precision_visible =
+      map_unaligned_ || map_heads_ <= ignored_ ? kNan : double(matched_) / (map_heads_ - ignored_);
   r.map_recall = map_unaligned_ || !true_heads_ ? kNan : double(matched_) / true_heads_;
   r.duplicate_rate = map_unaligned_ || !map_heads_ ? kNan : double(duplicates_) / map_heads_;
   r.count_error = map_heads_ - true_heads_;
@@ -236,6 +244,7 @@ BroccoliTrackingFigures BroccoliTrackingEvaluator::result() const {
   r.map_heads = map_heads_;
   r.map_true_heads = true_heads_;
   r.map_matched = matched_;
+  r.map_ignored = ignored_;
   r.map_min_visible_points = opt_.map_min_points;
   r.size_estimator = estimator_;
   r.hull_computed = compute_hull_;

@@ -49,6 +49,11 @@ struct BroccoliTrackingFigures {
   bool map_aligned = true;  ///< false: a pass had no poses.csv, so the map is not in the truth's frame
   double map_precision = 0, map_recall = 0, duplicate_rate = 0, count_error_rel = 0;
   int count_error = 0, map_heads = 0, map_true_heads = 0, map_matched = 0, map_min_visible_points = 0;
+  /// Map heads at a true head that no frame showed with map_min_visible_points (an ignore region,
+  /// as the detection AP's visible figures treat it), and the precision without them:
+  /// map_matched / (map_heads − map_ignored). map_precision counts them as false heads.
+  int map_ignored = 0;
+  double map_precision_visible = 0;
   // Sizes: per mapped head (offline) and per detection on a true head (per frame).
   std::string size_estimator;
   bool hull_computed = true;
@@ -139,7 +144,7 @@ class BroccoliTrackingEvaluator {
   eval::DetectionApAccumulator ap_single_visible_, ap_online_visible_, ap_offline_visible_;
   std::vector<double> head_est_, head_bbox_, head_hull_, head_true_;
   std::vector<double> frame_bbox_, frame_hull_, frame_est_, frame_true_;
-  int map_heads_ = 0, true_heads_ = 0, matched_ = 0, duplicates_ = 0;
+  int map_heads_ = 0, true_heads_ = 0, matched_ = 0, duplicates_ = 0, ignored_ = 0;
   double tracking_ms_ = 0.0;
   long frames_seen_ = 0;
   bool map_unaligned_ = false;
