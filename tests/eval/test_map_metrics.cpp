@@ -89,6 +89,7 @@ TEST(MapMetrics, HeadsAtIgnoreRegionsAreNeitherTrueNorFalse) {
   EXPECT_TRUE(std::isnan(only.precision_visible));
   EXPECT_DOUBLE_EQ(only.precision, 0.0);
 }
+
 TEST(MapMetrics, HungarianIsOptimalOnRandomMatrices) {
   // Against brute force over all permutations (3×3 .. 4×6, both orientations).
   std::mt19937 rng(4);
