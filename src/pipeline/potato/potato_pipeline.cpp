@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/timer.hpp"
@@ -28,10 +29,18 @@ std::unique_ptr<Detector2D> make_potato_detector(const PotatoDetectorConfig& cfg
       throw Error(where, "'detector.onnx.model' must name an .onnx file for detector.backend onnx");
     return nn::make_onnx_detector(cfg.onnx);
   }
-  if (cfg.backend == DetectorBackend::cnn) {
+  if (cfg.backend == DetectorBackend::cnn || cfg.backend == DetectorBackend::fusion) {
     if (cfg.cnn_model.empty())
-      throw Error(where, "'detector.cnn_model' must name a detector (.onnx or .pt) for detector.backend cnn");
-    return nn::load_center_detector(cfg.cnn_model);
+      throw Error(where, std::string("'detector.cnn_model' must name a detector (.onnx or .pt) for detector.backend ") +
+                             (cfg.backend == DetectorBackend::cnn ? "cnn" : "fusion"));
+    auto cnn = nn::load_center_detector(cfg.cnn_model);
+    if (cfg.backend == DetectorBackend::cnn) return cnn;
+    std::vector<std::unique_ptr<Detector2D>> both;
+    both.push_back(std::make_unique<PotatoBlobDetector>(cfg.classical));
+    both.push_back(std::move(cnn));
+    if (both.back()->class_names() != both.front()->class_names())
+      throw Error(cfg.cnn_model, "detector.backend fusion needs a CNN of the one class 'potato'");
+    return std::make_unique<FusedDetector>(std::move(both), cfg.fusion);
   }
   return std::make_unique<PotatoBlobDetector>(cfg.classical);
 }
@@ -157,6 +166,10 @@ PotatoPipelineConfig load_potato_config(const std::string& preset, const ConfigM
   const auto path = io::find_preset(preset);
   PotatoPipelineConfig cfg;
   apply_config(cfg, io::load_config_map(path), path.string());
+  // A preset names its model relative to itself, so that it works from any working directory;
+  // a --set path is the user's, relative to where they are.
+  if (!cfg.detector.cnn_model.empty() && std::filesystem::path(cfg.detector.cnn_model).is_relative())
+    cfg.detector.cnn_model = (path.parent_path() / cfg.detector.cnn_model).lexically_normal().string();
   apply_config(cfg, overrides, "--set");
   cfg.validate(path.string());
   return cfg;

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "cropsight/core/box_fusion.hpp"
 #include "cropsight/core/config.hpp"
 #include "cropsight/core/detection2d.hpp"
 #include "cropsight/core/rgbd_frame.hpp"
@@ -27,23 +28,29 @@
 
 namespace cropsight::pipeline::potato {
 
-enum class DetectorBackend { classical, onnx, cnn };
-constexpr std::array<const char*, 3> config_names(DetectorBackend) { return {"classical", "onnx", "cnn"}; }
+enum class DetectorBackend { classical, onnx, cnn, fusion };
+constexpr std::array<const char*, 4> config_names(DetectorBackend) { return {"classical", "onnx", "cnn", "fusion"}; }
 
 /// The detector slot: which backend and each backend's settings (keys detector.*).
 struct PotatoDetectorConfig {
   DetectorBackend backend = DetectorBackend::classical;
   PotatoBlobConfig classical;
   nn::OnnxDetectorConfig onnx;
-  std::string cnn_model;  ///< the project's CenterNet (issue 24): .onnx (OpenCV DNN) or .pt (libtorch)
+  std::string cnn_model;   ///< the project's CenterNet (issue 24): .onnx (OpenCV DNN) or .pt (libtorch)
+  BoxFusionConfig fusion;  ///< backend fusion: the classical detector and cnn_model, boxes fused (core/box_fusion.hpp)
 
   template <class V>
   void visit(V& v) {
-    v("backend", backend, "classical | onnx | cnn; the 2D detector (paper: SSD300 MobileNet v2, 70 ms a frame)");
+    v("backend", backend,
+      "classical | onnx | cnn | fusion (classical and cnn_model, weighted boxes fusion); the 2D detector (paper: "
+      "SSD300 "
+      "MobileNet v2, 70 ms a frame)");
     v("classical", classical, "the classical colour/range blob detector (pipeline/potato/potato_blob_detector.hpp)");
     v("onnx", onnx, "a user's ONNX detector run by OpenCV DNN (nn/onnx_detector.hpp)");
     v("cnn_model", cnn_model,
-      "path; the project's CenterNet for backend cnn: .onnx (OpenCV DNN) or .pt (nn/center_onnx.hpp)");
+      "path; the project's CenterNet for backends cnn and fusion: .onnx (OpenCV DNN) or .pt (nn/center_onnx.hpp); in a "
+      "preset, relative to the preset's folder");
+    v("fusion", fusion, "backend fusion: how the two detectors' boxes are joined");
   }
 };
 
