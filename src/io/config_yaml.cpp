@@ -59,6 +59,11 @@ ConfigMap load_config_map(const fs::path& path) {
   return out;
 }
 
+std::string relative_to_preset(const fs::path& preset, const std::string& path) {
+  if (path.empty() || fs::path(path).is_absolute()) return path;
+  return (preset.parent_path() / path).lexically_normal().string();
+}
+
 fs::path find_preset(const std::string& name_or_path) {
   if (fs::exists(name_or_path)) return name_or_path;
   std::vector<fs::path> roots;

@@ -15,8 +15,8 @@
 //                    mapped twice); NaN with an empty map
 //   count_error    = map heads − true heads (signed); count_error_rel = count_error / true heads
 //
-// Ignore regions (optional `ignore`: heads that exist but are too little seen to be required, e.g.
-// fewer than detection.visible_truth_points visible points in every frame): an unmatched map head
+// Ignore regions (optional `ignore`: heads that exist but are too little seen to be required; the
+// broccoli evaluator passes those no frame shows with map_min_visible_points points): an unmatched map head
 // that is not a duplicate and lies within radius_m of one is `ignored`, neither a true nor a false
 // head, the rule the detection AP's visible figures use. precision_visible = matched / (map heads
 // − ignored); `precision` keeps counting such a head as false. Recall never depends on them.

@@ -14,6 +14,9 @@ ConfigMap load_config_map(const std::filesystem::path& path);
 /// Resolves a preset name ("broccoli-uk") to configs/<name>.yaml under the source or install
 /// tree, or returns `name_or_path` itself when it names an existing file.
 std::filesystem::path find_preset(const std::string& name_or_path);
+/// `path` as a preset file names it: a relative path is relative to the preset's folder, so that a
+/// preset works from any working directory; empty and absolute paths come back unchanged.
+std::string relative_to_preset(const std::filesystem::path& preset, const std::string& path);
 /// The values of `preset` (find_preset; none when empty) overlaid with `sets` ("key=value", the
 /// CLI's --set and the ROS nodes' ~set). Throws Error(file, ...) or Error("--set", ...).
 ConfigMap load_preset_with_overrides(const std::string& preset, const std::vector<std::string>& sets);

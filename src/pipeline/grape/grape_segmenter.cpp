@@ -18,9 +18,7 @@ GrapeSegmenterConfig load_grape_segmenter_config(const std::filesystem::path& pr
   const std::string where = preset.string();
   apply_config(cfg, io::load_config_map(preset), where);
   // A preset names its models relative to itself, so that it works from any working directory.
-  for (std::string* path : {&cfg.model, &cfg.ensemble})
-    if (!path->empty() && std::filesystem::path(*path).is_relative())
-      *path = (preset.parent_path() / *path).lexically_normal().string();
+  for (std::string* path : {&cfg.model, &cfg.ensemble}) *path = io::relative_to_preset(preset, *path);
   check_config(cfg, where);
   apply_config(cfg, overrides, overrides_where);
   check_config(cfg, overrides_where);

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/timer.hpp"
@@ -31,8 +30,8 @@ std::unique_ptr<Detector2D> make_potato_detector(const PotatoDetectorConfig& cfg
   }
   if (cfg.backend == DetectorBackend::cnn || cfg.backend == DetectorBackend::fusion) {
     if (cfg.cnn_model.empty())
-      throw Error(where, std::string("'detector.cnn_model' must name a detector (.onnx or .pt) for detector.backend ") +
-                             (cfg.backend == DetectorBackend::cnn ? "cnn" : "fusion"));
+      throw Error(where, "'detector.cnn_model' must name a detector (.onnx or .pt) for detector.backend " +
+                             config_name(cfg.backend));
     auto cnn = nn::load_center_detector(cfg.cnn_model);
     if (cfg.backend == DetectorBackend::cnn) return cnn;
     std::vector<std::unique_ptr<Detector2D>> both;
@@ -166,10 +165,8 @@ PotatoPipelineConfig load_potato_config(const std::string& preset, const ConfigM
   const auto path = io::find_preset(preset);
   PotatoPipelineConfig cfg;
   apply_config(cfg, io::load_config_map(path), path.string());
-  // A preset names its model relative to itself, so that it works from any working directory;
-  // a --set path is the user's, relative to where they are.
-  if (!cfg.detector.cnn_model.empty() && std::filesystem::path(cfg.detector.cnn_model).is_relative())
-    cfg.detector.cnn_model = (path.parent_path() / cfg.detector.cnn_model).lexically_normal().string();
+  // A preset names its model relative to itself; a --set path is the user's, relative to where they are.
+  cfg.detector.cnn_model = io::relative_to_preset(path, cfg.detector.cnn_model);
   apply_config(cfg, overrides, "--set");
   cfg.validate(path.string());
   return cfg;

@@ -42,9 +42,8 @@ struct PotatoDetectorConfig {
   template <class V>
   void visit(V& v) {
     v("backend", backend,
-      "classical | onnx | cnn | fusion (classical and cnn_model, weighted boxes fusion); the 2D detector (paper: "
-      "SSD300 "
-      "MobileNet v2, 70 ms a frame)");
+      "classical | onnx | cnn | fusion (classical and cnn_model, weighted boxes fusion); the 2D detector "
+      "(paper: SSD300 MobileNet v2, 70 ms a frame)");
     v("classical", classical, "the classical colour/range blob detector (pipeline/potato/potato_blob_detector.hpp)");
     v("onnx", onnx, "a user's ONNX detector run by OpenCV DNN (nn/onnx_detector.hpp)");
     v("cnn_model", cnn_model,
