@@ -87,6 +87,7 @@ nlohmann::json tracking_json(const pipeline::BroccoliTrackingFigures& f) {
   j["map_true_heads"] = f.map_true_heads;
   j["map_matched"] = f.map_matched;
   j["map_ignored"] = f.map_ignored;
+  j["map_mean_distance_m"] = json_number(f.map_mean_distance_m);
   j["map_min_visible_points"] = f.map_min_visible_points;
   j["size_estimator"] = f.size_estimator;
   j["size_mede_mm"] = json_number(f.head_size.mede_mm);
@@ -167,6 +168,8 @@ void print_tracking_summary(const pipeline::BroccoliTrackingFigures& f) {
               f.map_aligned ? f.duplicate_rate : nan, f.count_error, f.map_heads, f.map_true_heads);
   std::printf("  map, heads too little seen ignored: precision %.3f (%d mapped heads at such heads)\n",
               f.map_aligned ? f.map_precision_visible : nan, f.map_ignored);
+  std::printf("  map placement: %.1f mm mean distance of a matched head from its true head (field plane)\n",
+              1000.0 * f.map_mean_distance_m);
   std::printf("  size (%s, per head): MEDE %.1f mm  MAD %.1f mm  r %.3f  (%d heads)\n", f.size_estimator.c_str(),
               f.head_size.mede_mm, f.head_size.mad_mm, f.head_size.pearson_r, f.head_size.n);
   std::printf("  size per frame: MEDE %.1f mm  MAD %.1f mm  r %.3f\n", f.frame_size.mede_mm, f.frame_size.mad_mm,

@@ -111,6 +111,11 @@ TEST_F(TrackingCli, EvalReportsMapSizeAndTemporalAp) {
                         "size_frame_mad_mm", "size_frame_pearson_r", "tracking_ms_per_frame"})
     EXPECT_TRUE(j.contains(k)) << k;
   EXPECT_DOUBLE_EQ(j["ap50_single_frame"].get<double>(), j["ap50"].get<double>());  // same AP, two routes
+  // Placement: the mean field-plane distance of matched map heads, in metres, within the 5 cm match radius.
+  ASSERT_GT(j["map_matched"].get<int>(), 0);
+  ASSERT_TRUE(j["map_mean_distance_m"].is_number()) << j["map_mean_distance_m"];
+  EXPECT_GT(j["map_mean_distance_m"].get<double>(), 0.0);
+  EXPECT_LE(j["map_mean_distance_m"].get<double>(), 0.05);
   ASSERT_TRUE(j.contains("size_bias_fit"));
   EXPECT_GT(j["size_bias_fit"]["bbox"]["scale"].get<double>(), 0.0);
 }

@@ -328,8 +328,10 @@ void BroccoliDetector::split_rejected() {
     segment_ptrs_.push_back(&candidates_[k].segment);
     const BroccoliCandidate& c = candidates_[k];
     if (!c.oversized) {
-      if (c.head || !c.described || int(c.segment.size()) < dc.split_min_points) continue;
-      if (dc.split_score_window > 0.0f && c.score < head - dc.split_score_window) continue;
+      if (!c.described || int(c.segment.size()) < dc.split_min_points) continue;
+      if (c.head && !dc.split_accepted) continue;
+      // Only scores near the threshold: a head joined to a leaf scores between a leaf and a head.
+      if (dc.split_score_window > 0.0f && std::fabs(c.score - head) > dc.split_score_window) continue;
     }
     split_targets_.push_back(int(k));
     geometry::mark_concave_creases(cloud_, candidates_[k].segment.indices, creases, crease_marks_);
@@ -361,8 +363,12 @@ void BroccoliDetector::split_rejected() {
     split_scored_[i] = 1;
   }
   classify_all(batch_input_, threshold);
-  for (std::size_t i = 0; i < split.size(); ++i)
-    if (split_scored_[i] && pieces_[i].head) replace[std::size_t(split[i].parent)] = kReplace;
+  // A head cluster (split_accepted) gives way only to a piece that is more head-like than itself.
+  for (std::size_t i = 0; i < split.size(); ++i) {
+    const BroccoliCandidate& parent = candidates_[std::size_t(split[i].parent)];
+    if (split_scored_[i] && pieces_[i].head && (!parent.head || pieces_[i].score > parent.score))
+      replace[std::size_t(split[i].parent)] = kReplace;
+  }
   // The replaced cluster's pixels are freed in the owner map (the completion reads it), then the
   // pieces take theirs: the first piece takes the cluster's slot, the others are appended.
   for (std::size_t k = 0; k < count_; ++k)

@@ -198,6 +198,7 @@ void BroccoliTrackingEvaluator::add_map(const std::vector<tracking::TrackedHead>
   true_heads_ += mm.true_heads;
   matched_ += mm.matched;
   duplicates_ += mm.duplicates;
+  for (const auto& m : mm.matches) match_distance_sum_ += m.distance_m;
   std::vector<char> est_matched(est.size(), 0), truth_matched(truth.size(), 0);
   const bool first_pass = material_.sequence.empty();
   for (const auto& m : mm.matches) {
@@ -245,6 +246,7 @@ BroccoliTrackingFigures BroccoliTrackingEvaluator::result() const {
   r.map_true_heads = true_heads_;
   r.map_matched = matched_;
   r.map_ignored = ignored_;
+  r.map_mean_distance_m = map_unaligned_ || !matched_ ? kNan : match_distance_sum_ / matched_;
   r.map_min_visible_points = opt_.map_min_points;
   r.size_estimator = estimator_;
   r.hull_computed = compute_hull_;

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <map>
+#include <set>
 #include <span>
 
 #include "broccoli_sim_frames.hpp"
@@ -522,11 +524,12 @@ TEST(BroccoliDetector, ConcaveSplitFreesHeadsJoinedToLeaves) {
   const auto frames = testdata::simulate(testdata::sim_preset("random-wide"), 6111, 12);
   const auto model_path = cropsight::testing::source_dir() / "models" / "broccoli-oes-general.json";
   const auto model = load_broccoli_model(model_path.string());
-  const BroccoliDetectorConfig on = broccoli_config_for_model(*model, {}, model_path.string()).detector;
+  BroccoliDetectorConfig on = broccoli_config_for_model(*model, {}, model_path.string()).detector;
   ASSERT_GT(on.detection.split_concave_angle_deg, 0.0f) << "the shipped general model splits";
   BroccoliDetectorConfig org = on;
   org.pipeline = BroccoliVariant::org;
   EXPECT_THROW(org.validate("test"), Error) << "the split is OES's: another pipeline is told, not ignored";
+  on.detection.split_accepted = false;  // this test is about rejected clusters (next test: accepted ones)
   BroccoliDetectorConfig off = on;
   off.detection.split_concave_angle_deg = 0.0f;
   BroccoliDetector a(off), b(on);
@@ -569,6 +572,59 @@ TEST(BroccoliDetector, ConcaveSplitFreesHeadsJoinedToLeaves) {
   }
   EXPECT_GT(replaced, 0);
   EXPECT_GT(recovered, 0) << "some head merged with a leaf is found after the split";
+}
+
+// detection.split_accepted: a head joined to a leaf that the classifier still takes for a head is
+// one accepted cluster whose box is the pair's. Splitting accepted clusters too replaces such a
+// cluster by its pieces only when one piece is a head that outscores it: every replaced cluster was
+// a head of the plain run, its pieces lie inside it, the best of them scores above it, and some
+// head that no plain cluster covered with IoU >= 0.5 is found. Validation field 6111 (as above),
+// the shipped general model.
+TEST(BroccoliDetector, AcceptedClustersGiveWayOnlyToABetterPiece) {
+  const auto frames = testdata::simulate(testdata::sim_preset("random-wide"), 6111, 20);
+  const auto model_path = cropsight::testing::source_dir() / "models" / "broccoli-oes-general.json";
+  const auto model = load_broccoli_model(model_path.string());
+  BroccoliDetectorConfig on = broccoli_config_for_model(*model, {}, model_path.string()).detector;
+  on.detection.split_accepted = true;
+  BroccoliDetectorConfig off = on;
+  off.detection.split_accepted = false;
+  BroccoliDetector a(off), b(on);
+  a.set_model(model);
+  b.set_model(model);
+  int replaced = 0, recovered = 0;
+  for (const auto& f : frames) {
+    const auto ca = a.process(f);
+    const auto cb = b.process(f);
+    // Candidate order differs where the runs append different pieces: match by point sets.
+    std::set<std::vector<int>> kept;
+    for (const auto& c : cb) kept.insert(c.segment.indices);
+    std::vector<int> owner(a.cloud().size(), -1);
+    for (std::size_t k = 0; k < ca.size(); ++k)
+      for (int i : ca[k].segment.indices) owner[std::size_t(i)] = int(k);
+    // Each head of the split run that the plain run does not have: the plain cluster holding most
+    // of it (completion may grow a head over pixels that a replaced cluster freed).
+    std::vector<float> best_piece(ca.size(), -std::numeric_limits<float>::infinity());
+    for (const auto& c : cb) {
+      if (!c.head) continue;
+      std::map<int, int> votes;
+      for (int i : c.segment.indices) ++votes[owner[std::size_t(i)]];
+      const auto top = std::max_element(votes.begin(), votes.end(),
+                                        [](const auto& x, const auto& y) { return x.second < y.second; });
+      if (top->first >= 0 && ca[std::size_t(top->first)].segment.indices != c.segment.indices)
+        best_piece[std::size_t(top->first)] = std::max(best_piece[std::size_t(top->first)], c.score);
+      recovered += found_only_with(c, b, a, ca);
+    }
+    for (std::size_t k = 0; k < ca.size(); ++k) {
+      if (!ca[k].head || kept.count(ca[k].segment.indices)) continue;
+      // A plain head that is gone: replaced by its pieces, or (rarely) grown differently.
+      if (!std::isfinite(best_piece[k])) continue;
+      if (best_piece[k] == ca[k].score) continue;  // the same head, its mask grown over freed pixels
+      ++replaced;
+      EXPECT_GT(best_piece[k], ca[k].score) << "an accepted cluster gives way only to a better piece";
+    }
+  }
+  EXPECT_GT(replaced, 0);
+  EXPECT_GT(recovered, 0) << "some head joined to a leaf in an accepted cluster is found after the split";
 }
 
 // detection.split_oversized_above: a region over it (here 10000 points, the paper's max_size; the

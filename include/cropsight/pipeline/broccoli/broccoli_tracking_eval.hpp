@@ -54,6 +54,9 @@ struct BroccoliTrackingFigures {
   /// map_matched / (map_heads − map_ignored). map_precision counts them as false heads.
   int map_ignored = 0;
   double map_precision_visible = 0;
+  /// Mean distance in the field plane between matched map heads and their true heads, metres
+  /// (pooled over the passes' matches; NaN without a match): how well the map places a head.
+  double map_mean_distance_m = 0;
   // Sizes: per mapped head (offline) and per detection on a true head (per frame).
   std::string size_estimator;
   bool hull_computed = true;
@@ -145,6 +148,7 @@ class BroccoliTrackingEvaluator {
   std::vector<double> head_est_, head_bbox_, head_hull_, head_true_;
   std::vector<double> frame_bbox_, frame_hull_, frame_est_, frame_true_;
   int map_heads_ = 0, true_heads_ = 0, matched_ = 0, duplicates_ = 0, ignored_ = 0;
+  double match_distance_sum_ = 0.0;  // metres, over every pass's matches
   double tracking_ms_ = 0.0;
   long frames_seen_ = 0;
   bool map_unaligned_ = false;
