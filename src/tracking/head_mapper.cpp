@@ -7,28 +7,23 @@
 #include "cropsight/core/camera.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/organized_cloud.hpp"
-#include "cropsight/measure/dome_apex.hpp"
 #include "tracking/order_statistic.hpp"
 
 namespace cropsight::tracking {
 
 namespace {
-/// The 2nd percentile of the depths of the head's valid points (its top: a few flying pixels in
-/// front of the head do not set it); NaN when it has none. `depth` receives those depths.
-float top_depth(const OrganizedCloud& cloud, const std::vector<int>& indices, std::vector<float>& depth,
-                std::vector<float>& scratch) {
+/// Centroid (camera frame) of the points within `cap` metres of depth of the head's top. The top
+/// is the 2nd percentile of depth, so that a few flying pixels in front of the head do not set it.
+/// Falls back to the centroid of all valid points when fewer than 3 are in the cap.
+Eigen::Vector3f top_centroid(const OrganizedCloud& cloud, const std::vector<int>& indices, double cap,
+                             std::vector<float>& depth, std::vector<float>& scratch) {
   depth.clear();
   for (int i : indices)
     if (cloud.valid(std::size_t(i))) depth.push_back(cloud.z[std::size_t(i)]);
-  if (depth.empty()) return std::numeric_limits<float>::quiet_NaN();
-  return kth_smallest(depth, std::size_t(0.02 * double(depth.size() - 1)), scratch);
-}
-
-/// Centroid (camera frame) of the points within `cap` metres of depth of the head's top (`top`).
-/// Falls back to the centroid of all valid points when fewer than 3 are in the cap.
-Eigen::Vector3f top_centroid(const OrganizedCloud& cloud, const std::vector<int>& indices, float top, double cap) {
   Eigen::Vector3d sum_all = Eigen::Vector3d::Zero(), sum_cap = Eigen::Vector3d::Zero();
-  const double limit = double(top) + cap;
+  if (depth.empty()) return Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN());
+  const std::size_t k = std::size_t(0.02 * double(depth.size() - 1));
+  const double limit = double(kth_smallest(depth, k, scratch)) + cap;
   int n_all = 0, n_cap = 0;
   for (int i : indices) {
     const auto u = std::size_t(i);
@@ -42,24 +37,6 @@ Eigen::Vector3f top_centroid(const OrganizedCloud& cloud, const std::vector<int>
 }
 }  // namespace
 
-Eigen::Vector3f HeadMapper::head_position(const OrganizedCloud& cloud, const Detection& d) {
-  const TemporalFilterConfig& cfg = filter_.config();
-  if (!(cfg.position_cap_m > 0)) return d.centroid;
-  const float top = top_depth(cloud, d.indices, depth_scratch_, select_scratch_);
-  if (!std::isfinite(top)) return Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN());
-  Eigen::Vector3f p = top_centroid(cloud, d.indices, top, cfg.position_cap_m);
-  if (cfg.apex_fit_depth_m > 0) {
-    apex_points_.clear();
-    const double limit = double(top) + cfg.apex_fit_depth_m;
-    for (int i : d.indices)
-      if (cloud.valid(std::size_t(i)) && cloud.z[std::size_t(i)] <= limit) apex_points_.push_back(cloud.point(std::size_t(i)));
-    // x and y from the dome's apex; the depth stays the top centroid's, which the rest of the
-    // tracker (predict_missed: about half the cap below the apex) assumes.
-    if (const auto apex = measure::fit_dome_apex(apex_points_)) p.x() = apex->x(), p.y() = apex->y();
-  }
-  return p;
-}
-
 void HeadMapperConfig::apply(const ConfigMap& values, const std::string& where) {
   apply_config(sizing, values, where, "sizing.");
   apply_config(tracking, values, where, "tracking.");
@@ -72,9 +49,12 @@ FrameAssociation HeadMapper::add_frame(int frame, const OrganizedCloud& cloud, s
   if (finished_) throw Error("frame " + std::to_string(frame), "head mapper already finished");
   std::vector<HeadObservation> obs(detections.size());
   const int margin = filter_.config().border_margin_px;
+  const double position_cap_m = filter_.config().position_cap_m;
   for (std::size_t k = 0; k < detections.size(); ++k) {
     const Box2D& b = detections[k].box;
-    obs[k].centroid = head_position(cloud, detections[k]);
+    obs[k].centroid = position_cap_m > 0
+                          ? top_centroid(cloud, detections[k].indices, position_cap_m, depth_scratch_, select_scratch_)
+                          : detections[k].centroid;
     obs[k].score = detections[k].score;
     obs[k].partial = margin >= 0 && (b.x <= margin || b.y <= margin || b.x + b.width >= cloud.width - margin ||
                                      b.y + b.height >= cloud.height - margin);

@@ -116,18 +116,13 @@ class HeadMapper {
   static constexpr float kConfirmedBonus = 1e6f;
 
  private:
-  // A detection's position for the filter (camera frame, metres): the top centroid
-  // (tracking.position_cap_m), x and y from the dome's apex with tracking.apex_fit_depth_m.
-  Eigen::Vector3f head_position(const OrganizedCloud& cloud, const Detection& d);
-
   measure::HeadSizer sizer_;
   TemporalFilter filter_;
   std::vector<MeasuredDetection> measured_;
   std::vector<TrackedHead> map_;
   std::set<int> confirmed_;
-  std::vector<float> depth_scratch_;          // top_depth's depths, reused across detections
-  std::vector<float> select_scratch_;         // top_depth's order-statistic bucket, reused
-  std::vector<Eigen::Vector3f> apex_points_;  // the points fit_dome_apex sees, reused
+  std::vector<float> depth_scratch_;   // top_centroid's depths, reused across detections
+  std::vector<float> select_scratch_;  // top_centroid's order-statistic bucket, reused
   bool finished_ = false;
   bool record_ = true;
 };

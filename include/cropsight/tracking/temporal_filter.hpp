@@ -79,7 +79,6 @@ struct TemporalFilterConfig {
   double partial_association_radius_m = 0.10;
   bool partial_tracks = true;
   double position_cap_m = 0.02;
-  double apex_fit_depth_m = 0.0;
   double merge_radius_m = 0.05;
   bool merge_in_plane = true;
   double overlap_suppression = 0.75;
@@ -146,12 +145,6 @@ struct TemporalFilterConfig {
       "percentile of depth is the top), which the viewing angle hardly moves, unlike the centroid of the whole "
       "visible cap that drifted the estimated camera by ~2.5 % of the travel (extension; 0 = centroid of all "
       "points as in the paper)",
-      Range::at_least(0));
-    v("apex_fit_depth_m", apex_fit_depth_m,
-      "m; when > 0, a head's x and y (camera frame) are the apex of a paraboloid fitted to its points within "
-      "this depth of its top (measure::fit_dome_apex), so that leaves hiding one side do not pull the position "
-      "towards the visible side; the depth stays position_cap_m's; a fit that does not describe a dome keeps "
-      "the top centroid (extension, issue 27; 0 = off)",
       Range::at_least(0));
     v("merge_radius_m", merge_radius_m,
       "m; at the end, a head whose track started after another's ended within this distance of it is merged into "
