@@ -388,6 +388,30 @@ double head_iou(const OrganizedCloud& cloud, const std::vector<int>& indices, st
 
 // True when `c`, a candidate of detector `with`, is a head that covers a labelled head with IoU
 // >= 0.5 and no candidate in `plain` (of detector `without`, same frame) covers that head so.
+// Which candidate holds each of the cloud's pixels (-1: none).
+std::vector<int> candidate_owners(std::size_t pixels, std::span<const BroccoliCandidate> cands) {
+  std::vector<int> owner(pixels, -1);
+  for (std::size_t k = 0; k < cands.size(); ++k)
+    for (int i : cands[k].segment.indices) owner[std::size_t(i)] = int(k);
+  return owner;
+}
+
+// Runs two detectors with `model` over `frames` and hands each frame's two candidate lists
+// (`plain` from the first config, `changed` from the second) and the detectors to `check`.
+template <class Check>
+void run_side_by_side(const BroccoliDetectorConfig& plain_cfg, const BroccoliDetectorConfig& changed_cfg,
+                      const std::shared_ptr<const learning::Model>& model, const std::vector<RgbdFrame>& frames,
+                      Check check) {
+  BroccoliDetector plain(plain_cfg), changed(changed_cfg);
+  plain.set_model(model);
+  changed.set_model(model);
+  for (const auto& f : frames) {
+    const auto cp = plain.process(f);
+    const auto cc = changed.process(f);
+    check(cp, cc, plain, changed);
+  }
+}
+
 bool found_only_with(const BroccoliCandidate& c, const BroccoliDetector& with, const BroccoliDetector& without,
                      std::span<const BroccoliCandidate> plain) {
   if (!c.head) return false;
@@ -496,9 +520,7 @@ TEST(BroccoliDetector, DebrisPassAndCompletionRecoverNoisyHeads) {
       const auto cp = p.process(f);
       const auto cg = g.process(f);
       ASSERT_EQ(cp.size(), cg.size()) << name;
-      std::vector<int> owner(p.cloud().size(), -1);
-      for (std::size_t k = 0; k < cp.size(); ++k)
-        for (int i : cp[k].segment.indices) owner[std::size_t(i)] = int(k);
+      const std::vector<int> owner = candidate_owners(p.cloud().size(), cp);
       for (std::size_t k = 0; k < cp.size(); ++k) {
         if (!cp[k].head) continue;
         ++org_heads;
@@ -532,17 +554,10 @@ TEST(BroccoliDetector, ConcaveSplitFreesHeadsJoinedToLeaves) {
   on.detection.split_accepted = false;  // this test is about rejected clusters (next test: accepted ones)
   BroccoliDetectorConfig off = on;
   off.detection.split_concave_angle_deg = 0.0f;
-  BroccoliDetector a(off), b(on);
-  a.set_model(model);
-  b.set_model(model);
   int replaced = 0, recovered = 0;
-  for (const auto& f : frames) {
-    const auto ca = a.process(f);
-    const auto cb = b.process(f);
+  run_side_by_side(off, on, model, frames, [&](auto ca, auto cb, const auto& a, const auto& b) {
     ASSERT_GE(cb.size(), ca.size());
-    std::vector<int> parent_of(a.cloud().size(), -1);
-    for (std::size_t k = 0; k < ca.size(); ++k)
-      for (int i : ca[k].segment.indices) parent_of[std::size_t(i)] = int(k);
+    const std::vector<int> parent_of = candidate_owners(a.cloud().size(), ca);
     for (std::size_t k = 0; k < ca.size(); ++k) {
       if (ca[k].head) {  // found heads are untouched (completion grows them the same way)
         EXPECT_EQ(cb[k].segment.indices, ca[k].segment.indices);
@@ -569,7 +584,7 @@ TEST(BroccoliDetector, ConcaveSplitFreesHeadsJoinedToLeaves) {
       // A head that no plain cluster covered with IoU >= 0.5, now found by a piece.
       recovered += found_only_with(cb[k], b, a, ca);
     }
-  }
+  });
   EXPECT_GT(replaced, 0);
   EXPECT_GT(recovered, 0) << "some head merged with a leaf is found after the split";
 }
@@ -588,19 +603,12 @@ TEST(BroccoliDetector, AcceptedClustersGiveWayOnlyToABetterPiece) {
   on.detection.split_accepted = true;
   BroccoliDetectorConfig off = on;
   off.detection.split_accepted = false;
-  BroccoliDetector a(off), b(on);
-  a.set_model(model);
-  b.set_model(model);
   int replaced = 0, recovered = 0;
-  for (const auto& f : frames) {
-    const auto ca = a.process(f);
-    const auto cb = b.process(f);
+  run_side_by_side(off, on, model, frames, [&](auto ca, auto cb, const auto& a, const auto& b) {
     // Candidate order differs where the runs append different pieces: match by point sets.
     std::set<std::vector<int>> kept;
     for (const auto& c : cb) kept.insert(c.segment.indices);
-    std::vector<int> owner(a.cloud().size(), -1);
-    for (std::size_t k = 0; k < ca.size(); ++k)
-      for (int i : ca[k].segment.indices) owner[std::size_t(i)] = int(k);
+    const std::vector<int> owner = candidate_owners(a.cloud().size(), ca);
     // Each head of the split run that the plain run does not have: the plain cluster holding most
     // of it (completion may grow a head over pixels that a replaced cluster freed).
     std::vector<float> best_piece(ca.size(), -std::numeric_limits<float>::infinity());
@@ -622,7 +630,7 @@ TEST(BroccoliDetector, AcceptedClustersGiveWayOnlyToABetterPiece) {
       ++replaced;
       EXPECT_GT(best_piece[k], ca[k].score) << "an accepted cluster gives way only to a better piece";
     }
-  }
+  });
   EXPECT_GT(replaced, 0);
   EXPECT_GT(recovered, 0) << "some head joined to a leaf in an accepted cluster is found after the split";
 }
