@@ -1,0 +1,81 @@
+// A tuning tool (not a test): can surface roughness tell a head from the leaves it lies in? For the
+// clusters a detector leaves unaccepted (rejected ones of 2000 points or more, and oversized regions),
+// it compares the curvature (the integral normals' λ0 / trace) of their head pixels with that of the
+// rest and prints the quantiles and the AUC (probability that a head pixel is rougher). Run as
+//
+//   build/bin/broccoli_roughness_probe MODEL.json seq1[,seq2] [key=value ...]
+//
+// (the model's recorded configuration, the key=value overrides on top; e.g. oes.max_size=200000 keeps
+// the regions OES would drop). docs/pipelines/broccoli-heads.md, "Fields drawn to the issue's
+// description", has the result that ended this idea (AUC 0.64).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cropsight/io/sequence.hpp"
+#include "cropsight/learning/model.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_detector.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
+
+using namespace cropsight;
+using namespace cropsight::pipeline;
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: broccoli_roughness_probe MODEL.json seq[,seq] [key=value ...]\n");
+    return 2;
+  }
+  const std::string model_path = argv[1];
+  auto model = std::make_shared<learning::Model>(learning::load_model(model_path));
+  ConfigMap overrides;
+  for (int a = 3; a < argc; ++a) {
+    const std::string kv = argv[a];
+    const auto eq = kv.find('=');
+    overrides[kv.substr(0, eq)] = kv.substr(eq + 1);
+  }
+  BroccoliDetectorConfig cfg = broccoli_config_for_model(*model, overrides, model_path, "args").detector;
+  BroccoliDetector det(cfg);
+  det.set_model(model, model_path);
+  std::vector<float> head, other;
+  std::stringstream ss(argv[2]);
+  for (std::string dir; std::getline(ss, dir, ',');) {
+    io::SequenceReader reader(dir);
+    for (int i = 0; i < reader.size(); ++i) {
+      const auto cands = det.process(reader.read(i));
+      const auto& c = det.cloud();
+      for (const auto& k : cands) {
+        if (k.head || (!k.oversized && k.segment.size() < 2000)) continue;
+        for (int idx : k.segment.indices) {
+          const float cv = c.curvature[std::size_t(idx)];
+          if (!std::isfinite(cv)) continue;
+          (c.labels[std::size_t(idx)] ? head : other).push_back(cv);
+        }
+      }
+    }
+  }
+  auto q = [](std::vector<float> v, double p) {
+    if (v.empty()) return double(NAN);
+    std::nth_element(v.begin(), v.begin() + long(p * double(v.size() - 1)), v.end());
+    return double(v[std::size_t(p * double(v.size() - 1))]);
+  };
+  std::printf("head px %zu: q10 %.4f q25 %.4f q50 %.4f q75 %.4f\n", head.size(), q(head, 0.1), q(head, 0.25),
+              q(head, 0.5), q(head, 0.75));
+  std::printf("other px %zu: q10 %.4f q25 %.4f q50 %.4f q75 %.4f q90 %.4f\n", other.size(), q(other, 0.1),
+              q(other, 0.25), q(other, 0.5), q(other, 0.75), q(other, 0.9));
+  // AUC from the ranks (Mann-Whitney U).
+  std::vector<std::pair<float, int>> all;
+  for (float v : head) all.push_back({v, 1});
+  for (float v : other) all.push_back({v, 0});
+  std::sort(all.begin(), all.end());
+  double rank_sum = 0;
+  for (std::size_t r = 0; r < all.size(); ++r)
+    if (all[r].second) rank_sum += double(r + 1);
+  const double nh = double(head.size()), no = double(other.size());
+  std::printf("AUC (head curvature > other) %.3f\n", (rank_sum - nh * (nh + 1) / 2) / (nh * no));
+  return 0;
+}
