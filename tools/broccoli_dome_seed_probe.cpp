@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "broccoli_probe_args.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/learning/model.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_detector.hpp"
@@ -34,27 +35,16 @@ double iou(const std::vector<int>& a_sorted, const std::vector<char>& in_b, long
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 3) {
-    std::fprintf(stderr, "usage: broccoli_dome_seed_probe MODEL.json seq[,seq] [key=value ...]\n");
-    return 2;
-  }
-  const std::string model_path = argv[1];
-  auto model = std::make_shared<learning::Model>(learning::load_model(model_path));
-  ConfigMap overrides;
-  for (int a = 3; a < argc; ++a) {
-    const std::string kv = argv[a];
-    const auto eq = kv.find('=');
-    overrides[kv.substr(0, eq)] = kv.substr(eq + 1);
-  }
-  const BroccoliDetectorConfig cfg = broccoli_config_for_model(*model, overrides, model_path, "args").detector;
+  const auto args = tools::parse_probe_args("broccoli_dome_seed_probe", argc, argv);
+  if (!args) return 2;
+  const BroccoliDetectorConfig& cfg = args->config;
   BroccoliDetector det(cfg);
-  det.set_model(model, model_path);
+  det.set_model(args->model);
   const float tol2 = cfg.oes.distance_tolerance * cfg.oes.distance_tolerance;
   const double radii[] = {0.035, 0.05, 0.065, 0.08};
   long missed = 0, recoverable = 0, seeds_total = 0, frames = 0;
   std::vector<TruthInstance> truth;
-  std::stringstream ss(argv[2]);
-  for (std::string dir; std::getline(ss, dir, ',');) {
+  for (const std::string& dir : args->sequences) {
     io::SequenceReader reader(dir);
     for (int f = 0; f < reader.size(); ++f, ++frames) {
       const auto cands = det.process(reader.read(f));

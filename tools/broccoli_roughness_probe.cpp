@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "broccoli_probe_args.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/learning/model.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_detector.hpp"
@@ -26,24 +27,13 @@ using namespace cropsight;
 using namespace cropsight::pipeline;
 
 int main(int argc, char** argv) {
-  if (argc < 3) {
-    std::fprintf(stderr, "usage: broccoli_roughness_probe MODEL.json seq[,seq] [key=value ...]\n");
-    return 2;
-  }
-  const std::string model_path = argv[1];
-  auto model = std::make_shared<learning::Model>(learning::load_model(model_path));
-  ConfigMap overrides;
-  for (int a = 3; a < argc; ++a) {
-    const std::string kv = argv[a];
-    const auto eq = kv.find('=');
-    overrides[kv.substr(0, eq)] = kv.substr(eq + 1);
-  }
-  BroccoliDetectorConfig cfg = broccoli_config_for_model(*model, overrides, model_path, "args").detector;
+  const auto args = tools::parse_probe_args("broccoli_roughness_probe", argc, argv);
+  if (!args) return 2;
+  const BroccoliDetectorConfig& cfg = args->config;
   BroccoliDetector det(cfg);
-  det.set_model(model, model_path);
+  det.set_model(args->model);
   std::vector<float> head, other;
-  std::stringstream ss(argv[2]);
-  for (std::string dir; std::getline(ss, dir, ',');) {
+  for (const std::string& dir : args->sequences) {
     io::SequenceReader reader(dir);
     for (int i = 0; i < reader.size(); ++i) {
       const auto cands = det.process(reader.read(i));

@@ -1,0 +1,44 @@
+#pragma once
+// The command line the broccoli probes share: MODEL.json seq[,seq] [key=value ...]. The detector
+// runs the model's recorded configuration (as `eval broccoli --model` does) with the overrides.
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cropsight/learning/model.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_detector.hpp"
+#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
+
+namespace cropsight::tools {
+
+struct BroccoliProbeArgs {
+  std::shared_ptr<learning::Model> model;
+  pipeline::BroccoliDetectorConfig config;
+  std::vector<std::string> sequences;
+};
+
+/// Parses argv; prints the usage line and returns nothing when arguments are missing.
+inline std::optional<BroccoliProbeArgs> parse_probe_args(const char* tool, int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: %s MODEL.json seq[,seq] [key=value ...]\n", tool);
+    return std::nullopt;
+  }
+  BroccoliProbeArgs a;
+  const std::string model_path = argv[1];
+  a.model = std::make_shared<learning::Model>(learning::load_model(model_path));
+  ConfigMap overrides;
+  for (int i = 3; i < argc; ++i) {
+    const std::string kv = argv[i];
+    const auto eq = kv.find('=');
+    overrides[kv.substr(0, eq)] = eq == std::string::npos ? "" : kv.substr(eq + 1);
+  }
+  a.config = pipeline::broccoli_config_for_model(*a.model, overrides, model_path, "args").detector;
+  std::stringstream ss(argv[2]);
+  for (std::string dir; std::getline(ss, dir, ',');) a.sequences.push_back(dir);
+  return a;
+}
+
+}  // namespace cropsight::tools
