@@ -1,7 +1,7 @@
 // A tuning tool (not a test): an upper bound for segmenting heads from depth tops. For each visible
 // head (>= 300 points) that no cluster of the detector covers with IoU >= 0.5, it asks whether a
-// region grown from a local depth top of the detector's unaccepted clusters (rejected ones of 2000
-// points or more, oversized regions) would: from every pixel that is the nearest in its 15×15
+// region grown from a local depth top of the detector's unaccepted clusters (rejected ones of
+// detection.split_min_points or more, oversized regions) would: from every pixel that is the nearest in its 15×15
 // window, a breadth-first growth over 4-neighbours within oes.distance_tolerance keeps the pixels
 // within R of the seed across the view (x, y) and no deeper than a sphere of radius R through the
 // seed (+ 1 cm), for R in {35, 50, 65, 80} mm. The best IoU over seeds and radii is an oracle's
@@ -11,16 +11,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "broccoli_probe_args.hpp"
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/learning/model.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_detector.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_truth.hpp"
 
 using namespace cropsight;
@@ -54,7 +49,7 @@ int main(int argc, char** argv) {
       // Region of each pixel among the unaccepted clusters (-1: none).
       std::vector<int> region(c.size(), -1);
       for (std::size_t k = 0; k < cands.size(); ++k)
-        if (!cands[k].head && (cands[k].oversized || cands[k].segment.size() >= 2000))
+        if (tools::unaccepted_large(cands[k], cfg))
           for (int i : cands[k].segment.indices) region[std::size_t(i)] = int(k);
       // Missed heads: no candidate with IoU >= 0.5.
       std::vector<const TruthInstance*> miss;

@@ -41,4 +41,10 @@ inline std::optional<BroccoliProbeArgs> parse_probe_args(const char* tool, int a
   return a;
 }
 
+/// The clusters a detector leaves unaccepted that the concave-crease split would look at: oversized
+/// regions and rejected clusters of detection.split_min_points or more.
+inline bool unaccepted_large(const pipeline::BroccoliCandidate& c, const pipeline::BroccoliDetectorConfig& cfg) {
+  return !c.head && (c.oversized || int(c.segment.size()) >= cfg.detection.split_min_points);
+}
+
 }  // namespace cropsight::tools

@@ -1,5 +1,5 @@
 // A tuning tool (not a test): can surface roughness tell a head from the leaves it lies in? For the
-// clusters a detector leaves unaccepted (rejected ones of 2000 points or more, and oversized regions),
+// clusters a detector leaves unaccepted (rejected ones of detection.split_min_points or more, oversized regions),
 // it compares the curvature (the integral normals' λ0 / trace) of their head pixels with that of the
 // rest and prints the quantiles and the AUC (probability that a head pixel is rougher). Run as
 //
@@ -11,17 +11,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <memory>
-#include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "broccoli_probe_args.hpp"
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/learning/model.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_detector.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
 
 using namespace cropsight;
 using namespace cropsight::pipeline;
@@ -39,7 +34,7 @@ int main(int argc, char** argv) {
       const auto cands = det.process(reader.read(i));
       const auto& c = det.cloud();
       for (const auto& k : cands) {
-        if (k.head || (!k.oversized && k.segment.size() < 2000)) continue;
+        if (!tools::unaccepted_large(k, cfg)) continue;
         for (int idx : k.segment.indices) {
           const float cv = c.curvature[std::size_t(idx)];
           if (!std::isfinite(cv)) continue;

@@ -263,7 +263,7 @@ std::span<const BroccoliCandidate> BroccoliDetector::process(const RgbdFrame& fr
     classify_all(batch_input_, head_threshold());
   }
   if (cfg_.detection.split_concave_angle_deg > 0.0f && model_ && cfg_.pipeline == BroccoliVariant::oes)
-    split_rejected();
+    split_at_creases();
   if (cfg_.detection.grow_tolerance > 0.0f) complete_heads();
   return {candidates_.data(), count_};
 }
@@ -316,7 +316,7 @@ void BroccoliDetector::classify_all(std::span<BroccoliCandidate* const> cands, f
   }
 }
 
-void BroccoliDetector::split_rejected() {
+void BroccoliDetector::split_at_creases() {
   auto t = timer_.scope("split");
   split_targets_.clear();
   segment_ptrs_.clear();

@@ -198,11 +198,11 @@ void BroccoliTrackingEvaluator::add_map(const std::vector<tracking::TrackedHead>
   true_heads_ += mm.true_heads;
   matched_ += mm.matched;
   duplicates_ += mm.duplicates;
-  for (const auto& m : mm.matches) match_distance_sum_ += m.distance_m;
   std::vector<char> est_matched(est.size(), 0), truth_matched(truth.size(), 0);
   const bool first_pass = material_.sequence.empty();
   for (const auto& m : mm.matches) {
     est_matched[std::size_t(m.map_index)] = truth_matched[std::size_t(m.truth_index)] = 1;
+    match_distance_sum_ += m.distance_m;
     const auto& h = map[std::size_t(m.map_index)];
     if (h.size_samples == 0) continue;
     const double true_mm = truth_inst[std::size_t(m.truth_index)]->diameter_mm;

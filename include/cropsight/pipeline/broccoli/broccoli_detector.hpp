@@ -106,8 +106,9 @@ class BroccoliDetector {
   // (learning::Model::score_rows: the same scores, the support vectors read once per block).
   void classify_all(std::span<BroccoliCandidate* const> cands, float threshold);
   float head_threshold() const;
-  void split_rejected();  // detection.split_concave_angle_deg > 0: rejected clusters split at concave creases
-  void complete_heads();  // detection.grow_tolerance > 0: head masks grow over unclustered debris
+  void split_at_creases();  // detection.split_concave_angle_deg > 0: rejected (and with split_accepted, accepted)
+                            // clusters split at concave creases
+  void complete_heads();    // detection.grow_tolerance > 0: head masks grow over unclustered debris
 
   BroccoliDetectorConfig cfg_;
   features::FeatureSet feature_set_;
