@@ -197,6 +197,12 @@ struct AnyCenterNet {
 
 }  // namespace
 
+std::vector<Detection2D> boxes_from_heads(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w,
+                                          int image_h) {
+  const Letterbox lb = Letterbox::fit(image_w, image_h, cfg.input_width, cfg.input_height, OnnxResize::letterbox);
+  return decode_heads(heads, lb, float(cfg.score_threshold), cfg.top_k);
+}
+
 std::vector<GrayImage> masks_from_heads(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w,
                                         int image_h, float threshold) {
   MaskScores scores(heads, cfg, image_w, image_h);
@@ -293,9 +299,7 @@ DetectorScore evaluate_detector(Detector2D& detector, const std::vector<Detectio
   for (const auto& s : samples) {
     const Stopwatch clock;
     const CenterNetHeads h = net.heads(s.image);
-    const Letterbox lb =
-        Letterbox::fit(s.image.width, s.image.height, cfg.input_width, cfg.input_height, OnnxResize::letterbox);
-    const auto boxes = decode_heads(h, lb, float(cfg.score_threshold), cfg.top_k);
+    const auto boxes = boxes_from_heads(h, cfg, s.image.width, s.image.height);
     seconds += clock.seconds();
     ev.add(s, boxes, masks_from_heads(h, cfg, s.image.width, s.image.height, mask_threshold));
   }

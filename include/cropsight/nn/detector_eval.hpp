@@ -59,6 +59,12 @@ class DetectorEvaluator {
 std::vector<GrayImage> masks_from_heads(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w,
                                         int image_h, float threshold = -1.0f);
 
+/// The boxes of `heads` (decoded as CenterNet::detect does: cfg's score threshold and top K) in
+/// the pixels of the w x h image the heads were computed on, highest score first: boxes and
+/// masks from one network run.
+std::vector<Detection2D> boxes_from_heads(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w,
+                                          int image_h);
+
 /// Runs `detector` (a CenterNet or CenterNetOnnx, as load_center_detector returns) on every
 /// sample and scores it; masks at `mask_threshold` for every class, or (negative, the default)
 /// at the model's per-class thresholds. `ms_per_image` (may be null) gets the mean time of the

@@ -2,15 +2,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <iterator>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "core/cpu_dispatch.hpp"
 #include "cropsight/core/error.hpp"
+#include "cropsight/eval/detection_ap.hpp"  // point_set_iou
 #include "cropsight/geometry/concave_creases.hpp"
 #include "cropsight/geometry/depth_filter.hpp"  // valid_indices
 #include "cropsight/geometry/integral_normals.hpp"
 #include "cropsight/geometry/organized_edges.hpp"
 #include "cropsight/geometry/statistical_outlier.hpp"
+#include "cropsight/nn/center_onnx.hpp"
+#include "cropsight/nn/detector_eval.hpp"  // boxes_from_heads, masks_from_heads
+#include "cropsight/pipeline/broccoli/depth_encoding.hpp"
 #include "cropsight/segmentation/euclidean_clustering.hpp"
 #include "cropsight/segmentation/organized_clustering.hpp"
 #include "cropsight/segmentation/segment_growth.hpp"
@@ -69,6 +77,13 @@ BroccoliDetector::BroccoliDetector(BroccoliDetectorConfig cfg) : cfg_(std::move(
   cfg_.validate("config");
   feature_set_ = features::FeatureSet::parse(cfg_.features, "config");
   normals_ = std::make_unique<geometry::IntegralNormalEstimator>(cfg_.normals);
+  if (!cfg_.cnn.model.empty()) {
+    if (std::filesystem::path(cfg_.cnn.model).extension() != ".onnx")
+      throw Error(cfg_.cnn.model, "cnn.model must be an .onnx file (cropsight export-detector)");
+    cnn_ = std::make_unique<nn::CenterNetOnnx>(cfg_.cnn.model);
+    if (cnn_->class_names() != std::vector<std::string>{"head"})
+      throw Error(cfg_.cnn.model, "cnn.model must be a detector of the one class 'head'");
+  }
 }
 
 BroccoliDetector::~BroccoliDetector() = default;
@@ -242,6 +257,7 @@ std::span<const BroccoliCandidate> BroccoliDetector::process(const RgbdFrame& fr
     auto t = timer_.scope("features");
     for (std::size_t k = 0; k < count_; ++k) {
       BroccoliCandidate& c = candidates_[k];
+      c.proposed = false;
       std::swap(c.segment, segments_[k]);  // keeps the pool's old index buffer in segments_
       // The organised clusterings return ascending indices already; FEC's are sorted here.
       if (!std::is_sorted(c.segment.indices.begin(), c.segment.indices.end()))
@@ -265,6 +281,7 @@ std::span<const BroccoliCandidate> BroccoliDetector::process(const RgbdFrame& fr
   if (cfg_.detection.split_concave_angle_deg > 0.0f && model_ && cfg_.pipeline == BroccoliVariant::oes)
     split_at_creases();
   if (cfg_.detection.grow_tolerance > 0.0f) complete_heads();
+  if (cnn_) add_cnn_heads(frame);
   return {candidates_.data(), count_};
 }
 
@@ -355,7 +372,7 @@ void BroccoliDetector::split_at_creases() {
     BroccoliCandidate& piece = pieces_[i];
     const std::size_t parent = std::size_t(split[i].parent);
     std::swap(piece.segment, split[i].segment);
-    piece.oversized = false;  // the slot may hold a candidate of an earlier frame
+    piece.oversized = piece.proposed = false;  // the slot may hold a candidate of an earlier frame
     if (double(piece.segment.size()) > double(dc.split_max_piece_fraction) * double(candidates_[parent].segment.size()))
       continue;
     describe(piece);
@@ -413,6 +430,64 @@ void BroccoliDetector::complete_heads() {
     segmentation::grow_into_free_pixels(cloud_, segment_ptrs_, grow_order_, options, growth_);
   else
     segmentation::grow_into_free_pixels(cloud_, segment_ptrs_, grow_order_, options, flood_.labels, growth_.queue);
+}
+
+void BroccoliDetector::add_cnn_heads(const RgbdFrame& frame) {
+  auto t = timer_.scope("cnn");
+  const ColorImage image = encode_depth_for_cnn(frame.depth, frame.camera.depth_scale);
+  const nn::CenterNetHeads heads = cnn_->heads(image);
+  const nn::CenterNetConfig& net = cnn_->config();
+  const std::vector<Detection2D> boxes = nn::boxes_from_heads(heads, net, image.width, image.height);
+  const std::vector<GrayImage> masks = nn::masks_from_heads(heads, net, image.width, image.height);
+  const BroccoliCnnConfig& cc = cfg_.cnn;
+  // Ranks every proposal after the classifier's heads (scores above the threshold), in the CNN's order.
+  const float head = head_threshold();
+  const std::uint8_t* mask = masks.front().data.data();
+  const int w = image.width;
+  for (const Detection2D& b : boxes) {  // highest score first
+    if (b.score < cc.min_score) break;
+    std::vector<int> pixels;  // row-major scan: ascending, as Segment::indices must be
+    const int u0 = std::max(0, int(std::floor(b.x1))), u1 = std::min(w, int(std::ceil(b.x2)));
+    const int v0 = std::max(0, int(std::floor(b.y1))), v1 = std::min(image.height, int(std::ceil(b.y2)));
+    for (int v = v0; v < v1; ++v)
+      for (int u = u0; u < u1; ++u) {
+        const std::size_t i = std::size_t(v) * std::size_t(w) + std::size_t(u);
+        if (mask[i] && std::isfinite(cloud_.z[i])) pixels.push_back(int(i));
+      }
+    if (int(pixels.size()) < cc.min_points) continue;
+    bool duplicate = false;
+    for (std::size_t k = 0; k < count_ && !duplicate; ++k)
+      duplicate = candidates_[k].head && eval::point_set_iou(pixels, candidates_[k].segment.indices) > cc.max_overlap;
+    if (duplicate) continue;
+    // The proposal takes its pixels from the rejected clusters it overlaps (a head the clustering
+    // joined to leaves): every pixel stays in one candidate; the remainder keeps its rejection.
+    for (std::size_t k = 0; k < count_; ++k) {
+      Segment& s = candidates_[k].segment;
+      if (candidates_[k].head || !eval::point_set_iou(pixels, s.indices)) continue;
+      std::vector<int>& rest = cnn_rest_;
+      rest.clear();
+      std::set_difference(s.indices.begin(), s.indices.end(), pixels.begin(), pixels.end(), std::back_inserter(rest));
+      s.indices.swap(rest);
+      summarize(s, cloud_);
+    }
+    // A cluster the proposal took whole is gone (the pool's last candidate takes its slot).
+    for (std::size_t k = 0; k < count_;)
+      if (candidates_[k].segment.indices.empty())
+        std::swap(candidates_[k], candidates_[--count_]);
+      else
+        ++k;
+    if (candidates_.size() <= count_) candidates_.resize(count_ + 1);
+    BroccoliCandidate& c = candidates_[count_++];
+    c.segment.indices = std::move(pixels);
+    summarize(c.segment, cloud_);
+    c.features.clear();
+    c.normal_points = -1;
+    c.described = false;
+    c.oversized = false;
+    c.proposed = true;
+    c.head = true;
+    c.score = std::nextafter(head, std::numeric_limits<float>::infinity()) + 1e-3f * b.score;
+  }
 }
 
 std::vector<Detection> BroccoliDetector::detections() const {

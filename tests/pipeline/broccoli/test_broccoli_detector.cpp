@@ -8,9 +8,12 @@
 #include <map>
 #include <set>
 #include <span>
+#include <string>
+#include <vector>
 
 #include "broccoli_sim_frames.hpp"
 #include "cropsight/core/error.hpp"
+#include "cropsight/eval/detection_ap.hpp"
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/learning/model.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
@@ -671,4 +674,75 @@ TEST(BroccoliDetector, OversizedRegionsAreOnlySplit) {
   EXPECT_GT(oversized, 0) << "the field has regions over 10000 points";
   EXPECT_GT(recovered, 0) << "some head inside an oversized region is found after the split (oversized " << oversized
                           << ")";
+}
+
+// cnn.model (issue 27): the depth CNN proposes heads where no accepted head lies. Its proposals
+// never change what the classifier accepted; they are heads ranked just above the threshold (after
+// every classifier head), overlap no accepted head by more than cnn.max_overlap, take their pixels
+// from the rejected clusters they cover (no pixel is in a proposal and a rejected cluster), and some
+// head that no cluster of the plain run covered with IoU >= 0.5 is found. A spain field (seed 2002,
+// the held-out pass of the docs), the shipped general model and head CNN.
+TEST(BroccoliDetector, HeadCnnAddsHeadsOnlyWhereNoAcceptedHeadLies) {
+  const auto frames = testdata::simulate(testdata::sim_preset("spain"), 2002, 10);
+  const auto models = cropsight::testing::source_dir() / "models";
+  const auto model = load_broccoli_model((models / "broccoli-oes-general.json").string());
+  const BroccoliDetectorConfig off = broccoli_config_for_model(*model, {}, "model").detector;
+  BroccoliDetectorConfig on = off;
+  on.cnn.model = (models / "broccoli-head-cnn.onnx").string();
+  const float threshold = model->threshold() + on.detection.score_margin;
+  int proposals = 0, recovered = 0;
+  run_side_by_side(off, on, model, frames, [&](auto ca, auto cb, const auto& a, const auto& b) {
+    for (const auto& p : ca) {
+      if (!p.head) continue;
+      const bool kept = std::any_of(cb.begin(), cb.end(), [&](const BroccoliCandidate& c) {
+        return c.head && !c.proposed && c.segment.indices == p.segment.indices && c.score == p.score;
+      });
+      EXPECT_TRUE(kept) << "an accepted head of the plain run is unchanged";
+    }
+    std::vector<char> in_proposal(b.cloud().size(), 0);
+    for (const auto& c : cb) {
+      if (!c.proposed) continue;
+      ++proposals;
+      EXPECT_TRUE(c.head);
+      EXPECT_FALSE(c.described);
+      EXPECT_GT(c.score, threshold);
+      EXPECT_LE(c.score, threshold + 1.01e-3f);
+      EXPECT_GE(int(c.segment.size()), on.cnn.min_points);
+      EXPECT_TRUE(std::is_sorted(c.segment.indices.begin(), c.segment.indices.end()));
+      for (const auto& q : cb)
+        if (&q != &c && q.head) {
+          EXPECT_LE(eval::point_set_iou(c.segment.indices, q.segment.indices), on.cnn.max_overlap);
+        }
+      for (int i : c.segment.indices) in_proposal[std::size_t(i)] = 1;
+      recovered += found_only_with(c, b, a, ca);
+    }
+    for (const auto& c : cb)
+      if (!c.head) {
+        EXPECT_FALSE(c.segment.indices.empty());
+        for (int i : c.segment.indices) EXPECT_FALSE(in_proposal[std::size_t(i)]) << "carved out of rejected clusters";
+      }
+  });
+  EXPECT_GT(proposals, 0);
+  EXPECT_GT(recovered, 0) << "some head the clustering missed is found by the CNN";
+}
+
+TEST(BroccoliDetector, HeadCnnModelMustBeAnOnnxHeadDetector) {
+  const auto models = cropsight::testing::source_dir() / "models";
+  auto with = [](const std::string& path) {
+    BroccoliDetectorConfig cfg;
+    cfg.cnn.model = path;
+    return cfg;
+  };
+  auto message = [&](const std::string& path) {
+    try {
+      BroccoliDetector d(with(path));
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message("head.pt").find(".onnx"), std::string::npos);
+  EXPECT_NE(message("/nonexistent/head.onnx").find("/nonexistent/head.onnx"), std::string::npos);
+  EXPECT_NE(message((models / "detector-grape.onnx").string()).find("one class 'head'"), std::string::npos);
+  EXPECT_NO_THROW(BroccoliDetector{with((models / "broccoli-head-cnn.onnx").string())});
 }

@@ -100,3 +100,30 @@ TEST(BroccoliHeadline, ShippedOesGeneralModelOnAHeldOutRandomisedField) {
   EXPECT_NEAR(d.ap50_visible, 0.9611, 0.00006);
   EXPECT_NEAR(d.map50_95, 0.8751, 0.00006);
 }
+
+// broccoli-heads.md, "A depth CNN proposes the heads the clustering missed": the held-out spain pass
+// (seed 2002, 50 frames) with the shipped general model, without and with the shipped head CNN
+// (cnn.model, min_score 0.7 chosen on validation). Offline, per frame; AP over the one class.
+TEST(BroccoliHeadline, ShippedHeadCnnOnTheHeldOutSpainPass) {
+  cropsight::testing::TempDir tmp;
+  const auto seq = simulate(tmp, "spain-2002", "--variety spain --seed 2002 --frames 50");
+  ASSERT_FALSE(::testing::Test::HasFailure());
+  const auto model_path = shipped_model("broccoli-oes-general.json");
+  const auto model = load_broccoli_model(model_path);
+  auto run = [&](const ConfigMap& overrides) {
+    BroccoliPipeline pipe(broccoli_config_for_model(*model, overrides, model_path), model);
+    BroccoliEvaluator detection(pipe);
+    const io::SequenceReader reader(seq);
+    for (int i = 0; i < reader.size(); ++i) detection.add_frame(reader.read(i));
+    return detection.result();
+  };
+  const auto plain = run({});
+  const auto cnn = run({{"cnn.model", shipped_model("broccoli-head-cnn.onnx")}});
+  EXPECT_EQ(cnn.frames, 50);
+  EXPECT_NEAR(plain.confusion.kappa(), 0.9904, 0.00006);
+  EXPECT_NEAR(plain.ap50, 0.6349, 0.00006);
+  EXPECT_NEAR(plain.ap50_visible, 0.7184, 0.00006);
+  EXPECT_NEAR(cnn.confusion.kappa(), 0.9924, 0.00006);
+  EXPECT_NEAR(cnn.ap50, 0.8141, 0.00006);
+  EXPECT_NEAR(cnn.ap50_visible, 0.9212, 0.00006);
+}

@@ -111,6 +111,34 @@ struct BroccoliDetectionConfig {
   }
 };
 
+/// A depth CNN that proposes heads where the clustering accepted none (ours, issue 27): the
+/// project's CenterNet with masks (nn/center_onnx.hpp), one class "head", run on the frame's depth
+/// encoded by encode_depth_for_cnn (depth_encoding.hpp). Each box's mask pixels that hold a point
+/// of the cloud become one candidate, kept when it overlaps no accepted head; it is a head (its
+/// score just above the classifier's threshold, ordered among proposals by the CNN's score), so
+/// every proposal ranks after the classifier's heads. Off by default: about 45 ms per 512 x 424
+/// frame on one core (docs/pipelines/broccoli-heads.md).
+struct BroccoliCnnConfig {
+  std::string model;         ///< .onnx written by `cropsight export-detector`; empty = off
+  float min_score = 0.7f;    ///< CNN box score (0..1) a proposal needs (0.7: chosen on validation)
+  float max_overlap = 0.3f;  ///< point-set IoU; a proposal overlapping an accepted head more is dropped
+  int min_points = 30;       ///< points of the cloud a proposal needs
+
+  template <class V>
+  void visit(V& v) {
+    v("model", model,
+      "path; the head CNN as ONNX (cropsight export-detector; models/broccoli-head-cnn.onnx), relative to the "
+      "working directory; empty = off (the paper's pipeline)");
+    v("min_score", min_score, "0..1; CNN box score a proposal needs", Range::within(0.0, 1.0));
+    v("max_overlap", max_overlap,
+      "0..1; point-set IoU above which a proposal duplicates an accepted head (or an earlier proposal) and is "
+      "dropped",
+      Range::within(0.0, 1.0));
+    v("min_points", min_points, "points; a proposal with fewer valid points of the cloud is dropped",
+      Range::at_least(1));
+  }
+};
+
 /// Range-aware detection (issue 27; docs/pipelines/broccoli-heads.md, "Generalisation"): the
 /// paper's fixed 0.5-1.0 m depth window and its point and distance thresholds assume one camera
 /// height. These options tie them to the soil instead, estimated per frame from the depth image:
@@ -199,6 +227,7 @@ struct BroccoliDetectorConfig {
   learning::ClassifierParams classifier;
   BroccoliDetectionConfig detection;
   BroccoliRangeConfig range;
+  BroccoliCnnConfig cnn;
 
   template <class V>
   void visit(V& v) {
@@ -218,6 +247,7 @@ struct BroccoliDetectorConfig {
     v("classifier", classifier, "classifier (used by training; a model file records its own)");
     v("detection", detection, "decision and ground-truth rules");
     v("range", range, "range-aware depth window and thresholds (ours, issue 27)");
+    v("cnn", cnn, "depth CNN head proposals (ours, issue 27)");
   }
 
   /// Throws Error(where, ...) for an unknown feature spec or a value out of range.

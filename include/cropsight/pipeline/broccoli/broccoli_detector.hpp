@@ -11,10 +11,11 @@
 //     → features per cluster (VFH [, viewpoint angle, geometric, CVFH])
 //     → classifier score (SVM decision value / KNN vote)
 //     → [detection.split_concave_angle_deg > 0: rejected clusters split at concave creases, pieces classified]
-//     → [detection.grow_tolerance > 0: head masks grown over unclustered debris] → detections
+//     → [detection.grow_tolerance > 0: head masks grown over unclustered debris]
+//     → [cnn.model: heads the depth CNN finds where no accepted head lies] → detections
 //
 // Every stage is timed (StageTimer, names: "cloud", "normals", "edges", "outliers",
-// "clustering", "features", "classify", "split", "completion"; "denoise", the noise estimate and filter, is
+// "clustering", "features", "classify", "split", "completion", "cnn"; "denoise", the noise estimate and filter, is
 // timed inside "cloud"). OES needs no normals to segment (unless crease edges
 // are on): it computes them after the flood fill, only for the pixels of the kept segments (the
 // only ones the features read), so its cloud() has NaN normals elsewhere. All buffers (cloud, normals' integral images,
@@ -39,6 +40,10 @@
 #include "cropsight/segmentation/segment_growth.hpp"
 #include "cropsight/segmentation/segment_split.hpp"
 
+namespace cropsight::nn {
+class CenterNetOnnx;
+}
+
 namespace cropsight::pipeline {
 
 /// Task name recorded in model files.
@@ -53,6 +58,7 @@ struct BroccoliCandidate {
   int normal_points = -1;       ///< points of the segment with a normal (-1: not counted, min_normal_points 0)
   bool described = true;        ///< normal_points >= detection.min_normal_points (else never a head)
   bool oversized = false;       ///< over detection.split_oversized_above: not described, only split
+  bool proposed = false;        ///< a head proposed by the depth CNN (cnn.model): no features, not classified
 };
 
 class BroccoliDetector {
@@ -109,10 +115,13 @@ class BroccoliDetector {
   void split_at_creases();  // detection.split_concave_angle_deg > 0: rejected (and with split_accepted, accepted)
                             // clusters split at concave creases
   void complete_heads();    // detection.grow_tolerance > 0: head masks grow over unclustered debris
+  void add_cnn_heads(const RgbdFrame& frame);  // cnn.model: the CNN's heads that no accepted head overlaps
 
   BroccoliDetectorConfig cfg_;
   features::FeatureSet feature_set_;
   std::shared_ptr<const learning::Model> model_;
+  std::unique_ptr<nn::CenterNetOnnx> cnn_;  // cnn.model loaded; null when off
+  std::vector<int> cnn_rest_;               // add_cnn_heads: a rejected cluster less a proposal's pixels
   StageTimer timer_;
 
   // Workspaces reused across frames.
