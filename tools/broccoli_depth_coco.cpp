@@ -17,32 +17,13 @@
 #include <string>
 #include <vector>
 
+#include "coco_polygons.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/pipeline/broccoli/depth_encoding.hpp"
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-namespace {
-
-json polygons(const cv::Mat& mask) {
-  std::vector<std::vector<cv::Point>> contours;
-  cv::findContours(mask.clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
-  json out = json::array();
-  for (const auto& c : contours) {
-    if (c.size() < 3 || cv::contourArea(c) < 4) continue;
-    std::vector<cv::Point> p;
-    cv::approxPolyDP(c, p, 1.0, true);
-    if (p.size() < 3) continue;
-    json flat = json::array();
-    for (const auto& q : p) flat.push_back(q.x), flat.push_back(q.y);
-    out.push_back(flat);
-  }
-  return out;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 4) {
@@ -76,7 +57,7 @@ int main(int argc, char** argv) {
       for (const auto& [id, m] : masks) {
         if (cv::countNonZero(m) < 30) continue;
         const cv::Rect b = cv::boundingRect(m);
-        json poly = polygons(m);
+        json poly = cropsight::tools::coco_polygons(m);
         if (poly.empty()) continue;
         annotations.push_back({{"id", ++ann_id},
                                {"image_id", image_id},

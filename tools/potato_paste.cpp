@@ -32,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "coco_polygons.hpp"
 #include "cropsight/nn/detection_dataset.hpp"
 
 namespace {
@@ -71,22 +72,6 @@ cv::Mat potato_mask(const cv::Mat& bgr, const cv::Rect& box) {
   return mask;
 }
 
-json polygons(const cv::Mat& mask) {
-  std::vector<std::vector<cv::Point>> contours;
-  cv::findContours(mask.clone(), contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_SIMPLE);
-  json out = json::array();
-  for (const auto& c : contours) {
-    if (c.size() < 3 || cv::contourArea(c) < 4) continue;
-    std::vector<cv::Point> p;
-    cv::approxPolyDP(c, p, 1.0, true);
-    if (p.size() < 3) continue;
-    json flat = json::array();
-    for (const auto& q : p) flat.push_back(q.x), flat.push_back(q.y);
-    out.push_back(flat);
-  }
-  return out;
-}
-
 std::vector<std::string> split_list(const std::string& s) {
   std::vector<std::string> out;
   std::stringstream ss(s);
@@ -114,7 +99,7 @@ struct Writer {
                              {"bbox", {b.x, b.y, b.width, b.height}},
                              {"area", double(cv::countNonZero(visible[i]))},
                              {"iscrowd", 0},
-                             {"segmentation", polygons(visible[i])}});
+                             {"segmentation", cropsight::tools::coco_polygons(visible[i])}});
     }
   }
 };

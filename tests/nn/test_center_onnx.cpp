@@ -7,6 +7,7 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/nn/center_net.hpp"
 #include "cropsight/nn/center_onnx.hpp"
+#include "cropsight/nn/detector_eval.hpp"
 #include "testing/testing.hpp"
 
 #ifdef CROPSIGHT_HAVE_ONNX
@@ -170,4 +171,27 @@ TEST(CenterNetOnnx, ForeignFilesAreNamed) {
 }
 #endif
 
+}  // namespace
+
+namespace {
+// boxes_from_heads (detector_eval.hpp), which the broccoli detector uses to get boxes and masks
+// from one network run, decodes the heads exactly as detect() does: the shipped grape model (flip
+// test on) on a synthetic image of another size than its input.
+TEST(CenterNetOnnx, BoxesFromHeadsAreTheBoxesOfDetect) {
+  using namespace cropsight;
+  nn::CenterNetOnnx net(cropsight::testing::source_dir() / "models" / "detector-grape.onnx");
+  ColorImage im(300, 200, Rgb8{60, 90, 50});
+  for (int y = 40; y < 150; ++y)
+    for (int x = 90; x < 170; ++x) im.at(x, y) = Rgb8{70, 30, 110};
+  const auto from_heads = nn::boxes_from_heads(net.heads(im), net.config(), im.width, im.height);
+  const auto detected = net.detect(im);
+  ASSERT_FALSE(detected.empty()) << "the comparison needs boxes";
+  ASSERT_EQ(from_heads.size(), detected.size());
+  for (std::size_t i = 0; i < detected.size(); ++i) {
+    EXPECT_EQ(from_heads[i].x1, detected[i].x1);
+    EXPECT_EQ(from_heads[i].y2, detected[i].y2);
+    EXPECT_EQ(from_heads[i].score, detected[i].score);
+    EXPECT_EQ(from_heads[i].class_id, detected[i].class_id);
+  }
+}
 }  // namespace
