@@ -16,9 +16,12 @@ void require_labels(const RgbdFrame& frame) {
 bool is_head(const BroccoliCandidate& c, const OrganizedCloud& cloud, const BroccoliTruthRules& truth) {
   return cluster_truth(c.segment.indices, cloud.labels, truth.min_head_fraction).head_id != 0;
 }
-/// The detector that builds training samples: the config, without denoising unless in_training.
+/// The detector that builds training samples: the config, without denoising unless in_training,
+/// and without the head CNN (its proposals have no features, and the clusters it carves would keep
+/// the features of their whole): the classifier learns from the clustering's candidates alone.
 BroccoliDetectorConfig training_detector(BroccoliDetectorConfig cfg) {
   if (!cfg.denoise.in_training) cfg.denoise.above = 0.0f;
+  cfg.cnn.model.clear();
   return cfg;
 }
 }  // namespace

@@ -746,3 +746,24 @@ TEST(BroccoliDetector, HeadCnnModelMustBeAnOnnxHeadDetector) {
   EXPECT_NE(message((models / "detector-grape.onnx").string()).find("one class 'head'"), std::string::npos);
   EXPECT_NO_THROW(BroccoliDetector{with((models / "broccoli-head-cnn.onnx").string())});
 }
+
+// Training never runs the head CNN: its proposals have no features and the clusters it carves would
+// keep the features of their whole. With cnn.model set, the sample builder's detector has no CNN
+// stage and the dataset is the one built without it; the model still records the key, for detection.
+TEST(BroccoliDetector, TrainingSamplesIgnoreTheHeadCnn) {
+  const auto frames = testdata::simulate(testdata::sim_preset("spain"), 2002, 2);
+  const auto models = cropsight::testing::source_dir() / "models";
+  const auto model = load_broccoli_model((models / "broccoli-oes-general.json").string());
+  const BroccoliDetectorConfig off = broccoli_config_for_model(*model, {}, "model").detector;
+  BroccoliDetectorConfig on = off;
+  on.cnn.model = (models / "broccoli-head-cnn.onnx").string();
+  BroccoliDatasetBuilder plain(off, {}), with_cnn(on, {});
+  for (const auto& f : frames) plain.add_frame(f), with_cnn.add_frame(f);
+  ASSERT_GT(plain.dataset().size(), 0u);
+  EXPECT_EQ(with_cnn.dataset().size(), plain.dataset().size());
+  EXPECT_EQ(with_cnn.dataset().labels, plain.dataset().labels);
+  EXPECT_EQ(with_cnn.dataset().values, plain.dataset().values);
+  EXPECT_TRUE(with_cnn.detector().config().cnn.model.empty());
+  for (const auto& stage : with_cnn.detector().timer().stages()) EXPECT_NE(stage.name, "cnn");
+  EXPECT_EQ(config_map(on, {}).at("cnn.model"), on.cnn.model);
+}

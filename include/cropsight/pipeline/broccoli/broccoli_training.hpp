@@ -28,6 +28,9 @@ class BroccoliDatasetBuilder {
   void add_frame(const RgbdFrame& frame);
   const learning::Dataset& dataset() const { return data_; }
   long frames() const { return frames_; }
+  /// The detector that builds the samples: the config without the detection-only stages
+  /// (denoising unless denoise.in_training, the head CNN); its timer holds the stage times.
+  const BroccoliDetector& detector() const { return detector_; }
 
  private:
   BroccoliDetector detector_;
