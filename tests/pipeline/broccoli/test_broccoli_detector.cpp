@@ -676,6 +676,24 @@ TEST(BroccoliDetector, OversizedRegionsAreOnlySplit) {
                           << ")";
 }
 
+namespace {
+// The shipped general model, its recorded detector config (`off`) and the same with the shipped
+// head CNN (`on`).
+struct WithHeadCnn {
+  std::shared_ptr<const learning::Model> model;
+  BroccoliDetectorConfig off, on;
+};
+WithHeadCnn general_model_with_head_cnn() {
+  const auto models = cropsight::testing::source_dir() / "models";
+  WithHeadCnn w;
+  w.model = load_broccoli_model((models / "broccoli-oes-general.json").string());
+  w.off = broccoli_config_for_model(*w.model, {}, "model").detector;
+  w.on = w.off;
+  w.on.cnn.model = (models / "broccoli-head-cnn.onnx").string();
+  return w;
+}
+}  // namespace
+
 // cnn.model (issue 27): the depth CNN proposes heads where no accepted head lies. Its proposals
 // never change what the classifier accepted; they are heads ranked just above the threshold (after
 // every classifier head), overlap no accepted head by more than cnn.max_overlap, take their pixels
@@ -684,11 +702,7 @@ TEST(BroccoliDetector, OversizedRegionsAreOnlySplit) {
 // the held-out pass of the docs), the shipped general model and head CNN.
 TEST(BroccoliDetector, HeadCnnAddsHeadsOnlyWhereNoAcceptedHeadLies) {
   const auto frames = testdata::simulate(testdata::sim_preset("spain"), 2002, 10);
-  const auto models = cropsight::testing::source_dir() / "models";
-  const auto model = load_broccoli_model((models / "broccoli-oes-general.json").string());
-  const BroccoliDetectorConfig off = broccoli_config_for_model(*model, {}, "model").detector;
-  BroccoliDetectorConfig on = off;
-  on.cnn.model = (models / "broccoli-head-cnn.onnx").string();
+  const auto [model, off, on] = general_model_with_head_cnn();
   const float threshold = model->threshold() + on.detection.score_margin;
   int proposals = 0, recovered = 0;
   run_side_by_side(off, on, model, frames, [&](auto ca, auto cb, const auto& a, const auto& b) {
@@ -752,11 +766,7 @@ TEST(BroccoliDetector, HeadCnnModelMustBeAnOnnxHeadDetector) {
 // stage and the dataset is the one built without it; the model still records the key, for detection.
 TEST(BroccoliDetector, TrainingSamplesIgnoreTheHeadCnn) {
   const auto frames = testdata::simulate(testdata::sim_preset("spain"), 2002, 2);
-  const auto models = cropsight::testing::source_dir() / "models";
-  const auto model = load_broccoli_model((models / "broccoli-oes-general.json").string());
-  const BroccoliDetectorConfig off = broccoli_config_for_model(*model, {}, "model").detector;
-  BroccoliDetectorConfig on = off;
-  on.cnn.model = (models / "broccoli-head-cnn.onnx").string();
+  const auto [model, off, on] = general_model_with_head_cnn();
   BroccoliDatasetBuilder plain(off, {}), with_cnn(on, {});
   for (const auto& f : frames) plain.add_frame(f), with_cnn.add_frame(f);
   ASSERT_GT(plain.dataset().size(), 0u);
