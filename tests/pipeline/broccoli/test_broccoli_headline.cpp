@@ -123,7 +123,7 @@ TEST(BroccoliHeadline, ShippedHeadCnnOnTheHeldOutSpainPass) {
   EXPECT_NEAR(plain.confusion.kappa(), 0.9904, 0.00006);
   EXPECT_NEAR(plain.ap50, 0.6349, 0.00006);
   EXPECT_NEAR(plain.ap50_visible, 0.7184, 0.00006);
-  EXPECT_NEAR(cnn.confusion.kappa(), 0.9924, 0.00006);
-  EXPECT_NEAR(cnn.ap50, 0.8141, 0.00006);
-  EXPECT_NEAR(cnn.ap50_visible, 0.9212, 0.00006);
+  EXPECT_NEAR(cnn.confusion.kappa(), 0.9923, 0.00006);
+  EXPECT_NEAR(cnn.ap50, 0.8083, 0.00006);
+  EXPECT_NEAR(cnn.ap50_visible, 0.9147, 0.00006);
 }

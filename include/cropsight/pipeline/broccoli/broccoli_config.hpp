@@ -116,7 +116,7 @@ struct BroccoliDetectionConfig {
 /// encoded by encode_depth_for_cnn (depth_encoding.hpp). Each box's mask pixels that hold a point
 /// of the cloud become one candidate, kept when it overlaps no accepted head; it is a head (its
 /// score just above the classifier's threshold, ordered among proposals by the CNN's score), so
-/// every proposal ranks after the classifier's heads. Off by default: about 45 ms per 512 x 424
+/// every proposal ranks after the classifier's heads. Off by default: about 55 ms per 512 x 424
 /// frame on one core (docs/pipelines/broccoli-heads.md).
 struct BroccoliCnnConfig {
   std::string model;         ///< .onnx written by `cropsight export-detector`; empty = off
