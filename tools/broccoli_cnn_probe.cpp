@@ -13,6 +13,7 @@
 //   - the visible heads OES misses (no accepted detection at IoU >= 0.5) and how many of them a
 //     CNN instance reaches (IoU >= 0.5), and CNN instances above score 0.3 that match no head.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "broccoli_probe_args.hpp"
@@ -61,18 +62,8 @@ int main(int argc, char** argv) {
       const std::vector<GrayImage> masks = nn::masks_from_heads(heads, ccfg, img.width, img.height);
       std::vector<std::vector<int>> inst;
       std::vector<float> inst_score;
-      const auto& z = det.cloud().z;
       for (const Detection2D& b : boxes) {
-        std::vector<int> px;
-        const int u0 = std::max(0, int(b.x1)), u1 = std::min(img.width, int(std::ceil(b.x2)));
-        const int v0 = std::max(0, int(b.y1)), v1 = std::min(img.height, int(std::ceil(b.y2)));
-        for (int v = v0; v < v1; ++v)
-          for (int u = u0; u < u1; ++u) {
-            const int k = v * img.width + u;
-            if (masks[std::size_t(b.class_id)].data[std::size_t(k)] && std::isfinite(z[std::size_t(k)]))
-              px.push_back(k);
-          }
-        std::sort(px.begin(), px.end());
+        std::vector<int> px = pipeline::mask_points_in_box(b, masks[std::size_t(b.class_id)], det.cloud().z);
         if (px.size() < 30) continue;
         inst.push_back(std::move(px));
         inst_score.push_back(b.score);

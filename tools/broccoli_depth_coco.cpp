@@ -7,6 +7,7 @@
 // Encoding: cropsight/pipeline/broccoli/depth_encoding.hpp (what the detector feeds the CNN).
 #include <algorithm>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -25,7 +26,9 @@
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   if (argc < 4) {
     std::fprintf(stderr, "usage: broccoli_depth_coco OUT_DIR STEP seq[,seq...]\n");
     return 2;
@@ -72,6 +75,20 @@ int main(int argc, char** argv) {
   }
   json coco = {
       {"images", images}, {"annotations", annotations}, {"categories", json::array({{{"id", 1}, {"name", "head"}}})}};
-  std::ofstream(out / "annotations.json") << coco.dump();
+  // Written under a temporary name, then renamed: an interrupted export leaves no annotations.json.
+  const fs::path tmp = out / "annotations.json.tmp";
+  std::ofstream(tmp) << coco.dump();
+  fs::rename(tmp, out / "annotations.json");
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {  // cropsight::Error names the file; one line, exit 2
+    std::fprintf(stderr, "broccoli_depth_coco: %s\n", e.what());
+    return 2;
+  }
 }

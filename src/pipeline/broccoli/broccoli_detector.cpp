@@ -442,18 +442,9 @@ void BroccoliDetector::add_cnn_heads(const RgbdFrame& frame) {
   const BroccoliCnnConfig& cc = cfg_.cnn;
   // Ranks every proposal after the classifier's heads (scores above the threshold), in the CNN's order.
   const float head = head_threshold();
-  const std::uint8_t* mask = masks.front().data.data();
-  const int w = image.width;
   for (const Detection2D& b : boxes) {  // highest score first
     if (b.score < cc.min_score) break;
-    std::vector<int> pixels;  // row-major scan: ascending, as Segment::indices must be
-    const int u0 = std::max(0, int(std::floor(b.x1))), u1 = std::min(w, int(std::ceil(b.x2)));
-    const int v0 = std::max(0, int(std::floor(b.y1))), v1 = std::min(image.height, int(std::ceil(b.y2)));
-    for (int v = v0; v < v1; ++v)
-      for (int u = u0; u < u1; ++u) {
-        const std::size_t i = std::size_t(v) * std::size_t(w) + std::size_t(u);
-        if (mask[i] && std::isfinite(cloud_.z[i])) pixels.push_back(int(i));
-      }
+    std::vector<int> pixels = mask_points_in_box(b, masks.front(), cloud_.z);  // ascending, as Segment's
     if (int(pixels.size()) < cc.min_points) continue;
     bool duplicate = false;
     for (std::size_t k = 0; k < count_ && !duplicate; ++k)

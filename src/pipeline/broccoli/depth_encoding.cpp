@@ -51,4 +51,17 @@ ColorImage encode_depth_for_cnn(const DepthImage& depth, double depth_scale) {
   return out;
 }
 
+std::vector<int> mask_points_in_box(const Detection2D& box, const GrayImage& mask, std::span<const float> z) {
+  const int w = mask.width;
+  const int u0 = std::max(0, int(std::floor(box.x1))), u1 = std::min(w, int(std::ceil(box.x2)));
+  const int v0 = std::max(0, int(std::floor(box.y1))), v1 = std::min(mask.height, int(std::ceil(box.y2)));
+  std::vector<int> pixels;  // row-major scan: ascending
+  for (int v = v0; v < v1; ++v)
+    for (int u = u0; u < u1; ++u) {
+      const std::size_t i = std::size_t(v) * std::size_t(w) + std::size_t(u);
+      if (mask.data[i] && std::isfinite(z[i])) pixels.push_back(int(i));
+    }
+  return pixels;
+}
+
 }  // namespace cropsight::pipeline

@@ -9,11 +9,20 @@
 //   B: depth gradient magnitude, clamp(|central difference of z| / 0.02 m per pixel) · 255 (depth
 //      edges; a neighbour without a return counts as the pixel's own depth).
 // Metric, so one network serves camera heights 1.1-1.5 m; the windows are in pixels.
+#include <span>
+#include <vector>
+
+#include "cropsight/core/detection2d.hpp"
 #include "cropsight/core/image.hpp"
 
 namespace cropsight::pipeline {
 
 /// `depth` in sensor units, `depth_scale` metres per unit. Thread-safe (no shared state).
 ColorImage encode_depth_for_cnn(const DepthImage& depth, double depth_scale);
+
+/// One CNN instance on the frame: the pixel indices (ascending) inside `box` (image pixels, clipped
+/// to the mask) where `mask` (the class mask, same size as the frame) is set and `z` (the organised
+/// cloud's depths, width·height) is finite.
+std::vector<int> mask_points_in_box(const Detection2D& box, const GrayImage& mask, std::span<const float> z);
 
 }  // namespace cropsight::pipeline
