@@ -19,14 +19,9 @@ SEQ="$DEMO/uk-seq"
 PAGE="$DEMO/index.html"
 mkdir -p "$DEMO"
 
-# Re-running the demo replaces the previous sequence: with the simulator's --force when it has
-# one (the replacement is then atomic), otherwise by removing it first.
-force=()
-if "$CLI" simulate broccoli --help 2>/dev/null | grep -q -- '--force'; then
-  force=(--force)
-else
-  rm -rf "$SEQ"
-fi
+# Re-running the demo replaces its own earlier outputs: --force replaces what cropsight wrote
+# there before, and nothing else (docs/cli.md, "Outputs").
+force=(--force)
 
 echo "== cropsight simulate broccoli --variety uk --frames 30 --seed 7 --out $SEQ"
 "$CLI" simulate broccoli --variety uk --frames 30 --seed 7 --out "$SEQ" "${force[@]}"
@@ -34,16 +29,17 @@ echo "== cropsight simulate broccoli --variety uk --frames 30 --seed 7 --out $SE
 echo "== cropsight info $SEQ"
 "$CLI" info "$SEQ"
 
-MODEL=models/broccoli-oes-uk.json
+# The general model: the one measured best on fields it was not trained on.
+MODEL=models/broccoli-oes-general.json
 echo "== cropsight detect broccoli --data $SEQ --model $MODEL --track --map $DEMO/map.csv"
 "$CLI" detect broccoli --data "$SEQ" --model "$MODEL" --out "$DEMO/detections.jsonl" --masks "$DEMO/masks" \
-  --track --map "$DEMO/map.csv" --quiet
+  --track --map "$DEMO/map.csv" --quiet "${force[@]}"
 
 echo "== cropsight eval broccoli --data $SEQ --model $MODEL --track"
 "$CLI" eval broccoli --data "$SEQ" --model "$MODEL" --track --quiet
 
 echo "== cropsight report --data $SEQ --model $MODEL --out $PAGE"
-"$CLI" report --data "$SEQ" --model "$MODEL" --out "$PAGE" >/dev/null
+"$CLI" report --data "$SEQ" --model "$MODEL" --out "$PAGE" "${force[@]}" >/dev/null
 
 echo "demo page:"
 realpath "$PAGE"

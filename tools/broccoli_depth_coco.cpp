@@ -20,6 +20,7 @@
 
 #include "coco_polygons.hpp"
 #include "cropsight/io/image_io.hpp"
+#include "cropsight/io/output.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/pipeline/broccoli/depth_encoding.hpp"
 
@@ -33,9 +34,15 @@ int run(int argc, char** argv) {
     std::fprintf(stderr, "usage: broccoli_depth_coco OUT_DIR STEP seq[,seq...]\n");
     return 2;
   }
-  const fs::path out = argv[1];
   const int step = std::max(1, std::atoi(argv[2]));
-  fs::create_directories(out);
+  std::vector<fs::path> seqs;
+  {
+    std::stringstream list(argv[3]);
+    for (std::string dir; std::getline(list, dir, ',');) seqs.emplace_back(dir);
+  }
+  // A new folder (or an earlier export, with --force semantics off): never a user's folder.
+  cropsight::io::OutputFolder folder(argv[1], {"broccoli_depth_coco", false, seqs});
+  const fs::path& out = folder.path();
   json images = json::array(), annotations = json::array();
   int image_id = 0, ann_id = 0;
   std::stringstream ss(argv[3]);
@@ -75,10 +82,9 @@ int run(int argc, char** argv) {
   }
   json coco = {
       {"images", images}, {"annotations", annotations}, {"categories", json::array({{{"id", 1}, {"name", "head"}}})}};
-  // Written under a temporary name, then renamed: an interrupted export leaves no annotations.json.
-  const fs::path tmp = out / "annotations.json.tmp";
-  std::ofstream(tmp) << coco.dump();
-  fs::rename(tmp, out / "annotations.json");
+  // The folder appears whole: an interrupted export leaves nothing at OUT_DIR.
+  cropsight::io::write_file_atomic(out / "annotations.json", coco.dump());
+  folder.commit("COCO export");
   return 0;
 }
 

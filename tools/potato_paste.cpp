@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "coco_polygons.hpp"
+#include "cropsight/io/output.hpp"
 #include "cropsight/nn/detection_dataset.hpp"
 
 namespace {
@@ -164,8 +165,8 @@ int main(int argc, char** argv) {
       sources.push_back(std::move(src));
     }
     if (sources.empty() || sprites.empty()) throw std::runtime_error(voc + ": no labelled potato left");
-    fs::create_directories(out);
-    Writer w{out};
+    cropsight::io::OutputFolder folder(out, {"potato_paste", false, {images, voc}});
+    Writer w{folder.path()};
     for (const auto& s : sources) w.add("real_" + s.stem + ".jpg", s.bgr, s.boxes, s.masks);
 
     std::mt19937 rng(seed);
@@ -257,9 +258,8 @@ int main(int argc, char** argv) {
     json coco = {{"images", w.images},
                  {"annotations", w.annotations},
                  {"categories", json::array({{{"id", 1}, {"name", "potato"}}})}};
-    const fs::path tmp = fs::path(out) / "annotations.json.tmp";
-    std::ofstream(tmp) << coco.dump();
-    fs::rename(tmp, fs::path(out) / "annotations.json");
+    cropsight::io::write_file_atomic(folder.path() / "annotations.json", coco.dump());
+    folder.commit("composites");
     std::printf("%zu source images, %zu potatoes, %d composites -> %s\n", sources.size(), sprites.size(), count,
                 (fs::path(out) / "annotations.json").c_str());
   } catch (const std::exception& e) {

@@ -30,19 +30,47 @@ nlohmann::json json_number(double v) { return std::isfinite(v) ? nlohmann::json(
 
 void print_json(const nlohmann::json& j) { std::cout << j.dump() << std::endl; }
 
-std::filesystem::path replaceable_output_folder(const std::string& out,
-                                                const std::function<bool(const std::string& name)>& own,
-                                                const std::string& own_files) {
-  namespace fs = std::filesystem;
-  fs::path dir = fs::absolute(out).lexically_normal();
-  if (dir.filename().empty()) dir = dir.parent_path();
-  std::error_code ec;
-  if (!fs::exists(dir, ec)) return dir;
-  if (!fs::is_directory(dir)) throw Error(out, "exists and is not a folder");
-  for (const auto& e : fs::directory_iterator(dir))
-    if (!e.is_regular_file() || !own(e.path().filename().string()))
-      throw Error(out, "holds files other than " + own_files + "; give an empty or new folder");
-  return dir;
+void add_force_flag(CLI::App* cmd, bool& force) {
+  cmd->add_flag("--force", force,
+                "Replace an earlier cropsight output at --out (a folder only while it holds nothing but what "
+                "cropsight wrote there; never an input or a user's files)");
+}
+
+namespace {
+void deprecation_notice(const std::string& old_name, const std::string& new_name) {
+  std::fprintf(stderr, "cropsight: warning: %s is deprecated and will be removed; use %s\n", old_name.c_str(),
+               new_name.c_str());
+}
+}  // namespace
+
+void add_deprecated_flag(CLI::App* cmd, const std::string& old_name, bool& target, const std::string& new_name) {
+  cmd->add_flag_callback(
+         old_name,
+         [&target, old_name, new_name] {
+           deprecation_notice(old_name, new_name);
+           target = true;
+         },
+         "Deprecated spelling of " + new_name)
+      ->group("");
+}
+
+void add_deprecated_option(CLI::App* cmd, const std::string& old_name, std::string& target,
+                           const std::string& new_name) {
+  cmd->add_option_function<std::string>(
+         old_name,
+         [&target, old_name, new_name](const std::string& v) {
+           deprecation_notice(old_name, new_name);
+           target = v;
+         },
+         "Deprecated spelling of " + new_name)
+      ->group("");
+}
+
+io::OutputPolicy output_policy(const std::string& command, bool force, const std::vector<std::string>& inputs) {
+  io::OutputPolicy p{command, force, {}};
+  for (const std::string& in : inputs)
+    if (!in.empty()) p.inputs.emplace_back(in);
+  return p;
 }
 
 std::vector<RgbdFrame> read_bench_frames(const std::string& dir, int max_frames) {

@@ -10,6 +10,7 @@
 #include "cropsight/core/config.hpp"
 #include "cropsight/core/rgbd_frame.hpp"
 #include "cropsight/core/timer.hpp"
+#include "cropsight/io/output.hpp"
 
 namespace cropsight::cli {
 
@@ -39,14 +40,19 @@ void print_json(const nlohmann::json& j);
 /// when `max_frames` is negative or more than `dir` holds, Error(dir, ...) when it has none.
 std::vector<RgbdFrame> read_bench_frames(const std::string& dir, int max_frames);
 
-/// The output folder `out` of a command that replaces a folder whole (io::TempDirectory), as an
-/// absolute path without a trailing separator (the temporary sibling needs its name). Throws
-/// Error(out, ...) when it exists and is not a folder, or holds an entry that is not a regular
-/// file `own(name)` accepts: replacing it would delete another tool's files. `own_files` says
-/// what is accepted, for the message ("a previous roi-cloud run's (rois.json, roi_NNN.txt)").
-std::filesystem::path replaceable_output_folder(const std::string& out,
-                                                const std::function<bool(const std::string& name)>& own,
-                                                const std::string& own_files);
+/// --force on a command that writes: replace an earlier cropsight output, never anything else
+/// (io/output.hpp has the rule).
+void add_force_flag(CLI::App* cmd, bool& force);
+
+/// An older spelling of a flag or option, kept working for one release: hidden from --help, and
+/// using it prints one deprecation line on stderr naming the new spelling.
+void add_deprecated_flag(CLI::App* cmd, const std::string& old_name, bool& target, const std::string& new_name);
+void add_deprecated_option(CLI::App* cmd, const std::string& old_name, std::string& target,
+                           const std::string& new_name);
+
+/// The output policy of `command` ("detect potato"): its --force and the paths it reads, as given
+/// on the command line (empty ones are skipped). Every output is checked against it before work.
+io::OutputPolicy output_policy(const std::string& command, bool force, const std::vector<std::string>& inputs);
 
 /// "a,b,c" → {"a", "b", "c"}; throws Error(option, ...) when empty or a part is empty.
 std::vector<std::string> split_list(const std::string& text, const std::string& option);

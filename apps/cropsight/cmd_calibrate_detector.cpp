@@ -30,7 +30,7 @@ void add_calibrate_detector(CLI::App& app) {
     std::string model, out, input, upsampling = "bilinear", mask_inputs;
     double val_split = 0;
     std::uint64_t split_seed = 1;
-    bool flip_test = false, mask_flip = true;
+    bool flip_test = false, mask_flip = true, force = false;
     const CLI::Option* flip_given = nullptr;
     CommonOptions common;
   };
@@ -56,8 +56,11 @@ void add_calibrate_detector(CLI::App& app) {
                 "With --mask-inputs: the extra passes use the flip test too when it is on (default true; =false: "
                 "one pass each)");
   cmd->add_option("--out", o->out, "Model file to write (.pt)")->required();
+  add_force_flag(cmd, o->force);
   add_json_flag(cmd, o->common);
   cmd->callback([o] {
+    io::check_output_file(
+        o->out, output_policy("calibrate-detector", o->force, {o->model, o->data.coco, o->data.voc, o->data.images}));
     if (o->val_split < 0 || o->val_split >= 1) throw Error("--val-split", "must be in [0, 1)");
     nn::CenterNet net = nn::CenterNet::load(o->model, 1);
     if (!o->input.empty()) {

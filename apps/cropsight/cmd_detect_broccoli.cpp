@@ -30,33 +30,9 @@ struct DetectOptions {
   CommonOptions common;
   std::string data, bag, model, out, masks;
   BagTopicOptions topics;
-  bool quiet = false;
+  bool quiet = false, force = false;
   TrackOptions track;  // --track, --map (issue 4)
 };
-
-// The --masks directory, checked before any work: it is replaced as a whole at the end, so it must
-// be new, empty, or a previous run's masks (NNNNNN.png files only) — never a folder that holds
-// anything else, which the replacement would delete.
-fs::path mask_directory(const std::string& masks) {
-  if (masks.empty()) return {};
-  fs::path dir(masks);
-  if (!dir.has_filename()) dir = dir.parent_path();  // "out/masks/"
-  std::error_code ec;
-  const auto st = fs::status(dir, ec);
-  if (!fs::exists(st)) return dir;
-  if (!fs::is_directory(st)) throw Error(masks, "exists and is not a directory");
-  for (const auto& e : fs::directory_iterator(dir, ec)) {
-    const std::string name = e.path().filename().string();
-    const bool mask_file = e.is_regular_file() && name.size() == 10 && name.ends_with(".png") &&
-                           std::all_of(name.begin(), name.begin() + 6, [](char c) { return c >= '0' && c <= '9'; });
-    if (!mask_file)
-      throw Error(masks, "holds '" + name +
-                             "', which is not a mask of an earlier run; --masks replaces the whole directory, so "
-                             "give a new or empty one");
-  }
-  if (ec) throw Error(masks, "cannot list the directory: " + ec.message());
-  return dir;
-}
 
 void write_mask(const fs::path& dir, const RgbdFrame& frame, const std::vector<Detection>& dets) {
   LabelImage mask(frame.depth.width, frame.depth.height, 0);
@@ -67,15 +43,23 @@ void write_mask(const fs::path& dir, const RgbdFrame& frame, const std::vector<D
 
 void run(const DetectOptions& o) {
   if (!o.track.map.empty() && !o.track.track) throw Error("--map", "needs --track");
+  // Every output is checked before the model is loaded or a frame read: a two-hour recording
+  // must not fail at its end because --out cannot be written.
+  io::OutputPolicy policy = output_policy("detect broccoli", o.force, {o.data, o.bag, o.model, o.common.config});
+  io::check_output_file(o.out, policy);
+  policy.inputs.emplace_back(o.out);  // the outputs must not overlap each other either
+  if (!o.track.map.empty()) {
+    io::check_output_file(o.track.map, policy);
+    policy.inputs.emplace_back(o.track.map);
+  }
+  std::optional<io::OutputFolder> masks_out;
+  if (!o.masks.empty()) masks_out.emplace(o.masks, policy);
   const LoadedBroccoli b = load_broccoli(o.model, o.common, o.track.track);
   pipeline::BroccoliPipeline pipe(b.config, b.model, o.model);
   if (o.data.empty() == o.bag.empty()) throw Error("--data", "give a sequence folder (--data) or a bag (--bag)");
   std::optional<BagSequence> bag;
   if (!o.bag.empty()) bag.emplace(o.bag, o.topics);
   io::SequenceReader reader(bag ? bag->path() : o.data);
-  const fs::path masks_dir = mask_directory(o.masks);
-  std::optional<io::TempDirectory> masks_tmp;
-  if (!o.masks.empty()) masks_tmp.emplace(masks_dir);
 
   std::string lines;
   long total = 0;
@@ -92,7 +76,7 @@ void run(const DetectOptions& o) {
     line["detections"] = std::move(arr);
     lines += line.dump() + "\n";
     total += long(r.detections.size());
-    if (masks_tmp) write_mask(masks_tmp->path(), frame, r.detections);
+    if (masks_out) write_mask(masks_out->path(), frame, r.detections);
     progress.update(i + 1);
   }
   progress.finish();
@@ -114,8 +98,8 @@ void run(const DetectOptions& o) {
     }
   }
   io::write_file_atomic(o.out, lines);
-  if (masks_tmp) {
-    masks_tmp->commit("masks");
+  if (masks_out) {
+    masks_out->commit("masks");
     summary["masks"] = o.masks;
   }
   if (o.common.json) {
@@ -136,7 +120,8 @@ void add_detect_broccoli(CLI::App& detect) {
   add_bag_topic_options(cmd, o->topics);
   cmd->add_option("--model", o->model, "Model file (cropsight train broccoli)")->required();
   cmd->add_option("--out", o->out, "Detections, one JSON line per frame")->required();
-  cmd->add_option("--masks", o->masks, "Directory for 16-bit detection-number PNGs (optional)");
+  cmd->add_option("--masks", o->masks, "New folder for 16-bit detection-number PNGs (optional)");
+  add_force_flag(cmd, o->force);
   cmd->add_flag("--quiet", o->quiet, "No progress lines");
   add_track_options(cmd, o->track, /*detect=*/true);
   add_config_options(cmd, o->common);

@@ -14,7 +14,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <regex>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -37,14 +36,9 @@ struct DetectGrapeOptions {
   std::string color, depth, camera, detector, detections, out;
   long image_id = -1;
   int threads = 2;
+  bool force = false;
   GrapeSegmenterOptions segmenter;
 };
-
-// What a run writes: a folder of only these may be replaced.
-bool is_own_file(const std::string& name) {
-  static const std::regex bunch_file(R"(bunch_\d{3,}\.ply)");
-  return name == "cut_points.json" || std::regex_match(name, bunch_file);
-}
 
 nlohmann::json vec3(const Eigen::Vector3f& v) { return {v.x(), v.y(), v.z()}; }
 
@@ -66,13 +60,13 @@ nlohmann::json bunch_json(const pipeline::GrapeBunch& b, const std::string& file
 
 void run(const DetectGrapeOptions& o) {
   check_thread_count(o.threads, "--threads");
+  // Before any model loads: a bad --out costs nothing and names the folder.
+  io::OutputFolder out(o.out, output_policy("detect grape", o.force,
+                                            {o.color, o.depth, o.camera, o.detector, o.detections,
+                                             o.segmenter.config().model, o.common.config}));
   pipeline::GrapePipelineConfig cfg;
   apply_config(cfg, o.common.config_map(o.common.config.empty() ? "grape-camera" : ""), "--config/--set");
   cfg.validate("--config/--set");
-  // Before any model loads: a bad --out costs nothing and names the folder.
-  io::check_can_create(o.out);
-  const fs::path out_dir =
-      replaceable_output_folder(o.out, is_own_file, "a previous detect grape run's (cut_points.json, bunch_NNN.ply)");
   const RgbdFrame frame = read_grape_frame(o.color, o.depth, o.camera);
   std::vector<pipeline::GrapeDetection> given;
   if (!o.detections.empty()) given = pipeline::read_coco_detections(o.detections, o.image_id);
@@ -111,11 +105,10 @@ void run(const DetectGrapeOptions& o) {
                       {"segmenter", scfg.model},
                       {"bunches", bunches}};
   GrapeSegmenterOptions::describe(scfg, j);  // votes, and the ensemble partner when there is one
-  io::TempDirectory tmp(out_dir);
   for (std::size_t i = 0; i < r.bunches.size(); ++i)
-    io::write_cloud(tmp.path() / bunches[i]["file"].get<std::string>(), r.bunches[i].cloud);
-  io::write_file_atomic(tmp.path() / "cut_points.json", j.dump(2) + "\n");
-  tmp.commit("grape bunches");
+    io::write_cloud(out.path() / bunches[i]["file"].get<std::string>(), r.bunches[i].cloud);
+  io::write_file_atomic(out.path() / "cut_points.json", j.dump(2) + "\n");
+  out.commit("grape bunches");
   if (o.common.json) {
     j["out"] = o.out;
     j["ms"] = json_number(ms);
@@ -144,9 +137,9 @@ void add_detect_grape(CLI::App& detect) {
   det->excludes(dets);
   dets->excludes(det);
   cmd->add_option("--image-id", o->image_id, "With --detections: keep only this COCO image_id's boxes")->needs(dets);
-  cmd->add_option("--out", o->out,
-                  "Output folder, replaced whole: bunch_NNN.ply (labelled, metres, camera frame), cut_points.json")
+  cmd->add_option("--out", o->out, "New output folder: bunch_NNN.ply (labelled, metres, camera frame), cut_points.json")
       ->required();
+  add_force_flag(cmd, o->force);
   cmd->add_option("--threads", o->threads,
                   "Threads of the segmenter and the .pt detector, 1.." + std::to_string(kMaxThreads) + " (default 2)");
   o->segmenter.add_options(cmd, "grape-best", "--segmenter");

@@ -38,21 +38,23 @@ void add_detect_objects(CLI::App& detect) {
   struct Options {
     std::string model, images, out;
     int threads = 1;
+    bool force = false;
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = detect.add_subcommand("objects", "Run the project's 2D detector (.pt or .onnx) on a folder of images");
   cmd->add_option("--model", o->model, "Detector: .pt (libtorch) or .onnx (OpenCV DNN)")->required();
   cmd->add_option("--images", o->images, "Folder of images")->required();
-  cmd->add_option("--out", o->out, "Output folder, replaced whole (per-image .txt and detections.json)")->required();
+  cmd->add_option("--out", o->out, "New output folder (per-image .txt and detections.json)")->required();
+  add_force_flag(cmd, o->force);
   cmd->add_option("--threads", o->threads, "libtorch threads (.pt)")->check(CLI::Range(1, 256));
   add_json_flag(cmd, o->common);
   cmd->callback([o] {
+    // Written whole or not at all: a bad image half-way leaves no folder of partial results.
+    io::OutputFolder out(o->out, output_policy("detect objects", o->force, {o->images, o->model}));
     const auto files = list_images(o->images);
     auto det = nn::load_center_detector(o->model, o->threads);
     const auto names = det->class_names();
-    // Written whole or not at all: a bad image half-way leaves no folder of partial results.
-    io::TempDirectory out(o->out);
     nlohmann::json results = nlohmann::json::array();
     std::size_t boxes = 0;
     const Stopwatch clock;

@@ -26,6 +26,7 @@ namespace fs = std::filesystem;
 struct Options {
   CommonOptions common;
   std::string images, data, out, overlay, model;
+  bool force = false;
 };
 
 // A folder's .jpg/.png images in name order, or the one image file named.
@@ -100,6 +101,15 @@ nlohmann::json detections_json(const std::vector<Detection2D>& dets, const std::
 }
 
 void run(const Options& o) {
+  // The outputs first: a bad --out or --overlay costs no model load and reads no image.
+  const io::OutputPolicy policy = output_policy("detect potato", o.force, {o.images, o.data, o.model, o.common.config});
+  io::OutputFolder out(o.out, policy);
+  std::unique_ptr<io::OutputFolder> overlay;
+  if (!o.overlay.empty()) {
+    io::OutputPolicy beside_out = policy;
+    beside_out.inputs.push_back(o.out);  // one folder cannot be both outputs
+    overlay = std::make_unique<io::OutputFolder>(o.overlay, beside_out);
+  }
   CommonOptions common = o.common;
   if (!o.model.empty()) {  // --model: the ONNX backend with this file
     common.sets.push_back("detector.backend=onnx");
@@ -109,9 +119,6 @@ void run(const Options& o) {
   pipeline::potato::PotatoPipeline pipeline(potato_config(common), common.config.empty() ? "potato" : common.config);
   const std::vector<std::string> names = pipeline.detector_class_names();
   const Inputs inputs(o);
-  io::TempDirectory out(o.out);
-  std::unique_ptr<io::TempDirectory> overlay;
-  if (!o.overlay.empty()) overlay = std::make_unique<io::TempDirectory>(o.overlay);
   for (int i = 0; i < inputs.size(); ++i) {
     Input in = inputs.read(i);
     Stopwatch sw;
@@ -148,8 +155,9 @@ void add_detect_potato(CLI::App& detect) {
   cmd->add_option("--images", o->images, "Folder of .jpg/.png images, or one image");
   cmd->add_option("--data", o->data, "RGB-D sequence folder (docs/formats.md): its depth reaches the detector");
   cmd->add_option("--model", o->model, "ONNX detector to run (sets detector.backend=onnx, detector.onnx.model)");
-  cmd->add_option("--out", o->out, "Folder to write <stem>.txt detections into (replaced whole)")->required();
-  cmd->add_option("--overlay", o->overlay, "Folder to write <stem>.png images with the boxes and axes into");
+  cmd->add_option("--out", o->out, "New folder to write <stem>.txt detections into")->required();
+  cmd->add_option("--overlay", o->overlay, "New folder to write <stem>.png images with the boxes and axes into");
+  add_force_flag(cmd, o->force);
   add_json_flag(cmd, o->common);
   add_config_options(cmd, o->common);
   cmd->callback([o] { run(*o); });

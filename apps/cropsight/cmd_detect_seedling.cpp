@@ -26,6 +26,7 @@ namespace fs = std::filesystem;
 struct Options {
   CommonOptions common;
   std::string left, right, calib, out, mask, top_view;
+  bool force = false;
 };
 
 // The outputs of one run: each is written to a hidden temporary next to its final name, and all
@@ -75,6 +76,12 @@ void run(const Options& o) {
   if (!o.out.empty()) check_json_output(o.out);
   if (!o.mask.empty()) stereo::check_image_output(o.mask, "--mask", false);
   if (!o.top_view.empty()) stereo::check_image_output(o.top_view, "--top-view", false);
+  io::OutputPolicy policy = output_policy("detect seedling", o.force, {o.left, o.right, o.calib, o.common.config});
+  for (const std::string& out : {o.out, o.mask, o.top_view})
+    if (!out.empty()) {
+      io::check_output_file(out, policy);
+      policy.inputs.emplace_back(out);  // no two outputs on one path
+    }
   const auto seedlings = seedling_pipeline(o.common);
   const auto calib = stereo::load_calibration(o.calib);
   auto [l, r] = stereo::read_color_pair(o.left, o.right);
@@ -116,6 +123,7 @@ void add_detect_seedling(CLI::App& detect) {
   cmd->add_option("--out", o->out, "Result JSON to write");
   cmd->add_option("--mask", o->mask, "Left-image seedling mask PNG to write");
   cmd->add_option("--top-view", o->top_view, "Top-view mask PNG to write (soil-plane grid)");
+  add_force_flag(cmd, o->force);
   add_json_flag(cmd, o->common);
   add_config_options(cmd, o->common);
   cmd->callback([o] { run(*o); });

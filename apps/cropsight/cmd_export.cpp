@@ -18,14 +18,14 @@ struct ExportOptions {
   CommonOptions common;
   std::string seq, out, bag;
   int frame = -1;
-  bool ascii = false, overwrite = false;
+  bool ascii = false, force = false;
   double fps = 30;
   BagTopicOptions topics;
 };
 
 // The whole sequence as a ROS bag (issue 25).
 void run_bag(const ExportOptions& o) {
-  const BagExportResult r = export_bag(o.seq, o.bag, o.topics, o.fps, o.overwrite);
+  const BagExportResult r = export_bag(o.seq, o.bag, o.topics, o.fps, o.force);
   if (o.common.json) {
     print_json({{"out", o.bag}, {"frames", r.frames}, {"messages", r.messages}, {"color", r.color}});
   } else {
@@ -40,6 +40,7 @@ void run(const ExportOptions& o) {
     return run_bag(o);
   }
   if (o.out.empty() || o.frame < 0) throw Error("--out", "give --frame I --out FILE.pcd|.ply, or --bag OUT.bag");
+  io::check_output_file(o.out, output_policy("export", o.force, {o.seq}));
   const io::SequenceReader reader(o.seq);
   const RgbdFrame f = reader.read(o.frame);
   const OrganizedCloud cloud = to_organized_cloud(f);
@@ -71,7 +72,8 @@ void add_export(CLI::App& app) {
   cmd->add_flag("--ascii", o->ascii, "Write ASCII instead of binary");
   cmd->add_option("--bag", o->bag, "Write every frame to this ROS bag instead (depth 16UC1, camera_info, rgb8)");
   cmd->add_option("--fps", o->fps, "--bag: frame rate for sequences without timestamps")->capture_default_str();
-  cmd->add_flag("--overwrite", o->overwrite, "--bag: replace an existing bag");
+  add_force_flag(cmd, o->force);
+  add_deprecated_flag(cmd, "--overwrite", o->force, "--force");
   add_bag_topic_options(cmd, o->topics);
   add_json_flag(cmd, o->common);
   cmd->callback([o] { run(*o); });

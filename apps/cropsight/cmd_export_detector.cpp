@@ -14,14 +14,17 @@ namespace cropsight::cli {
 void add_export_detector(CLI::App& app) {
   struct Options {
     std::string model, out;
+    bool force = false;
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("export-detector", "Export a trained detector (.pt) as ONNX for OpenCV DNN");
   cmd->add_option("--model", o->model, "Detector model written by train detector (.pt)")->required();
   cmd->add_option("--out", o->out, "ONNX file to write")->required();
+  add_force_flag(cmd, o->force);
   add_json_flag(cmd, o->common);
   cmd->callback([o] {
+    io::check_output_file(o->out, output_policy("export-detector", o->force, {o->model}));
     const nn::CenterNet net = nn::CenterNet::load(o->model, 1);
     net.export_onnx(o->out);
     const nn::CenterNetOnnx back(o->out);  // OpenCV loads and runs it

@@ -24,17 +24,19 @@ struct Options {
   CommonOptions common;
   std::string data, bag, out;
   BagTopicOptions topics;
-  bool quiet = false;
+  bool quiet = false, force = false;
 };
 
 void run(const Options& o) {
   namespace pp = pipeline::potato;
+  // Before the pipeline loads or the loop prints progress.
+  if (!o.out.empty())
+    io::check_output_file(o.out, output_policy("harvest potato", o.force, {o.data, o.bag, o.common.config}));
   pp::PotatoPipeline pipeline(potato_config(o.common), o.common.config.empty() ? "potato" : o.common.config);
   if (o.data.empty() == o.bag.empty()) throw Error("--data", "give a sequence folder (--data) or a bag (--bag)");
   std::optional<BagSequence> bag;
   if (!o.bag.empty()) bag.emplace(o.bag, o.topics);
   const io::SequenceReader seq(bag ? bag->path() : o.data);
-  if (!o.out.empty()) io::check_can_create(o.out);  // before the loop prints progress
   std::ostringstream lines;
   Progress progress("harvest potato", seq.size(), o.quiet || o.out.empty());
   double ms = 0;
@@ -75,6 +77,7 @@ void add_harvest_potato(CLI::App& harvest) {
   cmd->add_option("--bag", o->bag, "A ROS bag in place of --data (depth, camera_info, colour topics below)");
   add_bag_topic_options(cmd, o->topics);
   cmd->add_option("--out", o->out, "JSON-lines file of the messages (default: stdout)");
+  add_force_flag(cmd, o->force);
   cmd->add_flag("--quiet", o->quiet, "no progress line");
   add_config_options(cmd, o->common);
   add_json_flag(cmd, o->common);

@@ -60,9 +60,9 @@ void add_import(CLI::App& app) {
   cmd->add_option("--camera", o->io.camera_yaml, "camera.yaml of the depth camera (docs/formats.md)");
   cmd->add_option("--bag", o->bag, "A ROS bag instead (depth 16UC1/32FC1, camera_info, colour; no master needed)");
   add_bag_topic_options(cmd, o->topics);
-  cmd->add_option("--out", o->io.out, "Output sequence directory")->required();
+  cmd->add_option("--out", o->io.out, "New sequence folder to write")->required();
   cmd->add_option("--fps", o->io.fps, "Frame rate for frame-numbered files (timestamps = index / fps; default 0)");
-  cmd->add_flag("--force", o->io.overwrite, "Replace an existing output directory");
+  add_force_flag(cmd, o->io.overwrite);
   cmd->add_flag("--json", o->json, "Print a JSON summary");
   cmd->callback([o] { run_import(*o); });
 }

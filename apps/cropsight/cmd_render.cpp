@@ -17,10 +17,11 @@ struct RenderOptions {
   CommonOptions common;
   std::string seq, out, what = "depth";
   int frame = 0;
-  bool no_outlines = false;
+  bool no_outlines = false, force = false;
 };
 
 void run(const RenderOptions& o) {
+  io::check_output_file(o.out, output_policy("render", o.force, {o.seq}));
   const io::SequenceReader reader(o.seq);
   const RgbdFrame f = reader.read(o.frame);
   ColorImage img;
@@ -56,6 +57,7 @@ void add_render(CLI::App& app) {
   cmd->add_option("SEQ", o->seq, "Sequence directory")->required();
   cmd->add_option("--frame", o->frame, "Frame index (from 0)")->required();
   cmd->add_option("--out", o->out, "Output PNG file")->required();
+  add_force_flag(cmd, o->force);
   cmd->add_option("--what", o->what, "depth (default), color or labels")
       ->check(CLI::IsMember({"depth", "color", "labels"}));
   cmd->add_flag("--no-outlines", o->no_outlines, "Do not draw ground-truth outlines");

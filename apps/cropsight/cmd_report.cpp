@@ -24,6 +24,7 @@ struct ReportOptions {
   std::string data, out, title;
   std::string model;  // --model: broccoli detection, sizing and map sections (issue 4)
   int frames = 4;
+  bool force = false;
 };
 
 // The broccoli sections; returns the tracking figures as `eval broccoli --track --json` has them.
@@ -55,6 +56,8 @@ nlohmann::json add_broccoli(report::HtmlPage& page, const ReportOptions& o) {
 
 void run(const ReportOptions& o) {
   if (o.frames < 1) throw Error("--frames", "must be at least 1");
+  // Before the sequence is read or the broccoli pass prints progress.
+  io::check_output_file(o.out, output_policy("report", o.force, {o.data, o.model, o.common.config}));
   // The configuration only drives the detection sections; without a model it would be silently
   // ignored, which hides typos and wrong files.
   if (o.model.empty() && (!o.common.config.empty() || !o.common.sets.empty()))
@@ -63,7 +66,6 @@ void run(const ReportOptions& o) {
   const io::SequenceReader reader(o.data);
   const report::SequenceSummary summary = report::summarize_sequence(reader);
   const std::string name = std::filesystem::path(o.data).lexically_normal().filename().string();
-  io::check_can_create(o.out);  // before the broccoli pass prints progress
   report::HtmlPage page(o.title.empty() ? "cropsight: sequence " + name : o.title);
   report::SequencePageOptions po;
   po.frames_shown = o.frames;
@@ -89,6 +91,7 @@ void add_report(CLI::App& app) {
   auto* cmd = app.add_subcommand("report", "Write a self-contained HTML page about a sequence");
   cmd->add_option("--data", o->data, "Sequence directory")->required();
   cmd->add_option("--out", o->out, "Output HTML file")->required();
+  add_force_flag(cmd, o->force);
   cmd->add_option("--frames", o->frames, "Number of evenly spaced frames to render (default 4)");
   cmd->add_option("--title", o->title, "Page title");
   cmd->add_option("--model", o->model,

@@ -17,7 +17,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-#include <regex>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -35,20 +34,17 @@ struct RoiCloudOptions {
   CommonOptions common;
   std::string color, depth, camera, detections, out;
   long image_id = -1;
+  bool force = false;
 };
 
-// What a run writes (rois.json, roi_NNN.txt): a folder of only these may be replaced.
-bool is_own_file(const std::string& name) {
-  static const std::regex roi_file(R"(roi_\d{3,}\.txt)");
-  return name == "rois.json" || std::regex_match(name, roi_file);
-}
-
 void run(const RoiCloudOptions& o) {
+  // The set goes into a temporary sibling of the folder, then replaces it: the folder holds the
+  // previous run's files or all of this run's, never a mix; the temporary goes on any failure.
+  io::OutputFolder out(
+      o.out, output_policy("roi-cloud", o.force, {o.color, o.depth, o.camera, o.detections, o.common.config}));
   pipeline::GrapeRoiConfig cfg;
   apply_config(cfg, o.common.config_map(o.common.config.empty() ? "grape-roi" : ""), "--config/--set");
   cfg.validate("--config/--set");
-  const fs::path out_dir =
-      replaceable_output_folder(o.out, is_own_file, "a previous roi-cloud run's (rois.json, roi_NNN.txt)");
   const RgbdFrame f = read_grape_frame(o.color, o.depth, o.camera);
   const CameraIntrinsics& cam = f.camera;
   const DepthImage& depth = f.depth;
@@ -77,13 +73,10 @@ void run(const RoiCloudOptions& o) {
                     {"scale_m", outs[i].scale}});
   }
   nlohmann::json j = {{"detections", dets.size()}, {"outside_image", frame.outside.size()}, {"rois", list}};
-  // The set goes into a temporary sibling of the folder, then replaces it: the folder holds the
-  // previous run's files or all of this run's, never a mix; the temporary goes on any failure.
-  io::TempDirectory tmp(out_dir);
   for (std::size_t i = 0; i < outs.size(); ++i)
-    io::write_grape_text(tmp.path() / list[i]["file"].get<std::string>(), outs[i].cloud);
-  io::write_file_atomic(tmp.path() / "rois.json", j.dump(2) + "\n");
-  tmp.commit("ROI clouds");
+    io::write_grape_text(out.path() / list[i]["file"].get<std::string>(), outs[i].cloud);
+  io::write_file_atomic(out.path() / "rois.json", j.dump(2) + "\n");
+  out.commit("ROI clouds");
   if (o.common.json)
     print_json(j);
   else
@@ -99,7 +92,8 @@ void add_roi_cloud(CLI::App& app) {
   cmd->add_option("--depth", o->depth, "16-bit depth image")->required();
   cmd->add_option("--camera", o->camera, "camera.yaml (intrinsics, depth_scale)")->required();
   cmd->add_option("--detections", o->detections, "COCO-style detections (bunch = 1, peduncle = 2)")->required();
-  cmd->add_option("--out", o->out, "Output folder")->required();
+  cmd->add_option("--out", o->out, "New output folder (roi_NNN.txt clouds, rois.json)")->required();
+  add_force_flag(cmd, o->force);
   cmd->add_option("--image-id", o->image_id, "Keep only this COCO image_id's detections");
   add_json_flag(cmd, o->common);
   add_config_options(cmd, o->common);

@@ -26,13 +26,14 @@ struct SegmentGrapeOptions {
   CommonOptions common;
   std::string input, out;
   int threads = 2;
+  bool force = false;
   GrapeSegmenterOptions segmenter;
 };
 
 void run(const SegmentGrapeOptions& o) {
   check_thread_count(o.threads, "--threads");
-  if (std::filesystem::is_directory(o.out)) throw Error(o.out, "is a directory, expected a file name");
   auto cfg = o.segmenter.config();
+  io::check_output_file(o.out, output_policy("segment grape", o.force, {o.input, cfg.model, cfg.ensemble}));
   cfg.threads = o.threads;
   const pipeline::GrapeSegmenter segmenter(cfg, "command line");
   Cloud cloud = io::read_grape_text(o.input);
@@ -64,6 +65,7 @@ void add_segment_grape(CLI::App& segment) {
          "not used)")
       ->required();
   cmd->add_option("--out", o->out, "Labelled text cloud to write")->required();
+  add_force_flag(cmd, o->force);
   cmd->add_option("--threads", o->threads, "Threads, 1.." + std::to_string(kMaxThreads) + " (default 2)");
   o->segmenter.add_options(cmd, "grape-best");
   add_json_flag(cmd, o->common);

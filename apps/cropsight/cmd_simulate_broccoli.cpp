@@ -19,12 +19,14 @@ struct SimulateBroccoliOptions {
   std::uint64_t seed = 1;
   std::optional<double> fps;  // unset = the preset's value
   std::string out;
-  bool force = false;
+  bool force = false, quiet = false;
   bool randomize = false;
   CommonOptions common;
 };
 
 void run_simulate_broccoli(const SimulateBroccoliOptions& o) {
+  const io::OutputPolicy policy = output_policy("simulate broccoli", o.force, {o.common.config});
+  io::check_output_folder(o.out, policy);
   if (o.frames < 1) throw Error("--frames", "must be at least 1");
   if (o.fps && !(std::isfinite(*o.fps) && *o.fps > 0.0)) throw Error("--fps", "must be a positive number");
   sim::BroccoliSimConfig cfg;
@@ -36,8 +38,8 @@ void run_simulate_broccoli(const SimulateBroccoliOptions& o) {
   if (o.randomize) cfg.randomize.enabled = true;
   cfg.validate(where);
 
-  Progress progress("simulate broccoli", o.frames, o.common.json);
-  const auto summary = sim::simulate_broccoli_sequence(cfg, o.seed, o.frames, o.out, o.force,
+  Progress progress("simulate broccoli", o.frames, o.common.json || o.quiet);
+  const auto summary = sim::simulate_broccoli_sequence(cfg, o.seed, o.frames, o.out, policy,
                                                        [&](int done, int) { progress.update(done); });
   progress.finish();
   if (o.common.json) {
@@ -74,8 +76,9 @@ void add_simulate_broccoli(CLI::App& simulate) {
   cmd->add_option("--frames", o->frames, "Number of frames")->default_val(60);
   cmd->add_option("--seed", o->seed, "Random seed (same seed and options = byte-identical output)")->default_val(1);
   cmd->add_option("--fps", o->fps, "Frame rate (default: the preset's 7.5; the datasets used 7.5, 3.3, 6.4)");
-  cmd->add_option("--out", o->out, "Output sequence directory")->required();
-  cmd->add_flag("--force", o->force, "Replace an existing output directory");
+  cmd->add_option("--out", o->out, "New sequence folder to write")->required();
+  add_force_flag(cmd, o->force);
+  cmd->add_flag("--quiet", o->quiet, "No progress lines");
   add_json_flag(cmd, o->common);
   add_config_options(cmd, o->common);
   cmd->callback([o] { run_simulate_broccoli(*o); });

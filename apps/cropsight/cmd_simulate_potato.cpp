@@ -16,7 +16,7 @@ struct SimulatePotatoOptions {
   int frames = 60;
   std::uint64_t seed = 1;
   std::string out;
-  bool force = false;
+  bool force = false, quiet = false;
   CommonOptions common;
 };
 
@@ -28,8 +28,9 @@ void run_simulate_potato(const SimulatePotatoOptions& o) {
   if (!m.count("scene")) m["scene"] = o.scene;
   apply_config(cfg, m, where);
   cfg.validate(where);
-  Progress progress("simulate potato", o.frames, o.common.json);
-  const auto s = sim::simulate_potato_sequence(cfg, o.seed, o.frames, o.out, o.force,
+  Progress progress("simulate potato", o.frames, o.common.json || o.quiet);
+  const auto s = sim::simulate_potato_sequence(cfg, o.seed, o.frames, o.out,
+                                               output_policy("simulate potato", o.force, {o.common.config}),
                                                [&](int done, int) { progress.update(done); });
   progress.finish();
   if (o.common.json) {
@@ -55,8 +56,9 @@ void add_simulate_potato(CLI::App& simulate) {
       ->check(CLI::IsMember({"sheet", "room", "chamber"}));
   cmd->add_option("--frames", o->frames, "Number of frames")->default_val(60);
   cmd->add_option("--seed", o->seed, "Random seed (same seed and options = identical output)")->default_val(1);
-  cmd->add_option("--out", o->out, "Output sequence directory")->required();
-  cmd->add_flag("--force", o->force, "Replace an existing output directory");
+  cmd->add_option("--out", o->out, "New sequence folder to write")->required();
+  add_force_flag(cmd, o->force);
+  cmd->add_flag("--quiet", o->quiet, "No progress lines");
   add_json_flag(cmd, o->common);
   add_config_options(cmd, o->common);
   cmd->callback([o] { run_simulate_potato(*o); });

@@ -30,20 +30,6 @@ struct Options {
   bool quiet = false, force = false;
 };
 
-// An existing, non-empty --out is replaced only with --force, and only when it looks like a
-// seedling data set, so that a mistyped --out never deletes unrelated data.
-void check_replaceable(const fs::path& out, bool force) {
-  std::error_code ec;
-  if (!fs::exists(out, ec)) return;
-  if (!fs::is_directory(out)) throw Error(out.string(), "exists and is not a folder");
-  if (fs::is_empty(out, ec)) return;
-  if (!force) throw Error(out.string(), "already exists (use --force to overwrite)");
-  if (!fs::exists(out / "rig.yaml") && !fs::exists(out / "pair_000") && !fs::exists(out / "calib"))
-    throw Error(out.string(),
-                "exists and is not a seedling data set (no rig.yaml, pair_000 or calib); refusing to "
-                "replace it");
-}
-
 void run(const Options& o) {
   if (o.pairs < 1 || o.pairs > sim::kMaxSeedlingPairs)
     throw Error("--pairs",
@@ -51,19 +37,11 @@ void run(const Options& o) {
   if (o.calib_pairs < 0 || o.calib_pairs > sim::kMaxCalibrationPairs)
     throw Error("--calib-pairs", "must be in 0.." + std::to_string(sim::kMaxCalibrationPairs) + " (0 = none), got " +
                                      std::to_string(o.calib_pairs));
-  fs::path out(o.out);
-  if (!out.has_filename()) out = out.parent_path();  // "data/" -> "data"
-  if (out.empty() || out == "." || out == "..") throw Error("--out", "needs a folder name, got '" + o.out + "'");
+  // Checked before minutes of rendering, not after; removed on any failure, in place at the end.
+  io::OutputFolder tmp(o.out, output_policy("simulate seedling", o.force, {o.common.config}));
+  const fs::path& out = tmp.final_path();
   sim::SeedlingSimConfig cfg;
   apply_config(cfg, o.common.config_map(), o.common.config.empty() ? "--set" : o.common.config);
-  check_replaceable(out, o.force);  // before minutes of rendering, not after
-
-  std::error_code ec;
-  if (!out.parent_path().empty()) {
-    fs::create_directories(out.parent_path(), ec);
-    if (ec) throw Error(out.string(), "cannot create parent folder: " + ec.message());
-  }
-  io::TempDirectory tmp(out);  // removed on any failure; replaces --out whole at the end
   Progress progress("simulate seedling", o.pairs, o.quiet || o.common.json);
   try {
     sim::write_seedling_dataset(
@@ -75,8 +53,7 @@ void run(const Options& o) {
   }
   progress.finish();
 
-  // Into place; an old data set is moved aside first and put back if the final rename fails.
-  check_replaceable(out, o.force);
+  // Into place; an old data set is swapped out in one step.
   tmp.commit("seedling data set");
 
   if (o.common.json)
@@ -92,12 +69,12 @@ void add_simulate_seedling(CLI::App& simulate) {
   using namespace simulate_seedling_cmd;
   auto o = std::make_shared<Options>();
   auto* cmd = simulate.add_subcommand("seedling", "Stereo pairs of broccoli seedlings with ground truth (issue 5)");
-  cmd->add_option("--out", o->out, "Output folder (written whole at the end; must not exist or be empty)")->required();
+  cmd->add_option("--out", o->out, "New output folder (written whole at the end)")->required();
   cmd->add_option("--pairs", o->pairs, "Seedling stereo pairs, 1..10000")->capture_default_str();
   cmd->add_option("--seed", o->seed, "Random seed (same seed, same data)")->capture_default_str();
   cmd->add_option("--calib-pairs", o->calib_pairs, "Checkerboard pairs under calib/, 0..1000 (0 = none)")
       ->capture_default_str();
-  cmd->add_flag("--force", o->force, "Replace an existing seedling data set in --out");
+  add_force_flag(cmd, o->force);
   cmd->add_flag("--quiet", o->quiet, "No progress line");
   add_json_flag(cmd, o->common);
   add_config_options(cmd, o->common);

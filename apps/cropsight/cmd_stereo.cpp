@@ -45,11 +45,12 @@ struct CalibrateOptions {
   CommonOptions common;
   std::string images, board = "9x6", out;
   double square_mm = 30;
+  bool force = false;
 };
 
 void run_calibrate(const CalibrateOptions& o) {
   const auto board = parse_board(o.board, o.square_mm);
-  if (std::filesystem::is_directory(o.out)) throw Error(o.out, "is a folder; --out needs a file name such as rig.yaml");
+  io::check_output_file(o.out, output_policy("stereo calibrate", o.force, {o.images, o.common.config}));
   stereo::CalibrationConfig cfg;
   apply_checked_config(cfg, o.common, "", validate_calibration_config);
   const auto calib = stereo::calibrate_stereo_folder(o.images, board, cfg);
@@ -80,6 +81,7 @@ void add_stereo(CLI::App& app) {
   cal->add_option("--board", co->board, "Inner corners COLSxROWS, 3..100 each")->capture_default_str();
   cal->add_option("--square-mm", co->square_mm, "Checkerboard square side, mm (0 < s <= 1000)")->capture_default_str();
   cal->add_option("--out", co->out, "Calibration YAML to write")->required();
+  add_force_flag(cal, co->force);
   add_json_flag(cal, co->common);
   add_config_options(cal, co->common);
   cal->callback([co] { run_calibrate(*co); });

@@ -21,6 +21,7 @@ struct DisparityOptions {
   CommonOptions common;
   std::string left, right, calib, out, method = "sgm";
   int max_disp = 128, window = 55;
+  bool force = false;
 };
 
 void run_disparity(const DisparityOptions& o) {
@@ -35,6 +36,7 @@ void run_disparity(const DisparityOptions& o) {
                 "must be odd, 1.." + std::to_string(stereo::kMaxBlockWindow) + ", got " + std::to_string(o.window));
   // The PNG stores disparity x 256 in 16 bits: an 8-bit or lossy format (JPEG) would not hold it.
   stereo::check_image_output(o.out, "--out", true);
+  io::check_output_file(o.out, output_policy("stereo disparity", o.force, {o.left, o.right, o.calib, o.common.config}));
   stereo::DisparityConfig cfg;
   cfg.num_disparities = o.max_disp;
   apply_checked_config(cfg, o.common, "", [](const stereo::DisparityConfig& c, const std::string& where) {
@@ -96,6 +98,7 @@ void add_stereo_disparity(CLI::App& parent) {
   dis->add_option("--method", dopt->method, "sgm (ours) | opencv-sgbm | sad | ssd")->capture_default_str();
   dis->add_option("--window", dopt->window, "SAD/SSD window side, odd, 1..255 (paper: 55)")->capture_default_str();
   dis->add_option("--out", dopt->out, "16-bit image (.png, .tif, .tiff, .pgm), disparity x 256, 0 = none")->required();
+  add_force_flag(dis, dopt->force);
   add_json_flag(dis, dopt->common);
   add_config_options(dis, dopt->common);
   dis->callback([dopt] { run_disparity(*dopt); });

@@ -19,7 +19,7 @@ struct TrainOptions {
   CommonOptions common;
   std::string data, pipeline, features, classifier, out;
   bool grid_search = false;
-  bool quiet = false;
+  bool quiet = false, force = false;
 };
 
 // defaults ← preset ← --set ← explicit flags; keys "grid.*" configure the grid search. The whole
@@ -81,6 +81,9 @@ nlohmann::json grid_search(const TrainOptions& o, const learning::Dataset& data,
 }
 
 void run(const TrainOptions& o) {
+  std::vector<std::string> inputs = split_list(o.data, "--data");
+  inputs.push_back(o.common.config);
+  io::check_output_file(o.out, output_policy("train broccoli", o.force, inputs));  // before minutes of training
   auto [full, grid] = train_configs(o);
   pipeline::BroccoliDetectorConfig& cfg = full.detector;
   pipeline::BroccoliDatasetBuilder builder(cfg, full.truth);
@@ -130,6 +133,7 @@ void add_train_broccoli(CLI::App& train) {
   cmd->add_option("--features", o->features, "Comma list of vfh, va, geom, cvfh (default: preset or vfh)");
   cmd->add_option("--classifier", o->classifier, "svm-rbf | svm-linear | knn (default: preset or svm-rbf)");
   cmd->add_option("--out", o->out, "Model file to write (JSON)")->required();
+  add_force_flag(cmd, o->force);
   cmd->add_flag("--grid-search", o->grid_search,
                 "5-fold stratified CV grid search over C (and gamma); keys grid.* via --set");
   cmd->add_flag("--quiet", o->quiet, "No progress lines");

@@ -28,12 +28,22 @@ struct TrainDetectorOptions {
   int epochs = 0, width = 0, batch = 0, threads = 1;
   double lr = 0, val_split = 0.2;
   std::uint64_t seed = 1, split_seed = 1;
-  bool resume = false, no_augment = false;
+  bool resume = false, no_augment = false, force = false;
   CommonOptions common;
 };
 
 void run(const TrainDetectorOptions& o) {
   if (o.out.empty()) throw Error("--out", "give the model file to write");
+  // Before minutes of training. The checkpoint is an output too: started afresh (replaced) only
+  // with --force, resumed with --resume.
+  const io::OutputPolicy policy =
+      output_policy("train detector", o.force, {o.data.coco, o.data.voc, o.data.images, o.common.config});
+  io::check_output_file(o.out, policy);
+  const std::string checkpoint = o.checkpoint.empty() ? o.out + ".ckpt" : o.checkpoint;
+  if (o.resume)
+    io::check_not_an_input(checkpoint, policy);
+  else
+    io::check_output_file(checkpoint, policy);
   const ConfigMap map = o.common.config_map();
   const std::string where = o.common.config.empty() ? "--set" : o.common.config;
   // Every key belongs to one of the two sections: a key without its section (`mask_weight` for
@@ -64,8 +74,10 @@ void run(const TrainDetectorOptions& o) {
   for (auto i : split.train) train.push_back(set.samples[i]);
   for (auto i : split.val) val.push_back(set.samples[i]), val_names.push_back(set.samples[i].name);
 
-  const std::string checkpoint = o.checkpoint.empty() ? o.out + ".ckpt" : o.checkpoint;
-  if (!o.resume) std::filesystem::remove(checkpoint);
+  if (!o.resume) {
+    std::error_code ec;  // --force said it may go (check_output_file above)
+    std::filesystem::remove(checkpoint, ec);
+  }
   nn::CenterNet net(cfg);
   std::fprintf(stderr, "train detector: %zu train / %zu held-out images, %zu classes, %zu parameters, input %dx%d\n",
                train.size(), val.size(), set.classes.size(), net.parameter_count(), cfg.input_width, cfg.input_height);
@@ -122,6 +134,7 @@ void add_train_detector(CLI::App& train) {
   auto* cmd = train.add_subcommand("detector", "Train the CenterNet 2D detector (boxes and masks) from scratch");
   add_dataset_options(cmd, o->data);
   cmd->add_option("--out", o->out, "Model file to write (.pt)")->required();
+  add_force_flag(cmd, o->force);
   cmd->add_option("--epochs", o->epochs, "Training epochs (default 60)");
   cmd->add_option("--input", o->input, "Network input WxH, multiples of 32 (default 256x256)");
   cmd->add_option("--width", o->width, "Base channel width (default 16)");

@@ -28,6 +28,11 @@ void progress(const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str
 
 void run(const TrainGrapeOptions& o) {
   check_train_grape_options(o);
+  // Before minutes of training: the model and the checkpoint (which a rerun resumes from, so it
+  // may exist) are outputs, never inputs.
+  const io::OutputPolicy policy = output_policy("train grape", o.force, {o.data, o.common.config});
+  if (!o.out.empty()) io::check_output_file(o.out, policy);
+  if (!o.checkpoint.empty()) io::check_not_an_input(o.checkpoint, policy);
   const pipeline::GrapeTrainConfig cfg = train_grape_config(o);
   auto files = io::list_grape_clouds(o.data);
   if (o.limit_set && std::size_t(o.limit) < files.size()) files.resize(std::size_t(o.limit));
@@ -70,6 +75,7 @@ void add_train_grape(CLI::App& train) {
                   "gbdt | pointresnet | pointnet2 (default: the --config preset's arch, else gbdt)");
   cmd->add_option("--features", o->features, "Network inputs: xyz | xyzn | xyzrgb | xyzrgbn");
   cmd->add_option("--out", o->out, "Model file to write (.json for gbdt, .pt for networks)");
+  add_force_flag(cmd, o->force);
   auto* epochs = cmd->add_option("--epochs", o->epochs, "Network training epochs, >= 1 (overrides the preset)");
   cmd->add_option("--val-fold", o->val_fold, "k/K: train without fold k and report its metrics");
   auto* folds = cmd->add_option("--folds", o->folds,

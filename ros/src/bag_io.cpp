@@ -12,6 +12,7 @@
 #include "bag_check.hpp"
 #include "cropsight/bridge/sequence_io.hpp"
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/output.hpp"
 #include "ros_conversions.hpp"
 
 namespace fs = std::filesystem;
@@ -72,14 +73,14 @@ std_msgs::Header header_at(const ros::Time& t, const std::string& frame_id, std:
 }  // namespace
 
 BagExportSummary export_sequence_bag(const BagExportOptions& o) {
+  // The project's one output rule (plain C++17): never an input, replaced only with --force.
+  io::check_output_file(o.bag, io::OutputPolicy{"export --bag", o.overwrite, {o.sequence}});
   bridge::SequenceSource seq(o.sequence);
   const bridge::CameraModel& cam = seq.camera();
   if (std::abs(cam.depth_scale - 0.001) > 1e-12)
     throw Error(o.sequence + "/camera.yaml", "depth_scale " + std::to_string(cam.depth_scale) +
                                                  " m: a ROS 16UC1 depth image is in millimetres (depth_scale 0.001)");
   if (!(o.fps > 0)) throw Error("--fps", "must be > 0");
-  if (fs::exists(o.bag) && !o.overwrite) throw Error(o.bag, "exists (use --overwrite to replace it)");
-  if (fs::is_directory(o.bag)) throw Error(o.bag, "is a directory");
   TempFile tmp{fs::path(o.bag + ".partial")};
   BagExportSummary s;
   with_bag_errors(o.bag, "cannot write the bag", [&] {
@@ -128,6 +129,7 @@ BagExportSummary export_sequence_bag(const BagExportOptions& o) {
 }
 
 BagImportSummary import_bag_sequence(const BagImportOptions& o) {
+  io::check_output_folder(o.out, io::OutputPolicy{"import --bag", o.overwrite, {o.bag}});
   if (!fs::exists(o.bag)) throw Error(o.bag, "no such file");
   if (fs::is_directory(o.bag)) throw Error(o.bag, "is a directory, not a bag file");
   detail::check_bag_file(o.bag);  // rosbag trusts the lengths a bag declares

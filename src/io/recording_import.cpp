@@ -81,6 +81,9 @@ std::vector<RecordingFile> list_recording(const fs::path& dir, const std::string
 }
 
 ImportSummary import_recording(const ImportOptions& o) {
+  // The output first: a bad --out reads no frame.
+  const OutputPolicy policy{"import", o.overwrite, {o.depth_dir, o.color_dir, o.pcd_dir, o.camera_yaml}};
+  check_output_folder(o.out, policy);
   if (o.depth_dir.empty() == o.pcd_dir.empty()) throw Error("import", "give exactly one of --depth and --pcd");
   if (!(o.fps >= 0)) throw Error("--fps", "must be >= 0");
   const CameraIntrinsics camera = read_camera_yaml(o.camera_yaml);
@@ -97,9 +100,7 @@ ImportSummary import_recording(const ImportOptions& o) {
   }
   const bool stamps =
       std::all_of(frames.begin(), frames.end(), [](const RecordingFile& f) { return is_timestamp(f.key); });
-  if (fs::exists(o.out) && !o.overwrite) throw Error(o.out.string(), "already exists (use --force to overwrite)");
-
-  SequenceWriter writer(o.out, camera, o.overwrite);  // temporary folder, renamed by finish()
+  SequenceWriter writer(o.out, camera, policy);  // temporary folder, renamed by finish()
   for (std::size_t i = 0; i < frames.size(); ++i) {
     const fs::path& file = frames[i].path;
     RgbdFrame f;

@@ -1,6 +1,7 @@
-// SequenceWriter: everything is written into a hidden temporary sibling directory, which
-// finish() puts in place of the final name (io::replace_directory), so a sequence directory either
-// is complete or does not exist (a crashed or abandoned writer leaves no half sequence behind).
+// SequenceWriter: everything is written into a hidden temporary sibling directory (an
+// io::OutputFolder), which finish() puts in place of the final name, so a sequence directory
+// either is complete or does not exist (a crashed or abandoned writer leaves no half sequence
+// behind), and a folder cropsight did not write is never replaced.
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
@@ -12,51 +13,21 @@ namespace cropsight::io {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-/// Replacing an existing directory is allowed only when it is empty or looks like a sequence,
-/// so that a wrong --out never deletes unrelated data.
-bool replaceable(const fs::path& dir) {
-  if (!fs::is_directory(dir)) return false;
-  return fs::is_empty(dir) || fs::exists(dir / "camera.yaml") || fs::exists(dir / "depth");
-}
-
-}  // namespace
-
 SequenceWriter::SequenceWriter(fs::path dir, CameraIntrinsics camera, bool overwrite)
-    : dir_(std::move(dir)), camera_(std::move(camera)), overwrite_(overwrite) {
+    : SequenceWriter(std::move(dir), std::move(camera), OutputPolicy{"write sequence", overwrite, {}}) {}
+
+SequenceWriter::SequenceWriter(fs::path dir, CameraIntrinsics camera, const OutputPolicy& policy)
+    : dir_(std::move(dir)), camera_(std::move(camera)) {
   if (dir_.filename().empty()) dir_ = dir_.parent_path();  // "out/" -> "out"
   if (dir_.empty()) throw Error("sequence", "empty output directory name");
   camera_.validate(dir_.string() + " (camera)");
-  if (fs::exists(dir_)) {
-    if (!overwrite_) throw Error(dir_.string(), "already exists (refusing to overwrite)");
-    if (!replaceable(dir_))
-      throw Error(dir_.string(), "exists and is not a sequence directory; refusing to replace it");
-  }
-  std::error_code ec;
-  if (!dir_.parent_path().empty()) {
-    fs::create_directories(dir_.parent_path(), ec);
-    if (ec) throw Error(dir_.string(), "cannot create parent directory: " + ec.message());
-  }
-  remove_stale_temporaries(dir_);  // what killed writers of this sequence left
-  tmp_ = temporary_sibling(dir_);
-  fs::create_directory(tmp_, ec);
-  if (ec) throw Error(dir_.string(), "cannot create temporary directory: " + ec.message());
-  try {
-    fs::create_directory(tmp_ / "depth");
-    write_camera_yaml(tmp_ / "camera.yaml", camera_);
-  } catch (...) {
-    fs::remove_all(tmp_, ec);
-    throw;
-  }
+  out_ = std::make_unique<OutputFolder>(dir_, policy);  // checks dir_ before anything is written
+  tmp_ = out_->path();
+  fs::create_directory(tmp_ / "depth");
+  write_camera_yaml(tmp_ / "camera.yaml", camera_);
 }
 
-SequenceWriter::~SequenceWriter() {
-  if (!finished_) {
-    std::error_code ec;
-    fs::remove_all(tmp_, ec);
-  }
-}
+SequenceWriter::~SequenceWriter() = default;  // an unfinished writer's OutputFolder removes the temporary
 
 void SequenceWriter::write(const RgbdFrame& frame) {
   const std::string where = dir_.string() + " (frame " + std::to_string(next_) + ")";
@@ -101,12 +72,7 @@ void SequenceWriter::finish() {
   if (!poses_.empty()) write_file_atomic(tmp_ / "poses.csv", detail::format_poses_csv(poses_));
   if (truth_) write_file_atomic(tmp_ / "groundtruth.json", detail::format_groundtruth_json(*truth_, dir_.string()));
 
-  if (fs::exists(dir_)) {
-    if (!overwrite_) throw Error(dir_.string(), "already exists (refusing to overwrite)");
-    if (!replaceable(dir_))
-      throw Error(dir_.string(), "exists and is not a sequence directory; refusing to replace it");
-  }
-  replace_directory(tmp_, dir_, "sequence");  // a previous sequence is swapped out in one step
+  out_->commit("sequence");  // a previous sequence is swapped out in one step
   finished_ = true;
 }
 

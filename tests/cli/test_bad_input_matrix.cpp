@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "cli_inputs.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "pipeline/grape/grape_test_clouds.hpp"
 #include "testing/testing.hpp"
@@ -271,21 +272,7 @@ void make_bad(const fs::path& p, const Input& in, Bad b) {
   }
 }
 
-// Every file under `dir` (not through links) with its size and contents hash: what "no output
-// created or changed" compares.
-std::map<std::string, std::string> snapshot(const fs::path& dir) {
-  std::map<std::string, std::string> s;
-  for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator(); ++it) {
-    const auto rel = fs::relative(it->path(), dir).string();
-    if (it->is_symlink())
-      s[rel] = "link";
-    else if (it->is_directory())
-      s[rel] = "dir";
-    else
-      s[rel] = std::to_string(std::hash<std::string>{}(slurp(it->path())));
-  }
-  return s;
-}
+using cropsight::testing::snapshot;
 
 std::string replace_all(std::string s, const std::string& from, const std::string& to) {
   for (size_t at = s.find(from); at != std::string::npos; at = s.find(from, at + to.size()))
@@ -416,46 +403,10 @@ const std::vector<Row>& rows() {
 
 class BadInputMatrix : public ::testing::TestWithParam<Row> {
  public:
-  // The good inputs, made once: a 2-frame simulated broccoli sequence, one seedling pair with its
-  // rig, three grape clouds, two small images with COCO and VOC truth, and the shipped models.
+  // The good inputs, made once (cli_inputs.hpp).
   static void SetUpTestSuite() {
     base_ = new cropsight::testing::TempDir;
-    const fs::path b = base_->path(), src = cropsight::testing::source_dir();
-    ok_ = run_cli("simulate broccoli --frames 2 --seed 3 --out " + shell_quoted(b / "seq")).exit_code == 0 &&
-          run_cli("simulate seedling --pairs 1 --calib-pairs 0 --quiet --out " + shell_quoted(b / "sd")).exit_code == 0;
-    fs::copy_file(src / "models/broccoli-oes-uk.json", b / "broccoli.json");
-    fs::copy_file(src / "configs/broccoli-oes-uk.yaml", b / "preset.yaml");
-    fs::copy_file(src / "models/grape-gbdt-fast.json", b / "grape.json");
-    fs::copy_file(src / "models/detector-grape.onnx", b / "det.onnx");
-    fs::copy_file(src / "models/detector-grape.pt", b / "det.pt");
-#if CROPSIGHT_HAS_ROS
-    ok_ = ok_ && run_cli("export " + shell_quoted(b / "seq") + " --bag " + shell_quoted(b / "s.bag")).exit_code == 0;
-#endif
-    fs::create_directories(b / "clouds/points");
-    for (int i = 0; i < 3; ++i)
-      cropsight::io::write_grape_text(b / "clouds/points" / ("c" + std::to_string(i) + ".txt"),
-                                      cropsight::testing::two_blobs(std::uint32_t(i), 200));
-    fs::create_directories(b / "images");
-    fs::create_directories(b / "voc");
-    fs::create_directories(b / "dets");
-    for (const char* stem : {"a", "b"}) {
-      cv::Mat img(64, 64, CV_8UC3);
-      cv::randu(img, 0, 255);
-      cv::imwrite((b / "images" / (std::string(stem) + ".png")).string(), img);
-      spit(b / "voc" / (std::string(stem) + ".xml"),
-           "<annotation><filename>" + std::string(stem) +
-               ".png</filename><size><width>64</width><height>64</height><depth>3</depth></size><object>"
-               "<name>potato</name><bndbox><xmin>10</xmin><ymin>10</ymin><xmax>30</xmax><ymax>30</ymax></bndbox>"
-               "</object></annotation>\n");
-      spit(b / "dets" / (std::string(stem) + ".txt"), "potato 0.9 10 10 30 30\n");
-    }
-    spit(
-        b / "coco.json",
-        R"({"images":[{"id":1,"file_name":"a.png","width":64,"height":64},{"id":2,"file_name":"b.png","width":64,"height":64}],)"
-        R"("annotations":[{"id":1,"image_id":1,"category_id":1,"bbox":[10,10,20,20],"area":400,"iscrowd":0,)"
-        R"("segmentation":[[10,10,30,10,30,30,10,30]]}],)"
-        R"("categories":[{"id":1,"name":"bunch"},{"id":2,"name":"peduncle"}]})");
-    spit(b / "roi.json", R"([{"image_id":0,"category_id":1,"bbox":[200,150,60,60],"score":0.9}])");
+    ok_ = cropsight::testing::make_cli_inputs(base_->path());
   }
   static void TearDownTestSuite() {
     delete base_;

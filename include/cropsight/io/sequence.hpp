@@ -13,12 +13,14 @@
 #include <Eigen/Core>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "cropsight/core/camera.hpp"
 #include "cropsight/core/rgbd_frame.hpp"
+#include "cropsight/io/output.hpp"
 
 namespace cropsight::io {
 
@@ -92,7 +94,11 @@ class SequenceReader {
 /// interrupted run never leaves a sequence that looks complete.
 class SequenceWriter {
  public:
-  /// Throws Error(dir, ...) when `dir` exists and `overwrite` is false.
+  /// Checks `dir` as an output folder of `policy` before anything is written (io/output.hpp:
+  /// never an input, never a folder cropsight did not write, an earlier output only with force)
+  /// and throws Error(dir, ...) when it may not be written.
+  SequenceWriter(std::filesystem::path dir, CameraIntrinsics camera, const OutputPolicy& policy);
+  /// The same for a writer of no particular command: `overwrite` is the policy's force.
   SequenceWriter(std::filesystem::path dir, CameraIntrinsics camera, bool overwrite = false);
   ~SequenceWriter();
   SequenceWriter(const SequenceWriter&) = delete;
@@ -106,8 +112,8 @@ class SequenceWriter {
 
  private:
   std::filesystem::path dir_, tmp_;
+  std::unique_ptr<OutputFolder> out_;
   CameraIntrinsics camera_;
-  bool overwrite_;
   int next_ = 0;
   bool color_ = false, labels_ = false, finished_ = false;
   std::vector<CameraPose> poses_;

@@ -253,11 +253,17 @@ io::GroundTruth BroccoliSimulator::groundtruth() const {
 SimulationSummary simulate_broccoli_sequence(const BroccoliSimConfig& config, std::uint64_t seed, int frames,
                                              const std::filesystem::path& out, bool overwrite,
                                              const std::function<void(int, int)>& progress) {
+  return simulate_broccoli_sequence(config, seed, frames, out, io::OutputPolicy{"simulate broccoli", overwrite, {}},
+                                    progress);
+}
+
+SimulationSummary simulate_broccoli_sequence(const BroccoliSimConfig& config, std::uint64_t seed, int frames,
+                                             const std::filesystem::path& out, const io::OutputPolicy& policy,
+                                             const std::function<void(int, int)>& progress) {
   const Stopwatch clock;
-  if (std::filesystem::exists(out) && !overwrite)
-    throw Error(out.string(), "already exists (use --force to overwrite)");
+  io::check_output_folder(out, policy);  // before the field is grown
   BroccoliSimulator sim(config, seed, frames);
-  io::SequenceWriter writer(out, sim.camera(), overwrite);
+  io::SequenceWriter writer(out, sim.camera(), policy);
   SimulationSummary s;
   double valid = 0;
   for (int i = 0; i < frames; ++i) {

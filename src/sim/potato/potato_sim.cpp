@@ -176,16 +176,22 @@ std::vector<PotatoFrameTruth> potato_frame_truth(const io::GroundTruth& truth, c
 PotatoSimSummary simulate_potato_sequence(const PotatoSimConfig& config, std::uint64_t seed, int frames,
                                           const std::filesystem::path& out, bool overwrite,
                                           const std::function<void(int, int)>& progress) {
+  return simulate_potato_sequence(config, seed, frames, out, io::OutputPolicy{"simulate potato", overwrite, {}},
+                                  progress);
+}
+
+PotatoSimSummary simulate_potato_sequence(const PotatoSimConfig& config, std::uint64_t seed, int frames,
+                                          const std::filesystem::path& out, const io::OutputPolicy& policy,
+                                          const std::function<void(int, int)>& progress) {
   const auto t0 = std::chrono::steady_clock::now();
+  io::check_output_folder(out, policy);  // before the scene is built
   config.validate("sim config");
   if (frames < 1) throw Error("sim config", "frames must be at least 1");
-  if (std::filesystem::exists(out) && !overwrite)
-    throw Error(out.string(), "already exists (use --force to overwrite)");
   const CameraIntrinsics cam = config.camera();
   const detail::PotatoSceneModel scene = detail::build_potato_scene(config, seed);
   // The sequence writer fills tmp/sequence; depth_color/ goes beside it; both then move into tmp,
   // which replaces `out` at the end: an interrupted run leaves nothing that looks complete.
-  io::TempDirectory tmp(out);
+  io::OutputFolder tmp(out, policy);
   const std::filesystem::path seq = tmp.path() / "sequence", colour_dir = tmp.path() / "depth_color";
   std::filesystem::create_directories(colour_dir);
   PotatoSimSummary summary;

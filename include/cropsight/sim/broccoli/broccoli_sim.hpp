@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cropsight/core/rgbd_frame.hpp"
+#include "cropsight/io/output.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/sim/broccoli/broccoli_config.hpp"
 #include "cropsight/sim/broccoli/broccoli_field.hpp"
@@ -98,7 +99,12 @@ struct SimulationSummary {
 
 /// Simulates `frames` frames and writes the sequence (io::SequenceWriter: camera.yaml, depth/,
 /// color/, labels/, poses.csv, groundtruth.json) to `out`, atomically. Throws Error(out, ...)
-/// when `out` exists and `overwrite` is false. `progress(done, total)` is called after each frame.
+/// before any rendering when `policy` refuses `out` (io/output.hpp). `progress(done, total)` is
+/// called after each frame.
+SimulationSummary simulate_broccoli_sequence(const BroccoliSimConfig& config, std::uint64_t seed, int frames,
+                                             const std::filesystem::path& out, const io::OutputPolicy& policy,
+                                             const std::function<void(int, int)>& progress = {});
+/// The same as the command "simulate broccoli" with `overwrite` as its --force.
 SimulationSummary simulate_broccoli_sequence(const BroccoliSimConfig& config, std::uint64_t seed, int frames,
                                              const std::filesystem::path& out, bool overwrite,
                                              const std::function<void(int, int)>& progress = {});

@@ -18,6 +18,7 @@
 #include "cropsight/core/config.hpp"
 #include "cropsight/core/detection2d.hpp"
 #include "cropsight/core/image.hpp"
+#include "cropsight/io/output.hpp"
 #include "cropsight/io/sequence.hpp"
 
 namespace cropsight::sim {
@@ -117,8 +118,12 @@ struct PotatoSimSummary {
 };
 
 /// Simulates `frames` frames and writes the sequence to `out` (camera.yaml, depth/, color/,
-/// labels/, poses.csv, groundtruth.json, depth_color/), atomically. Throws Error(out, ...) when
-/// `out` exists and `overwrite` is false.
+/// labels/, poses.csv, groundtruth.json, depth_color/), atomically. Throws Error(out, ...) before
+/// any rendering when `policy` refuses `out` (io/output.hpp).
+PotatoSimSummary simulate_potato_sequence(const PotatoSimConfig& config, std::uint64_t seed, int frames,
+                                          const std::filesystem::path& out, const io::OutputPolicy& policy,
+                                          const std::function<void(int, int)>& progress = {});
+/// The same as the command "simulate potato" with `overwrite` as its --force.
 PotatoSimSummary simulate_potato_sequence(const PotatoSimConfig& config, std::uint64_t seed, int frames,
                                           const std::filesystem::path& out, bool overwrite,
                                           const std::function<void(int, int)>& progress = {});
