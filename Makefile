@@ -11,6 +11,9 @@
 #   make fuzz    libFuzzer harnesses (Clang, build-fuzz/): replay the seeds and past findings, then
 #                fuzz every parser FUZZ_SECONDS (default 15) each; scripts/fuzz.sh for one harness
 #   make format  clang-format every source file (format-check: only check)
+#   make install PREFIX=DIR   the CLI, ROS nodes, plugin, presets, models, library and docs under DIR
+#                (default /usr/local); the prefix can be moved afterwards (docs/library.md)
+#   make package a .deb of the same (CPack) in $(BUILD)/
 
 BUILD      ?= build
 BUILD_TYPE ?= Release
@@ -33,7 +36,7 @@ FUZZ_SEED ?= 1
 export CCACHE_BASEDIR := $(CURDIR)
 export CCACHE_NOHASHDIR := 1
 
-.PHONY: all deps configure build test demo bench asan tsan fuzz format format-check clean
+.PHONY: all deps configure build test demo bench asan tsan fuzz format format-check clean install package
 
 all: build
 
@@ -59,6 +62,13 @@ test: build
 demo: configure
 	cmake --build $(BUILD) -j $(JOBS) --target cropsight
 	@scripts/demo.sh $(BUILD)
+
+PREFIX ?= /usr/local
+install: build
+	cmake --install $(BUILD) --prefix "$(PREFIX)"
+
+package: build
+	cd $(BUILD) && cpack -G DEB
 
 bench: build
 	@scripts/bench.sh $(BUILD)

@@ -47,7 +47,7 @@ function(cropsight_module)
   if(NOT srcs)
     # A module with headers only (or not started yet) is an interface library.
     add_library(${lib} INTERFACE)
-    target_include_directories(${lib} INTERFACE ${PROJECT_SOURCE_DIR}/include)
+    target_include_directories(${lib} INTERFACE $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:include>)
     target_link_libraries(${lib} INTERFACE ${M_DEPS})
     add_library(cropsight::${M_NAME} ALIAS ${lib})
     return()
@@ -62,9 +62,11 @@ function(cropsight_module)
       target_compile_options(${lib} PRIVATE -Wno-subobject-linkage)
     endif()
   endif()
-  target_include_directories(${lib} PUBLIC ${PROJECT_SOURCE_DIR}/include PRIVATE ${PROJECT_SOURCE_DIR}/src)
+  # The installed headers are PREFIX/include (cmake/Install.cmake); no library is compiled with a path
+  # of the source tree (core/install_paths.hpp says how an install finds its data).
+  target_include_directories(${lib} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:include>
+                                    PRIVATE ${PROJECT_SOURCE_DIR}/src)
   target_link_libraries(${lib} PUBLIC ${M_DEPS} PRIVATE ${M_PRIVATE_DEPS})
-  target_compile_definitions(${lib} PRIVATE CROPSIGHT_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   if(M_PCH)
     target_precompile_headers(${lib} PRIVATE ${M_PCH})
   endif()

@@ -15,7 +15,7 @@ export ROS_MASTER_URI=$(cat "$dir/master_uri") ROS_HOSTNAME=127.0.0.1 ROS_HOME="
 [[ -d "$dir/broccoli" ]] || "$bin/cropsight" simulate broccoli --frames 30 --seed 9100 --out "$dir/broccoli" >/dev/null 2>&1
 [[ -d "$dir/potato" ]] || "$bin/cropsight" simulate potato --scene sheet --frames 30 --seed 9101 --out "$dir/potato" >/dev/null 2>&1
 for n in broccoli potato; do
-  [[ -f "$dir/$n.bag" ]] || "$bin/cropsight" export "$dir/$n" --bag "$dir/$n.bag" >/dev/null
+  [[ -f "$dir/$n.bag" ]] || "$bin/cropsight" export --data "$dir/$n" --out "$dir/$n.bag" >/dev/null
   taskset -c 0 "$bin/cropsight_${n}_node" __ns:=/bench_$n __name:=$n _rate:=0 $params > "$dir/$n-node.log" 2>&1 &
   node_pid=$!
   taskset -c 1 "$bin/bench_ros_latency" --bag "$dir/$n.bag" --ns /bench_$n --node $n --rate "$rate" --frames "$frames"

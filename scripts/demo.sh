@@ -26,8 +26,8 @@ force=(--force)
 echo "== cropsight simulate broccoli --variety uk --frames 30 --seed 7 --out $SEQ"
 "$CLI" simulate broccoli --variety uk --frames 30 --seed 7 --out "$SEQ" "${force[@]}"
 
-echo "== cropsight info $SEQ"
-"$CLI" info "$SEQ"
+echo "== cropsight info --data $SEQ"
+"$CLI" info --data "$SEQ"
 
 # The general model: the one measured best on fields it was not trained on.
 MODEL=models/broccoli-oes-general.json

@@ -13,7 +13,7 @@ mkdir -p "$out"
 shot() {  # NAME SIMULATE_ARGS NODE_ARGS...
   local name=$1 sim=$2; shift 2
   "$build/bin/cropsight" simulate $sim --out "$work/$name-seq" >/dev/null 2>&1
-  "$build/bin/cropsight" export "$work/$name-seq" --bag "$work/$name.bag" >/dev/null
+  "$build/bin/cropsight" export --data "$work/$name-seq" --out "$work/$name.bag" >/dev/null
   "$build/bin/cropsight_${name}_node" __ns:=/camera "$@" >"$work/$name-node.log" 2>&1 &
   local node=$!
   scripts/ros-debug-image.py /camera/debug_image "$out/ros-debug-$name.png" 5 120 &

@@ -26,7 +26,7 @@ if [[ $node == seedling ]]; then
     "$bin/cropsight" simulate seedling --pairs 10 --calib-pairs 0 --seed 9102 --quiet --out "$dir/pairs" >/dev/null
   input=(--stereo "$dir/pairs")
 else
-  input=(--bag "$dir/seq.bag")
+  input=(--data "$dir/seq.bag")
 fi
 if [[ $node != seedling && ! -f "$dir/seq.bag" ]]; then
   if [[ $node == broccoli ]]; then
@@ -34,7 +34,7 @@ if [[ $node != seedling && ! -f "$dir/seq.bag" ]]; then
   else
     "$bin/cropsight" simulate potato --scene sheet --frames 30 --seed 9101 --out "$dir/seq" --force >/dev/null
   fi
-  "$bin/cropsight" export "$dir/seq" --bag "$dir/seq.bag" --overwrite >/dev/null
+  "$bin/cropsight" export --data "$dir/seq" --out "$dir/seq.bag" --force >/dev/null
 fi
 taskset -c 0 "$bin/cropsight_${node}_node" __ns:=/long_$node __name:=$node _rate:=0 >"$dir/node.log" 2>&1 &
 node_pid=$!

@@ -31,8 +31,8 @@ run train train broccoli --data "$P" --config broccoli-oes-spain --out "$out/tra
 if grape="$(scripts/unpack-grape.sh 2>/dev/null)"; then
   clouds=("$grape"/points/*.txt)  # the first by name; not `ls | head -1`: under pipefail, head's
   cloud="${clouds[0]}"              # early exit kills ls with SIGPIPE and the script with it (141)
-  run segment-grape segment grape --model models/grape-gbdt.json --input "$cloud" --out "$out/segment-grape.txt" --json
-  run eval-grape eval grape --data "$grape" --model models/grape-gbdt-fast4096-fold1.json --fold 1/4 --limit 8 --json
+  run segment-grape segment grape --model models/grape-gbdt.json --clouds "$cloud" --out "$out/segment-grape.txt" --json
+  run eval-grape eval grape --clouds "$grape" --model models/grape-gbdt-fast4096-fold1.json --fold 1/4 --limit 8 --json
 fi
 # Seedlings and stereo: a small simulated set.
 [[ -d "$data/seedlings" ]] || "$bin" simulate seedling --seed 4711 --pairs 4 --out "$data/seedlings" >/dev/null 2>&1 || true

@@ -27,7 +27,7 @@ for k in 0 1 2; do
   "$bin/potato_paste" --images "$det/images" --voc "$det/annotations_voc" --out "$f/comp" --count "$count" \
     --seed 1 --exclude "$(IFS=,; echo "${fold[*]}")" 2> /dev/null
   "$bin/cropsight" train detector --coco "$f/comp/annotations.json" --images "$f/comp" --classes potato \
-    --out "$f/cnn.pt" --epochs "$epochs" --input 416x416 --threads 1 --seed 1 --val-split 0 --json > "$f/train.json"
+    --out "$f/cnn.pt" --epochs "$epochs" --input-size 416x416 --threads 1 --seed 1 --val-split 0 --json > "$f/train.json"
   "$bin/cropsight" export-detector --model "$f/cnn.pt" --out "$f/cnn.onnx" > /dev/null
   for b in cnn fusion; do
     "$bin/cropsight" detect potato --images "$f/held" --out "$f/det-$b" --set detector.backend=$b \

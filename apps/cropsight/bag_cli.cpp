@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "cli_common.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #if CROPSIGHT_HAS_ROS
@@ -85,6 +86,19 @@ BagExportResult export_bag(const std::string&, const std::string& bag, const Bag
 }
 BagImportResult import_bag(const std::string& bag, const std::string&, const BagTopicOptions&, bool) { no_ros(bag); }
 #endif
+
+bool is_bag_file(const std::string& path) { return fs::path(path).extension() == ".bag"; }
+
+void add_recording_options(CLI::App* cmd, std::string& data, BagTopicOptions& topics, const std::string& help) {
+  cmd->add_option("--data", data, help + ", or a ROS bag (.bag: depth, camera_info, colour topics below)");
+  add_deprecated_option(cmd, "--bag", data, "--data");
+  add_bag_topic_options(cmd, topics);
+}
+
+Recording::Recording(const std::string& data, const BagTopicOptions& topics) : data_(data) {
+  if (data.empty()) throw Error("--data", "give a sequence folder or a ROS bag");
+  if (is_bag_file(data)) bag_.emplace(data, topics);
+}
 
 BagSequence::~BagSequence() {
   std::error_code ec;

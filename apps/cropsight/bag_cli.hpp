@@ -1,10 +1,11 @@
 #pragma once
-// --bag options of the CLI (issue 25): bag topics, and a sequence folder made from a bag for the
-// commands that read sequences (detect broccoli, harvest potato, eval ...). Works without a ROS
-// master; in a build without ROS (-DCROPSIGHT_ROS=OFF or no ROS packages) every --bag is an
-// error that says so.
+// ROS bags on the command line: --data takes a bag (*.bag) wherever it takes a recording, with the
+// bag's topics, and a sequence folder is made from it for the commands that read sequences
+// (detect broccoli, harvest potato, import). Works without a ROS master; in a build without ROS
+// (-DCROPSIGHT_ROS=OFF or no ROS packages) a bag is an error that says so.
 #include <CLI/CLI.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace cropsight::cli {
@@ -30,7 +31,27 @@ class BagSequence {
   std::string root_, path_;
 };
 
-/// cropsight export SEQ --bag OUT.bag and cropsight import --bag IN.bag --out SEQ
+/// True when `path` names a ROS bag (a file ending in .bag) rather than a sequence folder.
+bool is_bag_file(const std::string& path);
+
+/// --data of a command that reads a recording: a sequence folder or a ROS bag (*.bag), with the
+/// bag's topic options; --bag stays as its deprecated spelling.
+void add_recording_options(CLI::App* cmd, std::string& data, BagTopicOptions& topics, const std::string& help);
+
+/// The sequence folder a --data names: the folder itself, or a bag's frames in a temporary
+/// sequence (BagSequence) that lives as long as this object. Throws Error("--data", ...) when
+/// `data` is empty.
+class Recording {
+ public:
+  Recording(const std::string& data, const BagTopicOptions& topics);
+  const std::string& sequence() const { return bag_ ? bag_->path() : data_; }
+
+ private:
+  std::string data_;
+  std::optional<BagSequence> bag_;
+};
+
+/// cropsight export --data SEQ --out OUT.bag and cropsight import --data IN.bag --out SEQ
 /// (ros/include/cropsight_ros/bag_io.hpp).
 struct BagExportResult {
   int frames = 0;

@@ -5,16 +5,25 @@
 #include <sstream>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/config_yaml.hpp"
 
 namespace cropsight::cli {
 
 LoadedBroccoli load_broccoli(const std::string& model_path, const CommonOptions& common, bool track) {
   LoadedBroccoli l;
-  l.model = pipeline::load_broccoli_model(model_path);
-  l.config = pipeline::broccoli_config_for_model(*l.model, common.config_map(), model_path,
+  const std::string file = io::find_model(model_path).string();  // a file, or a shipped model's name
+  l.model = pipeline::load_broccoli_model(file);
+  l.config = pipeline::broccoli_config_for_model(*l.model, common.config_map(), file,
                                                  common.config.empty() ? "--set" : common.config);
   l.config.track = track;
   return l;
+}
+
+void add_broccoli_model_option(CLI::App* cmd, std::string& model) {
+  model = kDefaultBroccoliModel;
+  cmd->add_option("--model", model,
+                  "Model: a shipped model's name (models/, e.g. broccoli-oes-uk) or a file written by train broccoli")
+      ->capture_default_str();
 }
 
 void add_track_options(CLI::App* cmd, TrackOptions& o, bool detect) {

@@ -23,7 +23,15 @@ struct LoadedBroccoli {
   std::shared_ptr<const learning::Model> model;
   pipeline::BroccoliPipelineConfig config;
 };
+/// The model `model_path` names (a file, or a shipped model's name: io::find_model) with its
+/// configuration overlaid by --config / --set.
 LoadedBroccoli load_broccoli(const std::string& model_path, const CommonOptions& common, bool track);
+
+/// The broccoli model a command runs when given no --model: the one measured best on fields it
+/// was not trained on (docs/pipelines/broccoli-heads.md).
+inline constexpr const char* kDefaultBroccoliModel = "broccoli-oes-general";
+/// --model NAME|FILE of the broccoli commands, defaulting to kDefaultBroccoliModel.
+void add_broccoli_model_option(CLI::App* cmd, std::string& model);
 
 /// --track (both) and --map (detect) or --map-min-points / --fit-size-bias (eval).
 struct TrackOptions {

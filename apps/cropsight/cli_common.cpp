@@ -66,6 +66,17 @@ void add_deprecated_option(CLI::App* cmd, const std::string& old_name, std::stri
       ->group("");
 }
 
+void add_deprecated_positional(CLI::App* cmd, std::string& target) {
+  cmd->add_option_function<std::string>(
+         "SEQ",
+         [&target](const std::string& v) {
+           deprecation_notice("a sequence as a positional argument", "--data SEQ");
+           target = v;
+         },
+         "Deprecated spelling of --data SEQ")
+      ->group("");
+}
+
 io::OutputPolicy output_policy(const std::string& command, bool force, const std::vector<std::string>& inputs) {
   io::OutputPolicy p{command, force, {}};
   for (const std::string& in : inputs)

@@ -50,6 +50,10 @@ void add_deprecated_flag(CLI::App* cmd, const std::string& old_name, bool& targe
 void add_deprecated_option(CLI::App* cmd, const std::string& old_name, std::string& target,
                            const std::string& new_name);
 
+/// The positional SEQ of the first commands (info, export, render), kept for one release: it fills
+/// `target` (the --data option's) and prints the deprecation line.
+void add_deprecated_positional(CLI::App* cmd, std::string& target);
+
 /// The output policy of `command` ("detect potato"): its --force and the paths it reads, as given
 /// on the command line (empty ones are skipped). Every output is checked against it before work.
 io::OutputPolicy output_policy(const std::string& command, bool force, const std::vector<std::string>& inputs);

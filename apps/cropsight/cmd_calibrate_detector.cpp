@@ -1,4 +1,4 @@
-// cropsight calibrate-detector --model IN.pt (--coco ANN.json | --voc DIR) --images DIR
+// cropsight tune-mask-thresholds (formerly calibrate-detector) --model IN.pt (--coco ANN.json | --voc DIR) --images DIR
 //     [--classes a,b] [--val-split F --split-seed S] [--input WxH] [--mask-upsampling M] [--flip-test[=false]]
 //     [--mask-inputs WxH[,WxH...]|none]
 //     --out OUT.pt [--json]
@@ -19,6 +19,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/config_yaml.hpp"
 #include "cropsight/nn/center_net.hpp"
 #include "detector_cli.hpp"
 
@@ -35,15 +36,18 @@ void add_calibrate_detector(CLI::App& app) {
     CommonOptions common;
   };
   auto o = std::make_shared<Options>();
-  auto* cmd = app.add_subcommand("calibrate-detector",
+  // The old name stays an alias for one release (main.cpp prints the deprecation line).
+  auto* cmd = app.add_subcommand("tune-mask-thresholds",
                                  "Set a detector's per-class mask thresholds from its training images (.pt)");
+  cmd->alias("calibrate-detector");
   cmd->add_option("--model", o->model, "Detector model written by train detector (.pt)")->required();
   add_dataset_options(cmd, o->data);
   cmd->add_option("--val-split", o->val_split,
                   "Held-out fraction of train detector's split: those images are not used");
   cmd->add_option("--split-seed", o->split_seed, "Seed of that split");
-  cmd->add_option("--input", o->input,
+  cmd->add_option("--input-size", o->input,
                   "Inference input WxH, multiples of 32 (default: the model's; a later training would use it too)");
+  add_deprecated_option(cmd, "--input", o->input, "--input-size");
   cmd->add_option("--mask-upsampling", o->upsampling, "bilinear | nearest: mask head cells to pixels")
       ->capture_default_str();
   o->flip_given = cmd->add_flag("--flip-test", o->flip_test,
@@ -60,9 +64,9 @@ void add_calibrate_detector(CLI::App& app) {
   add_json_flag(cmd, o->common);
   cmd->callback([o] {
     io::check_output_file(
-        o->out, output_policy("calibrate-detector", o->force, {o->model, o->data.coco, o->data.voc, o->data.images}));
+        o->out, output_policy("tune-mask-thresholds", o->force, {o->model, o->data.coco, o->data.voc, o->data.images}));
     if (o->val_split < 0 || o->val_split >= 1) throw Error("--val-split", "must be in [0, 1)");
-    nn::CenterNet net = nn::CenterNet::load(o->model, 1);
+    nn::CenterNet net = nn::CenterNet::load(io::find_model(o->model).string(), 1);
     if (!o->input.empty()) {
       const auto [w, h] = parse_input_size(o->input);
       net.set_input_size(w, h);

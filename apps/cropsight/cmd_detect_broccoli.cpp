@@ -28,7 +28,7 @@ namespace fs = std::filesystem;
 namespace detect_broccoli_cmd {
 struct DetectOptions {
   CommonOptions common;
-  std::string data, bag, model, out, masks;
+  std::string data, model, out, masks;
   BagTopicOptions topics;
   bool quiet = false, force = false;
   TrackOptions track;  // --track, --map (issue 4)
@@ -45,7 +45,7 @@ void run(const DetectOptions& o) {
   if (!o.track.map.empty() && !o.track.track) throw Error("--map", "needs --track");
   // Every output is checked before the model is loaded or a frame read: a two-hour recording
   // must not fail at its end because --out cannot be written.
-  io::OutputPolicy policy = output_policy("detect broccoli", o.force, {o.data, o.bag, o.model, o.common.config});
+  io::OutputPolicy policy = output_policy("detect broccoli", o.force, {o.data, o.model, o.common.config});
   io::check_output_file(o.out, policy);
   policy.inputs.emplace_back(o.out);  // the outputs must not overlap each other either
   if (!o.track.map.empty()) {
@@ -56,15 +56,13 @@ void run(const DetectOptions& o) {
   if (!o.masks.empty()) masks_out.emplace(o.masks, policy);
   const LoadedBroccoli b = load_broccoli(o.model, o.common, o.track.track);
   pipeline::BroccoliPipeline pipe(b.config, b.model, o.model);
-  if (o.data.empty() == o.bag.empty()) throw Error("--data", "give a sequence folder (--data) or a bag (--bag)");
-  std::optional<BagSequence> bag;
-  if (!o.bag.empty()) bag.emplace(o.bag, o.topics);
-  io::SequenceReader reader(bag ? bag->path() : o.data);
+  const Recording recording(o.data, o.topics);
+  io::SequenceReader reader(recording.sequence());
 
   std::string lines;
   long total = 0;
   double ms = 0;
-  Progress progress("detect broccoli: " + (o.bag.empty() ? o.data : o.bag), reader.size(), o.quiet || o.common.json);
+  Progress progress("detect broccoli: " + o.data, reader.size(), o.quiet || o.common.json);
   for (int i = 0; i < reader.size(); ++i) {
     const RgbdFrame frame = reader.read(i);
     const pipeline::BroccoliFrameResult& r = pipe.process(frame);
@@ -80,7 +78,7 @@ void run(const DetectOptions& o) {
     progress.update(i + 1);
   }
   progress.finish();
-  nlohmann::json summary{{"data", o.bag.empty() ? o.data : o.bag},
+  nlohmann::json summary{{"data", o.data},
                          {"model", o.model},
                          {"out", o.out},
                          {"frames", reader.size()},
@@ -115,10 +113,8 @@ void add_detect_broccoli(CLI::App& detect) {
   using namespace detect_broccoli_cmd;
   auto o = std::make_shared<DetectOptions>();
   auto* cmd = detect.add_subcommand("broccoli", "Detect broccoli heads in a sequence with a trained model");
-  cmd->add_option("--data", o->data, "Sequence directory");
-  cmd->add_option("--bag", o->bag, "A ROS bag in place of --data (depth, camera_info, colour topics below)");
-  add_bag_topic_options(cmd, o->topics);
-  cmd->add_option("--model", o->model, "Model file (cropsight train broccoli)")->required();
+  add_recording_options(cmd, o->data, o->topics, "Sequence folder");
+  add_broccoli_model_option(cmd, o->model);
   cmd->add_option("--out", o->out, "Detections, one JSON line per frame")->required();
   cmd->add_option("--masks", o->masks, "New folder for 16-bit detection-number PNGs (optional)");
   add_force_flag(cmd, o->force);

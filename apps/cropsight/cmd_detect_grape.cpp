@@ -21,6 +21,7 @@
 #include "cropsight/core/threads.hpp"
 #include "cropsight/core/timer.hpp"
 #include "cropsight/io/cloud_io.hpp"
+#include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/nn/center_onnx.hpp"
 #include "cropsight/pipeline/grape/grape_pipeline.hpp"
@@ -74,7 +75,7 @@ void run(const DetectGrapeOptions& o) {
   scfg.threads = o.threads;
   pipeline::GrapeSegmenter segmenter(scfg, "command line");
   std::unique_ptr<Detector2D> detector;
-  if (!o.detector.empty()) detector = nn::load_center_detector(o.detector, o.threads);
+  if (!o.detector.empty()) detector = nn::load_center_detector(io::find_model(o.detector).string(), o.threads);
   pipeline::GrapePipeline pipe(cfg, std::move(segmenter), std::move(detector), "--config/--set");
 
   // Everything is computed before anything is written: no partial output on a failure.

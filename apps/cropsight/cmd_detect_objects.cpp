@@ -11,6 +11,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/voc.hpp"
@@ -53,7 +54,7 @@ void add_detect_objects(CLI::App& detect) {
     // Written whole or not at all: a bad image half-way leaves no folder of partial results.
     io::OutputFolder out(o->out, output_policy("detect objects", o->force, {o->images, o->model}));
     const auto files = list_images(o->images);
-    auto det = nn::load_center_detector(o->model, o->threads);
+    auto det = nn::load_center_detector(io::find_model(o->model).string(), o->threads);
     const auto names = det->class_names();
     nlohmann::json results = nlohmann::json::array();
     std::size_t boxes = 0;

@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/timer.hpp"
+#include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/sequence.hpp"
@@ -113,12 +114,13 @@ void run(const Options& o) {
   CommonOptions common = o.common;
   if (!o.model.empty()) {  // --model: the ONNX backend with this file
     common.sets.push_back("detector.backend=onnx");
-    common.sets.push_back("detector.onnx.model=" + o.model);
+    common.sets.push_back("detector.onnx.model=" + io::find_model(o.model).string());
   }
   // A bad key or model fails before any image is read.
   pipeline::potato::PotatoPipeline pipeline(potato_config(common), common.config.empty() ? "potato" : common.config);
   const std::vector<std::string> names = pipeline.detector_class_names();
   const Inputs inputs(o);
+  nlohmann::json images = nlohmann::json::array();  // --json: one object at the end
   for (int i = 0; i < inputs.size(); ++i) {
     Input in = inputs.read(i);
     Stopwatch sw;
@@ -138,12 +140,13 @@ void run(const Options& o) {
       io::write_color(overlay->path() / (in.stem + ".png"), in.color);
     }
     if (o.common.json)
-      print_json({{"image", in.name}, {"detections", detections_json(dets, names, angles)}, {"ms", ms}});
+      images.push_back({{"image", in.name}, {"detections", detections_json(dets, names, angles)}, {"ms", ms}});
     else
       std::printf("%s: %zu potato%s (%.2f ms)\n", in.name.c_str(), dets.size(), dets.size() == 1 ? "" : "es", ms);
   }
   out.commit("detection folder");
   if (overlay) overlay->commit("overlay folder");
+  if (o.common.json) print_json({{"out", o.out}, {"images", std::move(images)}});
 }
 
 }  // namespace detect_potato_cmd
@@ -151,7 +154,7 @@ void run(const Options& o) {
 void add_detect_potato(CLI::App& detect) {
   using namespace detect_potato_cmd;
   auto o = std::make_shared<Options>();
-  auto* cmd = detect.add_subcommand("potato", "Detect potatoes in images or an RGB-D sequence (issue 22)");
+  auto* cmd = detect.add_subcommand("potato", "Detect potatoes in images or an RGB-D sequence");
   cmd->add_option("--images", o->images, "Folder of .jpg/.png images, or one image");
   cmd->add_option("--data", o->data, "RGB-D sequence folder (docs/formats.md): its depth reaches the detector");
   cmd->add_option("--model", o->model, "ONNX detector to run (sets detector.backend=onnx, detector.onnx.model)");

@@ -116,7 +116,7 @@ void run(const Options& o) {
 void add_detect_seedling(CLI::App& detect) {
   using namespace detect_seedling_cmd;
   auto o = std::make_shared<Options>();
-  auto* cmd = detect.add_subcommand("seedling", "Recognise a broccoli seedling in a stereo pair (issue 5)");
+  auto* cmd = detect.add_subcommand("seedling", "Recognise a broccoli seedling in a stereo pair");
   cmd->add_option("--left", o->left, "Left image")->required();
   cmd->add_option("--right", o->right, "Right image")->required();
   cmd->add_option("--calib", o->calib, "Stereo calibration YAML (cropsight stereo calibrate)")->required();

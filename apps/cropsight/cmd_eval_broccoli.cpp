@@ -90,7 +90,7 @@ void add_eval_broccoli(CLI::App& eval) {
   auto o = std::make_shared<EvalOptions>();
   auto* cmd = eval.add_subcommand("broccoli", "Evaluate a broccoli head model on labelled sequences");
   cmd->add_option("--data", o->data, "Sequence directories, comma separated")->required();
-  cmd->add_option("--model", o->model, "Model file (cropsight train broccoli)")->required();
+  add_broccoli_model_option(cmd, o->model);
   cmd->add_flag("--quiet", o->quiet, "No progress lines");
   add_track_options(cmd, o->track, /*detect=*/false);
   add_config_options(cmd, o->common);

@@ -6,7 +6,7 @@
 //       [--classes a,b] [--val-split F --split-seed S] [--mask-threshold T] [--threads N] [--json]
 //
 // Masks are thresholded at the model's per-class mask_thresholds (set by train detector /
-// calibrate-detector on training images; 0.5 for older models) unless --mask-threshold gives one
+// tune-mask-thresholds on training images; 0.5 for older models) unless --mask-threshold gives one
 // value for every class.
 //
 // With --val-split only the held-out images of that split are scored: the same images `train
@@ -19,6 +19,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/config_yaml.hpp"
 #include "cropsight/nn/center_onnx.hpp"
 #include "cropsight/nn/detector_eval.hpp"
 #include "detector_cli.hpp"
@@ -38,7 +39,7 @@ struct EvalDetectorOptions {
 nlohmann::json number_or_null(double v) { return std::isnan(v) ? nlohmann::json() : json_number(v); }
 
 void run(EvalDetectorOptions o) {
-  auto det = nn::load_center_detector(o.model, o.threads);
+  auto det = nn::load_center_detector(io::find_model(o.model).string(), o.threads);
   if (o.data.classes.empty())
     for (const auto& c : det->class_names()) o.data.classes += (o.data.classes.empty() ? "" : ",") + c;
   nn::DetectionDataset set = load_dataset(o.data);

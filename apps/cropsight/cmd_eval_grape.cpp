@@ -1,7 +1,7 @@
 // cropsight eval grape: OAcc / mAcc / mIoU, per-class accuracy and IoU and time per cloud of a
 // trained grape segmentation model on labelled text clouds.
 //
-//   cropsight eval grape --data DIR (--model MODEL | --config PRESET) [--fold k/K] [--limit N]
+//   cropsight eval grape --clouds DIR (--model MODEL | --config PRESET) [--fold k/K] [--limit N]
 //   [--sampled [--sampling random|fps] [--carry-k K]] [--votes N] [--ensemble MODEL2 [--ensemble-weight W]] [--json]
 //
 // --fold k/K evaluates only the clouds of fold k (the split of `train grape --val-fold k/K`),
@@ -33,6 +33,7 @@ struct EvalGrapeOptions {
 };
 
 void run(const EvalGrapeOptions& o) {
+  if (o.data.empty()) throw Error("--clouds", "give the folder of labelled clouds");
   check_thread_count(o.threads, "--threads");
   auto cfg = o.segmenter.config();
   cfg.threads = o.threads;
@@ -71,7 +72,8 @@ void add_eval_grape(CLI::App& eval) {
   using namespace eval_grape_cmd;
   auto o = std::make_shared<EvalGrapeOptions>();
   auto* cmd = eval.add_subcommand("grape", "Evaluate a grape segmentation model on labelled text clouds");
-  cmd->add_option("--data", o->data, "Folder of labelled text clouds (directly or under points/)")->required();
+  cmd->add_option("--clouds", o->data, "Folder of labelled text clouds (directly or under points/)");
+  add_deprecated_option(cmd, "--data", o->data, "--clouds");
   cmd->add_option("--fold", o->fold, "k/K: evaluate only fold k of the by-cloud split");
   cmd->add_option("--split-seed", o->split_seed, "Seed of the fold split (as in train grape)");
   auto* limit = cmd->add_option("--limit", o->limit, "Use only the first N clouds, N >= 1");

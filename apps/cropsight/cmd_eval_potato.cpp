@@ -110,7 +110,8 @@ void add_eval_potato(CLI::App& eval) {
   auto* cmd = eval.add_subcommand(
       "potato", "The harvest loop on a simulated approach, scored against the simulator's truth (position, tracking)");
   cmd->add_option("--data", o->data, "simulated sequence folder (cropsight simulate potato)")->required();
-  cmd->add_flag("--frames", o->frames, "with --json: a row per frame (matched potato, errors)");
+  cmd->add_flag("--per-frame", o->frames, "With --json: a row per frame (matched potato, errors)");
+  add_deprecated_flag(cmd, "--frames", o->frames, "--per-frame");
   cmd->add_option("--min-iou", o->min_iou, "IoU of the target's box with a simulated potato's visible box to match")
       ->check(CLI::Range(0.01, 1.0));
   add_config_options(cmd, o->common);

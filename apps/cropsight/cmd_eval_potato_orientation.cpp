@@ -109,13 +109,15 @@ void run(const Options& o) {
 void add_eval_potato_orientation(CLI::App& eval) {
   using namespace eval_potato_orientation_cmd;
   auto o = std::make_shared<Options>();
-  auto* cmd =
-      eval.add_subcommand("potato-orientation", "Potato orientation error on <angle>_<light>_rgb folders (issue 22)");
-  cmd->add_option("--rgb", o->rgb, "Folder with <angle>_<light>_rgb/imageN.png")->required();
+  auto* cmd = eval.add_subcommand("potato-orientation", "Potato orientation error on <angle>_<light>_rgb folders");
+  cmd->add_option("--color", o->rgb, "Folder with <angle>_<light>_rgb/imageN.png")->required();
+  add_deprecated_option(cmd, "--rgb", o->rgb, "--color");
   cmd->add_option("--depth", o->depth, "Folder with <angle>_<light>_depth/imageN.png (colourised depth)")->required();
   cmd->add_option("--segmentation", o->segmentation, "canny | kmeans | ours")->capture_default_str();
   cmd->add_option("--axis", o->axis, "pca | ellipse")->capture_default_str();
-  cmd->add_option("--input", o->input, "rgb | depth")->capture_default_str();
+  cmd->add_option("--modality", o->input, "rgb | depth: the image the orientation is estimated from")
+      ->capture_default_str();
+  add_deprecated_option(cmd, "--input", o->input, "--modality");
   cmd->add_option("--boxes", o->boxes,
                   "Box source: board (BoardBlobDetector: one colour blob on a white board) | detector (the "
                   "--detector-config preset's detector, the paper's protocol)")

@@ -45,7 +45,7 @@ void run(const Options& o) {
 void add_eval_seedling(CLI::App& eval) {
   using namespace eval_seedling_cmd;
   auto o = std::make_shared<Options>();
-  auto* cmd = eval.add_subcommand("seedling", "Seedling recognition on simulated stereo pairs (issue 5)");
+  auto* cmd = eval.add_subcommand("seedling", "Seedling recognition on simulated stereo pairs");
   cmd->add_option("--data", o->data, "Folder written by cropsight simulate seedling")->required();
   cmd->add_option("--calib", o->calib, "Calibration YAML (default: DATA/rig.yaml)");
   cmd->add_flag("--no-opencv", o->no_opencv, "Skip timing cv::ml::EM on the same points");

@@ -1,5 +1,6 @@
-// cropsight export SEQ --frame I --out FILE.pcd|.ply: one frame as an organised cloud (width x
-// height kept, NaN for no return) with colour and ground-truth labels when the sequence has them.
+// cropsight export --data SEQ --frame I --out FILE.pcd|.ply: one frame as an organised cloud (width
+// x height kept, NaN for no return) with colour and ground-truth labels when the sequence has them;
+// --out FILE.bag: the whole sequence as a ROS bag.
 #include <cstdio>
 #include <memory>
 
@@ -34,12 +35,18 @@ void run_bag(const ExportOptions& o) {
   }
 }
 
-void run(const ExportOptions& o) {
-  if (!o.bag.empty()) {
-    if (!o.out.empty() || o.frame >= 0) throw Error("--bag", "exports the whole sequence: leave out --frame and --out");
+void run(ExportOptions o) {
+  if (o.seq.empty()) throw Error("--data", "give the sequence folder to export");
+  if (!o.bag.empty()) {  // the deprecated --bag OUT.bag
+    if (!o.out.empty()) throw Error("--bag", "give the bag as --out OUT.bag");
+    o.out = o.bag;
+  }
+  if (is_bag_file(o.out)) {
+    if (o.frame >= 0) throw Error("--frame", "a bag holds the whole sequence: leave out --frame");
+    o.bag = o.out;
     return run_bag(o);
   }
-  if (o.out.empty() || o.frame < 0) throw Error("--out", "give --frame I --out FILE.pcd|.ply, or --bag OUT.bag");
+  if (o.out.empty() || o.frame < 0) throw Error("--out", "give --frame I --out FILE.pcd|.ply, or --out OUT.bag");
   io::check_output_file(o.out, output_policy("export", o.force, {o.seq}));
   const io::SequenceReader reader(o.seq);
   const RgbdFrame f = reader.read(o.frame);
@@ -66,12 +73,14 @@ void add_export(CLI::App& app) {
   auto o = std::make_shared<ExportOptions>();
   auto* cmd = app.add_subcommand(
       "export", "Export one frame as an organised point cloud (.pcd or .ply), or the sequence as a ROS bag");
-  cmd->add_option("SEQ", o->seq, "Sequence directory")->required();
+  cmd->add_option("--data", o->seq, "Sequence folder");
+  add_deprecated_positional(cmd, o->seq);
   cmd->add_option("--frame", o->frame, "Frame index (from 0)");
-  cmd->add_option("--out", o->out, "Output file, .pcd or .ply");
+  cmd->add_option("--out", o->out,
+                  "Output file: .pcd or .ply (one frame), or .bag (every frame: depth 16UC1, camera_info, rgb8)");
   cmd->add_flag("--ascii", o->ascii, "Write ASCII instead of binary");
-  cmd->add_option("--bag", o->bag, "Write every frame to this ROS bag instead (depth 16UC1, camera_info, rgb8)");
-  cmd->add_option("--fps", o->fps, "--bag: frame rate for sequences without timestamps")->capture_default_str();
+  add_deprecated_option(cmd, "--bag", o->bag, "--out FILE.bag");
+  cmd->add_option("--fps", o->fps, ".bag: frame rate for sequences without timestamps")->capture_default_str();
   add_force_flag(cmd, o->force);
   add_deprecated_flag(cmd, "--overwrite", o->force, "--force");
   add_bag_topic_options(cmd, o->topics);

@@ -6,6 +6,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "cropsight/io/config_yaml.hpp"
 #include "cropsight/nn/center_net.hpp"
 #include "cropsight/nn/center_onnx.hpp"
 
@@ -25,7 +26,7 @@ void add_export_detector(CLI::App& app) {
   add_json_flag(cmd, o->common);
   cmd->callback([o] {
     io::check_output_file(o->out, output_policy("export-detector", o->force, {o->model}));
-    const nn::CenterNet net = nn::CenterNet::load(o->model, 1);
+    const nn::CenterNet net = nn::CenterNet::load(io::find_model(o->model).string(), 1);
     net.export_onnx(o->out);
     const nn::CenterNetOnnx back(o->out);  // OpenCV loads and runs it
     if (o->common.json)

@@ -22,7 +22,7 @@ namespace harvest_potato_cmd {
 
 struct Options {
   CommonOptions common;
-  std::string data, bag, out;
+  std::string data, out;
   BagTopicOptions topics;
   bool quiet = false, force = false;
 };
@@ -30,38 +30,44 @@ struct Options {
 void run(const Options& o) {
   namespace pp = pipeline::potato;
   // Before the pipeline loads or the loop prints progress.
-  if (!o.out.empty())
-    io::check_output_file(o.out, output_policy("harvest potato", o.force, {o.data, o.bag, o.common.config}));
+  if (!o.out.empty()) io::check_output_file(o.out, output_policy("harvest potato", o.force, {o.data, o.common.config}));
   pp::PotatoPipeline pipeline(potato_config(o.common), o.common.config.empty() ? "potato" : o.common.config);
-  if (o.data.empty() == o.bag.empty()) throw Error("--data", "give a sequence folder (--data) or a bag (--bag)");
-  std::optional<BagSequence> bag;
-  if (!o.bag.empty()) bag.emplace(o.bag, o.topics);
-  const io::SequenceReader seq(bag ? bag->path() : o.data);
+  const Recording recording(o.data, o.topics);
+  const io::SequenceReader seq(recording.sequence());
   std::ostringstream lines;
-  Progress progress("harvest potato", seq.size(), o.quiet || o.out.empty());
+  nlohmann::json messages = nlohmann::json::array();
+  Progress progress("harvest potato", seq.size(), o.quiet || o.common.json || o.out.empty());
   double ms = 0;
   int with_target = 0;
   for (int i = 0; i < seq.size(); ++i) {
     const pp::PotatoFrameResult r = pipeline.process(seq.read(i));
     ms += r.ms_detect + r.ms_locate + r.ms_track + r.ms_orient;
     with_target += r.target.detection ? 1 : 0;
-    lines << harvest_json(r.target).dump() << '\n';
+    const nlohmann::json message = harvest_json(r.target);
+    lines << message.dump() << '\n';
+    if (o.common.json && o.out.empty()) messages.push_back(message);
     progress.update(i + 1);
   }
   progress.finish();
-  if (o.out.empty()) {
+  // Without --out and --json, stdout is the per-frame stream (one JSON line a frame); --json is
+  // always one object, holding the messages when they went to no file.
+  if (o.out.empty() && !o.common.json) {
     std::fputs(lines.str().c_str(), stdout);
     return;
   }
-  io::write_file_atomic(o.out, lines.str());
+  if (!o.out.empty()) io::write_file_atomic(o.out, lines.str());
   const double fps = ms > 0 ? 1000.0 * seq.size() / ms : 0;
-  if (o.common.json)
-    print_json({{"frames", seq.size()},
-                {"frames_with_target", with_target},
-                {"ms_per_frame", json_number(ms / std::max(1, seq.size()))},
-                {"fps", json_number(fps)},
-                {"out", o.out}});
-  else
+  if (o.common.json) {
+    nlohmann::json j{{"frames", seq.size()},
+                     {"frames_with_target", with_target},
+                     {"ms_per_frame", json_number(ms / std::max(1, seq.size()))},
+                     {"fps", json_number(fps)}};
+    if (o.out.empty())
+      j["messages"] = std::move(messages);
+    else
+      j["out"] = o.out;
+    print_json(j);
+  } else
     std::printf("%d frames, a target in %d, %.2f ms a frame (%.0f fps) -> %s\n", seq.size(), with_target,
                 ms / std::max(1, seq.size()), fps, o.out.c_str());
 }
@@ -73,9 +79,7 @@ void add_harvest_potato(CLI::App& harvest) {
   auto o = std::make_shared<Options>();
   auto* cmd =
       harvest.add_subcommand("potato", "The potato harvest loop on an RGB-D sequence: one harvest message per frame");
-  cmd->add_option("--data", o->data, "RGB-D sequence folder (docs/formats.md); colour required");
-  cmd->add_option("--bag", o->bag, "A ROS bag in place of --data (depth, camera_info, colour topics below)");
-  add_bag_topic_options(cmd, o->topics);
+  add_recording_options(cmd, o->data, o->topics, "RGB-D sequence folder (docs/formats.md; colour required)");
   cmd->add_option("--out", o->out, "JSON-lines file of the messages (default: stdout)");
   add_force_flag(cmd, o->force);
   cmd->add_flag("--quiet", o->quiet, "no progress line");

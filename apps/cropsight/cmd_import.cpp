@@ -21,7 +21,7 @@ struct ImportCliOptions {
 // A ROS bag (issue 25): depth, camera_info and colour topics.
 void run_bag(const ImportCliOptions& o) {
   if (!o.io.depth_dir.empty() || !o.io.pcd_dir.empty() || !o.io.camera_yaml.empty())
-    throw Error("--bag", "reads depth and camera info from the bag: leave out --depth, --pcd and --camera");
+    throw Error("--data", "reads depth and camera info from the bag: leave out --depth, --pcd and --camera");
   const BagImportResult r = import_bag(o.bag, o.io.out.string(), o.topics, o.io.overwrite);
   if (o.json) {
     print_json(
@@ -58,7 +58,9 @@ void add_import(CLI::App& app) {
   cmd->add_option("--color", o->io.color_dir, "Folder of 8-bit colour PNGs registered to depth (optional)");
   cmd->add_option("--pcd", o->io.pcd_dir, "Folder of organised .pcd files instead of --depth (metres)");
   cmd->add_option("--camera", o->io.camera_yaml, "camera.yaml of the depth camera (docs/formats.md)");
-  cmd->add_option("--bag", o->bag, "A ROS bag instead (depth 16UC1/32FC1, camera_info, colour; no master needed)");
+  cmd->add_option("--data", o->bag,
+                  "A ROS bag instead (.bag: depth 16UC1/32FC1, camera_info, colour; no master needed)");
+  add_deprecated_option(cmd, "--bag", o->bag, "--data");
   add_bag_topic_options(cmd, o->topics);
   cmd->add_option("--out", o->io.out, "New sequence folder to write")->required();
   cmd->add_option("--fps", o->io.fps, "Frame rate for frame-numbered files (timestamps = index / fps; default 0)");

@@ -5,6 +5,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "cropsight/core/error.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/report/sequence_summary.hpp"
 
@@ -17,6 +18,7 @@ struct InfoOptions {
 };
 
 void run(const InfoOptions& o) {
+  if (o.seq.empty()) throw Error("--data", "give the sequence folder to describe");
   const io::SequenceReader reader(o.seq);
   const report::SequenceSummary s = report::summarize_sequence(reader);
   const CameraIntrinsics& c = s.info.camera;
@@ -62,7 +64,8 @@ void add_info(CLI::App& app) {
   using namespace info_cmd;
   auto o = std::make_shared<InfoOptions>();
   auto* cmd = app.add_subcommand("info", "Validate a sequence and print its summary");
-  cmd->add_option("SEQ", o->seq, "Sequence directory")->required();
+  cmd->add_option("--data", o->seq, "Sequence folder");
+  add_deprecated_positional(cmd, o->seq);
   add_json_flag(cmd, o->common);
   cmd->callback([o] { run(*o); });
 }

@@ -21,6 +21,7 @@ struct RenderOptions {
 };
 
 void run(const RenderOptions& o) {
+  if (o.seq.empty()) throw Error("--data", "give the sequence folder to render");
   io::check_output_file(o.out, output_policy("render", o.force, {o.seq}));
   const io::SequenceReader reader(o.seq);
   const RgbdFrame f = reader.read(o.frame);
@@ -54,7 +55,8 @@ void add_render(CLI::App& app) {
   using namespace render_cmd;
   auto o = std::make_shared<RenderOptions>();
   auto* cmd = app.add_subcommand("render", "Render a frame as a PNG (depth colour map with ground-truth outlines)");
-  cmd->add_option("SEQ", o->seq, "Sequence directory")->required();
+  cmd->add_option("--data", o->seq, "Sequence folder");
+  add_deprecated_positional(cmd, o->seq);
   cmd->add_option("--frame", o->frame, "Frame index (from 0)")->required();
   cmd->add_option("--out", o->out, "Output PNG file")->required();
   add_force_flag(cmd, o->force);

@@ -31,6 +31,7 @@ struct SegmentGrapeOptions {
 };
 
 void run(const SegmentGrapeOptions& o) {
+  if (o.input.empty()) throw Error("--clouds", "give the text cloud to label");
   check_thread_count(o.threads, "--threads");
   auto cfg = o.segmenter.config();
   io::check_output_file(o.out, output_policy("segment grape", o.force, {o.input, cfg.model, cfg.ensemble}));
@@ -59,11 +60,10 @@ void add_segment_grape(CLI::App& segment) {
   using namespace segment_grape_cmd;
   auto o = std::make_shared<SegmentGrapeOptions>();
   auto* cmd = segment.add_subcommand("grape", "Label every point of a grape text cloud");
-  cmd->add_option(
-         "--input", o->input,
-         "Text cloud in the dataset's format: x y z nx ny nz r g b label (10 numbers a line; the label is read but "
-         "not used)")
-      ->required();
+  cmd->add_option("--clouds", o->input,
+                  "Text cloud in the dataset's format: x y z nx ny nz r g b label (10 numbers a line; the label is "
+                  "read but not used)");
+  add_deprecated_option(cmd, "--input", o->input, "--clouds");
   cmd->add_option("--out", o->out, "Labelled text cloud to write")->required();
   add_force_flag(cmd, o->force);
   cmd->add_option("--threads", o->threads, "Threads, 1.." + std::to_string(kMaxThreads) + " (default 2)");

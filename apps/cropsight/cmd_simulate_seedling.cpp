@@ -68,7 +68,7 @@ void run(const Options& o) {
 void add_simulate_seedling(CLI::App& simulate) {
   using namespace simulate_seedling_cmd;
   auto o = std::make_shared<Options>();
-  auto* cmd = simulate.add_subcommand("seedling", "Stereo pairs of broccoli seedlings with ground truth (issue 5)");
+  auto* cmd = simulate.add_subcommand("seedling", "Stereo pairs of broccoli seedlings with ground truth");
   cmd->add_option("--out", o->out, "New output folder (written whole at the end)")->required();
   cmd->add_option("--pairs", o->pairs, "Seedling stereo pairs, 1..10000")->capture_default_str();
   cmd->add_option("--seed", o->seed, "Random seed (same seed, same data)")->capture_default_str();

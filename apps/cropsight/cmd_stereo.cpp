@@ -72,7 +72,7 @@ void run_calibrate(const CalibrateOptions& o) {
 
 void add_stereo(CLI::App& app) {
   using namespace stereo_cmd;
-  auto* stereo = app.add_subcommand("stereo", "Stereo calibration and disparity (broccoli seedlings, issue 5)");
+  auto* stereo = app.add_subcommand("stereo", "Stereo calibration and disparity (broccoli seedlings)");
   stereo->require_subcommand(1);
 
   auto co = std::make_shared<CalibrateOptions>();

@@ -136,7 +136,8 @@ void add_train_detector(CLI::App& train) {
   cmd->add_option("--out", o->out, "Model file to write (.pt)")->required();
   add_force_flag(cmd, o->force);
   cmd->add_option("--epochs", o->epochs, "Training epochs (default 60)");
-  cmd->add_option("--input", o->input, "Network input WxH, multiples of 32 (default 256x256)");
+  cmd->add_option("--input-size", o->input, "Network input WxH, multiples of 32 (default 256x256)");
+  add_deprecated_option(cmd, "--input", o->input, "--input-size");
   cmd->add_option("--width", o->width, "Base channel width (default 16)");
   cmd->add_option("--batch", o->batch, "Images per step (default 4)");
   cmd->add_option("--lr", o->lr, "Adam learning rate (default 1e-3)");

@@ -1,7 +1,7 @@
 // cropsight train grape: trains the grape bunch segmentation models (issue 6) on the dataset's
 // labelled text clouds, with optional k-fold cross-validation by cloud.
 //
-//   cropsight train grape --data DIR [--model gbdt|pointresnet|pointnet2]
+//   cropsight train grape --clouds DIR [--model gbdt|pointresnet|pointnet2]
 //       [--features xyz|xyzn|xyzrgb|xyzrgbn] --out MODEL [--epochs N]
 //       [--val-fold k/K | --folds K] [--limit N] [--config PRESET] [--set key=value] [--json]
 //
@@ -27,6 +27,7 @@ namespace train_grape_cmd {
 void progress(const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); }
 
 void run(const TrainGrapeOptions& o) {
+  if (o.data.empty()) throw Error("--clouds", "give the folder of labelled clouds");
   check_train_grape_options(o);
   // Before minutes of training: the model and the checkpoint (which a rerun resumes from, so it
   // may exist) are outputs, never inputs.
@@ -70,7 +71,8 @@ void add_train_grape(CLI::App& train) {
   using namespace train_grape_cmd;
   auto o = std::make_shared<TrainGrapeOptions>();
   auto* cmd = train.add_subcommand("grape", "Train a grape bunch segmentation model (GBDT, PointResNet, PointNet++)");
-  cmd->add_option("--data", o->data, "Folder of labelled text clouds (directly or under points/)")->required();
+  cmd->add_option("--clouds", o->data, "Folder of labelled text clouds (directly or under points/)");
+  add_deprecated_option(cmd, "--data", o->data, "--clouds");
   cmd->add_option("--model", o->model,
                   "gbdt | pointresnet | pointnet2 (default: the --config preset's arch, else gbdt)");
   cmd->add_option("--features", o->features, "Network inputs: xyz | xyzn | xyzrgb | xyzrgbn");

@@ -50,7 +50,7 @@ std::pair<int, int> parse_input_size(const std::string& text) {
   int w = 0, h = 0;
   char x = 0;
   if (std::sscanf(text.c_str(), "%d%c%d", &w, &x, &h) != 3 || x != 'x')
-    throw Error("--input", "expects WxH, e.g. 416x416, got '" + text + "'");
+    throw Error("--input-size", "expects WxH, e.g. 416x416, got '" + text + "'");
   return {w, h};
 }
 

@@ -2,9 +2,21 @@
 
 #include <filesystem>
 
+#include <cstdio>
+
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/config_yaml.hpp"
 
 namespace cropsight::cli {
+
+namespace {
+// A double as text that reads back to the same value.
+std::string number_text(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+}  // namespace
 
 void GrapeSegmenterOptions::add_options(CLI::App* cmd, const std::string& default_preset,
                                         const std::string& preset_flag) {
@@ -15,28 +27,41 @@ void GrapeSegmenterOptions::add_options(CLI::App* cmd, const std::string& defaul
                   "ensemble; or a model file (.pt, .json) with the default settings; the flags below override its "
                   "keys" +
                       (default_preset.empty() ? std::string() : " (default without --model: " + default_preset + ")"));
-  // Each flag fills one key of pipeline::GrapeSegmenterConfig; only the flags given override.
+  // Each flag fills one key of pipeline::GrapeSegmenterConfig; only the flags given override. Numbers
+  // are typed, so that --help says INT / FLOAT and CLI11 refuses text before the config sees it.
   auto option = [&](const std::string& flag, const std::string& key, const std::string& help) {
     cmd->add_option_function<std::string>(
         flag, [this, key](const std::string& v) { flags_[key] = v; }, help);
   };
-  option("--model", "model", "Model file (gbdt .json or network .pt)");
+  auto integer = [&](const std::string& flag, const std::string& key, const std::string& help) {
+    cmd->add_option_function<long>(
+        flag, [this, key](long v) { flags_[key] = std::to_string(v); }, help);
+  };
+  auto number = [&](const std::string& flag, const std::string& key, const std::string& help) {
+    cmd->add_option_function<double>(
+        flag, [this, key](double v) { flags_[key] = number_text(v); }, help);
+  };
+  // A model file, or a shipped model's name (io::find_model), as --model everywhere.
+  cmd->add_option_function<std::string>(
+      "--model", [this](const std::string& v) { flags_["model"] = io::find_model(v).string(); },
+      "Model: a shipped model's name (models/, e.g. grape-gbdt-fast) or a file (gbdt .json or network .pt)");
   cmd->add_flag_function(
       "--sampled", [this](std::int64_t) { flags_["sampled"] = "true"; },
       "Networks: the paper's mode, one pass on num_points samples, labels carried back to the other points "
       "(--carry-k; default: a prediction for every point)");
   option("--sampling", "sampling", "With --sampled: random (as in training, default) or fps");
-  option("--carry-k", "carry_k",
-         "With --sampled: samples voting for each other point, weighted by distance and colour (default 4; 1 = "
-         "nearest, the paper)");
-  option("--votes", "votes",
-         "Networks: N passes rotated about the vertical axis by 360/N degrees each, as test-time augmentation "
-         "(every-point mode: N covers, class probabilities averaged; --sampled: N samples, probabilities carried "
-         "back and summed); N times the time (default 1)");
-  option("--ensemble", "ensemble",
-         "A second model (network or GBDT, default settings) whose per-point class probabilities are mixed with "
-         "this model's; the label is the argmax of the mix");
-  option("--ensemble-weight", "ensemble_weight", "With --ensemble: the second model's share (default 0.5)");
+  integer("--carry-k", "carry_k",
+          "With --sampled: samples voting for each other point, weighted by distance and colour (default 4; 1 = "
+          "nearest, the paper)");
+  integer("--votes", "votes",
+          "Networks: N passes rotated about the vertical axis by 360/N degrees each, as test-time augmentation "
+          "(every-point mode: N covers, class probabilities averaged; --sampled: N samples, probabilities carried "
+          "back and summed); N times the time (default 1)");
+  cmd->add_option_function<std::string>(
+      "--ensemble", [this](const std::string& v) { flags_["ensemble"] = io::find_model(v).string(); },
+      "A second model (network or GBDT, default settings) whose per-point class probabilities are mixed with "
+      "this model's; the label is the argmax of the mix");
+  number("--ensemble-weight", "ensemble_weight", "With --ensemble: the second model's share (default 0.5)");
 }
 
 pipeline::GrapeSegmenterConfig GrapeSegmenterOptions::config() const {

@@ -9,6 +9,7 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <string>
 
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
@@ -85,7 +86,7 @@ int main(int argc, char** argv) {
     if (argc <= pos || argv[pos][0] == '-') break;
     CLI::App* next = nullptr;
     for (CLI::App* sub : level->get_subcommands({}))
-      if (sub->get_name() == argv[pos]) next = sub;
+      if (sub->check_name(argv[pos])) next = sub;
     if (!next) {
       std::fprintf(stderr, "cropsight: unknown command '%s%s%s' (see %s--help)\n", pos == 2 ? argv[1] : "",
                    pos == 2 ? " " : "", argv[pos], pos == 2 ? (std::string(argv[1]) + " ").c_str() : "");
@@ -93,6 +94,11 @@ int main(int argc, char** argv) {
     }
     level = pos == 1 && !next->get_subcommands({}).empty() ? next : nullptr;
   }
+  // Commands renamed for one release: the old name works, with one line naming the new one.
+  if (argc > 1 && std::string(argv[1]) == "calibrate-detector")
+    std::fprintf(stderr,
+                 "cropsight: warning: calibrate-detector is deprecated and will be removed; use "
+                 "tune-mask-thresholds\n");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

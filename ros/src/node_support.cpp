@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/core/install_paths.hpp"
 #include "ros_conversions.hpp"
 
 namespace fs = std::filesystem;
@@ -30,8 +31,11 @@ ros::TransportHints input_transport(const ros::NodeHandle& pnh) {
 
 std::string resolve_project_path(const std::string& path) {
   if (path.empty() || fs::path(path).is_absolute() || fs::exists(path)) return path;
-  const fs::path in_source = fs::path(CROPSIGHT_SOURCE_DIR) / path;
-  return fs::exists(in_source) ? in_source.string() : path;
+  // "models/x.json" and "configs/x.yaml" as shipped: in the data folder of the install or build
+  // tree the node runs from (core/install_paths.hpp), never the source tree.
+  const fs::path data = cropsight::data_dir();
+  const fs::path shipped = data.empty() ? fs::path(path) : data / path;
+  return fs::exists(shipped) ? shipped.string() : path;
 }
 
 InputHealth::InputHealth(ros::NodeHandle& nh, std::string node_name) : name_(std::move(node_name)) {

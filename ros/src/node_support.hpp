@@ -21,7 +21,8 @@ std::vector<std::string> read_set_param(const ros::NodeHandle& pnh);
 /// it, Nagle's algorithm may hold a small message (a camera_info sent right after its image) until
 /// the image's data is acknowledged, which showed as a latency tail (docs/ros.md, "Latency").
 ros::TransportHints input_transport(const ros::NodeHandle& pnh);
-/// A model or preset path: absolute, relative to the working directory, or to the source tree.
+/// A model or preset path: absolute, relative to the working directory, or as shipped
+/// ("models/x.json") in the data folder of the install or build tree (core/install_paths.hpp).
 std::string resolve_project_path(const std::string& path);
 
 /// Counts the messages a node skipped, by problem, and the ones it processed. Not thread-safe:

@@ -6,6 +6,7 @@
 #include <cstdlib>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/core/install_paths.hpp"
 #include "cropsight/io/files.hpp"
 #include "yaml_key.hpp"
 
@@ -45,6 +46,15 @@ void flatten(const YAML::Node& node, const std::string& prefix, ConfigMap& out, 
 }
 }  // namespace
 
+namespace {
+// The folders a name was looked up in, for the error line.
+std::string looked_in(const std::vector<fs::path>& roots) {
+  std::string out;
+  for (const auto& r : roots) out += (out.empty() ? "" : ", ") + r.string();
+  return out.empty() ? "no data folder: set CROPSIGHT_DATA_DIR" : out;
+}
+}  // namespace
+
 ConfigMap load_config_map(const fs::path& path) {
   const std::string text = read_file(path);
   YAML::Node root;
@@ -68,12 +78,25 @@ fs::path find_preset(const std::string& name_or_path) {
   if (fs::exists(name_or_path)) return name_or_path;
   std::vector<fs::path> roots;
   if (const char* env = std::getenv("CROPSIGHT_CONFIGS")) roots.emplace_back(env);
-  roots.emplace_back(fs::path(CROPSIGHT_SOURCE_DIR) / "configs");
+  if (const fs::path data = data_dir(); !data.empty()) roots.push_back(data / "configs");
   for (const auto& r : roots) {
     const fs::path p = r / (name_or_path + ".yaml");
     if (fs::exists(p)) return p;
   }
-  throw Error(name_or_path, "no such preset or file (looked in configs/)");
+  throw Error(name_or_path, "no such preset or file (looked in " + looked_in(roots) + ")");
+}
+
+fs::path find_model(const std::string& name_or_path) {
+  if (fs::exists(name_or_path)) return name_or_path;
+  std::vector<fs::path> roots;
+  if (const fs::path data = data_dir(); !data.empty()) roots.push_back(data / "models");
+  // A shipped model by its name, with or without its extension ("broccoli-oes-general").
+  for (const auto& r : roots)
+    for (const char* ext : {"", ".json", ".onnx", ".pt"}) {
+      const fs::path p = r / (name_or_path + ext);
+      if (fs::is_regular_file(p)) return p;
+    }
+  throw Error(name_or_path, "no such model file or shipped model (looked in " + looked_in(roots) + ")");
 }
 
 ConfigMap load_preset_with_overrides(const std::string& preset, const std::vector<std::string>& sets) {

@@ -10,21 +10,17 @@
 #include <vector>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/core/install_paths.hpp"
 #include "nn/segmenter_backend.hpp"
 
 namespace cropsight::nn {
 
 namespace {
 
-std::filesystem::path executable_dir() {
-  std::error_code ec;
-  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  return ec ? std::filesystem::path() : exe.parent_path();
-}
-
 // Where the plugin may be, in order: $CROPSIGHT_NN_BACKEND (a file), beside the program's lib/
-// (build tree: bin/cropsight and lib/libcropsight_nn_torch.so), beside the program, the build
-// tree this library was compiled in, then the loader's own search path (LD_LIBRARY_PATH, ...).
+// (an install or a build tree: bin/cropsight and lib/libcropsight_nn_torch.so), beside the
+// program, then the loader's own search path (LD_LIBRARY_PATH, ...). No build-tree path is
+// compiled in: an install moved elsewhere finds its plugin the same way.
 std::vector<std::string> candidates() {
   std::vector<std::string> out;
   if (const char* env = std::getenv("CROPSIGHT_NN_BACKEND"); env && *env) return {env};
@@ -33,9 +29,6 @@ std::vector<std::string> candidates() {
     out.push_back((dir / ".." / "lib" / detail::kBackendFile).string());
     out.push_back((dir / detail::kBackendFile).string());
   }
-#ifdef CROPSIGHT_NN_BACKEND_DIR
-  out.push_back(std::string(CROPSIGHT_NN_BACKEND_DIR) + "/" + detail::kBackendFile);
-#endif
   out.push_back(detail::kBackendFile);
   return out;
 }

@@ -34,7 +34,7 @@ inline bool make_cli_inputs(const std::filesystem::path& b) {
   fs::copy_file(src / "models/detector-grape.onnx", b / "det.onnx");
   fs::copy_file(src / "models/detector-grape.pt", b / "det.pt");
 #if CROPSIGHT_HAS_ROS
-  ok = ok && run_cli("export " + shell_quoted(b / "seq") + " --bag " + shell_quoted(b / "s.bag")).exit_code == 0;
+  ok = ok && run_cli("export --data " + shell_quoted(b / "seq") + " --out " + shell_quoted(b / "s.bag")).exit_code == 0;
 #endif
   fs::create_directories(b / "clouds/points");
   for (int i = 0; i < 3; ++i)

@@ -321,9 +321,9 @@ Input set(const std::string& key, const std::string& range) { return {key, Kind:
 
 const std::vector<Row>& rows() {
   static const std::vector<Row> r = {
-    {"info", "info {c}/seq", {kCamera, kDepth, kColor, kLabels, kPoses, kTruth}},
-    {"export", "export {c}/seq --frame 0 --out {c}/out/f.pcd", {kCamera, kDepth, kOut}},
-    {"render", "render {c}/seq --frame 0 --out {c}/out/f.png --what labels", {kCamera, kDepth, kLabels, kOut}},
+    {"info", "info --data {c}/seq", {kCamera, kDepth, kColor, kLabels, kPoses, kTruth}},
+    {"export", "export --data {c}/seq --frame 0 --out {c}/out/f.pcd", {kCamera, kDepth, kOut}},
+    {"render", "render --data {c}/seq --frame 0 --out {c}/out/f.png --what labels", {kCamera, kDepth, kLabels, kOut}},
     {"report",
      "report --data {c}/seq --out {c}/out/r.html --frames 1 --model {c}/broccoli.json",
      {kCamera, kDepth, kBroccoliModel, kOut}},
@@ -348,13 +348,13 @@ const std::vector<Row>& rows() {
     {"simulate_potato", "simulate potato --frames 1 --out {c}/out/s", {kOut}},
     {"simulate_seedling", "simulate seedling --pairs 1 --calib-pairs 0 --quiet --out {c}/out/s", {kOut}},
     {"segment_grape",
-     "segment grape --model {c}/grape.json --input {c}/clouds/points/c0.txt --out {c}/out/s.txt --threads 1",
+     "segment grape --model {c}/grape.json --clouds {c}/clouds/points/c0.txt --out {c}/out/s.txt --threads 1",
      {kGrapeCloud, kGrapeModel, kOut}},
     {"train_grape",
-     "train grape --data {c}/clouds --model gbdt --out {c}/out/g.json --set gbdt.rounds=2 --set points_per_cloud=100 "
+     "train grape --clouds {c}/clouds --model gbdt --out {c}/out/g.json --set gbdt.rounds=2 --set points_per_cloud=100 "
      "--threads 1",
      {kGrapeCloud, set("gbdt.rounds", "-2"), kOut}},
-    {"eval_grape", "eval grape --data {c}/clouds --model {c}/grape.json --threads 1", {kGrapeCloud, kGrapeModel}},
+    {"eval_grape", "eval grape --clouds {c}/clouds --model {c}/grape.json --threads 1", {kGrapeCloud, kGrapeModel}},
     {"roi_cloud",
      "roi-cloud --color {c}/seq/color/000000.png --depth {c}/seq/depth/000000.png --camera {c}/seq/camera.yaml "
      "--detections {c}/roi.json --out {c}/out/roi",
@@ -377,25 +377,25 @@ const std::vector<Row>& rows() {
      {kFolderImage, kOnnx, kOut}},
     {"export_detector", "export-detector --model {c}/det.pt --out {c}/out/d.onnx", {kPt, kOut}},
     {"calibrate_detector",
-     "calibrate-detector --model {c}/det.pt --coco {c}/coco.json --images {c}/images --classes bunch,peduncle "
+     "tune-mask-thresholds --model {c}/det.pt --coco {c}/coco.json --images {c}/images --classes bunch,peduncle "
      "--out {c}/out/c.pt",
      {kPt, kCocoGt, kImage, kOut}},
     {"eval_detector",
      "eval detector --coco {c}/coco.json --images {c}/images --model {c}/det.onnx",
      {kCocoGt, kImage, kOnnx}},
     {"train_detector",
-     "train detector --coco {c}/coco.json --images {c}/images --out {c}/out/t.pt --epochs 1 --input 64x64",
+     "train detector --coco {c}/coco.json --images {c}/images --out {c}/out/t.pt --epochs 1 --input-size 64x64",
      {kCocoGt, kImage, kOut}},
     {"eval_potato_detection",
      "eval potato-detection --images {c}/images --annotations {c}/voc --detections {c}/dets",
      {kVoc}},
 #if CROPSIGHT_HAS_ROS
-    {"export_bag", "export {c}/seq --bag {c}/out/s.bag", {kCamera, kDepth, kColor, kOut}},
-    {"import_bag", "import --bag {c}/s.bag --out {c}/out/imp", {kBag, kOut}},
+    {"export_bag", "export --data {c}/seq --out {c}/out/s.bag", {kCamera, kDepth, kColor, kOut}},
+    {"import_bag", "import --data {c}/s.bag --out {c}/out/imp", {kBag, kOut}},
     {"detect_broccoli_bag",
-     "detect broccoli --bag {c}/s.bag --model {c}/broccoli.json --out {c}/out/d.jsonl --quiet",
+     "detect broccoli --data {c}/s.bag --model {c}/broccoli.json --out {c}/out/d.jsonl --quiet",
      {kBag, kBroccoliModel, kOut}},
-    {"harvest_potato_bag", "harvest potato --bag {c}/s.bag --out {c}/out/h.jsonl", {kBag, kOut}},
+    {"harvest_potato_bag", "harvest potato --data {c}/s.bag --out {c}/out/h.jsonl", {kBag, kOut}},
 #endif
   };
   return r;

@@ -215,21 +215,23 @@ TEST_F(BroccoliCli, OutputsNeverDestroyUnrelatedFilesAndBadOptionsAreRefused) {
   const std::string base =
       "detect broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model) + " --quiet --out ";
 
-  // --masks replaces its directory as a whole: a folder with other files in it is refused, untouched.
+  // --masks is written whole: a folder cropsight did not write is refused, untouched.
   const fs::path docs = dir() / "docs";
   fs::create_directories(docs / "sub");
   std::ofstream(docs / "notes.txt") << "keep me\n";
   r = run_cli(base + shell_quoted(dir() / "d1.jsonl") + " --masks " + shell_quoted(docs));
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("not a mask of an earlier run"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("not written by cropsight"), std::string::npos) << r.err;
   EXPECT_TRUE(fs::exists(docs / "notes.txt"));
   EXPECT_TRUE(fs::exists(docs / "sub"));
   EXPECT_FALSE(fs::exists(dir() / "d1.jsonl"));
-  // A previous run's masks (and a trailing slash) are replaced, and no temporary is left.
+  // A previous run's masks (and a trailing slash) are replaced with --force, and no temporary is left.
   const fs::path masks = dir() / "masks2";
   r = run_cli(base + shell_quoted(dir() / "d2.jsonl") + " --masks " + shell_quoted(masks));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = run_cli(base + shell_quoted(dir() / "d2.jsonl") + " --masks " + shell_quoted(masks.string() + "/"));
+  EXPECT_EQ(r.exit_code, 2) << "an earlier output is replaced only with --force";
+  r = run_cli(base + shell_quoted(dir() / "d2.jsonl") + " --masks " + shell_quoted(masks.string() + "/") + " --force");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::exists(masks / "000005.png"));
   for (const auto& e : fs::directory_iterator(dir()))
@@ -238,7 +240,7 @@ TEST_F(BroccoliCli, OutputsNeverDestroyUnrelatedFilesAndBadOptionsAreRefused) {
   // --out naming a directory: said so (it used to read "cannot write: Success").
   r = run_cli(base + shell_quoted(docs));
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("is a directory"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("is a folder"), std::string::npos) << r.err;
 
   // Counts and ranges: errors, not silent defaults.
   r = run_cli("bench broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model) +
@@ -338,7 +340,7 @@ TEST_F(BroccoliCli, ImportRecordingThenDetect) {
   // Organised PCDs (as `cropsight export` writes them) import to the same depth, +-1 raw unit.
   fs::create_directories(rec / "pcd");
   for (int i = 0; i < 2; ++i) {
-    r = run_cli("export " + shell_quoted(seq()) + " --frame " + std::to_string(i) + " --out " +
+    r = run_cli("export --data " + shell_quoted(seq()) + " --frame " + std::to_string(i) + " --out " +
                 shell_quoted(rec / "pcd" / ("cloud_" + std::to_string(i) + ".pcd")));
     ASSERT_EQ(r.exit_code, 0) << r.err;
   }

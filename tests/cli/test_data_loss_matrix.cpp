@@ -74,30 +74,31 @@ const std::vector<Row>& rows() {
     {"stereo_calibrate", "stereo calibrate --images {c}/sd --out {out}", "sd", Out::File, ".yaml"},
     {"import", "import --depth {c}/seq/depth --color {c}/seq/color --camera {c}/seq/camera.yaml --out {out}",
      "seq/depth", Out::Folder, ""},
-    {"export", "export {c}/seq --frame 0 --out {out}", "seq", Out::File, ".pcd"},
-    {"render", "render {c}/seq --frame 0 --out {out}", "seq", Out::File, ".png"},
+    {"export", "export --data {c}/seq --frame 0 --out {out}", "seq", Out::File, ".pcd"},
+    {"render", "render --data {c}/seq --frame 0 --out {out}", "seq", Out::File, ".png"},
     {"report", "report --data {c}/seq --out {out} --frames 1", "seq", Out::File, ".html"},
     {"harvest_potato", "harvest potato --data {c}/seq --out {out}", "seq", Out::File, ".jsonl"},
-    {"segment_grape", "segment grape --model {c}/grape.json --input {c}/clouds/points/c0.txt --out {out} --threads 1",
+    {"segment_grape", "segment grape --model {c}/grape.json --clouds {c}/clouds/points/c0.txt --out {out} --threads 1",
      "clouds/points/c0.txt", Out::File, ".txt"},
     {"train_grape",
-     "train grape --data {c}/clouds --model gbdt --out {out} --set gbdt.rounds=2 --set points_per_cloud=100 "
+     "train grape --clouds {c}/clouds --model gbdt --out {out} --set gbdt.rounds=2 --set points_per_cloud=100 "
      "--threads 1",
      "clouds", Out::File, ".json"},
     {"train_broccoli", "train broccoli --data {c}/seq --out {out} --quiet", "seq", Out::File, ".json"},
-    {"train_detector", "train detector --coco {c}/coco.json --images {c}/images --out {out} --epochs 1 --input 64x64",
-     "images", Out::File, ".pt"},
+    {"train_detector",
+     "train detector --coco {c}/coco.json --images {c}/images --out {out} --epochs 1 --input-size 64x64", "images",
+     Out::File, ".pt"},
     {"export_detector", "export-detector --model {c}/det.pt --out {out}", "det.pt", Out::File, ".onnx"},
     {"calibrate_detector",
-     "calibrate-detector --model {c}/det.pt --coco {c}/coco.json --images {c}/images --classes bunch,peduncle "
+     "tune-mask-thresholds --model {c}/det.pt --coco {c}/coco.json --images {c}/images --classes bunch,peduncle "
      "--out {out}",
      "images", Out::File, ".pt"},
     {"simulate_broccoli", "simulate broccoli --frames 1 --out {out}", "", Out::Folder, ""},
     {"simulate_potato", "simulate potato --frames 1 --out {out}", "", Out::Folder, ""},
     {"simulate_seedling", "simulate seedling --pairs 1 --calib-pairs 0 --quiet --out {out}", "", Out::Folder, ""},
 #if CROPSIGHT_HAS_ROS
-    {"export_bag", "export {c}/seq --bag {out}", "seq", Out::File, ".bag"},
-    {"import_bag", "import --bag {c}/s.bag --out {out}", "s.bag", Out::Folder, ""},
+    {"export_bag", "export --data {c}/seq --out {out}", "seq", Out::File, ".bag"},
+    {"import_bag", "import --data {c}/s.bag --out {out}", "s.bag", Out::Folder, ""},
 #endif
   };
   return r;

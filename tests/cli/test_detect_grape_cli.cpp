@@ -90,13 +90,14 @@ TEST(DetectGrapeCli, BoxesFileGivesLabelledBunchesAndCutPoints) {
   const auto pos = cut["position_m"].get<std::vector<double>>();
   ASSERT_EQ(pos.size(), 3u);
   EXPECT_TRUE(pos[2] > 0.6 && pos[2] < 1.51) << pos[2];  // metres, in front of the camera
-  // A second run replaces the folder; one with another tool's file in it is refused, untouched.
-  r = run_cli(args);
+  // A second run replaces the folder (with --force); one with another tool's file in it is refused, untouched.
+  const std::string again = args + " --force";
+  r = run_cli(again);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   cropsight::testing::write_text(out / "notes.txt", "mine\n");
-  r = run_cli(args);
+  r = run_cli(again);
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("holds files other than a previous detect grape run's"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("which cropsight did not write"), std::string::npos) << r.err;
   EXPECT_TRUE(fs::exists(out / "notes.txt") && fs::exists(out / "cut_points.json"));
   // A cut-point key out of range names the key; no boxes source at all is a usage error.
   r = run_cli(to + shell_quoted(t / "out2") + " --set cut_point.min_points=1");

@@ -39,7 +39,7 @@ TEST(DetectorCli, TrainsOnAVocSetWithAHeldOutSplit) {
   write_voc_set(t.path(), 4);
   const auto r = run_cli("train detector --voc " + shell_quoted(t / "ann") + " --images " + shell_quoted(t / "img") +
                          " --classes potato --out " + shell_quoted(t / "det.pt") +
-                         " --input 64x64 --width 8 --epochs 2 --val-split 0.25 --json");
+                         " --input-size 64x64 --width 8 --epochs 2 --val-split 0.25 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::exists(t / "det.pt"));
   EXPECT_NE(r.err.find("epoch 2/2"), std::string::npos) << r.err;
@@ -85,7 +85,7 @@ TEST(DetectorCli, TrainsOnAVocSetWithAHeldOutSplit) {
 }
 
 // The same images as COCO with polygons (masks): train detector calibrates its per-class mask
-// thresholds on its training images, calibrate-detector does it for an existing model, the ONNX
+// thresholds on its training images, tune-mask-thresholds does it for an existing model, the ONNX
 // export carries them and eval detector uses them; a set without masks cannot calibrate.
 TEST(DetectorCli, MaskThresholdsAreCalibratedOnTrainingImagesAndTravel) {
   TempDir t;
@@ -106,7 +106,7 @@ TEST(DetectorCli, MaskThresholdsAreCalibratedOnTrainingImagesAndTravel) {
   write_text(t / "coco.json", coco.dump());
   const std::string set = " --coco " + shell_quoted(t / "coco.json") + " --images " + shell_quoted(t / "img");
   const auto tr = run_cli("train detector" + set + " --out " + shell_quoted(t / "det.pt") +
-                          " --input 64x64 --width 8 --epochs 2 --val-split 0.25 --json");
+                          " --input-size 64x64 --width 8 --epochs 2 --val-split 0.25 --json");
   ASSERT_EQ(tr.exit_code, 0) << tr.err;
   EXPECT_NE(tr.err.find("mask thresholds per class"), std::string::npos) << tr.err;
   const auto trained = nlohmann::json::parse(tr.out)["mask_thresholds"];
@@ -114,7 +114,7 @@ TEST(DetectorCli, MaskThresholdsAreCalibratedOnTrainingImagesAndTravel) {
   EXPECT_GT(trained[0].get<double>(), 0.0);
   EXPECT_LT(trained[0].get<double>(), 1.0);
 
-  const auto cal = run_cli("calibrate-detector --model " + shell_quoted(t / "det.pt") + set +
+  const auto cal = run_cli("tune-mask-thresholds --model " + shell_quoted(t / "det.pt") + set +
                            " --val-split 0.25 --out " + shell_quoted(t / "cal.pt") + " --json");
   ASSERT_EQ(cal.exit_code, 0) << cal.err;
   const auto cj = nlohmann::json::parse(cal.out);
@@ -133,8 +133,8 @@ TEST(DetectorCli, MaskThresholdsAreCalibratedOnTrainingImagesAndTravel) {
     EXPECT_EQ(nlohmann::json::parse(flat.out)["mask_thresholds"], nlohmann::json::array({0.3})) << m;
   }
   // Another inference input and mask upsampling: calibrated for, and carried into the ONNX file.
-  const auto big = run_cli("calibrate-detector --model " + shell_quoted(t / "det.pt") + set +
-                           " --val-split 0.25 --input 96x96 --mask-upsampling nearest --flip-test --out " +
+  const auto big = run_cli("tune-mask-thresholds --model " + shell_quoted(t / "det.pt") + set +
+                           " --val-split 0.25 --input-size 96x96 --mask-upsampling nearest --flip-test --out " +
                            shell_quoted(t / "big.pt") + " --json");
   ASSERT_EQ(big.exit_code, 0) << big.err;
   EXPECT_EQ(nlohmann::json::parse(big.out)["input"], "96x96");
@@ -154,7 +154,7 @@ TEST(DetectorCli, MaskThresholdsAreCalibratedOnTrainingImagesAndTravel) {
   }
   // The multi-scale mask test and turning the flip test off travel the same way.
   const auto ms =
-      run_cli("calibrate-detector --model " + shell_quoted(t / "big.pt") + set +
+      run_cli("tune-mask-thresholds --model " + shell_quoted(t / "big.pt") + set +
               " --val-split 0.25 --flip-test=false --mask-inputs 128x128 --mask-inputs-flip-test=false --out " +
               shell_quoted(t / "ms.pt") + " --json");
   ASSERT_EQ(ms.exit_code, 0) << ms.err;
@@ -171,13 +171,13 @@ TEST(DetectorCli, MaskThresholdsAreCalibratedOnTrainingImagesAndTravel) {
     EXPECT_EQ(j["flip_test"], false) << m;
     EXPECT_EQ(j["mask_inputs_flip_test"], false) << m;
   }
-  const auto cleared = run_cli("calibrate-detector --model " + shell_quoted(t / "ms.pt") + set +
+  const auto cleared = run_cli("tune-mask-thresholds --model " + shell_quoted(t / "ms.pt") + set +
                                " --val-split 0.25 --mask-inputs none --out " + shell_quoted(t / "one.pt") + " --json");
   ASSERT_EQ(cleared.exit_code, 0) << cleared.err;
   EXPECT_EQ(nlohmann::json::parse(cleared.out)["mask_inputs"], "");
-  for (const char* bad : {" --input 90x90", " --input 96", " --mask-upsampling cubic", " --mask-inputs 100x96",
-                          " --mask-inputs 128x128,big"}) {
-    const auto r = run_cli("calibrate-detector --model " + shell_quoted(t / "det.pt") + set + bad + " --out " +
+  for (const char* bad : {" --input-size 90x90", " --input-size 96", " --mask-upsampling cubic",
+                          " --mask-inputs 100x96", " --mask-inputs 128x128,big"}) {
+    const auto r = run_cli("tune-mask-thresholds --model " + shell_quoted(t / "det.pt") + set + bad + " --out " +
                            shell_quoted(t / "bad.pt"));
     EXPECT_EQ(r.exit_code, 2) << bad;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad << ": " << r.err;
@@ -185,7 +185,7 @@ TEST(DetectorCli, MaskThresholdsAreCalibratedOnTrainingImagesAndTravel) {
   }
   // Boxes only (VOC): nothing to calibrate, one line naming the set, no output.
   const auto none =
-      run_cli("calibrate-detector --model " + shell_quoted(t / "det.pt") + " --voc " + shell_quoted(t / "ann") +
+      run_cli("tune-mask-thresholds --model " + shell_quoted(t / "det.pt") + " --voc " + shell_quoted(t / "ann") +
               " --images " + shell_quoted(t / "img") + " --out " + shell_quoted(t / "none.pt"));
   EXPECT_EQ(none.exit_code, 2);
   EXPECT_NE(none.err.find("ann"), std::string::npos) << none.err;
@@ -196,12 +196,13 @@ TEST(DetectorCli, MaskThresholdsAreCalibratedOnTrainingImagesAndTravel) {
 TEST(DetectorCli, BadSetsAreOneLineExitTwo) {
   TempDir t;
   write_text(t / "ann.json", R"({"images": [], "categories": [{"id": 1, "name": "x"}]})");
-  auto r = run_cli("train detector --coco " + shell_quoted(t / "ann.json") + " --images " + shell_quoted(t.path()) +
+  fs::create_directories(t / "images");  // the model goes beside the images, never into them
+  auto r = run_cli("train detector --coco " + shell_quoted(t / "ann.json") + " --images " + shell_quoted(t / "images") +
                    " --out " + shell_quoted(t / "m.pt"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("ann.json"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("'annotations'"), std::string::npos) << r.err;
-  r = run_cli("train detector --images " + shell_quoted(t.path()) + " --out " + shell_quoted(t / "m.pt"));
+  r = run_cli("train detector --images " + shell_quoted(t / "images") + " --out " + shell_quoted(t / "m.pt"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--coco"), std::string::npos) << r.err;
   // A key outside the detector.* / augment.* sections, or a misspelt one inside, is an error, not
@@ -209,7 +210,7 @@ TEST(DetectorCli, BadSetsAreOneLineExitTwo) {
   write_voc_set(t.path(), 2);
   for (const char* bad : {"mask_weight=3", "detector.mask_wieght=3"}) {
     r = run_cli("train detector --voc " + shell_quoted(t / "ann") + " --images " + shell_quoted(t / "img") +
-                " --classes potato --epochs 1 --input 64x64 --out " + shell_quoted(t / "m.pt") + " --set " + bad);
+                " --classes potato --epochs 1 --input-size 64x64 --out " + shell_quoted(t / "m.pt") + " --set " + bad);
     EXPECT_EQ(r.exit_code, 2) << bad;
     EXPECT_NE(r.err.find(std::string(bad).substr(0, std::string(bad).find('='))), std::string::npos) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

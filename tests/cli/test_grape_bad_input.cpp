@@ -68,7 +68,7 @@ class GrapeBadInput : public ::testing::Test {
   std::string gbdt_model() {
     const fs::path m = t / "m.json";
     if (!fs::exists(m)) {
-      const auto r = run_cli("train grape --data " + data + " --model gbdt --out " + shell_quoted(m) +
+      const auto r = run_cli("train grape --clouds " + data + " --model gbdt --out " + shell_quoted(m) +
                              " --set gbdt.rounds=2 --set points_per_cloud=100 --threads 1");
       EXPECT_EQ(r.exit_code, 0) << r.err;
     }
@@ -84,15 +84,15 @@ class GrapeBadInput : public ::testing::Test {
 TEST_F(GrapeBadInput, MissingNetworkBackendIsOneLineAndGbdtNeedsNone) {
   ASSERT_EQ(setenv("CROPSIGHT_NN_BACKEND", (t / "no" / "libcropsight_nn_torch.so").c_str(), 1), 0);
   const fs::path out = t / "net.pt";
-  expect_one_line_error(run_cli("train grape --data " + data + kTinyNet + " --out " + shell_quoted(out)),
+  expect_one_line_error(run_cli("train grape --clouds " + data + kTinyNet + " --out " + shell_quoted(out)),
                         {"network backend", "CROPSIGHT_NN_BACKEND"}, "train without backend");
   EXPECT_FALSE(fs::exists(out));
   // A file that is no backend (here a model file) is named as such.
   const std::string model = gbdt_model();  // trains and, below, segments without the backend
   ASSERT_EQ(setenv("CROPSIGHT_NN_BACKEND", (t / "m.json").c_str(), 1), 0);
-  expect_one_line_error(run_cli("train grape --data " + data + kTinyNet + " --out " + shell_quoted(out)),
+  expect_one_line_error(run_cli("train grape --clouds " + data + kTinyNet + " --out " + shell_quoted(out)),
                         {"m.json", "network backend"}, "a file that is no backend");
-  const auto r = run_cli("segment grape --model " + model + " --input " +
+  const auto r = run_cli("segment grape --model " + model + " --clouds " +
                          shell_quoted(t / "data" / "points" / "c0.txt") + " --out " + shell_quoted(t / "seg.txt"));
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::exists(t / "seg.txt"));
@@ -104,26 +104,26 @@ TEST_F(GrapeBadInput, ThreadsOutOfRange) {
   const std::string model = gbdt_model();
   const std::string cloud = shell_quoted(t / "data" / "points" / "c0.txt");
   for (const char* n : {"100000", "0", "-1"}) {
-    expect_one_line_error(run_cli("segment grape --model " + model + " --input " + cloud + " --out " +
+    expect_one_line_error(run_cli("segment grape --model " + model + " --clouds " + cloud + " --out " +
                                   shell_quoted(t / "o.txt") + " --threads " + n),
                           {"--threads", "1..256"}, std::string("segment ") + n);
-    expect_one_line_error(run_cli("eval grape --data " + data + " --model " + model + " --threads " + n),
+    expect_one_line_error(run_cli("eval grape --clouds " + data + " --model " + model + " --threads " + n),
                           {"--threads", "1..256"}, std::string("eval ") + n);
-    expect_one_line_error(
-        run_cli("train grape --data " + data + " --model gbdt --out " + shell_quoted(t / "x.json") + " --threads " + n),
-        {"--threads", "1..256"}, std::string("train ") + n);
+    expect_one_line_error(run_cli("train grape --clouds " + data + " --model gbdt --out " + shell_quoted(t / "x.json") +
+                                  " --threads " + n),
+                          {"--threads", "1..256"}, std::string("train ") + n);
   }
   // The presets' fields too.
-  expect_one_line_error(run_cli("train grape --data " + data + " --model gbdt --out " + shell_quoted(t / "x.json") +
+  expect_one_line_error(run_cli("train grape --clouds " + data + " --model gbdt --out " + shell_quoted(t / "x.json") +
                                 " --set gbdt.nthread=100000"),
                         {"'gbdt.nthread'"}, "gbdt.nthread");
-  expect_one_line_error(run_cli("train grape --data " + data + " --model gbdt --out " + shell_quoted(t / "x.json") +
+  expect_one_line_error(run_cli("train grape --clouds " + data + " --model gbdt --out " + shell_quoted(t / "x.json") +
                                 " --set features.threads=0"),
                         {"'features.threads'"}, "features.threads");
   std::string net = kTinyNet;
   net.erase(net.find(" --threads 1"));
   expect_one_line_error(
-      run_cli("train grape --data " + data + net + " --out " + shell_quoted(t / "n.pt") + " --set threads=0"),
+      run_cli("train grape --clouds " + data + net + " --out " + shell_quoted(t / "n.pt") + " --set threads=0"),
       {"'threads'"}, "net threads");
   EXPECT_FALSE(fs::exists(t / "o.txt"));
   EXPECT_FALSE(fs::exists(t / "x.json"));
@@ -137,14 +137,14 @@ TEST_F(GrapeBadInput, NetworkConfigFields) {
   for (const std::string kv : {"batch_size=0", "batch_size=-1", "lr=-1", "k1=0", "dropout=2", "width=0"}) {
     const std::string key = kv.substr(0, kv.find('='));
     expect_one_line_error(
-        run_cli("train grape --data " + data + kTinyNet + " --out " + shell_quoted(t / "n.pt") + " --set " + kv),
+        run_cli("train grape --clouds " + data + kTinyNet + " --out " + shell_quoted(t / "n.pt") + " --set " + kv),
         {"--config/--set", "'" + key + "'"}, kv);
   }
   for (const std::string kv :
        {"gbdt.rounds=0", "gbdt.eta=0", "gbdt.subsample=1.5", "gbdt.max_depth=0", "features.k_small=1"}) {
     const std::string key = kv.substr(0, kv.find('='));
     expect_one_line_error(
-        run_cli("train grape --data " + data + " --model gbdt --out " + shell_quoted(t / "m.json") + " --set " + kv),
+        run_cli("train grape --clouds " + data + " --model gbdt --out " + shell_quoted(t / "m.json") + " --set " + kv),
         {"--config/--set", "'" + key + "'"}, kv);
   }
   EXPECT_FALSE(fs::exists(t / "n.pt"));
@@ -154,11 +154,11 @@ TEST_F(GrapeBadInput, NetworkConfigFields) {
 // Bug: --limit 0 / -5 meant all clouds, --epochs 0 / -1 the preset's, --folds -2 printed
 // "clouds 0, OAcc nan", and a fold holding no cloud evaluated nothing, all with exit 0.
 TEST_F(GrapeBadInput, CountsAndFolds) {
-  const std::string train = "train grape --data " + data + " --model gbdt --out " + shell_quoted(t / "x.json");
+  const std::string train = "train grape --clouds " + data + " --model gbdt --out " + shell_quoted(t / "x.json");
   for (const char* n : {"0", "-5"}) expect_one_line_error(run_cli(train + " --limit " + n), {"--limit"}, n);
   for (const char* n : {"0", "-1"})
     expect_one_line_error(
-        run_cli("train grape --data " + data + kTinyNet + " --out " + shell_quoted(t / "n.pt") + " --epochs " + n),
+        run_cli("train grape --clouds " + data + kTinyNet + " --out " + shell_quoted(t / "n.pt") + " --epochs " + n),
         {"--epochs"}, n);
   for (const char* n : {"-2", "0", "1"}) expect_one_line_error(run_cli(train + " --folds " + n), {"--folds"}, n);
   expect_one_line_error(run_cli(train + " --folds 4"), {"--folds", "4 folds need at least 4 clouds", "has 3"},
@@ -167,12 +167,13 @@ TEST_F(GrapeBadInput, CountsAndFolds) {
   EXPECT_FALSE(fs::exists(t / "x.json"));
   const std::string model = gbdt_model();
   for (const char* n : {"0", "-5"})
-    expect_one_line_error(run_cli("eval grape --data " + data + " --model " + model + " --limit " + n), {"--limit"}, n);
-  expect_one_line_error(run_cli("eval grape --data " + data + " --model " + model + " --fold 5/5"),
+    expect_one_line_error(run_cli("eval grape --clouds " + data + " --model " + model + " --limit " + n), {"--limit"},
+                          n);
+  expect_one_line_error(run_cli("eval grape --clouds " + data + " --model " + model + " --fold 5/5"),
                         {"--fold", "5 folds need at least 5 clouds", "has 3"}, "fold 5/5");
-  expect_one_line_error(run_cli("eval grape --data " + data + " --model " + model + " --fold 2/2 --limit 1"),
+  expect_one_line_error(run_cli("eval grape --clouds " + data + " --model " + model + " --fold 2/2 --limit 1"),
                         {"--fold", "(after --limit)"}, "fold 2/2 limit 1");
-  const auto r = run_cli("eval grape --data " + data + " --model " + model + " --fold 3/3 --json");
+  const auto r = run_cli("eval grape --clouds " + data + " --model " + model + " --fold 3/3 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(nlohmann::json::parse(r.out)["clouds"], 1);
 }
@@ -181,13 +182,13 @@ TEST_F(GrapeBadInput, CountsAndFolds) {
 // and left the model's temporary behind.
 TEST_F(GrapeBadInput, OutputIsADirectory) {
   fs::create_directories(t / "o");
-  expect_one_line_error(run_cli("train grape --data " + data + kTinyNet + " --out " + shell_quoted(t / "o")),
+  expect_one_line_error(run_cli("train grape --clouds " + data + kTinyNet + " --out " + shell_quoted(t / "o")),
                         {(t / "o").string(), "is a directory"}, "network");
-  expect_one_line_error(run_cli("train grape --data " + data + " --model gbdt --out " + shell_quoted(t / "o")),
+  expect_one_line_error(run_cli("train grape --clouds " + data + " --model gbdt --out " + shell_quoted(t / "o")),
                         {(t / "o").string(), "is a directory"}, "gbdt");
-  expect_one_line_error(run_cli("segment grape --model " + gbdt_model() + " --input " +
+  expect_one_line_error(run_cli("segment grape --model " + gbdt_model() + " --clouds " +
                                 shell_quoted(t / "data" / "points" / "c0.txt") + " --out " + shell_quoted(t / "o")),
-                        {(t / "o").string(), "is a directory"}, "segment");
+                        {(t / "o").string(), "is a folder"}, "segment");
   EXPECT_EQ(temporaries_in(t.path()), 0);
   EXPECT_TRUE(fs::is_empty(t / "o"));
 }
@@ -195,7 +196,9 @@ TEST_F(GrapeBadInput, OutputIsADirectory) {
 // Bug: a bad --checkpoint or model file gave libtorch's / XGBoost's multi-line stack trace
 // ("internal error: PytorchStreamReader failed ..."), without the file's name.
 TEST_F(GrapeBadInput, BadCheckpointAndModelFiles) {
-  const std::string train = "train grape --data " + data + kTinyNet + " --out " + shell_quoted(t / "n.pt");
+  // --force: every run below writes n.pt again (the first one wrote it).
+  const std::string train =
+      "train grape --clouds " + data + kTinyNet + " --out " + shell_quoted(t / "n.pt") + " --force";
   auto r = run_cli(train + " --checkpoint " + shell_quoted(t / "ck.pt"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string good_net = io::read_file(t / "n.pt"), good_ck = io::read_file(t / "ck.pt");
@@ -221,10 +224,10 @@ TEST_F(GrapeBadInput, BadCheckpointAndModelFiles) {
   // Model files: truncated network and GBDT, a broccoli model, an empty file.
   fs::copy_file(cropsight::testing::source_dir() / "models" / "broccoli-fec-uk.json", t / "broccoli.json");
   for (const char* m : {"truncnet.pt", "trunc.json", "broccoli.json", "empty.pt"}) {
-    expect_one_line_error(run_cli("eval grape --data " + data + " --model " + shell_quoted(t / m)), {(t / m).string()},
-                          m);
+    expect_one_line_error(run_cli("eval grape --clouds " + data + " --model " + shell_quoted(t / m)),
+                          {(t / m).string()}, m);
     expect_one_line_error(
-        run_cli("segment grape --model " + shell_quoted(t / m) + " --input " +
+        run_cli("segment grape --model " + shell_quoted(t / m) + " --clouds " +
                 shell_quoted(t / "data" / "points" / "c0.txt") + " --out " + shell_quoted(t / "o.txt")),
         {(t / m).string()}, m);
   }
@@ -251,18 +254,18 @@ TEST_F(GrapeBadInput, CorruptModelRecipeNamesTheFileAndKey) {
        }) {
     const std::string model = with_recipe(name, replacement);
     expect_one_line_error(
-        run_cli("segment grape --model " + model + " --input " + cloud + " --out " + shell_quoted(t / "o.txt")),
+        run_cli("segment grape --model " + model + " --clouds " + cloud + " --out " + shell_quoted(t / "o.txt")),
         {(t / name).string(), key}, "segment " + name);
-    expect_one_line_error(run_cli("eval grape --data " + data + " --model " + model), {(t / name).string(), key},
+    expect_one_line_error(run_cli("eval grape --clouds " + data + " --model " + model), {(t / name).string(), key},
                           "eval " + name);
   }
   EXPECT_FALSE(fs::exists(t / "o.txt"));
   // "fpfh=true" labels exactly as the "fpfh=1" the model was written with.
   const std::string as_true = with_recipe("true.json", "k_small=16;k_large=64;fpfh=true");
   auto r =
-      run_cli("segment grape --model " + gbdt_model() + " --input " + cloud + " --out " + shell_quoted(t / "a.txt"));
+      run_cli("segment grape --model " + gbdt_model() + " --clouds " + cloud + " --out " + shell_quoted(t / "a.txt"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  r = run_cli("segment grape --model " + as_true + " --input " + cloud + " --out " + shell_quoted(t / "b.txt"));
+  r = run_cli("segment grape --model " + as_true + " --clouds " + cloud + " --out " + shell_quoted(t / "b.txt"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(io::read_file(t / "a.txt"), io::read_file(t / "b.txt"));
 }
@@ -278,7 +281,7 @@ TEST_F(GrapeBadInput, LabelAndColourOutOfRange) {
     write_clouds(t / name, 2);
     std::ofstream(t / name / "points" / "c9.txt") << text;
     expect_one_line_error(
-        run_cli("train grape --data " + shell_quoted(t / name) + " --model gbdt --out " + shell_quoted(t / "x.json")),
+        run_cli("train grape --clouds " + shell_quoted(t / name) + " --model gbdt --out " + shell_quoted(t / "x.json")),
         {"c9.txt: " + want}, name);
   }
   EXPECT_FALSE(fs::exists(t / "x.json"));
@@ -286,7 +289,7 @@ TEST_F(GrapeBadInput, LabelAndColourOutOfRange) {
 
 // Bug: --input DIR said "no points"; the help promised an optional label column.
 TEST_F(GrapeBadInput, SegmentInputDirectoryAndHelp) {
-  expect_one_line_error(run_cli("segment grape --model " + gbdt_model() + " --input " + shell_quoted(t / "data") +
+  expect_one_line_error(run_cli("segment grape --model " + gbdt_model() + " --clouds " + shell_quoted(t / "data") +
                                 " --out " + shell_quoted(t / "o.txt")),
                         {(t / "data").string(), "is a directory"}, "dir");
   const auto r = run_cli("segment grape --help");
@@ -363,6 +366,8 @@ TEST_F(GrapeRoiBadInput, OutputFolderIsReplacedWhole) {
   ASSERT_TRUE(fs::exists(t / "out" / "roi_000.txt"));
   std::ofstream(t / "none.json") << "[]";
   run_to(t / "out", "", "none.json");
+  EXPECT_EQ(last.exit_code, 2) << "an earlier output is replaced only with --force";
+  run_to(t / "out", " --force", "none.json");
   ASSERT_EQ(last.exit_code, 0) << last.err;
   EXPECT_FALSE(fs::exists(t / "out" / "roi_000.txt"));
   EXPECT_EQ(nlohmann::json::parse(io::read_file(t / "out" / "rois.json"))["rois"].size(), 0u);
@@ -371,13 +376,13 @@ TEST_F(GrapeRoiBadInput, OutputFolderIsReplacedWhole) {
   fs::create_directories(t / "mine");
   std::ofstream(t / "mine" / "notes.txt") << "keep";
   expect_one_line_error(run_cli(base + shell_quoted(t / "det.json") + " --out " + shell_quoted(t / "mine")),
-                        {(t / "mine").string(), "other than a previous roi-cloud run's"}, "foreign folder");
+                        {(t / "mine").string(), "not written by cropsight"}, "foreign folder");
   EXPECT_TRUE(fs::exists(t / "mine" / "notes.txt"));
   // A file, and a folder under a file (cannot be created).
   expect_one_line_error(run_cli(base + shell_quoted(t / "det.json") + " --out " + shell_quoted(t / "c.png")),
-                        {(t / "c.png").string(), "not a folder"}, "file");
+                        {(t / "c.png").string(), "is an input"}, "file");
   expect_one_line_error(run_cli(base + shell_quoted(t / "det.json") + " --out " + shell_quoted(t / "c.png" / "o")),
-                        {(t / "c.png" / "o").string(), "cannot create folder"}, "under a file");
+                        {(t / "c.png" / "o").string(), "inside the input"}, "under a file");
   EXPECT_EQ(temporaries_in(t.path()), 0);
 }
 }  // namespace

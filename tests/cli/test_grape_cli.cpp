@@ -26,10 +26,10 @@ TEST(GrapeCli, TrainEvalSegmentAndBadInput) {
   cropsight::testing::TempDir t;
   write_blob_clouds(t / "data", 4);
   const std::string data = (t / "data").string(), model = (t / "m.json").string();
-  auto r = cropsight::testing::run_cli("train grape --data '" + data + "' --model gbdt --val-fold 1/2 --out '" + model +
-                                       "' --set gbdt.rounds=5 --set points_per_cloud=300 --json");
+  auto r = cropsight::testing::run_cli("train grape --clouds '" + data + "' --model gbdt --val-fold 1/2 --out '" +
+                                       model + "' --set gbdt.rounds=5 --set points_per_cloud=300 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  r = cropsight::testing::run_cli("eval grape --data '" + data + "' --model '" + model + "' --fold 1/2 --json");
+  r = cropsight::testing::run_cli("eval grape --clouds '" + data + "' --model '" + model + "' --fold 1/2 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   for (const char* k : {"clouds", "points", "oacc", "macc", "miou", "per_class", "ms_per_cloud"})
@@ -41,22 +41,22 @@ TEST(GrapeCli, TrainEvalSegmentAndBadInput) {
     EXPECT_TRUE(j["protocols"].contains(p)) << p;
   EXPECT_EQ(j["protocols"]["pooled_all_labels"]["miou"], j["miou"]);
   EXPECT_EQ(j["protocols"]["pooled_named_classes"]["classes"], (std::vector<int>{1, 2, 3, 4, 5}));
-  r = cropsight::testing::run_cli("segment grape --model '" + model + "' --input '" + data + "/points/c0.txt' --out '" +
-                                  (t / "lab.txt").string() + "'");
+  r = cropsight::testing::run_cli("segment grape --model '" + model + "' --clouds '" + data +
+                                  "/points/c0.txt' --out '" + (t / "lab.txt").string() + "'");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(io::read_grape_text(t / "lab.txt").size(), 400u);
   // The paper's sampled mode is a network option; a GBDT recipe samples by itself.
-  r = cropsight::testing::run_cli("eval grape --data '" + data + "' --model '" + model + "' --sampled --json");
+  r = cropsight::testing::run_cli("eval grape --clouds '" + data + "' --model '" + model + "' --sampled --json");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("'sampled'"), std::string::npos) << r.err;  // errors name the segmenter's config keys
   // So are --votes (test-time augmentation) and its range.
   for (const char* votes : {"2", "0"}) {
-    r = cropsight::testing::run_cli("eval grape --data '" + data + "' --model '" + model + "' --votes " + votes);
+    r = cropsight::testing::run_cli("eval grape --clouds '" + data + "' --model '" + model + "' --votes " + votes);
     EXPECT_EQ(r.exit_code, 2) << votes;
     EXPECT_NE(r.err.find("'votes'"), std::string::npos) << r.err;
   }
   // An ensemble with itself runs; a weight without a partner, or out of range, is an error.
-  r = cropsight::testing::run_cli("eval grape --data '" + data + "' --model '" + model + "' --ensemble '" + model +
+  r = cropsight::testing::run_cli("eval grape --clouds '" + data + "' --model '" + model + "' --ensemble '" + model +
                                   "' --ensemble-weight 0.3 --fold 1/2 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto je = nlohmann::json::parse(r.out);
@@ -64,7 +64,7 @@ TEST(GrapeCli, TrainEvalSegmentAndBadInput) {
   EXPECT_EQ(je["ensemble_weight"], 0.3);
   EXPECT_EQ(je["votes"], 1);
   for (const char* bad : {" --ensemble-weight 0.3", " --ensemble-weight 2 --ensemble '__M__'"}) {
-    std::string args = std::string("eval grape --data '") + data + "' --model '" + model + "'" + bad;
+    std::string args = std::string("eval grape --clouds '") + data + "' --model '" + model + "'" + bad;
     if (const auto at = args.find("__M__"); at != std::string::npos) args.replace(at, 5, model);
     r = cropsight::testing::run_cli(args);
     EXPECT_EQ(r.exit_code, 2) << bad;
@@ -72,7 +72,7 @@ TEST(GrapeCli, TrainEvalSegmentAndBadInput) {
   }
 
   std::ofstream(t / "bad.txt") << "1 2 3\n";
-  r = cropsight::testing::run_cli("segment grape --model '" + model + "' --input '" + (t / "bad.txt").string() +
+  r = cropsight::testing::run_cli("segment grape --model '" + model + "' --clouds '" + (t / "bad.txt").string() +
                                   "' --out '" + (t / "never.txt").string() + "'");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("bad.txt: line 1"), std::string::npos) << r.err;
@@ -85,8 +85,8 @@ TEST(GrapeCli, ExplicitThreadsOverrideThePreset) {
   if (!std::filesystem::exists(cropsight::testing::cli_path())) GTEST_SKIP() << "CLI not built";
   cropsight::testing::TempDir t;
   write_blob_clouds(t / "data", 2);
-  const std::string base = "train grape --data '" + (t / "data").string() +
-                           "' --model pointresnet --features xyz --epochs 1 --out '" + (t / "n.pt").string() +
+  const std::string base = "train grape --clouds '" + (t / "data").string() +
+                           "' --model pointresnet --features xyz --epochs 1 --force --out '" + (t / "n.pt").string() +
                            "' --set num_points=64 --set sa1_points=16 --set sa2_points=8 --set sa3_points=4 "
                            "--set width=4 --set batch_size=2 --set val_every=0";
   auto r = cropsight::testing::run_cli(base + " --threads 1");
@@ -103,7 +103,7 @@ TEST(GrapeCli, ExplicitThreadsOverrideThePreset) {
 
   // Both network modes through eval: every point, and the paper's sampled mode.
   for (const std::string mode : {"every-point", "sampled"}) {
-    r = cropsight::testing::run_cli("eval grape --data '" + (t / "data").string() + "' --model '" +
+    r = cropsight::testing::run_cli("eval grape --clouds '" + (t / "data").string() + "' --model '" +
                                     (t / "n.pt").string() + "'" + (mode == "sampled" ? " --sampled" : "") + " --json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto j = nlohmann::json::parse(r.out);
@@ -120,7 +120,7 @@ TEST(GrapeCli, SegmenterPresetsEqualTheirFlags) {
   if (!std::filesystem::exists(models / "grape-pointresnet.pt")) GTEST_SKIP() << "shipped models absent";
   cropsight::testing::TempDir t;
   write_blob_clouds(t / "data", 1);
-  const std::string in = " --input '" + (t / "data" / "points" / "c0.txt").string() + "' --out '";
+  const std::string in = " --clouds '" + (t / "data" / "points" / "c0.txt").string() + "' --out '";
   auto segment = [&](const std::string& args, const std::string& out) {
     const auto r = cropsight::testing::run_cli("segment grape" + args + in + (t / out).string() + "' --json");
     EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;

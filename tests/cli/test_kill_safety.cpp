@@ -120,7 +120,7 @@ class KillSafety : public ::testing::TestWithParam<Case> {
     bag_ = (inputs_->path() / "seq.bag").string();
     const auto sim = cropsight::testing::run_cli("simulate broccoli --frames 4 --seed 5 --out '" + seq_ + "' --json");
     ASSERT_EQ(sim.exit_code, 0) << sim.err;
-    const auto bag = cropsight::testing::run_cli("export '" + seq_ + "' --bag '" + bag_ + "' --json");
+    const auto bag = cropsight::testing::run_cli("export --data '" + seq_ + "' --out '" + bag_ + "' --json");
     ASSERT_EQ(bag.exit_code, 0) << bag.err;
     // The CLI's start-up (loading its ~230 shared libraries, about 0.5 s) is part of every run and
     // writes nothing: the kill moments are spread over the rest of the run. The fastest of three
@@ -255,9 +255,10 @@ const std::string kModel = CROPSIGHT_SOURCE_DIR "/models/broccoli-oes-uk.json";
 
 INSTANTIATE_TEST_SUITE_P(
     Commands, KillSafety,
+    // --force everywhere: a run replaces the earlier complete output of the same command.
     ::testing::Values(Case{"detect_broccoli",
                            {"detect", "broccoli", "--data", "@SEQ", "--model", kModel, "--out", "out.jsonl", "--masks",
-                            "masks", "--track", "--map", "map.csv", "--quiet"},
+                            "masks", "--track", "--map", "map.csv", "--quiet", "--force"},
                            {"out.jsonl", "masks", "map.csv"}},
                       // --force: a kill after the rename leaves a complete sequence, which the rerun replaces.
                       Case{"simulate_broccoli",
@@ -265,11 +266,13 @@ INSTANTIATE_TEST_SUITE_P(
                            {"sim"},
                            3},
                       Case{"train_broccoli",
-                           {"train", "broccoli", "--data", "@SEQ", "--out", "model.json", "--quiet"},
+                           {"train", "broccoli", "--data", "@SEQ", "--out", "model.json", "--quiet", "--force"},
                            {"model.json"}},
-                      Case{"export_pcd", {"export", "@SEQ", "--frame", "0", "--out", "frame.pcd"}, {"frame.pcd"}},
-                      Case{"export_bag", {"export", "@SEQ", "--bag", "seq.bag", "--overwrite"}, {"seq.bag"}},
-                      Case{"import_bag", {"import", "--bag", "@BAG", "--out", "imported", "--force"}, {"imported"}}),
+                      Case{"export_pcd",
+                           {"export", "--data", "@SEQ", "--frame", "0", "--out", "frame.pcd", "--force"},
+                           {"frame.pcd"}},
+                      Case{"export_bag", {"export", "--data", "@SEQ", "--out", "seq.bag", "--force"}, {"seq.bag"}},
+                      Case{"import_bag", {"import", "--data", "@BAG", "--out", "imported", "--force"}, {"imported"}}),
     [](const ::testing::TestParamInfo<Case>& info) { return info.param.name; });
 
 }  // namespace

@@ -70,7 +70,9 @@ TEST(PotatoDetectionCli, DetectWritesBoxesThatEvalScores) {
   const auto r = run_cli("detect potato --images " + shell_quoted(t / "images") + " --out " + shell_quoted(t / "out") +
                          " --overlay " + shell_quoted(t / "ov") + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto j = nlohmann::json::parse(r.out);
+  const auto all = nlohmann::json::parse(r.out);  // one object: every image's detections
+  ASSERT_EQ(all["images"].size(), 1u);
+  const auto& j = all["images"][0];
   EXPECT_EQ(j["image"], "a.png");
   ASSERT_EQ(j["detections"].size(), 1u);
   const auto lines = cropsight::io::read_detection_text(t / "out" / "a.txt");
@@ -118,12 +120,14 @@ TEST(PotatoDetectionCli, BadInputsAreOneLineNamingTheFile) {
 TEST(PotatoDetectionCli, DetectReadsOneImageOrASequenceAndDrawsAxes) {
   TempDir t;
   synthetic_set(t.path());
-  // One image file: its boxes, and in the JSON line each box's length axis (the ellipse is 100 px
+  // One image file: its boxes, and in the JSON object each box's length axis (the ellipse is 100 px
   // tall and 60 px wide, so the axis is vertical: pi / 2).
   const auto one = run_cli("detect potato --images " + shell_quoted(t / "images" / "a.png") + " --out " +
                            shell_quoted(t / "one") + " --overlay " + shell_quoted(t / "ov") + " --json");
   ASSERT_EQ(one.exit_code, 0) << one.err;
-  const auto j = nlohmann::json::parse(one.out);
+  const auto all = nlohmann::json::parse(one.out);
+  ASSERT_EQ(all["images"].size(), 1u) << one.out;
+  const auto& j = all["images"][0];
   ASSERT_EQ(j["detections"].size(), 1u) << one.out;
   EXPECT_NEAR(j["detections"][0]["angle"].get<double>(), M_PI / 2, 0.05);
   EXPECT_TRUE(fs::exists(t / "one" / "a.txt"));
@@ -142,6 +146,7 @@ TEST(PotatoDetectionCli, DetectReadsOneImageOrASequenceAndDrawsAxes) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   int files = 0, boxes = 0;
   for (const auto& e : fs::directory_iterator(t / "sd")) {
+    if (e.path().filename() == ".cropsight-output") continue;  // the output marker (docs/cli.md)
     ++files;
     std::ifstream in(e.path());
     for (std::string line; std::getline(in, line);) boxes += line.rfind("potato ", 0) == 0 ? 1 : 0;

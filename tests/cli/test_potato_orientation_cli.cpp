@@ -39,8 +39,8 @@ void draw_shot(const fs::path& root, int angle_deg, int number) {
 }
 
 std::string command(const fs::path& root, const std::string& input, const std::string& boxes = "detector") {
-  return "eval potato-orientation --rgb " + shell_quoted(root / "rgb") + " --depth " + shell_quoted(root / "depth") +
-         " --input " + input + " --boxes " + boxes + " --shots --json";
+  return "eval potato-orientation --color " + shell_quoted(root / "rgb") + " --depth " + shell_quoted(root / "depth") +
+         " --modality " + input + " --boxes " + boxes + " --shots --json";
 }
 }  // namespace
 
@@ -73,7 +73,7 @@ TEST(PotatoOrientationCli, ShotsListTheDrawnAngles) {
                 std::string::npos);
     }
   // Without --shots there is no list.
-  const auto plain = run_cli("eval potato-orientation --rgb " + shell_quoted(tmp.path() / "rgb") + " --depth " +
+  const auto plain = run_cli("eval potato-orientation --color " + shell_quoted(tmp.path() / "rgb") + " --depth " +
                              shell_quoted(tmp.path() / "depth") + " --json");
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   EXPECT_FALSE(nlohmann::json::parse(plain.out).contains("shots"));

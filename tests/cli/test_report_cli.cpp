@@ -44,7 +44,7 @@ TEST(Cli, UnknownCommandsAreNamed) {
 }
 
 TEST_F(CliSequence, InfoJson) {
-  const CommandResult r = run_cli("info " + shell_quoted(seq) + " --json");
+  const CommandResult r = run_cli("info --data " + shell_quoted(seq) + " --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["frames"], 3);
@@ -58,7 +58,7 @@ TEST_F(CliSequence, InfoJson) {
 }
 
 TEST_F(CliSequence, InfoText) {
-  const CommandResult r = run_cli("info " + shell_quoted(seq));
+  const CommandResult r = run_cli("info --data " + shell_quoted(seq));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("frames       3"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("16 x 12"), std::string::npos) << r.out;
@@ -66,26 +66,27 @@ TEST_F(CliSequence, InfoText) {
 
 TEST_F(CliSequence, InfoWithoutCameraYaml) {
   fs::remove(seq / "camera.yaml");
-  expect_bad_input(run_cli("info " + shell_quoted(seq)), seq / "camera.yaml");
+  expect_bad_input(run_cli("info --data " + shell_quoted(seq)), seq / "camera.yaml");
 }
 
 TEST_F(CliSequence, InfoWithEightBitDepth) {
   io::write_gray(seq / "depth" / "000001.png", GrayImage(16, 12, 50));
-  expect_bad_input(run_cli("info " + shell_quoted(seq) + " --json"), seq / "depth" / "000001.png");
+  expect_bad_input(run_cli("info --data " + shell_quoted(seq) + " --json"), seq / "depth" / "000001.png");
 }
 
 TEST_F(CliSequence, InfoWithMissingFrame) {
   fs::remove(seq / "depth" / "000001.png");
-  expect_bad_input(run_cli("info " + shell_quoted(seq)), seq / "depth" / "000001.png");
+  expect_bad_input(run_cli("info --data " + shell_quoted(seq)), seq / "depth" / "000001.png");
 }
 
 TEST_F(CliSequence, InfoOnMissingDirectory) {
-  expect_bad_input(run_cli("info " + shell_quoted(tmp / "nope")), tmp / "nope");
+  expect_bad_input(run_cli("info --data " + shell_quoted(tmp / "nope")), tmp / "nope");
 }
 
 TEST_F(CliSequence, ExportPcdAndPly) {
   for (const char* name : {"f.pcd", "f.ply"}) {
-    const CommandResult r = run_cli("export " + shell_quoted(seq) + " --frame 2 --out " + shell_quoted(tmp / name));
+    const CommandResult r =
+        run_cli("export --data " + shell_quoted(seq) + " --frame 2 --out " + shell_quoted(tmp / name));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const OrganizedCloud c = io::read_organized_cloud(tmp / name);
     EXPECT_EQ(c.width, 16);
@@ -101,8 +102,9 @@ TEST_F(CliSequence, ExportPcdAndPly) {
 }
 
 TEST_F(CliSequence, ExportBadFrameAndFormat) {
-  expect_bad_input(run_cli("export " + shell_quoted(seq) + " --frame 7 --out " + shell_quoted(tmp / "x.pcd")), seq);
-  expect_bad_input(run_cli("export " + shell_quoted(seq) + " --frame 0 --out " + shell_quoted(tmp / "x.xyz")),
+  expect_bad_input(run_cli("export --data " + shell_quoted(seq) + " --frame 7 --out " + shell_quoted(tmp / "x.pcd")),
+                   seq);
+  expect_bad_input(run_cli("export --data " + shell_quoted(seq) + " --frame 0 --out " + shell_quoted(tmp / "x.xyz")),
                    tmp / "x.xyz");
   EXPECT_FALSE(fs::exists(tmp / "x.pcd"));
 }
@@ -111,14 +113,15 @@ TEST_F(CliSequence, RenderEveryKind) {
   for (const char* what : {"depth", "color", "labels"}) {
     const fs::path out = tmp / (std::string(what) + ".png");
     const CommandResult r =
-        run_cli("render " + shell_quoted(seq) + " --frame 1 --what " + what + " --out " + shell_quoted(out));
+        run_cli("render --data " + shell_quoted(seq) + " --frame 1 --what " + what + " --out " + shell_quoted(out));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const ColorImage img = io::read_color(out);
     EXPECT_EQ(img.width, 16);
     EXPECT_EQ(img.height, 12);
   }
   // Default: depth with white outlines around the labelled discs.
-  ASSERT_EQ(run_cli("render " + shell_quoted(seq) + " --frame 0 --out " + shell_quoted(tmp / "o.png")).exit_code, 0);
+  ASSERT_EQ(run_cli("render --data " + shell_quoted(seq) + " --frame 0 --out " + shell_quoted(tmp / "o.png")).exit_code,
+            0);
   const ColorImage o = io::read_color(tmp / "o.png");
   int white = 0;
   for (const auto& p : o.data) white += p == Rgb8{255, 255, 255};
@@ -127,10 +130,10 @@ TEST_F(CliSequence, RenderEveryKind) {
 
 TEST_F(CliSequence, RenderErrors) {
   const CommandResult r =
-      run_cli("render " + shell_quoted(seq) + " --frame 0 --what normals --out " + shell_quoted(tmp / "x.png"));
+      run_cli("render --data " + shell_quoted(seq) + " --frame 0 --what normals --out " + shell_quoted(tmp / "x.png"));
   EXPECT_EQ(r.exit_code, 2);
   write_fixture_sequence(tmp / "depth-only", 1, false, false, false, false);
-  expect_bad_input(run_cli("render " + shell_quoted(tmp / "depth-only") + " --frame 0 --what color --out " +
+  expect_bad_input(run_cli("render --data " + shell_quoted(tmp / "depth-only") + " --frame 0 --what color --out " +
                            shell_quoted(tmp / "x.png")),
                    tmp / "depth-only");
   EXPECT_FALSE(fs::exists(tmp / "x.png"));

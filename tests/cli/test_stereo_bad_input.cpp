@@ -95,12 +95,12 @@ TEST_F(StereoBadInput, SimulateSeedlingRefusesExistingAndBadCounts) {
   EXPECT_TRUE(fs::exists(out / "rig.yaml"));
   EXPECT_FALSE(fs::exists(out / "pair_001"));
   EXPECT_EQ(hidden_entries(dir()), 0);  // no temporary or old copy left behind
-  // --force never replaces a folder that is not a seedling data set.
+  // --force never replaces a folder cropsight did not write.
   const fs::path other = dir() / "not_data";
   fs::create_directories(other);
   std::ofstream(other / "notes.txt") << "keep me\n";
   expect_error(run_cli("simulate seedling --out " + shell_quoted(other) + " --pairs 1 --calib-pairs 0 --quiet --force"),
-               "not a seedling data set");
+               "not written by cropsight");
   EXPECT_TRUE(fs::exists(other / "notes.txt"));
   // Counts: at least one pair, bounded, checked before anything is written.
   const fs::path fresh = dir() / "fresh";

@@ -180,13 +180,14 @@ TEST(BagIo, DetectOnABagEqualsDetectOnItsSequenceAndCleansWhatKilledRunsLeft) {
   ASSERT_EQ(run(ros_test::cli() + " simulate broccoli --frames 3 --seed 5 --out " + (d / "seq").string() +
                 " >/dev/null 2>&1"),
             0);
-  ASSERT_EQ(
-      run(ros_test::cli() + " export " + (d / "seq").string() + " --bag " + (d / "s.bag").string() + " >/dev/null"), 0);
+  ASSERT_EQ(run(ros_test::cli() + " export --data " + (d / "seq").string() + " --out " + (d / "s.bag").string() +
+                " >/dev/null"),
+            0);
   const fs::path tmp = d / "tmp", stale = tmp / ".cropsight-bag.tmp-999999999-1", live = tmp / ".cropsight-bag.tmp-1-1";
   fs::create_directories(stale / "sequence");
   fs::create_directories(live);
   std::ofstream(stale / "sequence" / "000000.png") << "partial";
-  ASSERT_EQ(run("TMPDIR=" + tmp.string() + " " + ros_test::cli() + " detect broccoli --bag " + (d / "s.bag").string() +
+  ASSERT_EQ(run("TMPDIR=" + tmp.string() + " " + ros_test::cli() + " detect broccoli --data " + (d / "s.bag").string() +
                 " --model " + model + " --out " + (d / "bag.jsonl").string() + " --quiet"),
             0);
   ASSERT_EQ(run(ros_test::cli() + " detect broccoli --data " + (d / "seq").string() + " --model " + model + " --out " +

@@ -88,7 +88,8 @@ void simulated_broccoli_pass(const fs::path& d, int n, int seed, const std::stri
   ASSERT_EQ(run(cli() + " simulate broccoli --frames " + std::to_string(n) + " --seed " + std::to_string(seed) +
                 " --out " + (d / "seq").string() + " >/dev/null 2>&1"),
             0);
-  ASSERT_EQ(run(cli() + " export " + (d / "seq").string() + " --bag " + (d / "s.bag").string() + " >/dev/null"), 0);
+  ASSERT_EQ(run(cli() + " export --data " + (d / "seq").string() + " --out " + (d / "s.bag").string() + " >/dev/null"),
+            0);
   ASSERT_EQ(run(cli() + " detect broccoli --data " + (d / "seq").string() + " --model " + model + " --out " +
                 (d / "cli.jsonl").string() + " --quiet >/dev/null"),
             0);
@@ -172,7 +173,8 @@ TEST_F(RosNodes, MalformedMessagesAreSkippedCountedAndTheNodeLives) {
   const fs::path d = scratch_dir("broccoli_malformed");
   ASSERT_EQ(run(cli() + " simulate broccoli --frames 2 --seed 4243 --out " + (d / "seq").string() + " >/dev/null 2>&1"),
             0);
-  ASSERT_EQ(run(cli() + " export " + (d / "seq").string() + " --bag " + (d / "s.bag").string() + " >/dev/null"), 0);
+  ASSERT_EQ(run(cli() + " export --data " + (d / "seq").string() + " --out " + (d / "s.bag").string() + " >/dev/null"),
+            0);
   const auto frames = read_bag(d / "s.bag");
   NodeProcess node(kBin + "/cropsight_broccoli_node",
                    {"__ns:=/b2", "__name:=broccoli", "_model:=" + kSource + "/models/broccoli-oes-uk.json"},
@@ -226,7 +228,8 @@ TEST_F(RosNodes, PotatoNodeHarvestTargetsEqualTheCliAndTheRateThrottles) {
   ASSERT_EQ(run(cli() + " simulate potato --scene sheet --frames 8 --seed 4244 --out " + (d / "seq").string() +
                 " >/dev/null 2>&1"),
             0);
-  ASSERT_EQ(run(cli() + " export " + (d / "seq").string() + " --bag " + (d / "p.bag").string() + " >/dev/null"), 0);
+  ASSERT_EQ(run(cli() + " export --data " + (d / "seq").string() + " --out " + (d / "p.bag").string() + " >/dev/null"),
+            0);
   ASSERT_EQ(run(cli() + " harvest potato --data " + (d / "seq").string() + " --out " + (d / "cli.jsonl").string() +
                 " --quiet >/dev/null 2>&1"),
             0);

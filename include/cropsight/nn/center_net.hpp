@@ -62,7 +62,7 @@ struct CenterNetConfig {
   int top_k = 100;               ///< peaks kept per image over all classes
   /// Per class, in class_names order, comma-separated: the mask-head score a pixel needs to be
   /// inside the class's mask; empty = 0.5 for every class. `train detector` and
-  /// `calibrate-detector` set it to each class's best-IoU threshold on the training images
+  /// `tune-mask-thresholds` set it to each class's best-IoU threshold on the training images
   /// (calibrate_mask_thresholds, detector_eval.hpp): a thin class such as a peduncle may never
   /// score 0.5. Models written before this key load with it empty.
   std::string mask_thresholds;
@@ -71,7 +71,7 @@ struct CenterNetConfig {
   /// their mask logits), "nearest" takes the cell under the pixel centre (one cell covers 10x10
   /// pixels of a 1280x720 image at 512x288 input: blocky edges, a peduncle one cell wide).
   /// Models written before this key load with "nearest", the mapping their thresholds were
-  /// calibrated for; new models and `calibrate-detector` use "bilinear".
+  /// calibrated for; new models and `tune-mask-thresholds` use "bilinear".
   std::string mask_upsampling = "bilinear";
   /// Flip test (CenterNet's `--flip_test`): the heads are averaged with those of the mirrored
   /// image (heatmap, sizes, masks), twice the inference time for steadier scores. Models written
