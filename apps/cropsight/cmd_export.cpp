@@ -41,13 +41,15 @@ void run(ExportOptions o) {
     if (!o.out.empty()) throw Error("--bag", "give the bag as --out OUT.bag");
     o.out = o.bag;
   }
+  if (o.out.empty()) throw Error("--out", "give the file to write: FILE.pcd|.ply (one frame) or FILE.bag");
+  io::check_output_file(o.out, output_policy("export", o.force, {o.seq}));  // before anything is read
   if (is_bag_file(o.out)) {
     if (o.frame >= 0) throw Error("--frame", "a bag holds the whole sequence: leave out --frame");
     o.bag = o.out;
     return run_bag(o);
   }
-  if (o.out.empty() || o.frame < 0) throw Error("--out", "give --frame I --out FILE.pcd|.ply, or --out OUT.bag");
-  io::check_output_file(o.out, output_policy("export", o.force, {o.seq}));
+  if (o.frame < 0)
+    throw Error("--frame", "give the frame to write to " + o.out + " (or --out FILE.bag for every frame)");
   const io::SequenceReader reader(o.seq);
   const RgbdFrame f = reader.read(o.frame);
   const OrganizedCloud cloud = to_organized_cloud(f);

@@ -24,7 +24,7 @@ struct ReportOptions {
   std::string data, out, title;
   std::string model;  // --model: broccoli detection, sizing and map sections (issue 4)
   int frames = 4;
-  bool force = false;
+  bool force = false, quiet = false;
 };
 
 // The broccoli sections; returns the tracking figures as `eval broccoli --track --json` has them.
@@ -37,7 +37,7 @@ nlohmann::json add_broccoli(report::HtmlPage& page, const ReportOptions& o) {
   pipeline::BroccoliTrackingEvaluator tracker(
       {.overlay_frames = report::evenly_spaced_frames(reader.size(), o.frames)});
   tracker.begin_pass(reader.groundtruth(), !reader.poses().empty(), o.data);
-  Progress progress("report broccoli: " + o.data, reader.size(), o.common.json);
+  Progress progress("report broccoli: " + o.data, reader.size(), o.common.json || o.quiet);
   for (int i = 0; i < reader.size(); ++i) {
     const RgbdFrame frame = reader.read(i);
     pipe.process(frame);
@@ -92,6 +92,7 @@ void add_report(CLI::App& app) {
   cmd->add_option("--data", o->data, "Sequence directory")->required();
   cmd->add_option("--out", o->out, "Output HTML file")->required();
   add_force_flag(cmd, o->force);
+  cmd->add_flag("--quiet", o->quiet, "No progress lines");
   cmd->add_option("--frames", o->frames, "Number of evenly spaced frames to render (default 4)");
   cmd->add_option("--title", o->title, "Page title");
   cmd->add_option("--model", o->model,

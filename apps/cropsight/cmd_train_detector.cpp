@@ -28,14 +28,14 @@ struct TrainDetectorOptions {
   int epochs = 0, width = 0, batch = 0, threads = 1;
   double lr = 0, val_split = 0.2;
   std::uint64_t seed = 1, split_seed = 1;
-  bool resume = false, no_augment = false, force = false;
+  bool resume = false, no_augment = false, force = false, quiet = false;
   CommonOptions common;
 };
 
-void run(const TrainDetectorOptions& o) {
+// The outputs, checked before minutes of training; returns the checkpoint's path. The checkpoint is
+// an output too: started afresh (an existing one replaced) only with --force, resumed with --resume.
+std::string checked_outputs(const TrainDetectorOptions& o) {
   if (o.out.empty()) throw Error("--out", "give the model file to write");
-  // Before minutes of training. The checkpoint is an output too: started afresh (replaced) only
-  // with --force, resumed with --resume.
   const io::OutputPolicy policy =
       output_policy("train detector", o.force, {o.data.coco, o.data.voc, o.data.images, o.common.config});
   io::check_output_file(o.out, policy);
@@ -44,6 +44,12 @@ void run(const TrainDetectorOptions& o) {
     io::check_not_an_input(checkpoint, policy);
   else
     io::check_output_file(checkpoint, policy);
+  return checkpoint;
+}
+
+// Long on purpose: options to configs, the split, the training with its per-epoch log and the summary.
+void run(const TrainDetectorOptions& o) {
+  const std::string checkpoint = checked_outputs(o);
   const ConfigMap map = o.common.config_map();
   const std::string where = o.common.config.empty() ? "--set" : o.common.config;
   // Every key belongs to one of the two sections: a key without its section (`mask_weight` for
@@ -74,13 +80,15 @@ void run(const TrainDetectorOptions& o) {
   for (auto i : split.train) train.push_back(set.samples[i]);
   for (auto i : split.val) val.push_back(set.samples[i]), val_names.push_back(set.samples[i].name);
 
-  if (!o.resume) {
-    std::error_code ec;  // --force said it may go (check_output_file above)
+  if (!o.resume) {  // the inputs are read: an earlier checkpoint goes (--force said so, checked_outputs)
+    std::error_code ec;
     std::filesystem::remove(checkpoint, ec);
   }
   nn::CenterNet net(cfg);
-  std::fprintf(stderr, "train detector: %zu train / %zu held-out images, %zu classes, %zu parameters, input %dx%d\n",
-               train.size(), val.size(), set.classes.size(), net.parameter_count(), cfg.input_width, cfg.input_height);
+  if (!o.quiet)
+    std::fprintf(stderr, "train detector: %zu train / %zu held-out images, %zu classes, %zu parameters, input %dx%d\n",
+                 train.size(), val.size(), set.classes.size(), net.parameter_count(), cfg.input_width,
+                 cfg.input_height);
   const Stopwatch clock;
   std::function<nn::DetectionSample(const nn::DetectionSample&, std::uint64_t)> augment;
   if (!o.no_augment)
@@ -91,10 +99,12 @@ void run(const TrainDetectorOptions& o) {
   const auto logs = net.train(
       train, val, augment,
       [&](const nn::DetectorEpochLog& l) {
-        std::fprintf(
-            stderr, "epoch %d/%d  loss %.4f (heatmap %.4f size %.4f offset %.4f mask %.4f)  held-out AP50 %s  %.1f s\n",
-            l.epoch, cfg.epochs, l.loss, l.heatmap_loss, l.size_loss, l.offset_loss, l.mask_loss,
-            l.val_ap50 < 0 ? "-" : std::to_string(l.val_ap50).substr(0, 5).c_str(), l.seconds);
+        if (!o.quiet)
+          std::fprintf(
+              stderr,
+              "epoch %d/%d  loss %.4f (heatmap %.4f size %.4f offset %.4f mask %.4f)  held-out AP50 %s  %.1f s\n",
+              l.epoch, cfg.epochs, l.loss, l.heatmap_loss, l.size_loss, l.offset_loss, l.mask_loss,
+              l.val_ap50 < 0 ? "-" : std::to_string(l.val_ap50).substr(0, 5).c_str(), l.seconds);
         epochs.push_back({{"epoch", l.epoch},
                           {"loss", json_number(l.loss)},
                           {"val_ap50", l.val_ap50 < 0 ? nlohmann::json() : json_number(l.val_ap50)},
@@ -106,7 +116,8 @@ void run(const TrainDetectorOptions& o) {
   if (!mask_thresholds.empty()) {
     std::string list;
     for (float t : mask_thresholds) list += (list.empty() ? "" : " ") + std::to_string(t).substr(0, 4);
-    std::fprintf(stderr, "mask thresholds per class (best IoU on the training images): %s\n", list.c_str());
+    if (!o.quiet)
+      std::fprintf(stderr, "mask thresholds per class (best IoU on the training images): %s\n", list.c_str());
   }
   net.save(o.out);
   const double seconds = clock.seconds();
@@ -135,6 +146,7 @@ void add_train_detector(CLI::App& train) {
   add_dataset_options(cmd, o->data);
   cmd->add_option("--out", o->out, "Model file to write (.pt)")->required();
   add_force_flag(cmd, o->force);
+  cmd->add_flag("--quiet", o->quiet, "No progress lines");
   cmd->add_option("--epochs", o->epochs, "Training epochs (default 60)");
   cmd->add_option("--input-size", o->input, "Network input WxH, multiples of 32 (default 256x256)");
   add_deprecated_option(cmd, "--input", o->input, "--input-size");

@@ -35,6 +35,9 @@ void run(const TrainGrapeOptions& o) {
   if (!o.out.empty()) io::check_output_file(o.out, policy);
   if (!o.checkpoint.empty()) io::check_not_an_input(o.checkpoint, policy);
   const pipeline::GrapeTrainConfig cfg = train_grape_config(o);
+  const auto say = [&o](const std::string& line) {
+    if (!o.quiet) progress(line);
+  };
   auto files = io::list_grape_clouds(o.data);
   if (o.limit_set && std::size_t(o.limit) < files.size()) files.resize(std::size_t(o.limit));
   const auto clouds = pipeline::load_grape_clouds(files);
@@ -43,7 +46,7 @@ void run(const TrainGrapeOptions& o) {
 
   if (!o.val_fold.empty() || o.folds_set) {
     const pipeline::GrapeFoldPlan plan = train_grape_fold_plan(o, clouds.size());
-    const auto cv = pipeline::cross_validate_grape(cfg, clouds, plan, progress);
+    const auto cv = pipeline::cross_validate_grape(cfg, clouds, plan, say);
     result["validation"] = grape_evaluation_json(cv.pooled);
     result["validation"]["folds"] = plan.folds;
     result["validation"]["folds_run"] = plan.last - plan.first;
@@ -57,7 +60,7 @@ void run(const TrainGrapeOptions& o) {
   }
   if (!o.out.empty()) {
     const Stopwatch clock;
-    pipeline::train_grape_model(cfg, clouds, {}, o.out, [](const std::string& line) { progress("[all] " + line); });
+    pipeline::train_grape_model(cfg, clouds, {}, o.out, [&](const std::string& line) { say("[all] " + line); });
     result["out"] = o.out;
     result["train_seconds"] = json_number(clock.seconds());
     if (!o.common.json)
@@ -78,6 +81,7 @@ void add_train_grape(CLI::App& train) {
   cmd->add_option("--features", o->features, "Network inputs: xyz | xyzn | xyzrgb | xyzrgbn");
   cmd->add_option("--out", o->out, "Model file to write (.json for gbdt, .pt for networks)");
   add_force_flag(cmd, o->force);
+  cmd->add_flag("--quiet", o->quiet, "No progress lines");
   auto* epochs = cmd->add_option("--epochs", o->epochs, "Network training epochs, >= 1 (overrides the preset)");
   cmd->add_option("--val-fold", o->val_fold, "k/K: train without fold k and report its metrics");
   auto* folds = cmd->add_option("--folds", o->folds,

@@ -13,7 +13,7 @@ struct TrainGrapeOptions {
   CommonOptions common;
   std::string data, model, features = "xyzrgbn", out, val_fold, checkpoint;  // model "": from the preset
   int epochs = 0, folds = 0, limit = 0;  // meaningful only when given (the *_set flags)
-  bool force = false;
+  bool force = false, quiet = false;
   bool epochs_set = false, folds_set = false, limit_set = false, threads_set = false;
   int threads = 0;  // unset: the preset's value (2); an explicit --threads wins over --config/--set
   int eval_threads() const { return threads_set ? threads : 2; }

@@ -71,7 +71,14 @@ TEST(CliVocabulary, EveryCommandFollowsTheConventions) {
       "--val-split",       "--split-seed", "--image-id",    "--square-mm", "--map-min-points"};
   // Old spellings work for one release but are never shown (docs/cli.md, "Older spellings").
   const std::set<std::string> retired = {"--overwrite", "--bag", "--input"};
+  // Commands that print progress lines on stderr: each can be silenced with --quiet.
+  const std::set<std::string> with_progress = {"simulate broccoli", "simulate potato", "simulate seedling",
+                                               "detect broccoli",   "eval broccoli",   "train broccoli",
+                                               "eval seedling",     "harvest potato",  "report",
+                                               "train grape",       "train detector",  "bench potato"};
   std::string problems;
+  for (const std::string& name : with_progress)
+    if (!all.count(name)) problems += name + ": no such command (update this test)\n";
   for (const auto& [name, help] : all) {
     std::set<std::string> names;
     for (const Option& o : options(help)) {
@@ -82,6 +89,8 @@ TEST(CliVocabulary, EveryCommandFollowsTheConventions) {
     }
     if (std::regex_search(help, std::regex(R"(issue \d)"))) problems += name + ": its help cites an issue number\n";
     if (names.count("--out") && !names.count("--force")) problems += name + ": writes --out but has no --force\n";
+    if (with_progress.count(name) && !names.count("--quiet"))
+      problems += name + ": prints progress but has no --quiet\n";
     // A sequence or bag is --data, images --images, point clouds --clouds: no other input name.
     for (const char* other : {"--seq", "--sequence", "--input-dir", "--cloud", "--image-dir"})
       if (names.count(other)) problems += name + ": " + other + " is not in the vocabulary\n";
