@@ -57,8 +57,7 @@ struct Fixture {
  public:
   static pipeline::BroccoliDetectorConfig config(const std::string& pipe) {
     pipeline::BroccoliDetectorConfig cfg;
-    apply_config(cfg, io::load_config_map(std::string(CROPSIGHT_SOURCE_DIR) + "/configs/broccoli-" + pipe + "-uk.yaml"),
-                 "preset");
+    apply_config(cfg, io::load_config_map(io::find_preset("broccoli-" + pipe + "-uk")), "preset");
     cfg.outliers.enabled = false;  // same work as the PCL reference
     return cfg;
   }

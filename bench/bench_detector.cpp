@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "cropsight/core/install_paths.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/nn/center_net.hpp"
 #include "cropsight/nn/center_onnx.hpp"
@@ -39,7 +40,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace cropsight;
 
-const fs::path kModels = fs::path(CROPSIGHT_SOURCE_DIR) / "models";
+const fs::path kModels = cropsight::data_dir() / "models";  // the build tree mirrors an install
 
 fs::path onnx_model() {
   const char* env = std::getenv("CROPSIGHT_BENCH_DETECTOR");

@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 
+#include "cropsight/core/install_paths.hpp"
 #include "cropsight/geometry/farthest_point.hpp"
 #include "cropsight/geometry/knn_normals.hpp"
 #include "cropsight/io/grape_text.hpp"
@@ -52,7 +53,7 @@ void BM_GrapeFeatures(benchmark::State& state) {
 BENCHMARK(BM_GrapeFeatures)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 void BM_GrapeGbdtSegment(benchmark::State& state) {
-  const fs::path m = fs::path(CROPSIGHT_SOURCE_DIR) / "models" / "grape-gbdt.json";
+  const fs::path m = cropsight::data_dir() / "models" / "grape-gbdt.json";
   if (!grape_cloud() || !fs::exists(m)) return state.SkipWithError("needs grape data and models/grape-gbdt.json");
   const auto model = pipeline::GrapeModel::load(m, 2);
   for (auto _ : state) benchmark::DoNotOptimize(model.segment(*grape_cloud()));
@@ -65,7 +66,7 @@ BENCHMARK(BM_GrapeGbdtSegment)->Unit(benchmark::kMillisecond);
 // overrides the model (e.g. a fold model).
 void BM_GrapeGbdtFastSegment(benchmark::State& state) {
   const char* env = std::getenv("CROPSIGHT_GRAPE_FAST_MODEL");
-  const fs::path m = env ? fs::path(env) : fs::path(CROPSIGHT_SOURCE_DIR) / "models" / "grape-gbdt-fast.json";
+  const fs::path m = env ? fs::path(env) : cropsight::data_dir() / "models" / "grape-gbdt-fast.json";
   if (!grape_cloud() || !fs::exists(m)) return state.SkipWithError("needs grape data and models/grape-gbdt-fast.json");
   const auto model = pipeline::GrapeModel::load(m, 2);
   for (auto _ : state) benchmark::DoNotOptimize(model.segment(*grape_cloud()));
@@ -76,7 +77,7 @@ BENCHMARK(BM_GrapeGbdtFastSegment)->Unit(benchmark::kMillisecond);
 // XGBoost's predictor, 1 the compiled forest that GrapeModel uses), 2 carry-back (2 threads).
 void BM_GrapeGbdtFastStages(benchmark::State& state) {
   const char* env = std::getenv("CROPSIGHT_GRAPE_FAST_MODEL");
-  const fs::path m = env ? fs::path(env) : fs::path(CROPSIGHT_SOURCE_DIR) / "models" / "grape-gbdt-fast.json";
+  const fs::path m = env ? fs::path(env) : cropsight::data_dir() / "models" / "grape-gbdt-fast.json";
   if (!grape_cloud() || !fs::exists(m)) return state.SkipWithError("needs grape data and models/grape-gbdt-fast.json");
   const Cloud& c = *grape_cloud();
   auto model = learning::Gbdt::load(m, 2);
@@ -103,7 +104,7 @@ BENCHMARK(BM_GrapeGbdtFastStages)
     ->Unit(benchmark::kMillisecond);
 
 void BM_GrapeNetworkSegment(benchmark::State& state) {
-  const fs::path m = fs::path(CROPSIGHT_SOURCE_DIR) / "models" / "grape-pointresnet.pt";
+  const fs::path m = cropsight::data_dir() / "models" / "grape-pointresnet.pt";
   if (!grape_cloud() || !fs::exists(m)) return state.SkipWithError("needs grape data and models/grape-pointresnet.pt");
   auto model = pipeline::GrapeModel::load(m, 2);
   if (state.range(0) > 0) model.set_sampled(true, false, int(state.range(0)));
@@ -117,7 +118,7 @@ BENCHMARK(BM_GrapeNetworkSegment)->Arg(0)->Arg(1)->Arg(4)->Unit(benchmark::kMill
 // `votes` rotated samples (colour-guided 4-NN carry-back), alone (second argument 0) or mixed
 // with models/grape-gbdt-fast4096.json at weight 0.5 (1), the best model within 0.3 s.
 void BM_GrapeNetworkVotes(benchmark::State& state) {
-  const fs::path root = fs::path(CROPSIGHT_SOURCE_DIR) / "models";
+  const fs::path root = cropsight::data_dir() / "models";
   const fs::path net = root / "grape-pointresnet.pt", gbdt = root / "grape-gbdt-fast4096.json";
   if (!grape_cloud() || !fs::exists(net) || !fs::exists(gbdt))
     return state.SkipWithError("needs grape data, models/grape-pointresnet.pt and grape-gbdt-fast4096.json");

@@ -85,7 +85,7 @@ void BM_DisparityOpenCvSgbm3Way128(benchmark::State& st) {
     benchmark::DoNotOptimize(stereo::opencv_sgbm_disparity(pair().left, pair().right, 128, 3, "bench", true));
 }
 pipeline::SeedlingPipeline preset_pipeline(const std::string& preset) {
-  return pipeline::SeedlingPipeline::from_preset(std::string(CROPSIGHT_SOURCE_DIR) + "/configs/" + preset + ".yaml");
+  return pipeline::SeedlingPipeline::from_preset(preset);
 }
 
 stereo::RectifiedGeometry sim_geometry() { return sim::rectified_geometry(sim::SeedlingSimConfig{}.rig()); }

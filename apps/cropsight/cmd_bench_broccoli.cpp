@@ -159,7 +159,10 @@ void add_bench_broccoli(CLI::App& bench) {
   auto o = std::make_shared<BenchOptions>();
   auto* cmd = bench.add_subcommand("broccoli", "Time OES, ORG, FEC and the PCL reference pipeline");
   cmd->add_option("--data", o->data, "Sequence directory")->required();
-  cmd->add_option("--model", o->model, "Model file with VFH features (cropsight train broccoli)")->required();
+  cmd->add_option_function<std::string>(
+         "--model", [o](const std::string& v) { o->model = io::find_model(v).string(); },
+         "Model with VFH features: a shipped model's name (e.g. broccoli-oes-uk) or a file (train broccoli)")
+      ->required();
   cmd->add_option("--frames", o->frames, "Frames to time, the first N (default 0: all)");
   cmd->add_option("--repeat", o->repeat, "Passes over the frames (default 1)");
   cmd->add_option("--variety", o->variety, "Presets to use: uk | spain (default uk)");

@@ -15,7 +15,7 @@ constexpr std::uint8_t kHeadColour[3] = {255, 40, 40};
 
 BroccoliNode::BroccoliNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {
   bridge::BroccoliRunnerOptions o;
-  o.model = resolve_project_path(pnh_.param<std::string>("model", "models/broccoli-oes-uk.json"));
+  o.model = resolve_project_path(pnh_.param<std::string>("model", "models/broccoli-oes-general.json"));
   o.preset = resolve_project_path(pnh_.param<std::string>("preset", ""));
   o.sets = read_set_param(pnh_);
   o.track = pnh_.param("track", true);

@@ -5,6 +5,8 @@
 // grape ROI boxes (roi.json), the shipped models (broccoli.json, preset.yaml, grape.json,
 // det.onnx, det.pt) and, in builds with ROS, the sequence as a bag (s.bag). Returns false when a
 // simulation failed.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -84,5 +86,43 @@ inline std::map<std::string, std::string> snapshot(const std::filesystem::path& 
   }
   return s;
 }
+
+/// A parameterised suite over the CLI inputs: make_cli_inputs once per suite (ok() says whether it
+/// worked), and cells, folders where one input is copied (a command may break or aim at it) and
+/// every other one is a link to the suite's.
+template <class Param>
+class CliInputsSuite : public ::testing::TestWithParam<Param> {
+ public:
+  static void SetUpTestSuite() {
+    base_ = new TempDir;
+    ok_ = make_cli_inputs(base_->path());
+  }
+  static void TearDownTestSuite() {
+    delete base_;
+    base_ = nullptr;
+  }
+
+ protected:
+  static const std::filesystem::path& inputs() { return base_->path(); }
+  static bool ok() { return ok_; }
+  /// Fills `cell` (created): the top-level input entry holding `copied` ("seq/depth/000000.png":
+  /// seq) is copied, every other one linked.
+  static void make_cell(const std::filesystem::path& cell, const std::string& copied) {
+    namespace fs = std::filesystem;
+    fs::create_directories(cell);
+    const std::string top = copied.substr(0, copied.find('/'));
+    for (const auto& e : fs::directory_iterator(base_->path())) {
+      const auto name = e.path().filename().string();
+      if (name == top)
+        fs::copy(e.path(), cell / name, fs::copy_options::recursive);
+      else
+        fs::create_directory_symlink(e.path(), cell / name);  // works for files too on Linux
+    }
+  }
+
+ private:
+  static inline TempDir* base_ = nullptr;
+  static inline bool ok_ = false;
+};
 
 }  // namespace cropsight::testing

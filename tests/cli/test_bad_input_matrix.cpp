@@ -401,44 +401,24 @@ const std::vector<Row>& rows() {
   return r;
 }
 
-class BadInputMatrix : public ::testing::TestWithParam<Row> {
- public:
-  // The good inputs, made once (cli_inputs.hpp).
-  static void SetUpTestSuite() {
-    base_ = new cropsight::testing::TempDir;
-    ok_ = cropsight::testing::make_cli_inputs(base_->path());
-  }
-  static void TearDownTestSuite() {
-    delete base_;
-    base_ = nullptr;
-  }
-
+class BadInputMatrix : public cropsight::testing::CliInputsSuite<Row> {
  protected:
-  // A cell folder: the top-level entry holding `broken` is copied, every other one linked.
-  static void make_cell(const fs::path& cell, const std::string& broken) {
+  // A cell folder with an empty out/: the top-level entry holding `broken` is copied, every
+  // other one linked.
+  static void make_bad_input_cell(const fs::path& cell, const std::string& broken) {
+    make_cell(cell, broken);
     fs::create_directories(cell / "out");
-    const std::string top = broken.substr(0, broken.find('/'));
-    for (const auto& e : fs::directory_iterator(base_->path())) {
-      const auto name = e.path().filename().string();
-      if (name == top)
-        fs::copy(e.path(), cell / name, fs::copy_options::recursive);
-      else
-        fs::create_directory_symlink(e.path(), cell / name);  // works for files too on Linux
-    }
   }
-
-  static inline cropsight::testing::TempDir* base_ = nullptr;
-  static inline bool ok_ = false;
 };
 
 // The good inputs must work (else every bad cell would "pass" for the wrong reason): the command
 // succeeds on the unbroken cell. Slow commands (training) are checked elsewhere in tests/cli.
 TEST_P(BadInputMatrix, Cells) {
-  ASSERT_TRUE(ok_) << "fixture simulation failed";
+  ASSERT_TRUE(ok()) << "fixture simulation failed";
   const Row& row = GetParam();
   {
     cropsight::testing::TempDir t;
-    make_cell(t / "cell", "");
+    make_bad_input_cell(t / "cell", "");
     const CommandResult good = run_cli(replace_all(row.args, "{c}", (t / "cell").string()));
     ASSERT_EQ(good.exit_code, 0) << "the good inputs fail: " << good.err;
   }
@@ -449,7 +429,7 @@ TEST_P(BadInputMatrix, Cells) {
       if (std::find(in.na.begin(), in.na.end(), b) != in.na.end()) continue;
       cropsight::testing::TempDir t;
       const fs::path cell = t / "cell";
-      make_cell(cell, in.kind == Kind::Set ? "" : in.path);
+      make_bad_input_cell(cell, in.kind == Kind::Set ? "" : in.path);
       std::string args = replace_all(row.args, "{c}", cell.string());
       std::string names;  // what the line must name
       if (in.kind == Kind::Set) {

@@ -123,43 +123,22 @@ std::vector<Aim> aims_of(const Row& row) {
   return a;
 }
 
-class DataLossMatrix : public ::testing::TestWithParam<Row> {
- public:
-  static void SetUpTestSuite() {
-    base_ = new cropsight::testing::TempDir;
-    ok_ = cropsight::testing::make_cli_inputs(base_->path());
-  }
-  static void TearDownTestSuite() {
-    delete base_;
-    base_ = nullptr;
-  }
-
+class DataLossMatrix : public cropsight::testing::CliInputsSuite<Row> {
  protected:
   // A cell: the main input copied (a command aimed at it must find it there), every other input
   // linked, and the user's folder.
-  static void make_cell(const fs::path& cell, const std::string& input) {
-    fs::create_directories(cell);
-    const std::string top = input.substr(0, input.find('/'));
-    for (const auto& e : fs::directory_iterator(base_->path())) {
-      const auto name = e.path().filename().string();
-      if (name == top)
-        fs::copy(e.path(), cell / name, fs::copy_options::recursive);
-      else
-        fs::create_directory_symlink(e.path(), cell / name);
-    }
+  static void make_user_cell(const fs::path& cell, const std::string& input) {
+    make_cell(cell, input);
     fs::create_directories(cell / "user/sub");
     cropsight::testing::write_text(cell / "user/notes.md", "my field notes\n");
     cropsight::testing::write_text(cell / "user/sub/data.csv", "plot,yield\n1,42\n");
   }
-
-  static inline cropsight::testing::TempDir* base_ = nullptr;
-  static inline bool ok_ = false;
 };
 
 TEST_P(DataLossMatrix, Cells) {
-  ASSERT_TRUE(ok_) << "fixture simulation failed";
+  ASSERT_TRUE(ok()) << "fixture simulation failed";
   const Row& row = GetParam();
-  const auto shared_before = snapshot(base_->path());
+  const auto shared_before = snapshot(inputs());
   const fs::path start = fs::current_path();
   int cells = 0, failed = 0;
   std::string failures;
@@ -167,7 +146,7 @@ TEST_P(DataLossMatrix, Cells) {
     for (bool force : {false, true}) {
       cropsight::testing::TempDir t;
       const fs::path cell = t / "cell";
-      make_cell(cell, row.input);
+      make_user_cell(cell, row.input);
       const std::string out = aim.in_user_folder ? "." : (cell / aim.out).lexically_normal().string();
       std::string args = replace_all(replace_all(row.args, "{out}", out), "{c}", cell.string());
       if (force) args += " --force";
@@ -192,7 +171,7 @@ TEST_P(DataLossMatrix, Cells) {
       }
     }
   }
-  EXPECT_EQ(snapshot(base_->path()), shared_before) << "the shared inputs changed";
+  EXPECT_EQ(snapshot(inputs()), shared_before) << "the shared inputs changed";
   std::printf("data-loss matrix: %s %d cells, %d pass, %d fail\n", row.name.c_str(), cells, cells - failed, failed);
   EXPECT_EQ(failed, 0) << row.name << ":\n" << failures;
 }
