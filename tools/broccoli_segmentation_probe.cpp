@@ -23,12 +23,14 @@
 #include <memory>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <sstream>
 #include <string>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/geometry/organized_edges.hpp"
 #include "cropsight/io/config_yaml.hpp"
+#include "cropsight/io/output.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/learning/model.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_detector.hpp"
@@ -138,6 +140,14 @@ int probe() {
   // pieces whose union would reach IoU 0.5 (each piece mostly this head), or neither.
   long vis = 0, vis_found = 0, vis_merged = 0, vis_union = 0, vis_other = 0;
   std::vector<TruthInstance> truth;
+  // The dump folder is written whole at the end, by the one output rule (a rerun replaces only an
+  // earlier dump; never a folder of other files, never an input).
+  std::optional<io::OutputFolder> dump_out;
+  if (const char* d = std::getenv("CROPSIGHT_SEG_DUMP")) {
+    std::vector<std::filesystem::path> inputs;
+    for (const auto& dir : split(seqs, ',')) inputs.emplace_back(dir);
+    dump_out.emplace(d, io::OutputPolicy{"broccoli_segmentation_probe", true, inputs});
+  }
   for (const auto& dir : split(seqs, ',')) {
     io::SequenceReader reader(dir);
     for (int i = 0; i < std::min(max_frames, reader.size()); ++i) {
@@ -233,10 +243,11 @@ int probe() {
       }
       const long dump_from =
           std::getenv("CROPSIGHT_SEG_DUMP_FROM") ? std::atol(std::getenv("CROPSIGHT_SEG_DUMP_FROM")) : 1;
-      if (const char* d = std::getenv("CROPSIGHT_SEG_DUMP"); d && frames >= dump_from && frames < dump_from + 3)
-        dump(d, int(frames), det.cloud(), cands, merged_clusters, merged_heads);
+      if (dump_out && frames >= dump_from && frames < dump_from + 3)
+        dump(dump_out->path().string(), int(frames), det.cloud(), cands, merged_clusters, merged_heads);
     }
   }
+  if (dump_out) dump_out->commit("probe pictures");
   std::printf(
       "SEGPROBE preset=%s frames=%ld clusters/frame=%.1f heads: found %ld / %ld (%.3f), merged %ld | "
       "clear heads (in view, >= %d points): found %ld / %ld (%.3f), merged %ld, split/small %ld\n",

@@ -12,9 +12,11 @@
 #include <cstdlib>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
+#include <optional>
 #include <vector>
 
 #include "cropsight/io/image_io.hpp"
+#include "cropsight/io/output.hpp"
 #include "cropsight/measure/orientation.hpp"
 #include "cropsight/pipeline/potato/orientation_dataset.hpp"
 #include "cropsight/pipeline/potato/potato_colour_fit.hpp"
@@ -92,7 +94,11 @@ int main(int argc, char** argv) {
     const auto r = measure::estimate_orientation(im, box, cfg, argv[2]);
     std::printf("ok %d angle %.1f deg, mask %dx%d at (%d, %d)\n", int(r.ok), r.angle_rad * 180 / 3.14159265358979,
                 r.mask.width, r.mask.height, r.roi_x, r.roi_y);
-    cv::imwrite(argv[8], cv::Mat(r.mask.height, r.mask.width, CV_8UC1, const_cast<std::uint8_t*>(r.mask.data.data())));
+    io::check_output_file(argv[8], io::OutputPolicy{"potato_probe", true, {argv[2]}});  // never the image read
+    io::write_atomic_with(argv[8], [&](const std::filesystem::path& tmp) {
+      cv::imwrite(tmp.string(),
+                  cv::Mat(r.mask.height, r.mask.width, CV_8UC1, const_cast<std::uint8_t*>(r.mask.data.data())));
+    });
     return 0;
   }
   if (argc >= 5 && std::string(argv[1]) == "--lab") {  // --lab IMAGE x y [x y ...]: Lab of 5x5 means at points
@@ -130,6 +136,9 @@ int main(int argc, char** argv) {
     report(a.stem.substr(0, 12).c_str(), io::read_color(a.image), boxes);
   }
   pipeline::potato::BoardBlobDetector board;
+  // The overlay folder is written whole at the end, by the one output rule.
+  std::optional<io::OutputFolder> overlays;
+  if (argc > 3) overlays.emplace(argv[3], io::OutputPolicy{"potato_probe", true, {det, ori}});
   for (const auto& s : pipeline::potato::list_orientation_shots(ori / "rgb", ori / "depth")) {
     const auto im = io::read_color(s.rgb);
     const auto d = board.detect(DetectorInput{&im, nullptr});
@@ -139,7 +148,7 @@ int main(int argc, char** argv) {
     report(name.c_str(), im, boxes);
     if (d.empty()) continue;
     std::printf("    box %.0f %.0f %.0f %.0f\n", d[0].x1, d[0].y1, d[0].x2, d[0].y2);
-    if (argc > 3) {  // an overlay with a 10 px grid, for checking boxes by eye
+    if (overlays) {  // an overlay with a 10 px grid, for checking boxes by eye
       cv::Mat bgr;
       cv::cvtColor(cv::Mat(im.height, im.width, CV_8UC3, const_cast<Rgb8*>(im.data.data())), bgr, cv::COLOR_RGB2BGR);
       for (int x = 200; x < 460; x += 10) cv::line(bgr, {x, 150}, {x, x % 50 ? 155 : 165}, cv::Scalar(0, 0, 255));
@@ -148,7 +157,8 @@ int main(int argc, char** argv) {
       const cv::Rect roi(200, 150, 260, 210);
       cv::Mat big;
       cv::resize(bgr(roi), big, {}, 2.5, 2.5, cv::INTER_NEAREST);
-      cv::imwrite((std::filesystem::path(argv[3]) / (std::to_string(s.number) + ".png")).string(), big);
+      cv::imwrite((overlays->path() / (std::to_string(s.number) + ".png")).string(), big);
     }
   }
+  if (overlays) overlays->commit("overlays");
 }
