@@ -75,7 +75,9 @@ void add_eval_potato_tracker(CLI::App& eval) {
   auto* cmd = eval.add_subcommand(
       "potato-tracker",
       "Which visual tracker continues the potato target without detections: trials on simulated approaches");
-  cmd->add_option("--data", o->data, "simulated sequence folder(s) (cropsight simulate potato)")->required();
+  cmd->add_option("--data", o->data, "Simulated sequence folders, comma separated (cropsight simulate potato)")
+      ->required()
+      ->delimiter(',');
   cmd->add_option("--trackers", o->trackers, "trackers to compare (csrt, kcf, mil)")->delimiter(',');
   cmd->add_option("--horizon", o->trial.horizon, "updates per trial without detection (the paper's TRACKING_LIM)")
       ->check(CLI::Range(1, 1000));
