@@ -11,6 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cropsight/io/sequence.hpp"
+#include "cropsight/pipeline/potato/make_pipeline.hpp"
 #include "cropsight/pipeline/potato/potato_pipeline.hpp"
 #include "cropsight/sim/potato/potato_sim.hpp"
 
@@ -59,7 +60,8 @@ BENCHMARK(BM_CvtColorLab640)->Unit(benchmark::kMillisecond);
 void BM_PotatoLoop(benchmark::State& state, const char* preset) {
   cv::setNumThreads(0);
   const Approach& a = approach();
-  pipeline::potato::PotatoPipeline pipeline(pipeline::potato::load_potato_config(preset));
+  const auto built = pipeline::potato::make_pipeline({.preset = preset});
+  pipeline::potato::PotatoPipeline& pipeline = *built;
   for (auto _ : state) {
     pipeline.reset();
     for (const RgbdFrame& f : a.frames) benchmark::DoNotOptimize(pipeline.process(f).target.z);

@@ -19,6 +19,7 @@
 
 #include <random>
 
+#include "cropsight/pipeline/seedling/make_pipeline.hpp"
 #include "cropsight/pipeline/seedling/seedling_pipeline.hpp"
 #include "cropsight/segmentation/gmm.hpp"
 #include "cropsight/sim/seedling/seedling_sim.hpp"
@@ -85,7 +86,7 @@ void BM_DisparityOpenCvSgbm3Way128(benchmark::State& st) {
     benchmark::DoNotOptimize(stereo::opencv_sgbm_disparity(pair().left, pair().right, 128, 3, "bench", true));
 }
 pipeline::SeedlingPipeline preset_pipeline(const std::string& preset) {
-  return pipeline::SeedlingPipeline::from_preset(preset);
+  return std::move(*pipeline::seedling::make_pipeline({.preset = preset}));
 }
 
 stereo::RectifiedGeometry sim_geometry() { return sim::rectified_geometry(sim::SeedlingSimConfig{}.rig()); }

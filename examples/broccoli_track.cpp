@@ -18,6 +18,7 @@
 #include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_tracking_eval.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_training.hpp"
+#include "cropsight/pipeline/broccoli/make_pipeline.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 3) {
@@ -27,10 +28,10 @@ int main(int argc, char** argv) {
   using namespace cropsight;
   try {
     // One config: what the model records (variant, parameters, classifier) ← any overrides; here
-    // the camera positions of poses.csv replace the estimated motion.
-    const auto model = pipeline::load_broccoli_model(argv[2]);
-    pipeline::BroccoliPipeline broccoli(
-        pipeline::broccoli_config_for_model(*model, {{"tracking.use_poses", "true"}}, argv[2]), model, argv[2]);
+    // the camera positions of poses.csv replace the estimated motion. One call builds it, as the
+    // CLI and the ROS node do.
+    const auto built = pipeline::broccoli::make_pipeline({.sets = {"tracking.use_poses=true"}, .model = argv[2]});
+    pipeline::BroccoliPipeline& broccoli = *built;
 
     const io::SequenceReader sequence(argv[1]);
     const bool labelled = sequence.info().has_labels && sequence.info().has_groundtruth;

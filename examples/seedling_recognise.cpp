@@ -16,6 +16,7 @@
 #include <string>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/pipeline/seedling/make_pipeline.hpp"
 #include "cropsight/pipeline/seedling/seedling_eval.hpp"
 #include "cropsight/pipeline/seedling/seedling_pipeline.hpp"
 #include "cropsight/sim/seedling/seedling_sim.hpp"
@@ -31,7 +32,8 @@ int main(int argc, char** argv) {
   }
   try {
     // The pipeline composes every step from the one config of the preset (configs/<preset>.yaml).
-    const auto seedlings = pipeline::SeedlingPipeline::from_preset(preset);
+    const auto built = pipeline::seedling::make_pipeline({.preset = preset});
+    const pipeline::SeedlingPipeline& seedlings = *built;
     const sim::SeedlingSimConfig scenes;  // the simulator's defaults: what `simulate seedling` renders
     const stereo::RectifiedGeometry geometry = sim::rectified_geometry(scenes.rig());
     pipeline::SeedlingEvaluator evaluator(seedlings.config().gmm);

@@ -37,6 +37,8 @@
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_training.hpp"
+#include "cropsight/pipeline/broccoli/make_pipeline.hpp"
+#include "cropsight/pipeline/potato/make_pipeline.hpp"
 #include "cropsight/pipeline/potato/potato_pipeline.hpp"
 
 using namespace cropsight;
@@ -152,9 +154,8 @@ struct Memory {
 };
 
 nlohmann::json run_broccoli(const Options& o) {
-  const auto model = pipeline::load_broccoli_model(o.model);
-  pipeline::BroccoliPipelineConfig cfg = pipeline::broccoli_config_for_model(*model, {}, o.model);
-  cfg.track = true;
+  // Built the way every front-end builds it; twice, so that the long run starts from a fresh state.
+  const pipeline::PipelineSpec spec{.sets = {"track=true"}, .model = o.model};
   const std::vector<RgbdFrame> source = load_frames(o.data);
   const int n = int(source.size());
   // Renumbered repeats: frame i is source frame i % n, its index i, its time and camera position
@@ -175,7 +176,8 @@ nlohmann::json run_broccoli(const Options& o) {
   std::vector<std::uint64_t> short_hash(static_cast<std::size_t>(short_frames)),
       source_dets(static_cast<std::size_t>(n));
   {
-    pipeline::BroccoliPipeline pipe(cfg, model, o.model);
+    const auto built = pipeline::broccoli::make_pipeline(spec);
+    pipeline::BroccoliPipeline& pipe = *built;
     RgbdFrame f = source[0];
     for (int i = 0; i < short_frames; ++i) {
       f = source[std::size_t(i % n)];
@@ -188,7 +190,8 @@ nlohmann::json run_broccoli(const Options& o) {
       source_dets[std::size_t(i)] = detections_hash(pipe.process(source[i]).detections);
   }
 
-  pipeline::BroccoliPipeline pipe(cfg, model, o.model);
+  const auto built = pipeline::broccoli::make_pipeline(spec);
+  pipeline::BroccoliPipeline& pipe = *built;
   Memory mem;
   mem.before = resident_mib();
   int errors = 0, nonfinite = 0, short_mismatch = 0, detection_mismatch = 0, passes = 1;
@@ -248,16 +251,18 @@ nlohmann::json run_broccoli(const Options& o) {
 
 nlohmann::json run_potato(const Options& o) {
   namespace pp = pipeline::potato;
-  const pp::PotatoPipelineConfig cfg = pp::load_potato_config(o.config);
+  const pipeline::PipelineSpec spec{.preset = o.config};
   const std::vector<RgbdFrame> source = load_frames(o.data);
   const int n = int(source.size());
   std::vector<std::uint64_t> first(static_cast<std::size_t>(n));
   std::map<int, int> ids;
   {
-    pp::PotatoPipeline pipe(cfg, o.config);
+    const auto built = pp::make_pipeline(spec);
+    pp::PotatoPipeline& pipe = *built;
     for (int i = 0; i < n; ++i) first[std::size_t(i)] = harvest_hash(pipe.process(source[std::size_t(i)]), ids);
   }
-  pp::PotatoPipeline pipe(cfg, o.config);
+  const auto built = pp::make_pipeline(spec);
+  pp::PotatoPipeline& pipe = *built;
   Memory mem;
   mem.before = resident_mib();
   int errors = 0, nonfinite = 0, mismatch = 0, with_target = 0;

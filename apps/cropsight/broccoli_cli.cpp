@@ -5,22 +5,18 @@
 #include <sstream>
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/io/config_yaml.hpp"
 
 namespace cropsight::cli {
 
-LoadedBroccoli load_broccoli(const std::string& model_path, const CommonOptions& common, bool track) {
-  LoadedBroccoli l;
-  const std::string file = io::find_model(model_path).string();  // a file, or a shipped model's name
-  l.model = pipeline::load_broccoli_model(file);
-  l.config = pipeline::broccoli_config_for_model(*l.model, common.config_map(), file,
-                                                 common.config.empty() ? "--set" : common.config);
-  l.config.track = track;
-  return l;
+std::unique_ptr<pipeline::BroccoliPipeline> make_broccoli(const std::string& model, const CommonOptions& common,
+                                                          bool track) {
+  pipeline::PipelineSpec spec{common.config, common.sets, model};
+  spec.sets.push_back(track ? "track=true" : "track=false");
+  return pipeline::broccoli::make_pipeline(spec);
 }
 
 void add_broccoli_model_option(CLI::App* cmd, std::string& model) {
-  model = kDefaultBroccoliModel;
+  model = pipeline::broccoli::kDefaultModel;
   cmd->add_option("--model", model,
                   "Model: a shipped model's name (models/, e.g. broccoli-oes-uk) or a file written by train broccoli")
       ->capture_default_str();

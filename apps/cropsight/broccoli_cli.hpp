@@ -15,21 +15,14 @@
 #include "cropsight/pipeline/broccoli/broccoli_timing.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_tracking_eval.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_training.hpp"
+#include "cropsight/pipeline/broccoli/make_pipeline.hpp"
 
 namespace cropsight::cli {
 
-/// A model file and the config its pipeline runs with (defaults ← model ← preset ← --set).
-struct LoadedBroccoli {
-  std::shared_ptr<const learning::Model> model;
-  pipeline::BroccoliPipelineConfig config;
-};
-/// The model `model_path` names (a file, or a shipped model's name: io::find_model) with its
-/// configuration overlaid by --config / --set.
-LoadedBroccoli load_broccoli(const std::string& model_path, const CommonOptions& common, bool track);
-
-/// The broccoli model a command runs when given no --model: the one measured best on fields it
-/// was not trained on (docs/pipelines/broccoli-heads.md).
-inline constexpr const char* kDefaultBroccoliModel = "broccoli-oes-general";
+/// The pipeline of --model (a shipped model's name or a file), --config, --set and --track, built
+/// by the library's one builder (pipeline::broccoli::make_pipeline).
+std::unique_ptr<pipeline::BroccoliPipeline> make_broccoli(const std::string& model, const CommonOptions& common,
+                                                          bool track);
 /// --model NAME|FILE of the broccoli commands, defaulting to kDefaultBroccoliModel.
 void add_broccoli_model_option(CLI::App* cmd, std::string& model);
 

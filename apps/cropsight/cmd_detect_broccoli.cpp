@@ -54,8 +54,8 @@ void run(const DetectOptions& o) {
   }
   std::optional<io::OutputFolder> masks_out;
   if (!o.masks.empty()) masks_out.emplace(o.masks, policy);
-  const LoadedBroccoli b = load_broccoli(o.model, o.common, o.track.track);
-  pipeline::BroccoliPipeline pipe(b.config, b.model, o.model);
+  const auto built = make_broccoli(o.model, o.common, o.track.track);
+  pipeline::BroccoliPipeline& pipe = *built;
   const Recording recording(o.data, o.topics);
   io::SequenceReader reader(recording.sequence());
 
@@ -83,13 +83,13 @@ void run(const DetectOptions& o) {
                          {"out", o.out},
                          {"frames", reader.size()},
                          {"detections", total},
-                         {"pipeline", config_name(b.config.detector.pipeline)},
+                         {"pipeline", config_name(pipe.config().detector.pipeline)},
                          {"fps", ms > 0 ? 1000.0 * reader.size() / ms : 0.0}};
   if (o.track.track) {
     const auto& map = pipe.finish();
     summary["map_heads"] = map.size();
     summary["harvestable"] = std::count_if(map.begin(), map.end(), [](const auto& h) { return h.harvestable; });
-    summary["size_estimator"] = b.config.sizing.estimator;
+    summary["size_estimator"] = pipe.config().sizing.estimator;
     if (!o.track.map.empty()) {
       tracking::write_field_map(o.track.map, map);
       summary["map"] = o.track.map;

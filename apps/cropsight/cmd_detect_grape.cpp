@@ -23,8 +23,8 @@
 #include "cropsight/io/cloud_io.hpp"
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/files.hpp"
-#include "cropsight/nn/center_onnx.hpp"
 #include "cropsight/pipeline/grape/grape_pipeline.hpp"
+#include "cropsight/pipeline/grape/make_pipeline.hpp"
 #include "grape_cli.hpp"
 #include "grape_segmenter_options.hpp"
 
@@ -65,18 +65,14 @@ void run(const DetectGrapeOptions& o) {
   io::OutputFolder out(o.out, output_policy("detect grape", o.force,
                                             {o.color, o.depth, o.camera, o.detector, o.detections,
                                              o.segmenter.config().model, o.common.config}));
-  pipeline::GrapePipelineConfig cfg;
-  apply_config(cfg, o.common.config_map(o.common.config.empty() ? "grape-camera" : ""), "--config/--set");
-  cfg.validate("--config/--set");
+  pipeline::PipelineSpec spec{o.common.config, o.common.sets, "", o.detector, o.threads};
+  o.segmenter.add_to_spec(spec);
+  const auto built = pipeline::grape::make_pipeline(spec);
+  pipeline::GrapePipeline& pipe = *built;
+  const pipeline::GrapeSegmenterConfig& scfg = pipe.segmenter().config();
   const RgbdFrame frame = read_grape_frame(o.color, o.depth, o.camera);
   std::vector<pipeline::GrapeDetection> given;
   if (!o.detections.empty()) given = pipeline::read_coco_detections(o.detections, o.image_id);
-  auto scfg = o.segmenter.config();
-  scfg.threads = o.threads;
-  pipeline::GrapeSegmenter segmenter(scfg, "command line");
-  std::unique_ptr<Detector2D> detector;
-  if (!o.detector.empty()) detector = nn::load_center_detector(io::find_model(o.detector).string(), o.threads);
-  pipeline::GrapePipeline pipe(cfg, std::move(segmenter), std::move(detector), "--config/--set");
 
   // Everything is computed before anything is written: no partial output on a failure.
   const Stopwatch clock;

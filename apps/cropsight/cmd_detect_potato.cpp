@@ -111,13 +111,9 @@ void run(const Options& o) {
     beside_out.inputs.push_back(o.out);  // one folder cannot be both outputs
     overlay = std::make_unique<io::OutputFolder>(o.overlay, beside_out);
   }
-  CommonOptions common = o.common;
-  if (!o.model.empty()) {  // --model: the ONNX backend with this file
-    common.sets.push_back("detector.backend=onnx");
-    common.sets.push_back("detector.onnx.model=" + io::find_model(o.model).string());
-  }
-  // A bad key or model fails before any image is read.
-  pipeline::potato::PotatoPipeline pipeline(potato_config(common), common.config.empty() ? "potato" : common.config);
+  // A bad key or model fails before any image is read; --model: the ONNX backend with this model.
+  const auto built = make_potato(o.common, o.model);
+  pipeline::potato::PotatoPipeline& pipeline = *built;
   const std::vector<std::string> names = pipeline.detector_class_names();
   const Inputs inputs(o);
   nlohmann::json images = nlohmann::json::array();  // --json: one object at the end

@@ -26,8 +26,8 @@ struct EvalOptions {
 void run(const EvalOptions& o) {
   if (o.track.fit_size_bias && !o.track.track) throw Error("--fit-size-bias", "needs --track");
   if (o.track.map_min_points < 0) throw Error("--map-min-points", "must be >= 0 (0: every true head counts)");
-  const LoadedBroccoli b = load_broccoli(o.model, o.common, o.track.track);
-  pipeline::BroccoliPipeline pipe(b.config, b.model, o.model);
+  const auto built = make_broccoli(o.model, o.common, o.track.track);
+  pipeline::BroccoliPipeline& pipe = *built;
   pipeline::BroccoliEvaluator evaluator(pipe);
   std::optional<pipeline::BroccoliTrackingEvaluator> tracker;
   if (o.track.track)
@@ -54,9 +54,9 @@ void run(const EvalOptions& o) {
   nlohmann::json j = eval_json(r);
   j["model"] = o.model;
   j["data"] = o.data;
-  j["pipeline"] = config_name(b.config.detector.pipeline);
-  j["features"] = b.config.detector.features;
-  j["classifier"] = b.model->params.type;
+  j["pipeline"] = config_name(pipe.config().detector.pipeline);
+  j["features"] = pipe.config().detector.features;
+  j["classifier"] = pipe.detector().model()->params.type;
   std::optional<pipeline::BroccoliTrackingFigures> figures;
   if (tracker) j.update(tracking_json(*(figures = tracker->result())));
   if (o.common.json) {

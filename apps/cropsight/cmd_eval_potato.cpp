@@ -53,7 +53,8 @@ nlohmann::json axis_json(const pipeline::potato::AxisError& a) {
 
 void run(const Options& o) {
   namespace pp = pipeline::potato;
-  pp::PotatoPipeline pipeline(potato_config(o.common), o.common.config.empty() ? "potato" : o.common.config);
+  const auto built = make_potato(o.common);
+  pp::PotatoPipeline& pipeline = *built;
   const pp::PotatoSequenceEvaluation r = pp::evaluate_potato_sequence(pipeline, o.data, o.min_iou);
   const pp::PotatoEvaluation& e = r.figures;
   const pp::PotatoStageTimes& t = r.ms;

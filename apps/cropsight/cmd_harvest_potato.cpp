@@ -31,7 +31,8 @@ void run(const Options& o) {
   namespace pp = pipeline::potato;
   // Before the pipeline loads or the loop prints progress.
   if (!o.out.empty()) io::check_output_file(o.out, output_policy("harvest potato", o.force, {o.data, o.common.config}));
-  pp::PotatoPipeline pipeline(potato_config(o.common), o.common.config.empty() ? "potato" : o.common.config);
+  const auto built = make_potato(o.common);
+  pp::PotatoPipeline& pipeline = *built;
   const Recording recording(o.data, o.topics);
   const io::SequenceReader seq(recording.sequence());
   std::ostringstream lines;

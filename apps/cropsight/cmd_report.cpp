@@ -29,8 +29,8 @@ struct ReportOptions {
 
 // The broccoli sections; returns the tracking figures as `eval broccoli --track --json` has them.
 nlohmann::json add_broccoli(report::HtmlPage& page, const ReportOptions& o) {
-  const LoadedBroccoli b = load_broccoli(o.model, o.common, /*track=*/true);
-  pipeline::BroccoliPipeline pipe(b.config, b.model, o.model);
+  const auto built = make_broccoli(o.model, o.common, /*track=*/true);
+  pipeline::BroccoliPipeline& pipe = *built;
   io::SequenceReader reader(o.data);
   if (!reader.info().has_labels)
     throw Error(o.data, "sequence has no labels/ (the broccoli report needs ground truth)");

@@ -64,12 +64,21 @@ void GrapeSegmenterOptions::add_options(CLI::App* cmd, const std::string& defaul
   number("--ensemble-weight", "ensemble_weight", "With --ensemble: the second model's share (default 0.5)");
 }
 
-pipeline::GrapeSegmenterConfig GrapeSegmenterOptions::config() const {
+std::string GrapeSegmenterOptions::preset() const {
   const std::string preset = !preset_.empty() ? preset_ : flags_.count("model") ? "" : default_preset_;
   const std::string ext = std::filesystem::path(preset).extension().string();
   if ((ext == ".pt" || ext == ".json") && flags_.count("model"))
     throw Error(preset_flag_, "names a model file; give it or --model, not both");
-  return pipeline::grape_segmenter_config(preset, flags_, "command line");
+  return preset;
+}
+
+pipeline::GrapeSegmenterConfig GrapeSegmenterOptions::config() const {
+  return pipeline::grape_segmenter_config(preset(), flags_, "command line");
+}
+
+void GrapeSegmenterOptions::add_to_spec(pipeline::PipelineSpec& spec) const {
+  spec.model = preset();
+  for (const auto& [key, value] : flags_) spec.sets.push_back("segmenter." + key + "=" + value);
 }
 
 void GrapeSegmenterOptions::describe(const pipeline::GrapeSegmenterConfig& cfg, nlohmann::json& j) {

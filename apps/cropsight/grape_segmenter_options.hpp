@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cropsight/pipeline/grape/grape_segmenter.hpp"
+#include "cropsight/pipeline/pipeline_spec.hpp"
 
 namespace cropsight::cli {
 
@@ -21,10 +22,17 @@ class GrapeSegmenterOptions {
   /// The preset (if any) with the given flags applied; Error names the preset file or
   /// "command line" and the key. --threads stays the command's own option (set cfg.threads).
   pipeline::GrapeSegmenterConfig config() const;
+  /// The segmenter part of a pipeline spec (pipeline::grape::make_pipeline): its model is the
+  /// preset flag's value (or the default preset when --model is not given either), the flags go
+  /// to its sets as "segmenter.KEY=VALUE".
+  void add_to_spec(pipeline::PipelineSpec& spec) const;
   /// Adds "votes" and, with an ensemble, "ensemble" and "ensemble_weight" to a JSON report.
   static void describe(const pipeline::GrapeSegmenterConfig& cfg, nlohmann::json& j);
 
  private:
+  /// The preset flag's value, or the default preset when neither it nor --model is given.
+  std::string preset() const;
+
   std::string preset_, default_preset_, preset_flag_ = "--config";
   ConfigMap flags_;  // key → value text of the flags given
 };

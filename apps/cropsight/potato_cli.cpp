@@ -7,12 +7,11 @@ std::string preset_of(const CommonOptions& common) { return common.config.empty(
 }  // namespace
 
 pipeline::potato::PotatoPipelineConfig potato_config(const CommonOptions& common) {
-  ConfigMap sets;
-  for (const std::string& s : common.sets) {
-    auto [key, value] = parse_assignment(s);
-    sets[key] = value;
-  }
-  return pipeline::potato::load_potato_config(preset_of(common), sets);
+  return pipeline::potato::spec_config({common.config, common.sets});
+}
+
+std::unique_ptr<pipeline::potato::PotatoPipeline> make_potato(const CommonOptions& common, const std::string& model) {
+  return pipeline::potato::make_pipeline({common.config, common.sets, model});
 }
 
 std::unique_ptr<Detector2D> potato_detector(const CommonOptions& common) {

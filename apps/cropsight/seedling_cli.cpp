@@ -2,12 +2,12 @@
 
 #include <utility>
 
+#include "cropsight/pipeline/seedling/make_pipeline.hpp"
+
 namespace cropsight::cli {
 
 pipeline::SeedlingPipeline seedling_pipeline(const CommonOptions& o) {
-  pipeline::SeedlingConfig cfg;
-  apply_checked_config(cfg, o, "seedling", pipeline::validate_seedling_config);
-  return pipeline::SeedlingPipeline(std::move(cfg), o.config.empty() ? "configs/seedling.yaml" : o.config);
+  return std::move(*pipeline::seedling::make_pipeline({o.config, o.sets}));
 }
 
 nlohmann::json seedling_json(const pipeline::SeedlingDetection& d) {

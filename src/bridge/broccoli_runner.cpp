@@ -1,19 +1,18 @@
 #include "cropsight/bridge/broccoli_runner.hpp"
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/io/config_yaml.hpp"
 #include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
+#include "cropsight/pipeline/broccoli/make_pipeline.hpp"
 #include "cropsight/tracking/field_map_io.hpp"
 #include "frame_conversion.hpp"
 
 namespace cropsight::bridge {
 
 namespace {
-pipeline::BroccoliPipelineConfig runner_config(const BroccoliRunnerOptions& o, const learning::Model& model) {
-  auto cfg = pipeline::broccoli_config_for_model(model, io::load_preset_with_overrides(o.preset, o.sets), o.model,
-                                                 o.preset.empty() ? "--set" : o.preset);
-  cfg.track = o.track;
-  return cfg;
+pipeline::PipelineSpec spec_of(const BroccoliRunnerOptions& o) {
+  pipeline::PipelineSpec spec{o.preset, o.sets, o.model};
+  spec.sets.push_back(o.track ? "track=true" : "track=false");
+  return spec;
 }
 
 BroccoliMapHead map_head(const tracking::TrackedHead& h) {
@@ -21,13 +20,11 @@ BroccoliMapHead map_head(const tracking::TrackedHead& h) {
 }
 }  // namespace
 
-// The pipeline is neither copyable nor movable: built in place from the model and the config.
+// The pipeline is neither copyable nor movable: the library's builder returns it on the heap.
 struct BroccoliRunner::Impl {
-  std::shared_ptr<const learning::Model> model;
-  pipeline::BroccoliPipelineConfig cfg;
-  pipeline::BroccoliPipeline pipe;
-  explicit Impl(const BroccoliRunnerOptions& o)
-      : model(pipeline::load_broccoli_model(o.model)), cfg(runner_config(o, *model)), pipe(cfg, model, o.model) {
+  std::unique_ptr<pipeline::BroccoliPipeline> built;
+  pipeline::BroccoliPipeline& pipe;
+  explicit Impl(const BroccoliRunnerOptions& o) : built(pipeline::broccoli::make_pipeline(spec_of(o))), pipe(*built) {
     // A node runs for hours and never scores a pass offline: keeping every measured detection
     // would grow its memory with the frames (docs/reliability.md, "Long runs").
     pipe.set_record_detections(false);

@@ -4,27 +4,17 @@
 #include <cmath>
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/io/config_yaml.hpp"
-#include "cropsight/nn/center_onnx.hpp"
 #include "cropsight/pipeline/grape/grape_pipeline.hpp"
+#include "cropsight/pipeline/grape/make_pipeline.hpp"
 #include "frame_conversion.hpp"
 
 namespace cropsight::bridge {
 
 namespace {
 
-pipeline::GrapePipeline make_pipeline(const GrapeRunnerOptions& o) {
-  const std::string preset = o.config.empty() ? std::string("grape-camera") : o.config;
-  const std::string where = o.sets.empty() ? preset : preset + " / --set";
-  pipeline::GrapePipelineConfig cfg;
-  apply_config(cfg, io::load_preset_with_overrides(preset, o.sets), where);
-  cfg.validate(where);
-  pipeline::GrapeSegmenterConfig scfg = pipeline::grape_segmenter_config(o.segmenter, {}, "segmenter");
-  scfg.threads = o.threads;
-  pipeline::GrapeSegmenter segmenter(scfg, o.segmenter);
-  std::unique_ptr<Detector2D> detector;
-  if (!o.detector.empty()) detector = nn::load_center_detector(o.detector, o.threads);
-  return pipeline::GrapePipeline(cfg, std::move(segmenter), std::move(detector), where);
+// The pipeline as every front-end builds it (pipeline::grape::make_pipeline). GrapePipeline moves.
+pipeline::GrapePipeline make_runner_pipeline(const GrapeRunnerOptions& o) {
+  return std::move(*pipeline::grape::make_pipeline({o.config, o.sets, o.segmenter, o.detector, o.threads}));
 }
 
 GrapeBox box_of(const Box2D& b, int category, float score) { return {b.x, b.y, b.width, b.height, category, score}; }
@@ -64,7 +54,7 @@ GrapeFrameOut frame_out(const pipeline::GrapeFrameResult& r) {
 // The pipeline owns its segmenter and detector (models loaded once, here).
 struct GrapeRunner::Impl {
   pipeline::GrapePipeline pipe;
-  explicit Impl(const GrapeRunnerOptions& o) : pipe(make_pipeline(o)) {}
+  explicit Impl(const GrapeRunnerOptions& o) : pipe(make_runner_pipeline(o)) {}
 };
 
 GrapeRunner::GrapeRunner(const GrapeRunnerOptions& options) : impl_(std::make_unique<Impl>(options)) {}

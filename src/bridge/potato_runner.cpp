@@ -1,7 +1,7 @@
 #include "cropsight/bridge/potato_runner.hpp"
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/io/config_yaml.hpp"
+#include "cropsight/pipeline/potato/make_pipeline.hpp"
 #include "cropsight/pipeline/potato/potato_pipeline.hpp"
 #include "frame_conversion.hpp"
 
@@ -10,9 +10,10 @@ namespace cropsight::bridge {
 namespace pp = pipeline::potato;
 
 struct PotatoRunner::Impl {
-  pp::PotatoPipeline pipe;
+  std::unique_ptr<pp::PotatoPipeline> built;
+  pp::PotatoPipeline& pipe;
   explicit Impl(const std::string& preset, const std::vector<std::string>& sets)
-      : pipe(pp::load_potato_config(preset, io::load_preset_with_overrides("", sets)), preset) {}
+      : built(pp::make_pipeline({preset, sets})), pipe(*built) {}
 };
 
 namespace {

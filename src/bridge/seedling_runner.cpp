@@ -1,7 +1,7 @@
 #include "cropsight/bridge/seedling_runner.hpp"
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/io/config_yaml.hpp"
+#include "cropsight/pipeline/seedling/make_pipeline.hpp"
 #include "cropsight/pipeline/seedling/seedling_config.hpp"
 #include "cropsight/pipeline/seedling/seedling_pipeline.hpp"
 #include "cropsight/stereo/calibration.hpp"
@@ -12,16 +12,6 @@
 namespace cropsight::bridge {
 
 namespace {
-
-pipeline::SeedlingConfig runner_config(const std::string& preset, const std::vector<std::string>& sets) {
-  const std::string name = preset.empty() ? "seedling" : preset;
-  pipeline::SeedlingConfig cfg = pipeline::load_seedling_config(name);
-  if (!sets.empty()) {
-    apply_config(cfg, io::load_preset_with_overrides("", sets), "--set");
-    pipeline::validate_seedling_config(cfg, "--set");
-  }
-  return cfg;
-}
 
 ColorImage to_color(const RgbImage& im, const std::string& where) {
   if (im.rgb.size() != 3 * std::size_t(im.width) * std::size_t(im.height))
@@ -38,8 +28,7 @@ struct SeedlingRunner::Impl {
 };
 
 SeedlingRunner::SeedlingRunner(const std::string& preset, const std::vector<std::string>& sets)
-    : impl_(std::make_unique<Impl>(
-          Impl{pipeline::SeedlingPipeline(runner_config(preset, sets), preset.empty() ? "seedling" : preset)})) {}
+    : impl_(std::make_unique<Impl>(Impl{std::move(*pipeline::seedling::make_pipeline({preset, sets}))})) {}
 SeedlingRunner::~SeedlingRunner() = default;
 
 SeedlingOut SeedlingRunner::process(const RgbImage& left, const RgbImage& right, const StereoGeometry& g,

@@ -47,21 +47,23 @@ project(consumer LANGUAGES CXX)
 find_package(cropsight 0.1 CONFIG REQUIRED)
 add_executable(consumer main.cpp)
 target_link_libraries(consumer PRIVATE cropsight::cropsight)
-target_compile_definitions(consumer PRIVATE DATA_DIR="${cropsight_DATA_DIR}")
+file(WRITE ${CMAKE_BINARY_DIR}/data_dir.txt "DATA_DIR=${cropsight_DATA_DIR}\n")
 CMAKE
 cat >"$work/consumer/main.cpp" <<'CPP'
 #include <cstdio>
-#include "cropsight/io/config_yaml.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
+#include "cropsight/pipeline/broccoli/make_pipeline.hpp"
+#include "cropsight/pipeline/seedling/make_pipeline.hpp"
+// A program outside the prefix: its shipped models and presets by name through CROPSIGHT_DATA_DIR.
 int main() {
-  const auto model = cropsight::pipeline::load_broccoli_model(DATA_DIR "/models/broccoli-oes-general.json");
-  const auto preset = cropsight::io::load_config_map(DATA_DIR "/configs/broccoli-oes-uk.yaml");
-  std::printf("model loaded, preset has %zu keys\n", preset.size());
-  return model ? 0 : 1;
+  const auto heads = cropsight::pipeline::broccoli::make_pipeline({.model = "broccoli-oes-uk"});
+  const auto seedlings = cropsight::pipeline::seedling::make_pipeline({.preset = "seedling-paper"});
+  std::printf("pipelines built: broccoli %d, seedling %d\n", heads != nullptr, seedlings != nullptr);
+  return heads && seedlings ? 0 : 1;
 }
 CPP
 cmake -S "$work/consumer" -B "$work/consumer/build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release \
   >"$work/consumer.log" 2>&1 || { cat "$work/consumer.log"; echo "FAIL: find_package"; exit 1; }
 cmake --build "$work/consumer/build" >>"$work/consumer.log" 2>&1 || { tail -30 "$work/consumer.log"; echo "FAIL: consumer build"; exit 1; }
-"$work/consumer/build/consumer" | grep -q "model loaded" || { echo "FAIL: consumer run"; exit 1; }
+CROPSIGHT_DATA_DIR=$(sed -n 's/^DATA_DIR=//p' "$work/consumer/build/data_dir.txt") "$work/consumer/build/consumer" |
+  grep -q "pipelines built: broccoli 1, seedling 1" || { echo "FAIL: consumer run"; exit 1; }
 echo "install: moved prefix runs, no build path inside, find_package consumer OK"

@@ -11,6 +11,7 @@
 
 // A named namespace: the tests compile as unity batches, where another file's helpers would meet.
 namespace output_test {
+using cropsight::testing::error_message;
 namespace fs = std::filesystem;
 using cropsight::Error;
 using cropsight::io::OutputFolder;
@@ -28,17 +29,6 @@ std::string slurp(const fs::path& p) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
-}
-
-// The error message of `f()`, or "" when it does not throw.
-template <class F>
-std::string error_of(F f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 size_t entries(const fs::path& dir) { return size_t(std::distance(fs::directory_iterator(dir), {})); }
@@ -73,7 +63,7 @@ TEST(OutputFolder, AUserFolderIsNeverReplacedForceOrNot) {
   TempDir t;
   write_text(t / "mine/notes.md", "my notes");
   for (bool force : {false, true}) {
-    const std::string e = error_of([&] { OutputFolder out(t / "mine", {"detect potato", force, {}}); });
+    const std::string e = error_message([&] { OutputFolder out(t / "mine", {"detect potato", force, {}}); });
     EXPECT_NE(e.find("not written by cropsight"), std::string::npos) << e;
     EXPECT_EQ(slurp(t / "mine/notes.md"), "my notes");
     EXPECT_EQ(entries(t.path()), 1u);
@@ -96,7 +86,7 @@ TEST(OutputFolder, EarlierOutputNeedsForceAndThenIsReplacedWhole) {
     write_text(out.path() / "old.txt", "old");
     out.commit();
   }
-  const std::string e = error_of([&] { OutputFolder out(t / "o", {"simulate broccoli", false, {}}); });
+  const std::string e = error_message([&] { OutputFolder out(t / "o", {"simulate broccoli", false, {}}); });
   EXPECT_NE(e.find("--force replaces it"), std::string::npos) << e;
   EXPECT_NE(e.find("simulate broccoli"), std::string::npos) << e;
   OutputFolder out(t / "o", {"simulate broccoli", true, {}});
@@ -115,7 +105,7 @@ TEST(OutputFolder, ForceRefusesAnOutputFolderTheUserAddedAFileTo) {
     out.commit();
   }
   write_text(t / "o/sub/notes.md", "mine");
-  const std::string e = error_of([&] { OutputFolder out(t / "o", {"x", true, {}}); });
+  const std::string e = error_message([&] { OutputFolder out(t / "o", {"x", true, {}}); });
   EXPECT_NE(e.find("sub"), std::string::npos) << e;
   EXPECT_EQ(slurp(t / "o/sub/notes.md"), "mine");
 }
@@ -124,7 +114,7 @@ TEST(OutputFolder, AForgedOrDamagedMarkerIsNoMarker) {
   TempDir t;
   write_text(t / "o/.cropsight-output", "hello\n");
   write_text(t / "o/data.csv", "1,2");
-  EXPECT_NE(error_of([&] { OutputFolder out(t / "o", {"x", true, {}}); }), "");
+  EXPECT_NE(error_message([&] { OutputFolder out(t / "o", {"x", true, {}}); }), "");
   EXPECT_TRUE(fs::exists(t / "o/data.csv"));
 }
 
@@ -137,34 +127,37 @@ TEST(OutputRule, InputsAreNeverOutputs) {
   for (const fs::path& out :
        std::vector<fs::path>{t / "in/seq", t / "in/seq/", t / "in/seq/out", t / "in/seq/depth/x.png", t / "in",
                              t / "in/x/../seq", t / "link/seq", t.path()}) {
-    EXPECT_NE(error_of([&] { cropsight::io::check_output_folder(out, p); }), "") << out;
-    EXPECT_NE(error_of([&] { cropsight::io::check_output_file(out, p); }), "") << out;
+    EXPECT_NE(error_message([&] { cropsight::io::check_output_folder(out, p); }), "") << out;
+    EXPECT_NE(error_message([&] { cropsight::io::check_output_file(out, p); }), "") << out;
   }
-  EXPECT_EQ(error_of([&] { cropsight::io::check_output_folder(t / "in/seq2", p); }), "");
-  EXPECT_EQ(error_of([&] { cropsight::io::check_output_file(t / "in/seq.jsonl", p); }), "");
+  EXPECT_EQ(error_message([&] { cropsight::io::check_output_folder(t / "in/seq2", p); }), "");
+  EXPECT_EQ(error_message([&] { cropsight::io::check_output_file(t / "in/seq.jsonl", p); }), "");
 }
 
 TEST(OutputRule, ExistingFileNeedsForceAndAFolderIsNoFile) {
   TempDir t;
   write_text(t / "d.jsonl", "mine");
-  EXPECT_NE(error_of([&] {
+  EXPECT_NE(error_message([&] {
               cropsight::io::check_output_file(t / "d.jsonl", {"x", false, {}});
             }).find("--force"),
             std::string::npos);
-  EXPECT_EQ(error_of([&] { cropsight::io::check_output_file(t / "d.jsonl", {"x", true, {}}); }), "");
+  EXPECT_EQ(error_message([&] { cropsight::io::check_output_file(t / "d.jsonl", {"x", true, {}}); }), "");
   fs::create_directory(t / "dir");
-  EXPECT_NE(error_of([&] { cropsight::io::check_output_file(t / "dir", {"x", true, {}}); }), "");
-  EXPECT_NE(error_of([&] { cropsight::io::check_output_folder(t / "d.jsonl", {"x", true, {}}); }), "");
+  EXPECT_NE(error_message([&] { cropsight::io::check_output_file(t / "dir", {"x", true, {}}); }), "");
+  EXPECT_NE(error_message([&] { cropsight::io::check_output_folder(t / "d.jsonl", {"x", true, {}}); }), "");
   EXPECT_EQ(slurp(t / "d.jsonl"), "mine");
 }
 
 TEST(OutputRule, UnwritableLocationsAreRefusedBeforeAnyWork) {
   TempDir t;
   // /proc accepts no new files, even from root (whom access() would let through)
-  EXPECT_NE(error_of([] { cropsight::io::check_output_file("/proc/cropsight-x/det.jsonl", {"x", false, {}}); }), "");
-  EXPECT_NE(error_of([] { cropsight::io::check_output_folder("/proc/cropsight-x", {"x", false, {}}); }), "");
+  EXPECT_NE(error_message([] {
+              cropsight::io::check_output_file("/proc/cropsight-x/det.jsonl", {"x", false, {}});
+            }),
+            "");
+  EXPECT_NE(error_message([] { cropsight::io::check_output_folder("/proc/cropsight-x", {"x", false, {}}); }), "");
   write_text(t / "file", "x");
-  EXPECT_NE(error_of([&] { cropsight::io::check_output_file(t / "file/d.jsonl", {"x", false, {}}); }), "");
+  EXPECT_NE(error_message([&] { cropsight::io::check_output_file(t / "file/d.jsonl", {"x", false, {}}); }), "");
   EXPECT_EQ(entries(t.path()), 1u);  // the probes left nothing
 }
 

@@ -9,6 +9,7 @@
 
 namespace {
 using cropsight::Error;
+using cropsight::testing::error_message;
 using cropsight::testing::TempDir;
 namespace io = cropsight::io;
 
@@ -18,16 +19,6 @@ std::string box_xml(const std::string& xmin, const std::string& ymin, const std:
                     const std::string& ymax) {
   return "<object><name>potato</name><bndbox><xmin>" + xmin + "</xmin><xmax>" + xmax + "</xmax><ymin>" + ymin +
          "</ymin><ymax>" + ymax + "</ymax></bndbox></object>";
-}
-
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(Voc, ReadsFilenameSizeAndObjects) {
@@ -65,17 +56,17 @@ TEST(Voc, BadFilesNameFileAndElement) {
   write_text(t / "text.xml", head + box_xml("1", "1", "abc", "2") + "</annotation>");
   write_text(t / "reversed.xml", head + box_xml("1", "1", "2", "2") + box_xml("5", "1", "4", "2") + "</annotation>");
   write_text(t / "root.xml", "<html></html>");
-  const std::string e1 = error_of([&] { io::read_voc(t / "broken.xml"); });
+  const std::string e1 = error_message([&] { io::read_voc(t / "broken.xml"); });
   EXPECT_NE(e1.find("broken.xml: malformed XML"), std::string::npos) << e1;
-  const std::string e2 = error_of([&] { io::read_voc(t / "missing.xml"); });
+  const std::string e2 = error_message([&] { io::read_voc(t / "missing.xml"); });
   EXPECT_NE(e2.find("missing.xml: object 1 <bndbox>: missing <ymax>"), std::string::npos) << e2;
-  const std::string e3 = error_of([&] { io::read_voc(t / "text.xml"); });
+  const std::string e3 = error_message([&] { io::read_voc(t / "text.xml"); });
   EXPECT_NE(e3.find("text.xml: object 1 <bndbox>: <xmax> is not a number ('abc')"), std::string::npos) << e3;
-  const std::string e4 = error_of([&] { io::read_voc(t / "reversed.xml"); });
+  const std::string e4 = error_message([&] { io::read_voc(t / "reversed.xml"); });
   EXPECT_NE(e4.find("reversed.xml: object 2 <bndbox>: <xmax> is less than <xmin>"), std::string::npos) << e4;
-  const std::string e5 = error_of([&] { io::read_voc(t / "root.xml"); });
+  const std::string e5 = error_message([&] { io::read_voc(t / "root.xml"); });
   EXPECT_NE(e5.find("root.xml: root element is <html>"), std::string::npos) << e5;
-  const std::string e6 = error_of([&] { io::read_voc(t / "absent.xml"); });
+  const std::string e6 = error_message([&] { io::read_voc(t / "absent.xml"); });
   EXPECT_NE(e6.find("absent.xml"), std::string::npos) << e6;
 }
 
@@ -98,11 +89,11 @@ TEST(DetectionText, BadLinesNameFileAndLine) {
   write_text(t / "few.txt", "potato 0.9 1 2 3 4\npotato 0.9 1 2 3\n");
   write_text(t / "nan.txt", "potato 0.9 1 2 x 4\n");
   write_text(t / "rev.txt", "\n\npotato 0.9 5 2 3 4\n");
-  EXPECT_NE(error_of([&] { io::read_detection_text(t / "few.txt"); }).find("few.txt: line 2: expected 6 fields"),
+  EXPECT_NE(error_message([&] { io::read_detection_text(t / "few.txt"); }).find("few.txt: line 2: expected 6 fields"),
             std::string::npos);
-  EXPECT_NE(error_of([&] { io::read_detection_text(t / "nan.txt"); }).find("nan.txt: line 1: x2 is not a number"),
+  EXPECT_NE(error_message([&] { io::read_detection_text(t / "nan.txt"); }).find("nan.txt: line 1: x2 is not a number"),
             std::string::npos);
-  EXPECT_NE(error_of([&] { io::read_detection_text(t / "rev.txt"); }).find("rev.txt: line 3: x2 is less than x1"),
+  EXPECT_NE(error_message([&] { io::read_detection_text(t / "rev.txt"); }).find("rev.txt: line 3: x2 is less than x1"),
             std::string::npos);
 }
 

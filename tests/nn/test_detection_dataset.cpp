@@ -8,19 +8,11 @@
 #include "testing/testing.hpp"
 
 namespace {
+using cropsight::testing::error_message;
 using namespace cropsight;
 using namespace cropsight::nn;
 using cropsight::testing::TempDir;
 using cropsight::testing::write_text;
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(DetectionDataset, ReadsCocoBoxesAndFillsPolygonMasks) {
   TempDir t;
@@ -52,19 +44,21 @@ TEST(DetectionDataset, BadCocoFilesNameTheFileAndTheKey) {
   io::write_color(t / "a.png", ColorImage(8, 8));
   write_text(t / "nobox.json", R"({"images": [{"id": 1, "file_name": "a.png"}], "categories": [{"id": 1, "name": "x"}],
     "annotations": [{"image_id": 1, "category_id": 1}]})");
-  const std::string e = error_of([&] { read_coco_detection(t / "nobox.json", t.path()); });
+  const std::string e = error_message([&] { read_coco_detection(t / "nobox.json", t.path()); });
   EXPECT_NE(e.find("nobox.json"), std::string::npos) << e;
   EXPECT_NE(e.find("annotations[0]: no 'bbox'"), std::string::npos) << e;
   write_text(t / "noimages.json", R"({"categories": [{"id": 1, "name": "x"}], "annotations": []})");
-  EXPECT_NE(error_of([&] { read_coco_detection(t / "noimages.json", t.path()); }).find("no 'images'"),
+  EXPECT_NE(error_message([&] { read_coco_detection(t / "noimages.json", t.path()); }).find("no 'images'"),
             std::string::npos);
   write_text(t / "broken.json", "{");
-  EXPECT_NE(error_of([&] { read_coco_detection(t / "broken.json", t.path()); }).find("broken.json"), std::string::npos);
+  EXPECT_NE(error_message([&] { read_coco_detection(t / "broken.json", t.path()); }).find("broken.json"),
+            std::string::npos);
   write_text(t / "bad.png", "not a png");
   write_text(t / "badimage.json",
              R"({"images": [{"id": 1, "file_name": "bad.png"}], "categories": [{"id": 1, "name": "x"}],
     "annotations": []})");
-  EXPECT_NE(error_of([&] { read_coco_detection(t / "badimage.json", t.path()); }).find("bad.png"), std::string::npos);
+  EXPECT_NE(error_message([&] { read_coco_detection(t / "badimage.json", t.path()); }).find("bad.png"),
+            std::string::npos);
   // Fuzzing finding 22: a polygon holding something other than numbers (here an object) escaped as
   // nlohmann::json::type_error; a coordinate beyond a million pixels would overflow fillPoly's ints.
   for (const std::string poly :
@@ -72,7 +66,7 @@ TEST(DetectionDataset, BadCocoFilesNameTheFileAndTheKey) {
     write_text(t / "poly.json", R"({"images": [{"id": 1, "file_name": "a.png"}], "categories": [{"id": 1, "name": "x"}],
       "annotations": [{"image_id": 1, "category_id": 1, "bbox": [2, 3, 8, 6], "segmentation": [)" +
                                     poly + "]}]}");
-    const std::string p = error_of([&] { read_coco_detection(t / "poly.json", t.path()); });
+    const std::string p = error_message([&] { read_coco_detection(t / "poly.json", t.path()); });
     EXPECT_NE(p.find("annotations[0]: 'segmentation' holds a polygon that is not"), std::string::npos)
         << poly << ": " << p;
   }
@@ -87,14 +81,14 @@ TEST(DetectionDataset, AnImageNameTheSystemRefusesIsAnErrorNamingIt) {
   std::filesystem::create_directories(t / "images");
   write_text(t / "voc" / "x.xml", "<annotation><filename>" + long_name +
                                       ".png</filename><size><width>8</width><height>8</height></size></annotation>");
-  std::string e = error_of([&] { read_voc_detection(t / "voc", t / "images", {"potato"}); });
+  std::string e = error_message([&] { read_voc_detection(t / "voc", t / "images", {"potato"}); });
   EXPECT_NE(e.find(long_name), std::string::npos) << e;
   EXPECT_NE(e.find("File name too long"), std::string::npos) << e;
   write_text(t / "long.json", R"({"images": [{"id": 1, "file_name": ")" + long_name +
                                   R"(.png"}], "categories": [{"id": 1, "name": "x"}], "annotations": []})");
-  e = error_of([&] { read_coco_detection(t / "long.json", t.path()); });
+  e = error_message([&] { read_coco_detection(t / "long.json", t.path()); });
   EXPECT_NE(e.find("File name too long"), std::string::npos) << e;
-  e = error_of([&] { io::read_color(t / (long_name + ".png")); });
+  e = error_message([&] { io::read_color(t / (long_name + ".png")); });
   EXPECT_NE(e.find("File name too long"), std::string::npos) << e;
 }
 

@@ -10,6 +10,8 @@
 #include <random>
 #include <sstream>
 
+#include "cropsight/core/error.hpp"
+
 namespace cropsight::testing {
 
 namespace fs = std::filesystem;
@@ -58,6 +60,15 @@ CommandResult run_cli(const std::string& args) {
   r.out = slurp(out);
   r.err = slurp(err);
   return r;
+}
+
+std::string error_message(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const cropsight::Error& e) {
+    return e.what();
+  }
+  return "";
 }
 
 void write_text(const fs::path& path, const std::string& text) {

@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by every module's tests.
 #include <filesystem>
+#include <functional>
 #include <string>
 
 namespace cropsight::testing {
@@ -38,6 +39,10 @@ void write_text(const std::filesystem::path& path, const std::string& text);
 inline std::string shell_quoted(const std::filesystem::path& p) { return "'" + p.string() + "'"; }
 /// Runs the CLI with `args` (a shell-quoted argument string) and captures its output.
 CommandResult run_cli(const std::string& args);
+
+/// The message of the cropsight::Error that `f()` throws ("where: problem"), or "" when it throws
+/// none (another exception propagates).
+std::string error_message(const std::function<void()>& f);
 
 }  // namespace cropsight::testing
 

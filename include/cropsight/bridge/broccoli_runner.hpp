@@ -10,7 +10,7 @@
 namespace cropsight::bridge {
 
 struct BroccoliRunnerOptions {
-  std::string model;              ///< model file (cropsight train broccoli), e.g. models/broccoli-oes-uk.json
+  std::string model;              ///< a shipped model's name or a model file (cropsight train broccoli)
   std::string preset;             ///< optional preset name or YAML path over the model's config
   std::vector<std::string> sets;  ///< optional "key=value" overrides (--set)
   bool track = true;              ///< size the heads and run the temporal filter (the field map)

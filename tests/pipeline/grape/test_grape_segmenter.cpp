@@ -7,6 +7,7 @@
 #include "testing/testing.hpp"
 
 namespace {
+using cropsight::testing::error_message;
 using namespace cropsight;
 // Declarations, not `using namespace cropsight::pipeline`: the tests compile as unity batches,
 // where a using-directive in the shared anonymous namespace reaches the next files (the potato
@@ -15,15 +16,6 @@ using cropsight::pipeline::GrapeSegmenter;
 using cropsight::pipeline::GrapeSegmenterConfig;
 using cropsight::pipeline::load_grape_segmenter_config;
 namespace fs = std::filesystem;
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 TEST(GrapeSegmenterConfig, ShippedPresetsNameTheirModelsRelativeToThemselves) {
   const fs::path configs = cropsight::testing::source_dir() / "configs";
@@ -47,22 +39,23 @@ TEST(GrapeSegmenterConfig, ShippedPresetsNameTheirModelsRelativeToThemselves) {
 TEST(GrapeSegmenterConfig, ErrorsNameTheKeyAndWhereItCameFrom) {
   cropsight::testing::TempDir t;
   std::ofstream(t / "p.yaml") << "model: m.pt\nensemble_weight: 1.5\n";
-  EXPECT_NE(
-      error_of([&] { load_grape_segmenter_config(t / "p.yaml"); }).find("p.yaml: 'ensemble_weight' must be at most 1"),
-      std::string::npos);
+  EXPECT_NE(error_message([&] {
+              load_grape_segmenter_config(t / "p.yaml");
+            }).find("p.yaml: 'ensemble_weight' must be at most 1"),
+            std::string::npos);
   std::ofstream(t / "q.yaml") << "model: m.pt\nvotes: many\n";
-  EXPECT_NE(error_of([&] { load_grape_segmenter_config(t / "q.yaml"); }).find("q.yaml: 'votes' expects a number"),
+  EXPECT_NE(error_message([&] { load_grape_segmenter_config(t / "q.yaml"); }).find("q.yaml: 'votes' expects a number"),
             std::string::npos);
   std::ofstream(t / "r.yaml") << "model: m.pt\n";
-  EXPECT_NE(error_of([&] {
+  EXPECT_NE(error_message([&] {
               load_grape_segmenter_config(t / "r.yaml", {{"carry_k", "0"}}, "flags");
             }).find("flags: 'carry_k' must be at least 1"),
             std::string::npos);
   GrapeSegmenterConfig c;
-  EXPECT_NE(error_of([&] { c.validate("cfg"); }).find("cfg: 'model' is not set"), std::string::npos);
+  EXPECT_NE(error_message([&] { c.validate("cfg"); }).find("cfg: 'model' is not set"), std::string::npos);
   c.model = "m.pt";
   c.sampling = "grid";
-  EXPECT_NE(error_of([&] { c.validate("cfg"); }).find("cfg: 'sampling' expects random or fps"), std::string::npos);
+  EXPECT_NE(error_message([&] { c.validate("cfg"); }).find("cfg: 'sampling' expects random or fps"), std::string::npos);
 }
 
 TEST(GrapeSegmenter, AGbdtTakesNoNetworkModeAndAWeightNeedsAPartner) {
@@ -71,14 +64,14 @@ TEST(GrapeSegmenter, AGbdtTakesNoNetworkModeAndAWeightNeedsAPartner) {
   c.threads = 1;
   EXPECT_EQ(GrapeSegmenter(c, "cfg").model().kind(), "gbdt");
   c.sampled = true;
-  EXPECT_NE(error_of([&] { GrapeSegmenter(c, "cfg"); }).find("cfg: 'sampled' is only for network models"),
+  EXPECT_NE(error_message([&] { GrapeSegmenter(c, "cfg"); }).find("cfg: 'sampled' is only for network models"),
             std::string::npos);
   c.sampled = false;
   c.votes = 2;
-  EXPECT_NE(error_of([&] { GrapeSegmenter(c, "cfg"); }).find("cfg: 'votes'"), std::string::npos);
+  EXPECT_NE(error_message([&] { GrapeSegmenter(c, "cfg"); }).find("cfg: 'votes'"), std::string::npos);
   c.votes = 1;
   c.ensemble_weight = 0.3;
-  EXPECT_NE(error_of([&] { GrapeSegmenter(c, "cfg"); }).find("cfg: 'ensemble_weight' needs 'ensemble'"),
+  EXPECT_NE(error_message([&] { GrapeSegmenter(c, "cfg"); }).find("cfg: 'ensemble_weight' needs 'ensemble'"),
             std::string::npos);
   c.ensemble = c.model;  // an ensemble with itself: the same labels as the model alone
   const GrapeSegmenter both(c, "cfg");

@@ -76,6 +76,8 @@ class BroccoliDetector {
   /// task, pipeline or feature set (learning::require_compatible).
   void set_model(std::shared_ptr<const learning::Model> model, const std::string& where = "model");
   bool has_model() const { return model_ != nullptr; }
+  /// The classifier's model (null before set_model).
+  const std::shared_ptr<const learning::Model>& model() const { return model_; }
 
   /// Runs every stage on `frame`. The result refers to internal storage valid until the next
   /// call. Without a model, candidates carry features but score 0 and head = false.
