@@ -29,6 +29,7 @@ double iou(const std::vector<int>& a_sorted, const std::vector<char>& in_b, long
 }
 }  // namespace
 
+// Long on purpose: a tuning probe read top to bottom: options, the sweep, the table it prints.
 int main(int argc, char** argv) {
   const auto args = tools::parse_probe_args("broccoli_dome_seed_probe", argc, argv);
   if (!args) return 2;

@@ -98,6 +98,7 @@ void dump(const std::string& dir, int frame, const OrganizedCloud& cloud, std::s
 }
 }  // namespace
 
+// Long on purpose: a tuning probe whose per-head counters are filled and printed together.
 int probe() {
   const char* seqs = std::getenv("CROPSIGHT_SEG_PROBE");
   if (!seqs) {

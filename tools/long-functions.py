@@ -2,6 +2,10 @@
 """Lists C++ functions longer than a limit (brace counting on comment- and string-free text).
 
     tools/long-functions.py [--limit N] FILE...    e.g. $(git ls-files "src/*.cpp" "apps/*.cpp")
+    tools/long-functions.py --check [--limit N] FILE...
+
+--check (CI): lists only the long functions without a reason, a `//` comment on the line right
+above the declaration (or above its `template <...>` line), and exits 1 when there is one.
 
 A function is a `{` at namespace or class scope whose preceding declaration has a parameter
 list and is not a control statement, an initialiser or a type; its length counts from the
@@ -76,13 +80,30 @@ def functions(path):
             header_start = i + 1
 
 
+def has_reason(path, line):
+    """Whether a `//` comment stands right above the declaration starting at `line` (1-based)."""
+    lines = open(path, encoding="utf-8").read().split("\n")
+    i = line - 2
+    while i >= 0 and lines[i].strip().startswith("template"):
+        i -= 1
+    return i >= 0 and lines[i].strip().startswith("//")
+
+
 def main(argv):
-    limit = 80
-    if argv[:1] == ["--limit"]:
-        limit, argv = int(argv[1]), argv[2:]
+    limit, check = 80, False
+    while argv[:1] in (["--limit"], ["--check"]):
+        if argv[0] == "--check":
+            check, argv = True, argv[1:]
+        else:
+            limit, argv = int(argv[1]), argv[2:]
     rows = [(n, f, line, name) for f in argv for n, line, name in functions(f) if n > limit]
+    if check:
+        rows = [r for r in rows if not has_reason(r[1], r[2])]
     for n, f, line, name in sorted(rows, reverse=True):
         print(f"{n:5d}  {f}:{line}  {name}")
+    if check and rows:
+        print(f"{len(rows)} function(s) over {limit} lines without a one-line reason above them")
+        sys.exit(1)
 
 
 if __name__ == "__main__":

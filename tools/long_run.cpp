@@ -153,6 +153,7 @@ struct Memory {
   }
 };
 
+// Long on purpose: the short reference run, the long run with its memory samples, and the summary of one soak test.
 nlohmann::json run_broccoli(const Options& o) {
   // Built the way every front-end builds it; twice, so that the long run starts from a fresh state.
   const pipeline::PipelineSpec spec{.sets = {"track=true"}, .model = o.model};

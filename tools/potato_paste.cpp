@@ -107,6 +107,7 @@ struct Writer {
 
 }  // namespace
 
+// Long on purpose: a data tool read top to bottom: options, sources and their masks, the composites, the annotations.
 int main(int argc, char** argv) {
   std::string images, voc, out, exclude;
   int count = 300;

@@ -80,6 +80,7 @@ void print_fit(const char* name, const std::vector<ColorImage>& ims,
               f.mean_b, f.cov_aa, f.cov_ab, f.cov_bb, static_cast<long long>(f.pixels));
 }
 
+// Long on purpose: a probe whose modes (--orient, --lab, --fit, the default sweep) share one entry point.
 int main(int argc, char** argv) {
   if (argc == 9 && std::string(argv[1]) == "--orient") {
     const auto im = io::read_color(argv[2]);

@@ -77,6 +77,7 @@ double percentile(std::vector<double> v, double q) {
 
 }  // namespace
 
+// Long on purpose: one benchmark script read top to bottom: options, node start-up, the paced publish loop, the report.
 int main(int argc, char** argv) {
   ros::init(argc, argv, "cropsight_latency_bench", ros::init_options::AnonymousName);
   std::string bag_path, stereo_dir, ns = "/camera", node = "broccoli";

@@ -143,6 +143,7 @@ void GrapeNode::on_frame_boxes(const sensor_msgs::ImageConstPtr& color, const se
   publish(color->header, f, out);
 }
 
+// Long on purpose: the node's four outputs (bunches, labelled cloud, cut-point markers, debug image) from one result.
 void GrapeNode::publish(const std_msgs::Header& header, const bridge::FrameBuffers& f,
                         const bridge::GrapeFrameOut& out) {
   cropsight_msgs::GrapeBunchArray arr;

@@ -43,6 +43,7 @@ std::string pcl_keyword(const std::string& first) {
 
 }  // namespace
 
+// Long on purpose: the PCD header fields in the order the format requires them, each with its own error line.
 void check_pcd_header(const std::string& bytes, const std::string& where) {
   const auto fail = [&](int line, const std::string& problem) {
     throw Error(where, "malformed PCD header, line " + std::to_string(line) + ": " + problem);

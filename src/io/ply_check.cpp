@@ -61,6 +61,7 @@ std::uint64_t read_list_count(const unsigned char* p, int size, bool big_endian,
 
 }  // namespace
 
+// Long on purpose: the PLY header rules in the order the format states them, each with its own error line.
 void check_ply(const std::string& bytes, const std::string& where) {
   std::size_t pos = 0;
   int line_no = 0;

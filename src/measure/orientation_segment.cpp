@@ -137,6 +137,8 @@ cv::Mat segment_kmeans(const cv::Mat& rgb, const OrientationConfig& cfg) {
   return mask;
 }
 
+// Long on purpose: one segmentation in order: the threshold (depth hue or chroma), the string closing, the no-depth
+// fill.
 cv::Mat segment_ours(const cv::Mat& rgb, const OrientationConfig& cfg) {
   cv::Mat score(rgb.rows, rgb.cols, CV_8UC1), valid(rgb.rows, rgb.cols, CV_8UC1, cv::Scalar(255));
   if (cfg.input == OrientationInput::depth) {

@@ -209,6 +209,7 @@ std::pair<double, double> fit_profile(const SilhouetteMask& mask, const Image<fl
 }
 }  // namespace
 
+// Long on purpose: the depth at the box (centre or window), the surface point, the thickness and the centre, in order.
 Position3D locate(const Detection2D& box, const Image<float>& depth_m, const CameraIntrinsics& camera,
                   const PositionConfig& cfg) {
   Position3D out;

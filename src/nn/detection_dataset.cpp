@@ -51,6 +51,7 @@ int class_of(const std::vector<std::string>& classes, const std::string& name) {
 
 }  // namespace
 
+// Long on purpose: COCO images, categories and annotations read and checked in one pass over the file.
 DetectionDataset read_coco_detection(const std::filesystem::path& annotations, const std::filesystem::path& images_dir,
                                      const std::vector<std::string>& classes) {
   const std::string file = annotations.string();

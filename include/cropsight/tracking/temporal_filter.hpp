@@ -86,6 +86,7 @@ struct TemporalFilterConfig {
   double predict_radius_scale = 1.3;
   int predict_min_points = 10;
 
+  // Long on purpose: every key of the temporal filter declared with its unit, range and source.
   template <class V>
   void visit(V& v) {
     v("association_radius_m", association_radius_m,

@@ -125,6 +125,8 @@ std::optional<Detection2D> part_detection(const cv::Mat& part, cv::Point tl, int
 }
 }  // namespace
 
+// Long on purpose: the detector's steps in order: the colour mask and its opening, the blobs, their shape rules, one
+// box each.
 std::vector<Detection2D> PotatoBlobDetector::detect(const DetectorInput& in) {
   if (!in.image || in.image->empty()) throw Error("potato detector", "empty image");
   Impl& m = *impl_;

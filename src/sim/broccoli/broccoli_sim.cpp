@@ -168,6 +168,7 @@ RgbdFrame BroccoliSimulator::render(int index) {
   return frame;
 }
 
+// Long on purpose: every ground-truth field of a head and the attributes that document them, in the file's order.
 io::GroundTruth BroccoliSimulator::groundtruth() const {
   const auto& cfg = field_.config();
   io::GroundTruth gt;
