@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/config_yaml.hpp"
+#include "cropsight/io/file_names.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/voc.hpp"
@@ -20,18 +21,7 @@
 namespace cropsight::cli {
 
 namespace detect_objects_cmd {
-std::vector<std::filesystem::path> list_images(const std::filesystem::path& dir) {
-  if (!std::filesystem::is_directory(dir)) throw Error(dir.string(), "not a folder of images");
-  std::vector<std::filesystem::path> out;
-  for (const auto& e : std::filesystem::directory_iterator(dir)) {
-    std::string ext = e.path().extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    if (ext == ".jpg" || ext == ".jpeg" || ext == ".png") out.push_back(e.path());
-  }
-  std::sort(out.begin(), out.end());
-  if (out.empty()) throw Error(dir.string(), "holds no .jpg or .png image");
-  return out;
-}
+using io::list_images;
 }  // namespace detect_objects_cmd
 
 void add_detect_objects(CLI::App& detect) {

@@ -12,6 +12,7 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/timer.hpp"
 #include "cropsight/io/config_yaml.hpp"
+#include "cropsight/io/file_names.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/sequence.hpp"
@@ -30,20 +31,7 @@ struct Options {
   bool force = false;
 };
 
-// A folder's .jpg/.png images in name order, or the one image file named.
-std::vector<fs::path> list_images(const fs::path& dir) {
-  if (fs::is_regular_file(dir)) return {dir};
-  if (!fs::is_directory(dir)) throw Error(dir.string(), "no such image or folder of images");
-  std::vector<fs::path> out;
-  for (const auto& e : fs::directory_iterator(dir)) {
-    std::string ext = e.path().extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    if (e.is_regular_file() && (ext == ".jpg" || ext == ".jpeg" || ext == ".png")) out.push_back(e.path());
-  }
-  if (out.empty()) throw Error(dir.string(), "holds no .jpg or .png image");
-  std::sort(out.begin(), out.end());
-  return out;
-}
+using io::list_images;  // a folder's images in name order, or the one image file named
 
 // One input image: its name for the outputs, its colour and (sequences) its metric depth.
 struct Input {

@@ -3,6 +3,7 @@
 // curvature, rgb packed PCL-style, label), so every channel of our clouds survives a round trip
 // and organised clouds keep width×height (PCD: WIDTH/HEIGHT; PLY: PCL's camera element).
 #include "cropsight/io/cloud_io.hpp"
+#include "cropsight/io/file_names.hpp"
 
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/console/print.h>
@@ -30,8 +31,7 @@ constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 enum class Format { kPcd, kPly };
 
 Format format_of(const fs::path& path) {
-  std::string ext = path.extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const std::string ext = lower_extension(path);
   if (ext == ".pcd") return Format::kPcd;
   if (ext == ".ply") return Format::kPly;
   throw Error(path.string(), "unknown point-cloud format '" + ext + "' (expected .pcd or .ply)");

@@ -1,4 +1,5 @@
 #include "cropsight/io/image_io.hpp"
+#include "cropsight/io/file_names.hpp"
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -67,8 +68,7 @@ std::string encode(const cv::Mat& m, const std::string& ext, const std::string& 
 }
 
 std::string extension_of(const fs::path& path) {
-  std::string ext = path.extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  std::string ext = lower_extension(path);
   if (ext.empty()) throw Error(path.string(), "image file name needs an extension (.png)");
   return ext;
 }

@@ -1,4 +1,5 @@
 #include "cropsight/io/recording_import.hpp"
+#include "cropsight/io/file_names.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -17,10 +18,6 @@ namespace cropsight::io {
 namespace fs = std::filesystem;
 
 namespace {
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return s;
-}
 
 // The last number of a file stem: digits with an optional fractional part ("123", "1596.25").
 // The stem of "frame-000123.depth.png" is "frame-000123.depth": its last number is 000123.
@@ -62,7 +59,7 @@ std::vector<RecordingFile> list_recording(const fs::path& dir, const std::string
   std::vector<RecordingFile> files;
   std::map<std::string, fs::path> seen;
   for (const auto& e : fs::directory_iterator(dir)) {
-    if (!e.is_regular_file() || lower(e.path().extension().string()) != ext) continue;
+    if (!e.is_regular_file() || lower_extension(e.path()) != ext) continue;
     RecordingFile f;
     f.path = e.path();
     if (!last_number(e.path().stem().string(), f.key))

@@ -1,4 +1,5 @@
 #include "cropsight/stereo/stereo_io.hpp"
+#include "cropsight/io/file_names.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -61,11 +62,7 @@ ColorImage to_rgb(const cv::Mat& m) {
   return detail::to_color(rgb);
 }
 
-std::string lower_extension(const fs::path& p) {
-  std::string e = p.extension().string();
-  for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
-  return e;
-}
+using io::lower_extension;
 
 }  // namespace
 
