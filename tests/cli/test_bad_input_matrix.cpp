@@ -305,8 +305,9 @@ const Input kRig{"sd/rig.yaml", Kind::Yaml, "image_width", "-640"};
 const Input kSeedTruth{"sd/pair_000/truth.json", Kind::Json, "/envelope/height_m", "-1"};
 // Images named by COCO truth: the detectors take any size (they resize to the network input).
 const Input kImage{"images/a.png", Kind::Png, "", "", {Bad::WrongSize}};
-// One image of a folder to detect in: one image fewer is a valid folder too.
-const Input kFolderImage{"images/a.png", Kind::Png, "", "", {Bad::WrongSize, Bad::Missing}};
+// One image of a folder to detect in: one image fewer, or a sub-folder beside the images (whatever
+// its name), is a valid folder too (io::list_images takes the image files).
+const Input kFolderImage{"images/a.png", Kind::Png, "", "", {Bad::WrongSize, Bad::Missing, Bad::Directory}};
 const Input kOnnx{"det.onnx", Kind::Binary, "", ""};
 const Input kPt{"det.pt", Kind::Binary, "", ""};
 const Input kCocoGt{"coco.json", Kind::Json, "/annotations/0/bbox/2", "-20"};

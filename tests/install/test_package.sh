@@ -18,4 +18,5 @@ depends=$(dpkg-deb --field "$deb" Depends)
 for p in libpcl-dev libopencv-dev libxgboost-dev libtorch-dev; do
   grep -q "$p" <<<"$depends" || { echo "FAIL: Depends lacks $p: $depends"; exit 1; }
 done
+rm -rf "$build/_CPack_Packages"  # CPack's staging copy of the install (150 MB), not needed after
 echo "package: $(basename "$deb") lists the CLI, presets, models, plugin and package config"
