@@ -36,8 +36,6 @@ struct EvalDetectorOptions {
   CommonOptions common;
 };
 
-nlohmann::json number_or_null(double v) { return std::isnan(v) ? nlohmann::json() : json_number(v); }
-
 void run(EvalDetectorOptions o) {
   auto det = nn::load_center_detector(io::find_model(o.model).string(), o.threads);
   if (o.data.classes.empty())
@@ -64,10 +62,10 @@ void run(EvalDetectorOptions o) {
       classes.push_back({{"class", c.name},
                          {"truths", c.truths},
                          {"detections", c.detections},
-                         {"box_ap50", number_or_null(c.ap50)},
-                         {"box_ap50_95", number_or_null(c.ap50_95)},
-                         {"pixel_accuracy", number_or_null(c.pixel_accuracy)},
-                         {"iou", number_or_null(c.iou)},
+                         {"box_ap50", json_number(c.ap50)},
+                         {"box_ap50_95", json_number(c.ap50_95)},
+                         {"pixel_accuracy", json_number(c.pixel_accuracy)},
+                         {"iou", json_number(c.iou)},
                          {"truth_pixels", c.truth_pixels},
                          {"predicted_pixels", c.predicted_pixels}});
     print_json({{"model", o.model},
