@@ -21,16 +21,6 @@ namespace cropsight::ros_io {
 
 namespace {
 
-// Removes a temporary bag unless committed: an interrupted export leaves no file that looks whole.
-struct TempFile {
-  fs::path path;
-  bool keep = false;
-  ~TempFile() {
-    std::error_code ec;
-    if (!keep) fs::remove(path, ec);
-  }
-};
-
 // rosbag throws its own exceptions (and pluginlib's when the encryptor plugin cannot be loaded);
 // the CLI's contract is one line naming the file.
 template <class F>
@@ -81,50 +71,52 @@ BagExportSummary export_sequence_bag(const BagExportOptions& o) {
     throw Error(o.sequence + "/camera.yaml", "depth_scale " + std::to_string(cam.depth_scale) +
                                                  " m: a ROS 16UC1 depth image is in millimetres (depth_scale 0.001)");
   if (!(o.fps > 0)) throw Error("--fps", "must be > 0");
-  TempFile tmp{fs::path(o.bag + ".partial")};
   BagExportSummary s;
-  with_bag_errors(o.bag, "cannot write the bag", [&] {
-    rosbag::Bag bag;
-    bag.open(tmp.path.string(), rosbag::bagmode::Write);
-    sensor_msgs::CameraInfo info = info_from_camera(cam);
-    for (int i = 0; i < seq.size(); ++i) {
-      const bridge::FrameBuffers f = seq.read(i);
-      const double t_s = o.start_s + (f.timestamp > 0 ? f.timestamp : i / o.fps);
-      const ros::Time t(t_s);
-      const std_msgs::Header h = header_at(t, o.topics.frame_id, std::uint32_t(i));
-      sensor_msgs::Image depth = image_from_depth(f.depth, cam.width, cam.height);
-      depth.header = h;
-      info.header = h;
-      bag.write(o.topics.depth, t, depth);
-      bag.write(o.topics.camera_info, t, info);
-      s.messages += 2;
-      if (!f.rgb.empty()) {
-        sensor_msgs::Image color = image_from_rgb(f.rgb, cam.width, cam.height);
-        color.header = h;
-        bag.write(o.topics.color, t, color);
-        ++s.messages;
-        s.color = true;
+  // Written under a hidden temporary name beside the bag and renamed when complete, like every
+  // output (io/files.hpp): an interrupted export leaves no file that looks whole, and no name a
+  // user's file could have.
+  io::write_atomic_with(o.bag, [&](const fs::path& tmp) {
+    with_bag_errors(o.bag, "cannot write the bag", [&] {
+      rosbag::Bag bag;
+      bag.open(tmp.string(), rosbag::bagmode::Write);
+      sensor_msgs::CameraInfo info = info_from_camera(cam);
+      for (int i = 0; i < seq.size(); ++i) {
+        const bridge::FrameBuffers f = seq.read(i);
+        const double t_s = o.start_s + (f.timestamp > 0 ? f.timestamp : i / o.fps);
+        const ros::Time t(t_s);
+        const std_msgs::Header h = header_at(t, o.topics.frame_id, std::uint32_t(i));
+        sensor_msgs::Image depth = image_from_depth(f.depth, cam.width, cam.height);
+        depth.header = h;
+        info.header = h;
+        bag.write(o.topics.depth, t, depth);
+        bag.write(o.topics.camera_info, t, info);
+        s.messages += 2;
+        if (!f.rgb.empty()) {
+          sensor_msgs::Image color = image_from_rgb(f.rgb, cam.width, cam.height);
+          color.header = h;
+          bag.write(o.topics.color, t, color);
+          ++s.messages;
+          s.color = true;
+        }
+        if (f.has_camera_position) {
+          tf2_msgs::TFMessage tf;
+          geometry_msgs::TransformStamped pose;
+          pose.header = header_at(t, o.topics.field_frame, std::uint32_t(i));
+          pose.child_frame_id = o.topics.frame_id;
+          pose.transform.translation.x = f.camera_position[0];
+          pose.transform.translation.y = f.camera_position[1];
+          pose.transform.translation.z = f.camera_position[2];
+          pose.transform.rotation.w = 1;
+          tf.transforms.push_back(pose);
+          bag.write(o.topics.tf, t, tf);
+          ++s.messages;
+        }
+        ++s.frames;
       }
-      if (f.has_camera_position) {
-        tf2_msgs::TFMessage tf;
-        geometry_msgs::TransformStamped pose;
-        pose.header = header_at(t, o.topics.field_frame, std::uint32_t(i));
-        pose.child_frame_id = o.topics.frame_id;
-        pose.transform.translation.x = f.camera_position[0];
-        pose.transform.translation.y = f.camera_position[1];
-        pose.transform.translation.z = f.camera_position[2];
-        pose.transform.rotation.w = 1;
-        tf.transforms.push_back(pose);
-        bag.write(o.topics.tf, t, tf);
-        ++s.messages;
-      }
-      ++s.frames;
-    }
-    bag.close();
-    return 0;
+      bag.close();
+      return 0;
+    });
   });
-  fs::rename(tmp.path, o.bag);
-  tmp.keep = true;
   return s;
 }
 

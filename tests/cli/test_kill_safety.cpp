@@ -1,7 +1,7 @@
 // Kill safety (issue 26, item 4): the commands that write outputs are killed with SIGKILL at seeded
 // random moments spread over their run time (measured first on a clean run) and must leave
 // nothing partial under a final name: each output is either absent or byte-identical to the clean
-// run's, and anything else beside them is a temporary (".NAME.tmp-*", "*.partial"). Then the same
+// run's, and anything else beside them is a temporary (".NAME.tmp-*"). Then the same
 // command, run again in the same folder over whatever the kill left, must succeed and write the
 // clean run's outputs. Half of the kills hit a run that replaces an earlier complete output (the
 // clean one, copied in first), so the replacement path is killed too: there the earlier output
@@ -74,9 +74,9 @@ std::optional<Snapshot> snapshot(const fs::path& p) {
 }
 
 // What a kill may leave beside the outputs: io::files' ".NAME.tmp-PID-N[.ext]" files and folders
-// (and replace_directory's ".NAME.tmp-PID-N.old"), the bag writer's "NAME.partial".
+// (and replace_directory's ".NAME.tmp-PID-N.old"); the bag writer uses them too.
 bool is_temporary(const std::string& name) {
-  return (name.size() > 1 && name[0] == '.' && name.find(".tmp-") != std::string::npos) || name.ends_with(".partial");
+  return name.size() > 1 && name[0] == '.' && name.find(".tmp-") != std::string::npos;
 }
 
 // Starts the CLI with `args` in folder `cwd`, stdout and stderr to `log`. Everything the child
