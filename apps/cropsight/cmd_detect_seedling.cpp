@@ -1,7 +1,6 @@
 // cropsight detect seedling (issue 5): one stereo pair + calibration -> seedling envelope box,
 // image mask, top-view mask and per-stage timings. The detection is pipeline::SeedlingPipeline;
 // this file parses options, reads the pair, and writes the outputs.
-#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -44,7 +43,7 @@ class StagedOutputs {
   // `write(tmp)` writes the file; the temporary keeps the extension so OpenCV picks the format.
   template <class F>
   void stage(const fs::path& path, F&& write) {
-    fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".tmp-" + std::to_string(::getpid()));
+    fs::path tmp = io::temporary_sibling(path);  // the one temporary name (io/files.hpp)
     tmp += path.extension();
     files_.emplace_back(tmp, path);
     try {
