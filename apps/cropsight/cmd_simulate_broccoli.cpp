@@ -26,7 +26,6 @@ struct SimulateBroccoliOptions {
 
 void run_simulate_broccoli(const SimulateBroccoliOptions& o) {
   const io::OutputPolicy policy = output_policy("simulate broccoli", o.force, {o.common.config});
-  io::check_output_folder(o.out, policy);
   if (o.frames < 1) throw Error("--frames", "must be at least 1");
   if (o.fps && !(std::isfinite(*o.fps) && *o.fps > 0.0)) throw Error("--fps", "must be a positive number");
   sim::BroccoliSimConfig cfg;

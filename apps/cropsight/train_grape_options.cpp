@@ -4,7 +4,6 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/threads.hpp"
-#include "cropsight/io/files.hpp"
 #include "cropsight/pipeline/grape/grape_model.hpp"
 
 namespace cropsight::cli {
@@ -19,7 +18,6 @@ void check_train_grape_options(const TrainGrapeOptions& o) {
   if (o.out.empty() && !o.folds_set) throw Error("--out", "required unless --folds is given");
   // The model is written only after training: a folder there must fail now, not in an hour.
   if (!o.out.empty() && fs::is_directory(o.out)) throw Error(o.out, "is a directory, expected a model file name");
-  if (!o.out.empty()) io::check_can_create(o.out);
   if (!o.checkpoint.empty()) {
     if (fs::exists(o.checkpoint) && !fs::is_regular_file(o.checkpoint))
       throw Error(o.checkpoint, "is not a checkpoint file (a directory?)");

@@ -128,15 +128,6 @@ void TempDirectory::commit(const std::string& what) {
   committed_ = true;
 }
 
-void check_can_create(const fs::path& path) {
-  fs::path at = fs::absolute(path).parent_path();
-  std::error_code ec;
-  while (!at.empty() && !fs::exists(at, ec) && at != at.parent_path()) at = at.parent_path();
-  if (!fs::is_directory(at, ec)) throw Error(at.string(), "is not a folder: cannot create " + path.string() + " in it");
-  if (::access(at.c_str(), W_OK | X_OK) != 0)
-    throw Error(at.string(), std::string("cannot create ") + path.string() + " in it: " + std::strerror(errno));
-}
-
 std::string read_file(const fs::path& path) {
   // A directory opens as a stream on Linux and reads as empty: say what it is instead.
   if (std::error_code ec; fs::is_directory(path, ec)) throw Error(path.string(), "is a directory, not a file");

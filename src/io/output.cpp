@@ -148,7 +148,10 @@ void check_output_file(const fs::path& file, const OutputPolicy& policy) {
   probe_writable(f);
 }
 
-void check_output_folder(const fs::path& dir, const OutputPolicy& policy) {
+namespace {
+// The folder rules of output.hpp without the writability probe (OutputFolder proves that by
+// creating its temporary).
+void check_folder_rules(const fs::path& dir, const OutputPolicy& policy) {
   if (dir.empty()) throw Error("--out", "empty output path");
   check_not_an_input(dir, policy);
   const fs::path d = resolved_path(dir);
@@ -159,12 +162,17 @@ void check_output_folder(const fs::path& dir, const OutputPolicy& policy) {
     if (!fs::is_directory(st)) throw Error(dir.string(), "exists and is not a folder");
     check_existing_folder(d, dir.string(), policy);
   }
-  probe_writable(d);
+}
+}  // namespace
+
+void check_output_folder(const fs::path& dir, const OutputPolicy& policy) {
+  check_folder_rules(dir, policy);
+  probe_writable(resolved_path(dir));
 }
 
 OutputFolder::OutputFolder(const fs::path& dir, const OutputPolicy& policy)
     : dir_(resolved_path(dir)), policy_(policy) {
-  check_output_folder(dir, policy);
+  check_folder_rules(dir, policy);
   const fs::path existing = nearest_existing(dir_.parent_path());
   if (existing != dir_.parent_path()) {
     // Remember the top folder created here, to remove it again when the run fails.

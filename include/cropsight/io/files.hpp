@@ -49,11 +49,6 @@ class TempDirectory {
   bool committed_ = false;
 };
 
-/// Throws Error(FOLDER, ...) when `path` (a file or folder to write) could not be created: the
-/// nearest existing folder above it is a file, or is not writable. Creates nothing. Called before
-/// long work, so that a bad --out costs no run and prints no progress before its error line.
-void check_can_create(const std::filesystem::path& path);
-
 /// Whole file as a string. Throws Error(path, "cannot read ...").
 std::string read_file(const std::filesystem::path& path);
 

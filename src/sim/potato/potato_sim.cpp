@@ -184,14 +184,14 @@ PotatoSimSummary simulate_potato_sequence(const PotatoSimConfig& config, std::ui
                                           const std::filesystem::path& out, const io::OutputPolicy& policy,
                                           const std::function<void(int, int)>& progress) {
   const auto t0 = std::chrono::steady_clock::now();
-  io::check_output_folder(out, policy);  // before the scene is built
+  // Checked, and its temporary made, before the scene is built.
+  io::OutputFolder tmp(out, policy);
   config.validate("sim config");
   if (frames < 1) throw Error("sim config", "frames must be at least 1");
   const CameraIntrinsics cam = config.camera();
   const detail::PotatoSceneModel scene = detail::build_potato_scene(config, seed);
   // The sequence writer fills tmp/sequence; depth_color/ goes beside it; both then move into tmp,
   // which replaces `out` at the end: an interrupted run leaves nothing that looks complete.
-  io::OutputFolder tmp(out, policy);
   const std::filesystem::path seq = tmp.path() / "sequence", colour_dir = tmp.path() / "depth_color";
   std::filesystem::create_directories(colour_dir);
   PotatoSimSummary summary;
