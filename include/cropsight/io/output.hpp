@@ -12,7 +12,8 @@
 // - an output file that exists is replaced only with --force: a file is one path the user named
 //   on the command line, so --force is consent for exactly that file. A folder is never replaced
 //   in place of a file, nor a file in place of a folder;
-// - the location is proven writable before the work (a probe file is created and removed), and
+// - the location is proven writable before the work (a probe file is created and removed, or the
+//   output folder's temporary is made), and
 //   the output is written under a temporary name and renamed when complete (files.hpp).
 //
 // Paths are compared after resolving symbolic links and `..` (std::filesystem::weakly_canonical),
@@ -62,8 +63,8 @@ void check_output_file(const std::filesystem::path& file, const OutputPolicy& po
 /// parent writable. Creates nothing that stays. Throws Error(dir, ...).
 void check_output_folder(const std::filesystem::path& dir, const OutputPolicy& policy);
 
-/// An output folder written whole: the constructor checks `dir` (check_output_folder) and makes an
-/// empty temporary sibling to write into; commit() writes the marker (listing every file then in
+/// An output folder written whole: the constructor checks `dir` by the rules of check_output_folder
+/// and makes an empty temporary sibling to write into (which proves the parent writable); commit() writes the marker (listing every file then in
 /// the temporary) and puts the temporary in place of `dir` in one step (replace_directory). Until
 /// then `dir` is untouched, and the destructor removes the temporary (and any parent folders the
 /// constructor had to create), so a failed or interrupted run leaves nothing behind. Use from one
