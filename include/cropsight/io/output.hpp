@@ -63,12 +63,12 @@ void check_output_file(const std::filesystem::path& file, const OutputPolicy& po
 /// parent writable. Creates nothing that stays. Throws Error(dir, ...).
 void check_output_folder(const std::filesystem::path& dir, const OutputPolicy& policy);
 
-/// An output folder written whole: the constructor checks `dir` by the rules of check_output_folder
-/// and makes an empty temporary sibling to write into (which proves the parent writable); commit() writes the marker (listing every file then in
-/// the temporary) and puts the temporary in place of `dir` in one step (replace_directory). Until
-/// then `dir` is untouched, and the destructor removes the temporary (and any parent folders the
-/// constructor had to create), so a failed or interrupted run leaves nothing behind. Use from one
-/// thread.
+/// An output folder written whole: the constructor checks `dir` by the rules of
+/// check_output_folder and makes an empty temporary sibling to write into (which proves the parent
+/// writable); commit() writes the marker (listing every file then in the temporary) and puts the
+/// temporary in place of `dir` in one step (replace_directory). Until then `dir` is untouched, and
+/// the destructor removes the temporary (and any parent folders the constructor had to create), so
+/// a failed or interrupted run leaves nothing behind. Use from one thread.
 class OutputFolder {
  public:
   OutputFolder(const std::filesystem::path& dir, const OutputPolicy& policy);
