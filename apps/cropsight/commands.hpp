@@ -11,6 +11,7 @@ namespace cropsight::cli {
 // Foundation (sequences, simulator)
 void add_simulate_broccoli(CLI::App& simulate);
 void add_simulate_potato(CLI::App& simulate);
+void add_simulate_grape(CLI::App& simulate);
 void add_info(CLI::App& app);
 void add_export(CLI::App& app);
 void add_import(CLI::App& app);

@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   simulate->require_subcommand(1);
   add_simulate_broccoli(*simulate);
   add_simulate_potato(*simulate);
+  add_simulate_grape(*simulate);
   add_info(app);
   add_export(app);
   add_import(app);

@@ -348,6 +348,7 @@ const std::vector<Row>& rows() {
     {"simulate_broccoli", "simulate broccoli --frames 1 --out {c}/out/s", {set("camera.height_m", "-1"), kOut}},
     {"simulate_potato", "simulate potato --frames 1 --out {c}/out/s", {kOut}},
     {"simulate_seedling", "simulate seedling --pairs 1 --calib-pairs 0 --quiet --out {c}/out/s", {kOut}},
+    {"simulate_grape", "simulate grape --out {c}/out/s", {set("berry_radius_min", "-1"), kOut}},
     {"segment_grape",
      "segment grape --model {c}/grape.json --clouds {c}/clouds/points/c0.txt --out {c}/out/s.txt --threads 1",
      {kGrapeCloud, kGrapeModel, kOut}},

@@ -96,6 +96,7 @@ const std::vector<Row>& rows() {
     {"simulate_broccoli", "simulate broccoli --frames 1 --out {out}", "", Out::Folder, ""},
     {"simulate_potato", "simulate potato --frames 1 --out {out}", "", Out::Folder, ""},
     {"simulate_seedling", "simulate seedling --pairs 1 --calib-pairs 0 --quiet --out {out}", "", Out::Folder, ""},
+    {"simulate_grape", "simulate grape --out {out}", "", Out::Folder, ""},
 #if CROPSIGHT_HAS_ROS
     {"export_bag", "export --data {c}/seq --out {out}", "seq", Out::File, ".bag"},
     {"import_bag", "import --data {c}/s.bag --out {out}", "s.bag", Out::Folder, ""},
