@@ -29,28 +29,56 @@ DepthRange robust_depth_range(const DepthImage& depth, double depth_scale) {
   return r;
 }
 
-ColorImage depth_colormap(const DepthImage& depth, double depth_scale, const DepthRange& range) {
-  // Depth -> 8-bit index with near = 255 (red end of turbo), then OpenCV's colour map.
-  cv::Mat index(depth.height, depth.width, CV_8UC1);
-  const double span = std::max(1e-9, range.far_m - range.near_m);
-  for (int v = 0; v < depth.height; ++v) {
-    const std::uint16_t* in = depth.row(v);
+namespace {
+// Raw values -> turbo colours: `index(value)` in [0, 255] (255 = the red end); value 0 = black.
+template <class Index>
+ColorImage turbo_image(const DepthImage& raw, Index index_of) {
+  cv::Mat index(raw.height, raw.width, CV_8UC1);
+  for (int v = 0; v < raw.height; ++v) {
+    const std::uint16_t* in = raw.row(v);
     auto* out = index.ptr<std::uint8_t>(v);
-    for (int u = 0; u < depth.width; ++u) {
-      const double t = std::clamp((double(in[u]) * depth_scale - range.near_m) / span, 0.0, 1.0);
-      out[u] = std::uint8_t(std::lround(255.0 * (1.0 - t)));
-    }
+    for (int u = 0; u < raw.width; ++u)
+      out[u] = std::uint8_t(std::lround(255.0 * std::clamp(index_of(in[u]), 0.0, 1.0)));
   }
   cv::Mat bgr;
   cv::applyColorMap(index, bgr, cv::COLORMAP_TURBO);
-  ColorImage img(depth.width, depth.height);
-  for (int v = 0; v < depth.height; ++v) {
+  ColorImage img(raw.width, raw.height);
+  for (int v = 0; v < raw.height; ++v) {
     const auto* p = bgr.ptr<cv::Vec3b>(v);
-    const std::uint16_t* in = depth.row(v);
+    const std::uint16_t* in = raw.row(v);
     Rgb8* out = img.row(v);
-    for (int u = 0; u < depth.width; ++u) out[u] = in[u] == 0 ? Rgb8{0, 0, 0} : Rgb8{p[u][2], p[u][1], p[u][0]};
+    for (int u = 0; u < raw.width; ++u) out[u] = in[u] == 0 ? Rgb8{0, 0, 0} : Rgb8{p[u][2], p[u][1], p[u][0]};
   }
   return img;
+}
+}  // namespace
+
+ColorImage depth_colormap(const DepthImage& depth, double depth_scale, const DepthRange& range) {
+  // Near = the red end of turbo.
+  const double span = std::max(1e-9, range.far_m - range.near_m);
+  return turbo_image(depth, [&](std::uint16_t d) { return 1.0 - (double(d) * depth_scale - range.near_m) / span; });
+}
+
+ColorImage disparity_colormap(const DepthImage& disparity_x256) {
+  // The robust range of the raw values (scale 1), large disparity = near = red.
+  const DepthRange r = robust_depth_range(disparity_x256, 1.0);
+  const double span = std::max(1e-9, r.far_m - r.near_m);
+  return turbo_image(disparity_x256, [&](std::uint16_t d) { return (double(d) - r.near_m) / span; });
+}
+
+ColorImage side_by_side(const std::vector<ColorImage>& images, int gap, Rgb8 fill) {
+  int width = 0, height = 0;
+  for (const ColorImage& im : images) {
+    width += im.width + (width > 0 ? gap : 0);
+    height = std::max(height, im.height);
+  }
+  ColorImage out(width, height, fill);
+  int offset = 0;
+  for (const ColorImage& im : images) {
+    for (int v = 0; v < im.height; ++v) std::copy(im.row(v), im.row(v) + im.width, out.row(v) + offset);
+    offset += im.width + gap;
+  }
+  return out;
 }
 
 ColorImage depth_colormap(const DepthImage& depth, double depth_scale) {

@@ -15,6 +15,11 @@
 // with Part::Data (the sequence summary, camera, frames, ground truth) is shown after every
 // Part::Result section, whatever order the sections were added in, so a page opens with what was
 // found (detections, map, sizes, timing) and not with a table of metadata.
+//
+// A page about several systems (the demo page) opens a chapter per system: chapter() starts an
+// <article> with an <h2> and a link in the page's table of contents; the sections that follow
+// belong to it (their headings one level lower), and the result-before-data rule holds within
+// each chapter, so one system's data never lands below another system's results.
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -44,6 +49,10 @@ class HtmlPage {
   /// added next (headings, tables, figures, ...) belongs to it. Content added before the first
   /// section belongs to the result part.
   void section(const std::string& heading, Part part = Part::Result);
+  /// Starts a chapter (closing the previous one): an <article id="`id`"> headed by an <h2>,
+  /// listed in the table of contents shown under the title. `id` must be a valid HTML id
+  /// (letters, digits, '-'); Error("chapter", ...) otherwise, or when it repeats.
+  void chapter(const std::string& heading, const std::string& id);
   void heading(const std::string& text, int level = 3);
   void paragraph(const std::string& text);
   /// A table; every row should have header.size() cells. Cells are plain text.
@@ -65,9 +74,14 @@ class HtmlPage {
 
  private:
   void close_section();
+  /// The open chapter (or the page without chapters) as markup: result part, data part, closed.
+  std::string open_block() const;
   std::string& body() { return body_[part_ == Part::Result ? 0 : 1]; }
+  int depth() const { return chapters_.empty() ? 0 : 1; }
   std::string title_;
-  std::string body_[2];  ///< result part, data part
+  std::string done_;     ///< chapters already closed
+  std::string body_[2];  ///< result part, data part of the open chapter (or of the page)
+  std::vector<std::pair<std::string, std::string>> chapters_;  ///< id, heading
   Part part_ = Part::Result;
   bool in_section_ = false;
 };

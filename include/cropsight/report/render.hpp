@@ -2,7 +2,9 @@
 // Images people look at: depth colour maps, label colour maps and instance outlines drawn over
 // any image. Pure functions on cropsight images (no OpenCV in this header); the report page,
 // `cropsight render` and detection overlays all use them.
+#include <algorithm>
 #include <cstdint>
+#include <vector>
 
 #include "cropsight/core/image.hpp"
 
@@ -36,5 +38,26 @@ void draw_label_outlines(ColorImage& image, const LabelImage& labels, Rgb8 color
 
 /// Nearest-neighbour upscale by an integer factor (small frames are unreadable at 1:1 in a page).
 ColorImage upscale(const ColorImage& image, int factor);
+
+/// The part [x, x + width) x [y, y + height) of `image`, moved inside it where it sticks out (and
+/// shrunk to the image when larger).
+template <class T>
+Image<T> crop(const Image<T>& image, int x, int y, int width, int height) {
+  width = std::min(width, image.width), height = std::min(height, image.height);
+  x = std::clamp(x, 0, image.width - width), y = std::clamp(y, 0, image.height - height);
+  Image<T> out(width, height);
+  for (int v = 0; v < height; ++v) std::copy(image.row(y + v) + x, image.row(y + v) + x + width, out.row(v));
+  return out;
+}
+
+/// Turbo colour map of a stereo disparity image stored as value = disparity (px) x 256, 0 = none
+/// (`stereo disparity`, the seedling simulator): large disparity (near) = red, small = blue, over
+/// the 2nd..98th percentile of the valid values; no disparity = black.
+ColorImage disparity_colormap(const DepthImage& disparity_x256);
+
+/// The images next to each other, left to right, top-aligned, `gap` pixels of `fill` between
+/// them; pixel (u, v) of image k lands at (u + offset_k, v), offset_k = sum of the earlier
+/// widths and gaps.
+ColorImage side_by_side(const std::vector<ColorImage>& images, int gap = 8, Rgb8 fill = {255, 255, 255});
 
 }  // namespace cropsight::report
