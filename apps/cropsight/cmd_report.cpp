@@ -12,9 +12,9 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/report/broccoli_report_data.hpp"
 #include "cropsight/report/html_page.hpp"
 #include "cropsight/report/sequence_page.hpp"
+#include "report_cli.hpp"
 
 namespace cropsight::cli {
 
@@ -29,29 +29,9 @@ struct ReportOptions {
 
 // The broccoli sections; returns the tracking figures as `eval broccoli --track --json` has them.
 nlohmann::json add_broccoli(report::HtmlPage& page, const ReportOptions& o) {
-  const auto built = make_broccoli(o.model, o.common, /*track=*/true);
-  pipeline::BroccoliPipeline& pipe = *built;
-  io::SequenceReader reader(o.data);
-  if (!reader.info().has_labels)
-    throw Error(o.data, "sequence has no labels/ (the broccoli report needs ground truth)");
-  pipeline::BroccoliTrackingEvaluator tracker(
-      {.overlay_frames = report::evenly_spaced_frames(reader.size(), o.frames)});
-  tracker.begin_pass(reader.groundtruth(), !reader.poses().empty(), o.data);
-  Progress progress("report broccoli: " + o.data, reader.size(), o.common.json || o.quiet);
-  for (int i = 0; i < reader.size(); ++i) {
-    const RgbdFrame frame = reader.read(i);
-    pipe.process(frame);
-    tracker.add_frame(frame, pipe);
-    progress.update(i + 1);
-  }
-  progress.finish();
-  tracker.end_pass(pipe);
-  const pipeline::BroccoliTrackingFigures figures = tracker.result();
-  report::BroccoliReportData d = report::broccoli_report_data(figures, tracker.material());
-  d.model = o.model;
-  d.stages = pipe.detector().timer().stages();
-  report::add_broccoli_sections(page, d);
-  return tracking_json(figures);
+  const BroccoliReportPass pass = broccoli_report_pass(o.data, o.model, o.common, o.frames, o.quiet);
+  report::add_broccoli_sections(page, pass.data);
+  return tracking_json(pass.figures);
 }
 
 void run(const ReportOptions& o) {
@@ -88,9 +68,11 @@ void run(const ReportOptions& o) {
 void add_report(CLI::App& app) {
   using namespace report_cmd;
   auto o = std::make_shared<ReportOptions>();
-  auto* cmd = app.add_subcommand("report", "Write a self-contained HTML page about a sequence");
-  cmd->add_option("--data", o->data, "Sequence directory")->required();
-  cmd->add_option("--out", o->out, "Output HTML file")->required();
+  auto* cmd = app.add_subcommand("report", "Write a self-contained HTML page about a sequence (or: report demo)");
+  // Required unless `report demo` runs, so checked in run(): CLI11 would demand them of the parent
+  // even when the sub-command is given.
+  cmd->add_option("--data", o->data, "Sequence directory (required)");
+  cmd->add_option("--out", o->out, "Output HTML file (required)");
   add_force_flag(cmd, o->force);
   cmd->add_flag("--quiet", o->quiet, "No progress lines");
   cmd->add_option("--frames", o->frames, "Number of evenly spaced frames to render (default 4)");
@@ -99,7 +81,13 @@ void add_report(CLI::App& app) {
                   "Broccoli model: add detection, precision-recall, field-map, size and timing sections");
   add_config_options(cmd, o->common);
   add_json_flag(cmd, o->common);
-  cmd->callback([o] { run(*o); });
+  CLI::App* demo = add_report_demo(*cmd);
+  cmd->callback([o, demo] {
+    if (demo->parsed()) return;
+    if (o->data.empty()) throw Error("--data", "is required (the sequence to report on)");
+    if (o->out.empty()) throw Error("--out", "is required (the HTML page to write)");
+    run(*o);
+  });
 }
 
 }  // namespace cropsight::cli

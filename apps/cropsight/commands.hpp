@@ -17,6 +17,7 @@ void add_export(CLI::App& app);
 void add_import(CLI::App& app);
 void add_render(CLI::App& app);
 void add_report(CLI::App& app);
+CLI::App* add_report_demo(CLI::App& report);  // called by add_report; returns the sub-command
 
 // Broccoli heads (issue 3): train / detect / eval / bench broccoli
 void add_train_broccoli(CLI::App& train);

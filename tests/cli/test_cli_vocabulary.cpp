@@ -48,13 +48,14 @@ std::vector<Option> options(const std::string& help) {
   return out;
 }
 
-// Every command ("detect broccoli", "info", ...) with its --help text.
+// Every command ("detect broccoli", "info", ...) with its --help text. A verb with options of its
+// own besides --help is a command too, sub-commands or not (`report` and `report demo`).
 std::map<std::string, std::string> commands() {
   std::map<std::string, std::string> out;
   for (const std::string& verb : subcommands(run_cli("--help").out)) {
     const std::string help = run_cli(verb + " --help").out;
     const auto subs = subcommands(help);
-    if (subs.empty()) out[verb] = help;
+    if (subs.empty() || options(help).size() > 1) out[verb] = help;
     for (const std::string& sub : subs) out[verb + " " + sub] = run_cli(verb + " " + sub + " --help").out;
   }
   return out;

@@ -77,6 +77,8 @@ const std::vector<Row>& rows() {
     {"export", "export --data {c}/seq --frame 0 --out {out}", "seq", Out::File, ".pcd"},
     {"render", "render --data {c}/seq --frame 0 --out {out}", "seq", Out::File, ".png"},
     {"report", "report --data {c}/seq --out {out} --frames 1", "seq", Out::File, ".html"},
+    // Every cell is a refusal, checked before any section is read: a grape folder is enough.
+    {"report_demo", "report demo --grape {c}/clouds --out {out}", "clouds", Out::File, ".html"},
     {"harvest_potato", "harvest potato --data {c}/seq --out {out}", "seq", Out::File, ".jsonl"},
     {"segment_grape", "segment grape --model {c}/grape.json --clouds {c}/clouds/points/c0.txt --out {out} --threads 1",
      "clouds/points/c0.txt", Out::File, ".txt"},

@@ -1,0 +1,36 @@
+#include "report_cli.hpp"
+
+#include "broccoli_cli.hpp"
+#include "cropsight/core/error.hpp"
+#include "cropsight/io/sequence.hpp"
+#include "cropsight/report/broccoli_report_data.hpp"
+#include "cropsight/report/sequence_page.hpp"
+
+namespace cropsight::cli {
+
+BroccoliReportPass broccoli_report_pass(const std::string& seq, const std::string& model, const CommonOptions& common,
+                                        int overlay_frames, bool quiet) {
+  const auto built = make_broccoli(model, common, /*track=*/true);
+  pipeline::BroccoliPipeline& pipe = *built;
+  io::SequenceReader reader(seq);
+  if (!reader.info().has_labels) throw Error(seq, "sequence has no labels/ (the broccoli report needs ground truth)");
+  pipeline::BroccoliTrackingEvaluator tracker(
+      {.overlay_frames = report::evenly_spaced_frames(reader.size(), overlay_frames)});
+  tracker.begin_pass(reader.groundtruth(), !reader.poses().empty(), seq);
+  Progress progress("report broccoli: " + seq, reader.size(), common.json || quiet);
+  for (int i = 0; i < reader.size(); ++i) {
+    const RgbdFrame frame = reader.read(i);
+    pipe.process(frame);
+    tracker.add_frame(frame, pipe);
+    progress.update(i + 1);
+  }
+  progress.finish();
+  tracker.end_pass(pipe);
+  BroccoliReportPass pass{tracker.result(), {}};
+  pass.data = report::broccoli_report_data(pass.figures, tracker.material());
+  pass.data.model = model;
+  pass.data.stages = pipe.detector().timer().stages();
+  return pass;
+}
+
+}  // namespace cropsight::cli
