@@ -1,8 +1,9 @@
 # cropsight — top-level entry points. Each target installs what is missing (Debian packages,
 # scripts/install-deps.sh), configures and builds before it runs.
 #
-#   make demo    main job on built-in (simulated) data; prints the path of the HTML page. Builds
-#                only the CLI and what it needs (not the tests, benchmarks or examples)
+#   make demo    the five systems on built-in (simulated) data; prints the path of the HTML page.
+#                Builds only the CLI, what it needs and the libtorch plugin (not the tests,
+#                benchmarks or examples)
 #   make test    the test suite (ctest)
 #   make build   build only (Release, portable flags)
 #   make bench   micro-benchmarks and end-to-end benchmarks
@@ -58,9 +59,10 @@ test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
 
 # The demo runs the CLI alone (scripts/demo.sh), so it builds the `cropsight` target and its
-# dependencies only; `make test` / `make build` afterwards build the rest in the same tree.
+# dependencies, and the libtorch plugin that the grape chapter's network loads; `make test` /
+# `make build` afterwards build the rest in the same tree.
 demo: configure
-	cmake --build $(BUILD) -j $(JOBS) --target cropsight
+	cmake --build $(BUILD) -j $(JOBS) --target cropsight cropsight_nn_torch
 	@scripts/demo.sh $(BUILD)
 
 PREFIX ?= /usr/local
