@@ -48,8 +48,10 @@ void run(const ReportDemoOptions& o) {
   if (o.frames < 1) throw Error("--frames", "must be at least 1");
   if (o.broccoli.empty() && o.seedling.empty() && o.potato.empty() && o.grape.empty() && o.objects.empty())
     throw Error("report demo", "give at least one of --broccoli, --seedling, --potato, --grape, --objects");
+  // The model is an input only where the broccoli chapter reads it.
+  const std::string model = o.broccoli.empty() ? "" : o.model;
   io::check_output_file(
-      o.out, output_policy("report demo", o.force, {o.broccoli, o.model, o.seedling, o.potato, o.grape, o.objects}));
+      o.out, output_policy("report demo", o.force, {o.broccoli, model, o.seedling, o.potato, o.grape, o.objects}));
   report::HtmlPage page(o.title);
   page.paragraph(
       "Every figure below was measured by this run on built-in or simulated data; each chapter opens "
