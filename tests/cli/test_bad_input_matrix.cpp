@@ -320,6 +320,7 @@ const Input kOut{"out", Kind::Output, "", ""};
 const Input kBag{"s.bag", Kind::Binary, "", ""};
 Input set(const std::string& key, const std::string& range) { return {key, Kind::Set, key, range}; }
 
+// A table, one row per command: long because the command list is.
 const std::vector<Row>& rows() {
   static const std::vector<Row> r = {
     {"info", "info --data {c}/seq", {kCamera, kDepth, kColor, kLabels, kPoses, kTruth}},
