@@ -24,8 +24,8 @@ using namespace cropsight::pipeline;
 int main(int argc, char** argv) {
   const auto args = tools::parse_probe_args("broccoli_roughness_probe", argc, argv);
   if (!args) return 2;
-  const BroccoliDetectorConfig& cfg = args->config;
-  BroccoliDetector det(cfg);
+  const pipeline::broccoli::DetectorConfig& cfg = args->config;
+  pipeline::broccoli::Detector det(cfg);
   det.set_model(args->model);
   std::vector<float> head, other;
   for (const std::string& dir : args->sequences) {

@@ -22,7 +22,7 @@ namespace report_cmd {
 struct ReportOptions {
   CommonOptions common;
   std::string data, out, title;
-  std::string model;  // --model: broccoli detection, sizing and map sections (issue 4)
+  std::string model;  // --model: broccoli detection, sizing and map sections
   int frames = 4;
   bool force = false, quiet = false;
 };
@@ -30,11 +30,11 @@ struct ReportOptions {
 // The broccoli sections; returns the tracking figures as `eval broccoli --track --json` has them.
 nlohmann::json add_broccoli(report::HtmlPage& page, const ReportOptions& o) {
   const auto built = make_broccoli(o.model, o.common, /*track=*/true);
-  pipeline::BroccoliPipeline& pipe = *built;
+  pipeline::broccoli::Pipeline& pipe = *built;
   io::SequenceReader reader(o.data);
   if (!reader.info().has_labels)
     throw Error(o.data, "sequence has no labels/ (the broccoli report needs ground truth)");
-  pipeline::BroccoliTrackingEvaluator tracker(
+  pipeline::broccoli::TrackingEvaluator tracker(
       {.overlay_frames = report::evenly_spaced_frames(reader.size(), o.frames)});
   tracker.begin_pass(reader.groundtruth(), !reader.poses().empty(), o.data);
   Progress progress("report broccoli: " + o.data, reader.size(), o.common.json || o.quiet);
@@ -46,7 +46,7 @@ nlohmann::json add_broccoli(report::HtmlPage& page, const ReportOptions& o) {
   }
   progress.finish();
   tracker.end_pass(pipe);
-  const pipeline::BroccoliTrackingFigures figures = tracker.result();
+  const pipeline::broccoli::TrackingFigures figures = tracker.figures();
   report::BroccoliReportData d = report::broccoli_report_data(figures, tracker.material());
   d.model = o.model;
   d.stages = pipe.detector().timer().stages();
