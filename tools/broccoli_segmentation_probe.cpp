@@ -1,7 +1,7 @@
 // A tuning tool (not a test): measures how well a detector preset SEGMENTS the labelled heads of recorded
 // sequences, independently of any classifier (the upper bound of AP50 recall). Used to tune the
 // simulator's plant geometry and the OES/ORG presets on training seeds (docs/simulator.md,
-// docs/pipelines/broccoli-heads.md "Tuning"). Run with
+// docs/experiments/2026-12-01-broccoli-oes-tuning.md). Run with
 //
 //   CROPSIGHT_SEG_PROBE=seq1[,seq2] [CROPSIGHT_SEG_PRESET=broccoli-oes-uk] [CROPSIGHT_SEG_FRAMES=10]
 //   [CROPSIGHT_SEG_SET="key=value;key=value"] build/bin/broccoli_segmentation_probe

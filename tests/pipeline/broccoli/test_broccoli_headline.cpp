@@ -75,7 +75,7 @@ TEST(BroccoliHeadline, ShippedOesUkModelOnTheDocumentedTestPass) {
   EXPECT_NEAR(t.ap50_offline_visible, 0.9856, 0.00006);
 }
 
-// broccoli-heads.md, "Generalisation": the shipped general model on one of its held-out randomised
+// docs/experiments/2026-12-02-broccoli-generalisation.md: the shipped general model on one of its held-out randomised
 // fields (`simulate broccoli --variety random --seed 7103 --frames 30`; no model was trained or
 // tuned on it): kappa 0.953, AP50 0.882 over every labelled head, 0.961 on visible heads, mAP50:95
 // 0.875 with the OES tolerance of 7 mm (the model of 2026-12-05, 22:38 UTC; with 6.5 mm: 0.953 /
@@ -103,7 +103,7 @@ TEST(BroccoliHeadline, ShippedOesGeneralModelOnAHeldOutRandomisedField) {
   EXPECT_NEAR(d.map50_95, 0.8751, 0.00006);
 }
 
-// broccoli-heads.md, "A depth CNN proposes the heads the clustering missed": the held-out spain pass
+// docs/experiments/2026-12-06-broccoli-depth-cnn.md: the held-out spain pass
 // (seed 2002, 50 frames) with the shipped general model, without and with the shipped head CNN
 // (cnn.model, min_score 0.7 chosen on validation). Offline, per frame; AP over the one class.
 TEST(BroccoliHeadline, ShippedHeadCnnOnTheHeldOutSpainPass) {

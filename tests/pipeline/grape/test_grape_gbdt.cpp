@@ -442,7 +442,7 @@ TEST(GrapeModel, ShippedNetworkOnHeldOutClouds) {
 }
 
 TEST(GrapeModel, ShippedEnsembleOnHeldOutClouds) {
-  // The best recipe (docs/pipelines/grape-bunches.md, "Ensemble"): the network in the one-pass mode
+  // The best recipe (docs/experiments/2026-12-01-grape-votes-ensemble.md): the network in the one-pass mode
   // with 6 rotated votes, mixed half and half with the fast GBDT on 4096 samples, both trained on
   // folds 2-4 (models/grape-pointresnet-fold1.pt, models/grape-gbdt-fast4096-fold1.json). On three
   // clouds of fold 1 the mix must beat each of its two members alone (fold-1 mIoU: network one pass

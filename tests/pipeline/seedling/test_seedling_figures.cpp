@@ -1,5 +1,4 @@
-// Pins the seedling pipeline's held-out figure (docs/pipelines/broccoli-seedlings.md, "Held-out
-// test, seed 4711"): the default preset (then named seedling-fast) on simulated seed 4711, which was
+// Pins the seedling pipeline's held-out figure (docs/experiments/2026-11-30-seedling-census-preset.md): the default preset (then named seedling-fast) on simulated seed 4711, which was
 // simulated after every choice of the preset and scored once with it (the top-view join
 // leaves its scores unchanged). The docs' headline is over 30 pairs (100 % / 90.8 % /
 // 99.9 %); rendering a pair costs ~0.6 s of CPU, so this test scores the first 8 of them, whose

@@ -139,7 +139,7 @@ struct CnnConfig {
   }
 };
 
-/// Range-aware detection (docs/pipelines/broccoli-heads.md, "Generalisation"): the
+/// Range-aware detection (docs/experiments/2026-12-02-broccoli-generalisation.md): the
 /// paper's fixed 0.5-1.0 m depth window and its point and distance thresholds assume one camera
 /// height. These options tie them to the soil instead, estimated per frame from the depth image:
 /// the farthest surfaces (a high percentile of the valid depths) are the soil.
