@@ -19,8 +19,8 @@
 
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_training.hpp"
 #include "cropsight/pipeline/broccoli/pcl_reference.hpp"
+#include "cropsight/pipeline/broccoli/training.hpp"
 #include "cropsight/sim/broccoli/broccoli_sim.hpp"
 
 using namespace cropsight;
@@ -49,14 +49,14 @@ struct Fixture {
     }
     sim::BroccoliSimulator train(sim::BroccoliSimConfig{}, 5, 6);
     auto cfg = config("fec");
-    pipeline::BroccoliDatasetBuilder builder(cfg, {});
+    pipeline::broccoli::DatasetBuilder builder(cfg, {});
     for (int i = 0; i < train.frames(); ++i) builder.add_frame(train.render(i));
-    model = std::make_shared<learning::Model>(pipeline::train_broccoli_model(builder.dataset(), cfg, {}, {}));
+    model = std::make_shared<learning::Model>(pipeline::broccoli::train_model(builder.dataset(), cfg, {}, {}));
   }
 
  public:
-  static pipeline::BroccoliDetectorConfig config(const std::string& pipe) {
-    pipeline::BroccoliDetectorConfig cfg;
+  static pipeline::broccoli::DetectorConfig config(const std::string& pipe) {
+    pipeline::broccoli::DetectorConfig cfg;
     apply_config(cfg, io::load_config_map(io::find_preset("broccoli-" + pipe + "-uk")), "preset");
     cfg.outliers.enabled = false;  // same work as the PCL reference
     return cfg;
@@ -77,7 +77,7 @@ struct Fixture {
 void run_detector(benchmark::State& state, const std::string& pipe) {
   tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
   const Fixture& f = Fixture::get();
-  pipeline::BroccoliDetector det(Fixture::config(pipe));
+  pipeline::broccoli::Detector det(Fixture::config(pipe));
   det.set_model(f.as(pipe));
   det.process(f.frames.front());  // warm-up: buffers sized
   det.timer().clear();
@@ -96,7 +96,7 @@ void BM_Fec(benchmark::State& s) { run_detector(s, "fec"); }
 
 void BM_PclReference(benchmark::State& state) {
   const Fixture& f = Fixture::get();
-  pipeline::PclReferencePipeline pcl(Fixture::config("fec"), f.model);
+  pipeline::broccoli::PclReferencePipeline pcl(Fixture::config("fec"), f.model);
   std::size_t i = 0;
   for (auto _ : state) benchmark::DoNotOptimize(pcl.process(f.frames[i++ % f.frames.size()]));
   state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);

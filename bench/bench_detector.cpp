@@ -1,4 +1,4 @@
-// The project's CenterNet detector (issue 24) on one 1280x720 grape image of the shared data
+// The project's CenterNet detector on one 1280x720 grape image of the shared data
 // (../shared/data/grape/coco_train/JPEGImages, the first by name), shipped weights:
 //   BM_GrapeDetectorOnnx    nn::CenterNetOnnx::detect(): letterbox, OpenCV DNN forward of
 //                           models/detector-grape.onnx, decoding: the path a robot without

@@ -1,4 +1,4 @@
-// Grape pipeline timings per cloud (issue 6): per-point features + GBDT prediction, network
+// Grape pipeline timings per cloud: per-point features + GBDT prediction, network
 // forward passes, and our KNN-PCA normals against PCL's NormalEstimation on the same cloud.
 //
 //   build/bin/bench_grape [--benchmark_filter=...]
@@ -22,9 +22,9 @@
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/learning/gbdt.hpp"
 #include "cropsight/nn/point_segmenter.hpp"
-#include "cropsight/pipeline/grape/grape_features.hpp"
-#include "cropsight/pipeline/grape/grape_gbdt.hpp"
-#include "cropsight/pipeline/grape/grape_model.hpp"
+#include "cropsight/pipeline/grape/features.hpp"
+#include "cropsight/pipeline/grape/gbdt.hpp"
+#include "cropsight/pipeline/grape/model.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -45,9 +45,9 @@ const std::optional<Cloud>& grape_cloud() {
 
 void BM_GrapeFeatures(benchmark::State& state) {
   if (!grape_cloud()) return state.SkipWithError("grape data not unpacked (scripts/unpack-grape.sh)");
-  pipeline::GrapeFeatureConfig cfg;
+  pipeline::grape::FeatureConfig cfg;
   cfg.fpfh = state.range(0) != 0;
-  for (auto _ : state) benchmark::DoNotOptimize(pipeline::grape_point_features(*grape_cloud(), cfg));
+  for (auto _ : state) benchmark::DoNotOptimize(pipeline::grape::grape_point_features(*grape_cloud(), cfg));
   state.counters["points"] = double(grape_cloud()->size());
 }
 BENCHMARK(BM_GrapeFeatures)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
@@ -55,7 +55,7 @@ BENCHMARK(BM_GrapeFeatures)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 void BM_GrapeGbdtSegment(benchmark::State& state) {
   const fs::path m = cropsight::data_dir() / "models" / "grape-gbdt.json";
   if (!grape_cloud() || !fs::exists(m)) return state.SkipWithError("needs grape data and models/grape-gbdt.json");
-  const auto model = pipeline::GrapeModel::load(m, 2);
+  const auto model = pipeline::grape::Model::load(m, 2);
   for (auto _ : state) benchmark::DoNotOptimize(model.segment(*grape_cloud()));
 }
 BENCHMARK(BM_GrapeGbdtSegment)->Unit(benchmark::kMillisecond);
@@ -68,13 +68,13 @@ void BM_GrapeGbdtFastSegment(benchmark::State& state) {
   const char* env = std::getenv("CROPSIGHT_GRAPE_FAST_MODEL");
   const fs::path m = env ? fs::path(env) : cropsight::data_dir() / "models" / "grape-gbdt-fast.json";
   if (!grape_cloud() || !fs::exists(m)) return state.SkipWithError("needs grape data and models/grape-gbdt-fast.json");
-  const auto model = pipeline::GrapeModel::load(m, 2);
+  const auto model = pipeline::grape::Model::load(m, 2);
   for (auto _ : state) benchmark::DoNotOptimize(model.segment(*grape_cloud()));
 }
 BENCHMARK(BM_GrapeGbdtFastSegment)->Unit(benchmark::kMillisecond);
 
 // The fast segment's stages: 0 sample + features, 1 trees on the sample (second argument: 0
-// XGBoost's predictor, 1 the compiled forest that GrapeModel uses), 2 carry-back (2 threads).
+// XGBoost's predictor, 1 the compiled forest that pipeline::grape::Model uses), 2 carry-back (2 threads).
 void BM_GrapeGbdtFastStages(benchmark::State& state) {
   const char* env = std::getenv("CROPSIGHT_GRAPE_FAST_MODEL");
   const fs::path m = env ? fs::path(env) : cropsight::data_dir() / "models" / "grape-gbdt-fast.json";
@@ -82,17 +82,18 @@ void BM_GrapeGbdtFastStages(benchmark::State& state) {
   const Cloud& c = *grape_cloud();
   auto model = learning::Gbdt::load(m, 2);
   if (state.range(1)) model.compile();
-  const auto fc = pipeline::GrapeFeatureConfig::from_recipe(model.attribute("cropsight.features"), "bench");
-  const auto s = pipeline::grape_sample(c.size(), fc, fc.sample_seed);
-  const auto X = pipeline::grape_sample_features(c, fc, s);
-  const auto labels = model.predict(X, s.size(), pipeline::grape_feature_count(fc));
+  const auto fc = pipeline::grape::FeatureConfig::from_recipe(model.attribute("cropsight.features"), "bench");
+  const auto s = pipeline::grape::grape_sample(c.size(), fc, fc.sample_seed);
+  const auto X = pipeline::grape::grape_sample_features(c, fc, s);
+  const auto labels = model.predict(X, s.size(), pipeline::grape::grape_feature_count(fc));
   for (auto _ : state) {
     if (state.range(0) == 0)
-      benchmark::DoNotOptimize(pipeline::grape_sample_features(c, fc, pipeline::grape_sample(c.size(), fc, 1)));
+      benchmark::DoNotOptimize(
+          pipeline::grape::grape_sample_features(c, fc, pipeline::grape::grape_sample(c.size(), fc, 1)));
     else if (state.range(0) == 1)
-      benchmark::DoNotOptimize(model.predict(X, s.size(), pipeline::grape_feature_count(fc)));
+      benchmark::DoNotOptimize(model.predict(X, s.size(), pipeline::grape::grape_feature_count(fc)));
     else
-      benchmark::DoNotOptimize(pipeline::grape_carry_back(c, s, labels, fc, model.num_class(), 2));
+      benchmark::DoNotOptimize(pipeline::grape::grape_carry_back(c, s, labels, fc, model.num_class(), 2));
   }
   state.counters["sample"] = double(s.size());
 }
@@ -106,7 +107,7 @@ BENCHMARK(BM_GrapeGbdtFastStages)
 void BM_GrapeNetworkSegment(benchmark::State& state) {
   const fs::path m = cropsight::data_dir() / "models" / "grape-pointresnet.pt";
   if (!grape_cloud() || !fs::exists(m)) return state.SkipWithError("needs grape data and models/grape-pointresnet.pt");
-  auto model = pipeline::GrapeModel::load(m, 2);
+  auto model = pipeline::grape::Model::load(m, 2);
   if (state.range(0) > 0) model.set_sampled(true, false, int(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(model.segment(*grape_cloud()));
 }
@@ -122,11 +123,11 @@ void BM_GrapeNetworkVotes(benchmark::State& state) {
   const fs::path net = root / "grape-pointresnet.pt", gbdt = root / "grape-gbdt-fast4096.json";
   if (!grape_cloud() || !fs::exists(net) || !fs::exists(gbdt))
     return state.SkipWithError("needs grape data, models/grape-pointresnet.pt and grape-gbdt-fast4096.json");
-  auto model = pipeline::GrapeModel::load(net, 2);
+  auto model = pipeline::grape::Model::load(net, 2);
   model.set_sampled(true, false, 4);
   model.set_votes(int(state.range(0)));
   if (state.range(1))
-    model.set_ensemble(std::make_shared<const pipeline::GrapeModel>(pipeline::GrapeModel::load(gbdt, 2)), 0.5);
+    model.set_ensemble(std::make_shared<const pipeline::grape::Model>(pipeline::grape::Model::load(gbdt, 2)), 0.5);
   for (auto _ : state) benchmark::DoNotOptimize(model.segment(*grape_cloud()));
   state.SetLabel(state.range(1) ? "network votes + fast4096 GBDT" : "network votes");
 }

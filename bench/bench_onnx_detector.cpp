@@ -1,4 +1,4 @@
-// The ONNX detector's own cost (nn::OnnxDetector, issue 22), apart from the user's network:
+// The ONNX detector's own cost (nn::OnnxDetector), apart from the user's network:
 //   BM_DecodeNms/L   decode + per-class NMS of a YOLOv5 416 x 416 output, N = 6300 rows
 //                    (3 x (52² + 26² + 13²)), one class; L = 0 yolov5 [1, N, 6], 1 yolov8
 //                    [1, 5, N]. The rows are shaped like a real frame: objectness mostly near 0,

@@ -1,4 +1,4 @@
-// The classical potato detector on one shared 416x416 image (issue 22 target: <= 5 ms per image
+// The classical potato detector on one shared 416x416 image (target: <= 5 ms per image
 // on one core), next to a baseline that every colour-threshold detector pays: cv::cvtColor to
 // Lab plus one cv::threshold. OpenCV runs single-threaded here (cv::setNumThreads(0)), so the
 // figures are one core's. The ratio BM_PotatoBlobDetector / BM_CvtColorThreshold is the number
@@ -12,7 +12,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cropsight/io/image_io.hpp"
-#include "cropsight/pipeline/potato/potato_blob_detector.hpp"
+#include "cropsight/pipeline/potato/blob_detector.hpp"
 
 using namespace cropsight;
 
@@ -58,7 +58,7 @@ void BM_PotatoBlobDetector(benchmark::State& state) {
   cv::setNumThreads(0);
   const ColorImage& img = shared_image();
   if (img.empty()) return state.SkipWithError("shared potato images not found");
-  pipeline::potato::PotatoBlobDetector det;
+  pipeline::potato::BlobDetector det;
   std::size_t boxes = 0;
   for (auto _ : state) {
     const auto d = det.detect({&img, nullptr});
@@ -75,7 +75,7 @@ void BM_PotatoBlobDetectorAllShared(benchmark::State& state) {
   cv::setNumThreads(0);
   const std::vector<ColorImage>& images = shared_images();
   if (images.empty()) return state.SkipWithError("shared potato images not found");
-  pipeline::potato::PotatoBlobDetector det;
+  pipeline::potato::BlobDetector det;
   for (auto _ : state)
     for (const ColorImage& img : images) {
       const auto d = det.detect({&img, nullptr});

@@ -1,4 +1,4 @@
-// The potato harvest loop (issue 22 target: >= 30 fps single-threaded at 640x480) on a simulated
+// The potato harvest loop (target: >= 30 fps single-threaded at 640x480) on a simulated
 // approach (sheet, seed 2301, 6 frames: a 2 cm scan, about the per-frame motion of a 40-frame
 // approach, then the approach to 0.3 m), and the position step alone
 // on the target's box at the end of the approach (the largest box, the worst case for the
@@ -12,7 +12,8 @@
 
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/pipeline/potato/make_pipeline.hpp"
-#include "cropsight/pipeline/potato/potato_pipeline.hpp"
+#include "cropsight/pipeline/potato/pipeline.hpp"
+#include "cropsight/pipeline/potato/truth.hpp"
 #include "cropsight/sim/potato/potato_sim.hpp"
 
 using namespace cropsight;
@@ -35,7 +36,8 @@ const Approach& approach() {
     const io::SequenceReader reader(dir);
     for (int i = 0; i < reader.size(); ++i) out.frames.push_back(reader.read(i));
     const RgbdFrame& last = out.frames.back();
-    for (const auto& t : sim::potato_frame_truth(reader.groundtruth(), *last.camera_position, last.camera, last.labels))
+    for (const auto& t :
+         pipeline::potato::frame_truth(reader.groundtruth(), *last.camera_position, last.camera, last.labels))
       if (t.target) out.target_box = t.box;
     out.last_depth_m = measure::depth_in_metres(last.depth, last.camera.depth_scale);
     std::filesystem::remove_all(dir);
@@ -61,7 +63,7 @@ void BM_PotatoLoop(benchmark::State& state, const char* preset) {
   cv::setNumThreads(0);
   const Approach& a = approach();
   const auto built = pipeline::potato::make_pipeline({.preset = preset});
-  pipeline::potato::PotatoPipeline& pipeline = *built;
+  pipeline::potato::Pipeline& pipeline = *built;
   for (auto _ : state) {
     pipeline.reset();
     for (const RgbdFrame& f : a.frames) benchmark::DoNotOptimize(pipeline.process(f).target.z);

@@ -1,4 +1,4 @@
-// The orientation step (issue 22, paper Table 4.3; target <= 5 ms per potato) for each
+// The orientation step (paper Table 4.3; target <= 5 ms per potato) for each
 // segmentation x axis x input on one shared shot (rgb/45_low_rgb/image8.png and its colourised
 // depth image9.png, box from BoardBlobDetector as in the evaluation), or on a synthetic potato
 // (brown ellipse on a white board, and its jet-coloured depth) when ../shared/data is absent.

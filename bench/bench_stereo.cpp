@@ -1,4 +1,4 @@
-// Broccoli seedlings (issue 5): disparity engines on a 640x480 simulated pair at 128
+// Broccoli seedlings: disparity engines on a 640x480 simulated pair at 128
 // disparities, all in one process, with two threads (TBB capped at 2 here; run OpenCV with
 // OPENCV_FOR_THREADS_NUM=2 or on a 2-core machine):
 //   - ours: census SGM (5 paths, one sweep, LR check from the same costs) + speckle filter + fill,
@@ -11,7 +11,7 @@
 // 4096 points the default seedling pipeline hands to its GMM for the simulated pair (28 EM
 // iterations, what `eval seedling` reports as ms_gmm); our second Arg 0 = the portable SSE2
 // build of the EM, 1 = what fit_gmm() runs (the AVX2 + FMA build where the CPU has it),
-// and the whole seedling pipeline (SeedlingPipeline::process) with the shipped presets: Arg 0 =
+// and the whole seedling pipeline (pipeline::seedling::Pipeline::process) with the shipped presets: Arg 0 =
 // configs/seedling-paper.yaml (OpenCV engine), Arg 1 = configs/seedling.yaml (the default, census engine).
 //   build/bin/bench_stereo --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -20,7 +20,7 @@
 #include <random>
 
 #include "cropsight/pipeline/seedling/make_pipeline.hpp"
-#include "cropsight/pipeline/seedling/seedling_pipeline.hpp"
+#include "cropsight/pipeline/seedling/pipeline.hpp"
 #include "cropsight/segmentation/gmm.hpp"
 #include "cropsight/sim/seedling/seedling_sim.hpp"
 #include "cropsight/stereo/disparity.hpp"
@@ -80,12 +80,12 @@ void BM_DisparityOpenCvEngine128(benchmark::State& st) {
 void BM_DisparityOpenCvSgbm128(benchmark::State& st) {
   for (auto _ : st) benchmark::DoNotOptimize(stereo::opencv_sgbm_disparity(pair().left, pair().right, 128));
 }
-// OpenCV's fastest SGBM variant (3 paths, MODE_SGBM_3WAY), same parameters: issue 23's speed baseline.
+// OpenCV's fastest SGBM variant (3 paths, MODE_SGBM_3WAY), same parameters: the speed baseline.
 void BM_DisparityOpenCvSgbm3Way128(benchmark::State& st) {
   for (auto _ : st)
     benchmark::DoNotOptimize(stereo::opencv_sgbm_disparity(pair().left, pair().right, 128, 3, "bench", true));
 }
-pipeline::SeedlingPipeline preset_pipeline(const std::string& preset) {
+pipeline::seedling::Pipeline preset_pipeline(const std::string& preset) {
   return std::move(*pipeline::seedling::make_pipeline({.preset = preset}));
 }
 
@@ -121,7 +121,7 @@ void BM_GmmOpenCvEm(benchmark::State& st) {
 
 void BM_SeedlingPipeline(benchmark::State& st) {
   const std::string preset = st.range(0) == 0 ? "seedling-paper" : "seedling";
-  const pipeline::SeedlingPipeline seedlings = preset_pipeline(preset);
+  const pipeline::seedling::Pipeline seedlings = preset_pipeline(preset);
   const stereo::RectifiedGeometry g = sim_geometry();
   st.SetLabel(preset);
   for (auto _ : st) benchmark::DoNotOptimize(seedlings.process(pair().left, pair().right, g));

@@ -1,4 +1,4 @@
-// Tracking + sizing cost per frame (issue 4 target: under 0.5 ms per frame added to the pipeline).
+// Tracking + sizing cost per frame (target: under 0.5 ms per frame added to the pipeline).
 //
 // Synthetic frames shaped like the simulated UK sequences: a 512×424 pinhole camera (Kinect v2
 // field of view) 0.75 m above the heads moving 4 cm per frame (0.3 m/s at 7.5 fps) over two rows,

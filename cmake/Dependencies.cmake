@@ -8,7 +8,7 @@ find_package(fmt REQUIRED)
 find_package(TBB REQUIRED)
 find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs calib3d video ml dnn)
 find_package(Threads REQUIRED)
-# Pascal VOC XML annotations (potato detection, issue 22): used only inside src/io/voc.cpp.
+# Pascal VOC XML annotations (potato detection): used only inside src/io/voc.cpp.
 find_package(tinyxml2 REQUIRED)
 # zlib: inflating the deflated entries of libtorch archives to check their CRC-32 (src/io/zip_check.cpp).
 find_package(ZLIB REQUIRED)
@@ -51,7 +51,7 @@ if(CROPSIGHT_BUILD_BENCH)
   find_package(benchmark REQUIRED)
 endif()
 
-# Grape pipeline (issue 6): XGBoost (libxgboost-dev) for the classical per-point model, used only
+# Grape pipeline: XGBoost (libxgboost-dev) for the classical per-point model, used only
 # inside src/learning/gbdt.cpp; libtorch (libtorch-dev) for the point networks, used only inside
 # src/nn/*.cpp (never in public headers: TorchConfig adds heavy include paths and flags).
 # Debian's XGBoost CMake config references a /usr/bin/xgboost that the -dev package does not

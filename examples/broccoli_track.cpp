@@ -15,10 +15,11 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_tracking_eval.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_training.hpp"
+#include "cropsight/pipeline/broccoli/eval.hpp"
 #include "cropsight/pipeline/broccoli/make_pipeline.hpp"
+#include "cropsight/pipeline/broccoli/pipeline.hpp"
+#include "cropsight/pipeline/broccoli/tracking_eval.hpp"
+#include "cropsight/pipeline/broccoli/training.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 3) {
@@ -31,12 +32,12 @@ int main(int argc, char** argv) {
     // the camera positions of poses.csv replace the estimated motion. One call builds it, as the
     // CLI and the ROS node do.
     const auto built = pipeline::broccoli::make_pipeline({.sets = {"tracking.use_poses=true"}, .model = argv[2]});
-    pipeline::BroccoliPipeline& broccoli = *built;
+    pipeline::broccoli::Pipeline& broccoli = *built;
 
     const io::SequenceReader sequence(argv[1]);
     const bool labelled = sequence.info().has_labels && sequence.info().has_groundtruth;
-    std::optional<pipeline::BroccoliEvaluator> detection;  // Table I / II of Montes et al.
-    std::optional<pipeline::BroccoliTrackingEvaluator> tracking;
+    std::optional<pipeline::broccoli::Evaluator> detection;  // Table I / II of Montes et al.
+    std::optional<pipeline::broccoli::TrackingEvaluator> tracking;
     if (labelled) {
       detection.emplace(broccoli);
       tracking.emplace();
@@ -49,7 +50,7 @@ int main(int argc, char** argv) {
         detection->add_frame(frame);
       else
         broccoli.process(frame);
-      const pipeline::BroccoliFrameResult& r = broccoli.last();
+      const pipeline::broccoli::FrameResult& r = broccoli.last();
       if (tracking) tracking->add_frame(frame, broccoli);
       std::printf("frame %d: %zu heads", frame.index, r.detections.size());
       for (const Detection& h : r.detections)
@@ -69,8 +70,8 @@ int main(int argc, char** argv) {
         std::printf("not sized (only seen cut by the image border)\n");
     }
     if (labelled) {
-      const auto d = detection->result();
-      const auto t = tracking->result();
+      const auto d = detection->figures();
+      const auto t = tracking->figures();
       std::printf("kappa %.3f  AP50 %.3f  AP50 visible heads %.3f\n", d.confusion.kappa(), d.ap50, d.ap50_visible);
       std::printf("AP50 with the temporal filter: online %.4f  offline %.4f\n", t.ap50_online, t.ap50_offline);
       std::printf("map precision %.3f  recall %.3f  size MEDE %.1f mm  MAD %.1f mm  r %.3f (%d heads)\n",

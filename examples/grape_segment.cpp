@@ -13,8 +13,9 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/grape_text.hpp"
-#include "cropsight/pipeline/grape/grape_eval.hpp"
-#include "cropsight/pipeline/grape/grape_segmenter.hpp"
+#include "cropsight/pipeline/grape/eval.hpp"
+#include "cropsight/pipeline/grape/segmenter.hpp"
+#include "cropsight/pipeline/grape/truth.hpp"
 
 int main(int argc, char** argv) {
   if (argc < 3 || argc > 4) {
@@ -24,23 +25,23 @@ int main(int argc, char** argv) {
   using namespace cropsight;
   try {
     // One config from one preset: the models, the sampled pass, the votes, the ensemble weight.
-    const pipeline::GrapeSegmenter segmenter(pipeline::load_grape_segmenter_config(argv[1]), argv[1]);
+    const pipeline::grape::Segmenter segmenter(pipeline::grape::load_segmenter_config(argv[1]), argv[1]);
     // The held-out clouds: the fold of the same seeded by-cloud split the models were trained on.
-    const auto [k, K] = pipeline::parse_fold(argc == 4 ? argv[3] : "1/4", "fold");
+    const auto [k, K] = pipeline::grape::parse_fold(argc == 4 ? argv[3] : "1/4", "fold");
     const auto files = io::list_grape_clouds(argv[2]);
-    const auto fold = pipeline::grape_folds(files.size(), K);
+    const auto fold = pipeline::grape::grape_folds(files.size(), K);
     std::vector<std::filesystem::path> held_out;
     for (std::size_t i = 0; i < files.size(); ++i)
       if (fold[i] == k) held_out.push_back(files[i]);
-    const auto clouds = pipeline::load_grape_clouds(held_out);
+    const auto clouds = pipeline::grape::load_grape_clouds(held_out);
     // segmenter.segment(cloud) labels one cloud; the evaluator does it for each and counts.
-    const pipeline::GrapeEvaluation ev = pipeline::evaluate_grape(segmenter.model(), clouds);
+    const pipeline::grape::Evaluation ev = pipeline::grape::evaluate_grape(segmenter.model(), clouds);
     std::printf("%zu held-out clouds, %zu points, %.0f ms per cloud\n", ev.clouds, ev.points, ev.ms_per_cloud());
     std::printf("OAcc %.3f  mAcc %.3f  mIoU %.3f (pooled, six labels)\n", ev.confusion.overall_accuracy(),
                 ev.confusion.mean_accuracy(), ev.confusion.mean_iou());
     std::printf("mIoU %.3f pooled over the named classes, %.3f per cloud\n",
-                pipeline::pooled_miou(ev.confusion, ev.named_classes()),
-                pipeline::per_cloud_miou(ev.per_cloud, ev.named_classes()));
+                pipeline::grape::pooled_miou(ev.confusion, ev.named_classes()),
+                pipeline::grape::per_cloud_miou(ev.per_cloud, ev.named_classes()));
     return 0;
   } catch (const Error& e) {  // every bad input (file, format, value) is an Error naming it
     std::fprintf(stderr, "example_grape_segment: %s\n", e.what());

@@ -16,9 +16,9 @@
 #include <string>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/pipeline/seedling/eval.hpp"
 #include "cropsight/pipeline/seedling/make_pipeline.hpp"
-#include "cropsight/pipeline/seedling/seedling_eval.hpp"
-#include "cropsight/pipeline/seedling/seedling_pipeline.hpp"
+#include "cropsight/pipeline/seedling/pipeline.hpp"
 #include "cropsight/sim/seedling/seedling_sim.hpp"
 
 int main(int argc, char** argv) {
@@ -33,19 +33,21 @@ int main(int argc, char** argv) {
   try {
     // The pipeline composes every step from the one config of the preset (configs/<preset>.yaml).
     const auto built = pipeline::seedling::make_pipeline({.preset = preset});
-    const pipeline::SeedlingPipeline& seedlings = *built;
+    const pipeline::seedling::Pipeline& seedlings = *built;
     const sim::SeedlingSimConfig scenes;  // the simulator's defaults: what `simulate seedling` renders
     const stereo::RectifiedGeometry geometry = sim::rectified_geometry(scenes.rig());
-    pipeline::SeedlingEvaluator evaluator(seedlings.config().gmm);
+    pipeline::seedling::Evaluator evaluator(seedlings.config().gmm);
     for (int k = 0; k < int(pairs); ++k) {
       const sim::SeedlingPair pair = sim::simulate_seedling_pair(scenes, std::uint64_t(seed), k);
-      const pipeline::SeedlingDetection det = seedlings.process(pair.left, pair.right, geometry);
-      const auto& row = evaluator.add("pair_" + std::to_string(k), det, pipeline::seedling_truth(pair), geometry);
+      const pipeline::seedling::FrameResult det = seedlings.process(pair.left, pair.right, geometry);
+      // The simulator renders the truth beside the pair; a recorded data set reads it (read_truth).
+      const pipeline::seedling::Truth truth{pair.disparity, pair.mask, pair.envelope, pair.plane_normal, pair.plane_d};
+      const auto& row = evaluator.add("pair_" + std::to_string(k), det, truth, geometry);
       std::printf("pair %d: %s, %.0f x %.0f x %.0f mm, IoU %.3f, %.1f ms\n", k, det.found ? "seedling" : "nothing",
                   1e3 * det.envelope.length, 1e3 * det.envelope.width, 1e3 * det.envelope.height, row.score.iou,
                   row.ms);
     }
-    const pipeline::SeedlingEvaluation e = evaluator.result();
+    const pipeline::seedling::Figures e = evaluator.figures();
     std::printf(
         "%s, seed %ld, %d pairs: recognition %.1f %%, sensitivity %.1f %%, volume ratio %.1f %%, %.1f ms a pair\n",
         preset.c_str(), seed, e.pairs, 100 * e.recognition_rate, 100 * e.sensitivity, 100 * e.volume_ratio, e.ms_total);

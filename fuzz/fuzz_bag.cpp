@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): ROS 1 bag files as `cropsight import --bag` and `detect broccoli
+// libFuzzer harness: ROS 1 bag files as `cropsight import --bag` and `detect broccoli
 // --bag` read them (ros_io::import_bag_sequence: rosbag's reader, then our checks of topics,
 // encodings and camera info, into a sequence folder). C++17, like the rest of the ROS code.
 #include "cropsight_ros/bag_io.hpp"

@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): broccoli classifier model JSON (learning::load_model: SVM or kNN, standardiser,
+// libFuzzer harness: broccoli classifier model JSON (learning::load_model: SVM or kNN, standardiser,
 // recipe).
 #include "cropsight/learning/model.hpp"
 

@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): camera.yaml of a sequence folder (io::read_camera_yaml).
+// libFuzzer harness: camera.yaml of a sequence folder (io::read_camera_yaml).
 #include "cropsight/io/sequence.hpp"
 
 #include "fuzz_support.hpp"

@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): COCO annotation JSON as `train detector --coco` reads it
+// libFuzzer harness: COCO annotation JSON as `train detector --coco` reads it
 // (nn::read_coco_detection: images, categories, boxes and polygons), with one 16 x 12 image,
 // a.png, present under the images folder so that entries naming it resolve.
 #include "cropsight/io/image_io.hpp"

@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): per-image detection text files (io::read_detection_text: the grape ROI's
+// libFuzzer harness: per-image detection text files (io::read_detection_text: the grape ROI's
 // box files and `detect objects`' text output).
 #include "cropsight/io/voc.hpp"
 

@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): field maps of `detect broccoli --map` (tracking::read_field_map).
+// libFuzzer harness: field maps of `detect broccoli --map` (tracking::read_field_map).
 #include "cropsight/tracking/field_map_io.hpp"
 
 #include "fuzz_support.hpp"

@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): GBDT models in XGBoost's JSON format (learning::Gbdt::load: XGBoost's loader
+// libFuzzer harness: GBDT models in XGBoost's JSON format (learning::Gbdt::load: XGBoost's loader
 // behind our checks).
 #include "cropsight/learning/gbdt.hpp"
 

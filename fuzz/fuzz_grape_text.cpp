@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): the grape data set's text clouds (io::read_grape_text).
+// libFuzzer harness: the grape data set's text clouds (io::read_grape_text).
 #include "cropsight/io/grape_text.hpp"
 
 #include "fuzz_support.hpp"

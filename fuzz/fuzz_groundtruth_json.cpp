@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): groundtruth.json of a sequence folder (io::read_groundtruth_json).
+// libFuzzer harness: groundtruth.json of a sequence folder (io::read_groundtruth_json).
 #include "io/sequence_text.hpp"
 
 #include "fuzz_support.hpp"

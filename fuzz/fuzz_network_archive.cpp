@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): network archives (libtorch .pt files written by `train grape`
+// libFuzzer harness: network archives (libtorch .pt files written by `train grape`
 // and `train detector`) through the plugin's loader: nn::PointSegmenter::load and
 // nn::CenterNet::load, which dlopen libcropsight_nn_torch.so. Clang cannot compile libtorch's
 // headers as C++20, so the fuzz build has no plugin of its own: scripts/fuzz.sh points

@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): ONNX detector files, as `detect potato` (the `onnx` backend,
+// libFuzzer harness: ONNX detector files, as `detect potato` (the `onnx` backend,
 // YOLOv5, YOLOv8 and SSD layouts) and `detect objects` (the project's own CenterNet export, with its
 // metadata) load them: OpenCV DNN's ONNX importer behind our checks, then, for a file that
 // loads, one detection on a small image (the output decoding is ours).

@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): PCD clouds read as unorganised and as organised clouds (io::read_cloud,
+// libFuzzer harness: PCD clouds read as unorganised and as organised clouds (io::read_cloud,
 // io::read_organized_cloud: PCL's reader behind our checks).
 #include "cropsight/io/cloud_io.hpp"
 

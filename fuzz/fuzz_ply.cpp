@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): PLY clouds (io::read_cloud: PCL's reader behind our checks).
+// libFuzzer harness: PLY clouds (io::read_cloud: PCL's reader behind our checks).
 #include "cropsight/io/cloud_io.hpp"
 
 #include "fuzz_support.hpp"

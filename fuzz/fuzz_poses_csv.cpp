@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): poses.csv of a sequence folder (io::read_poses_csv), checked
+// libFuzzer harness: poses.csv of a sequence folder (io::read_poses_csv), checked
 // against a frame count taken from the input's first byte (modulo 65), as the sequence reader
 // checks it against its depth frames; the rest of the input is the file.
 #include <string_view>

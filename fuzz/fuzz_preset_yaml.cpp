@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): preset YAML and --set values, through the path every command
+// libFuzzer harness: preset YAML and --set values, through the path every command
 // takes: io::load_preset_with_overrides, then each pipeline's configuration applied and
 // validated (broccoli, potato, seedling, grape, the broccoli simulator). The input's first line
 // holds the --set values, separated by ';'; the rest is the YAML file.
@@ -6,10 +6,10 @@
 #include <vector>
 
 #include "cropsight/io/config_yaml.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
-#include "cropsight/pipeline/grape/grape_pipeline.hpp"
-#include "cropsight/pipeline/potato/potato_pipeline.hpp"
-#include "cropsight/pipeline/seedling/seedling_config.hpp"
+#include "cropsight/pipeline/broccoli/pipeline.hpp"
+#include "cropsight/pipeline/grape/pipeline.hpp"
+#include "cropsight/pipeline/potato/pipeline.hpp"
+#include "cropsight/pipeline/seedling/config.hpp"
 #include "cropsight/sim/broccoli/broccoli_config.hpp"
 #include "fuzz_support.hpp"
 
@@ -52,12 +52,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     loaded = true;
   });
   if (!loaded) return 0;
-  apply_and_validate<cropsight::pipeline::BroccoliPipelineConfig>("broccoli", map);
-  apply_and_validate<cropsight::pipeline::GrapePipelineConfig>("grape", map);
+  apply_and_validate<cropsight::pipeline::broccoli::Config>("broccoli", map);
+  apply_and_validate<cropsight::pipeline::grape::Config>("grape", map);
   apply_and_validate<cropsight::sim::BroccoliSimConfig>("broccoli simulator", map);
   cropsight::fuzz::expect_error_or_success(
-      "potato", [&] { (void)cropsight::pipeline::potato::load_potato_config(path.string(), cropsight::ConfigMap{}); });
+      "potato", [&] { (void)cropsight::pipeline::potato::load_config(path.string(), cropsight::ConfigMap{}); });
   cropsight::fuzz::expect_error_or_success("seedling",
-                                           [&] { (void)cropsight::pipeline::load_seedling_config(path.string()); });
+                                           [&] { (void)cropsight::pipeline::seedling::load_config(path.string()); });
   return 0;
 }

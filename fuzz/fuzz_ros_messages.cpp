@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): the ROS messages a node converts (ros/src/ros_conversions.*,
+// libFuzzer harness: the ROS messages a node converts (ros/src/ros_conversions.*,
 // cloud_conversions.*, the grape node's boxes), with every field a publisher controls filled from
 // the fuzzer's bytes: camera_info + depth + colour images as the broccoli, potato and grape nodes
 // assemble a frame; an organised PointCloud2 as the broccoli node's ~input:=cloud reads it; a

@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): a sequence folder's images as the sequence reader reads them.
+// libFuzzer harness: a sequence folder's images as the sequence reader reads them.
 // A valid one-frame sequence (8 x 6, depth + colour + labels) is written once; for each input,
 // the first byte (modulo 3) picks which of depth/, color/ or labels/ 000000.png gets the remaining bytes,
 // then io::SequenceReader opens the folder and reads frame 0 (bit depth, channels and size

@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): stereo calibration YAML of `cropsight stereo calibrate` (stereo::load_calibration).
+// libFuzzer harness: stereo calibration YAML of `cropsight stereo calibrate` (stereo::load_calibration).
 #include "cropsight/stereo/calibration.hpp"
 
 #include "fuzz_support.hpp"

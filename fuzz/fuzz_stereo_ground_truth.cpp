@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): stereo ground truth as `eval stereo` reads it, the same bytes as a
+// libFuzzer harness: stereo ground truth as `eval stereo` reads it, the same bytes as a
 // PFM file and as an 8/16-bit PNG disparity (stereo::read_pfm, stereo::read_ground_truth).
 #include "cropsight/stereo/stereo_io.hpp"
 

@@ -1,5 +1,5 @@
 #pragma once
-// What every libFuzzer harness (fuzz/fuzz_*.cpp, issue 26) shares. The parsers under test take
+// What every libFuzzer harness (fuzz/fuzz_*.cpp) shares. The parsers under test take
 // file paths, as the CLI gives them, so a harness writes the fuzzer's bytes to a file in a
 // scratch folder of its own process and calls the parser on that path.
 //

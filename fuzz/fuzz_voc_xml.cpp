@@ -1,4 +1,4 @@
-// libFuzzer harness (issue 26): Pascal VOC annotation XML, alone (io::read_voc) and as a data
+// libFuzzer harness: Pascal VOC annotation XML, alone (io::read_voc) and as a data
 // set folder for `train detector --voc` (nn::read_voc_detection, with one 16 x 12 image, a.png).
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/voc.hpp"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Latency and dropped messages of the ROS nodes at a fixed input rate (issue 25; docs/ros.md).
+# Latency and dropped messages of the ROS nodes at a fixed input rate (docs/ros.md).
 # Starts a roscore (scripts/ros-master.sh), simulates a broccoli and a potato sequence, writes
 # them as bags, and for each node: the node pinned to core 0 (single-threaded, as on a robot's
 # one spare core), bench_ros_latency on core 1 publishing at RATE Hz, one JSON line each.

@@ -41,7 +41,7 @@ for p in oes org fec; do
   done
 done
 
-# Issue 4: sizing, temporal filter and map with the OES models. The bias correction is fitted on
+# Sizing, temporal filter and map with the OES models. The bias correction is fitted on
 # the training sequences only, then applied on the test sequence of the same variety.
 for v in uk spain; do
   m="$OUT/models/broccoli-oes-$v.json"

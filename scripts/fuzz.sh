@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fuzzes cropsight's parsers with libFuzzer (issue 26; docs/reliability.md, "Fuzzing").
+# Fuzzes cropsight's parsers with libFuzzer (docs/reliability.md, "Fuzzing").
 #
 #   scripts/fuzz.sh NAME SECONDS     one harness (fuzz/fuzz_NAME.cpp) for SECONDS of wall time
 #                                    (of the fuzzer's own CPU time with FUZZ_CPU=1)

@@ -16,7 +16,7 @@ PACKAGES=(
   libtinyxml2-dev zlib1g-dev
   # neural networks and gradient-boosted trees
   libtorch-dev libxgboost-dev
-  # the detector's ONNX export writes onnx::ModelProto (issue 24)
+  # the detector's ONNX export writes onnx::ModelProto
   libonnx-dev
   # fast BLAS for libtorch/OpenCV (the generic libblas.so.3 is the slow reference one)
   libopenblas0-pthread
@@ -25,7 +25,7 @@ PACKAGES=(
   clang-14 libclang-rt-14-dev llvm-14
   # report rendering test (headless browser)
   chromium
-  # ROS 1 nodes, bag files and their tests against a real roscore (issue 25; ros/CMakeLists.txt)
+  # ROS 1 nodes, bag files and their tests against a real roscore (ros/CMakeLists.txt)
   libroscpp-dev librosbag-storage-dev libmessage-filters-dev libstd-msgs-dev libgeometry-msgs-dev
   libsensor-msgs-dev libvisualization-msgs-dev libdiagnostic-msgs-dev libtf2-msgs-dev
   python3-roslaunch python3-gencpp python3-genmsg python3-rosbag

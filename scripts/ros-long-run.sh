@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A ROS node fed for a long time (issue 26, deliverable 5; docs/reliability.md, "Long runs").
+# A ROS node fed for a long time (deliverable 5; docs/reliability.md, "Long runs").
 # Starts a roscore, the node pinned to core 0 and bench_ros_latency on core 1, which plays a
 # simulated sequence's bag (the seedling node: a simulated folder of stereo pairs) in a loop at RATE Hz for MINUTES and checks that every output equals
 # the first output for the same bag frame ("differing"). Every SAMPLE seconds the node's resident

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Which true heads a broccoli field map missed, and what the detector saw of them (issue 27).
+"""Which true heads a broccoli field map missed, and what the detector saw of them.
 
 Usage: tools/broccoli-map-misses.py SEQ DETECTIONS.jsonl MAP.csv
   SEQ: a simulated pass (groundtruth.json); DETECTIONS.jsonl and MAP.csv from

@@ -1,4 +1,4 @@
-// Experiment (issue 27): how far a depth CNN (CenterNet with masks, trained on frames exported by
+// Experiment: how far a depth CNN (CenterNet with masks, trained on frames exported by
 // broccoli_depth_coco) reaches where OES misses, on validation sequences.
 //
 //   broccoli_cnn_probe MODEL.json seq[,seq] CNN.pt|.onnx [key=value ...]
@@ -21,8 +21,8 @@
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/nn/center_onnx.hpp"
 #include "cropsight/nn/detector_eval.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_truth.hpp"
 #include "cropsight/pipeline/broccoli/depth_encoding.hpp"
+#include "cropsight/pipeline/broccoli/truth.hpp"
 
 using namespace cropsight;
 
@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
   for (int i = 3; i + 1 < argc; ++i) argv[i] = argv[i + 1];  // the shared parser reads key=value from argv[3]
   auto args = tools::parse_probe_args("broccoli_cnn_probe", argc - 1, argv);
   if (!args) return 2;
-  pipeline::BroccoliDetector det(args->config);
+  pipeline::broccoli::Detector det(args->config);
   det.set_model(args->model);
   auto cnn = nn::load_center_detector(cnn_path, 1);
   auto* onnx = dynamic_cast<nn::CenterNetOnnx*>(cnn.get());
@@ -44,26 +44,26 @@ int main(int argc, char** argv) {
   const int visible = 300;
   eval::DetectionApAccumulator ap_oes, ap_cnn, ap_union;
   long missed = 0, reached = 0, cnn_false = 0, cnn_inst = 0, truth_visible = 0;
-  std::vector<pipeline::TruthInstance> truth;
+  std::vector<pipeline::broccoli::TruthInstance> truth;
   for (const std::string& dir : args->sequences) {
     const io::SequenceReader seq(dir);
     for (int f = 0; f < seq.size(); ++f) {
       const RgbdFrame frame = seq.read(f);
       det.process(frame);
       const std::vector<Detection> dets = det.detections();
-      pipeline::truth_instances(det.cloud(), 0, truth);
+      pipeline::broccoli::truth_instances(det.cloud(), 0, truth);
       std::vector<std::vector<int>> tsets;
       std::vector<bool> small;
       for (const auto& t : truth) tsets.push_back(t.indices), small.push_back(int(t.indices.size()) < visible);
       // CNN instances.
-      const ColorImage img = pipeline::encode_depth_for_cnn(frame.depth, frame.camera.depth_scale);
+      const ColorImage img = pipeline::broccoli::encode_depth_for_cnn(frame.depth, frame.camera.depth_scale);
       const nn::CenterNetHeads heads = onnx ? onnx->heads(img) : torch->heads(img);
       const std::vector<Detection2D> boxes = nn::boxes_from_heads(heads, ccfg, img.width, img.height);
       const std::vector<GrayImage> masks = nn::masks_from_heads(heads, ccfg, img.width, img.height);
       std::vector<std::vector<int>> inst;
       std::vector<float> inst_score;
       for (const Detection2D& b : boxes) {
-        std::vector<int> px = pipeline::mask_points_in_box(b, masks[std::size_t(b.class_id)], det.cloud().z);
+        std::vector<int> px = pipeline::broccoli::mask_points_in_box(b, masks[std::size_t(b.class_id)], det.cloud().z);
         if (px.size() < 30) continue;
         inst.push_back(std::move(px));
         inst_score.push_back(b.score);

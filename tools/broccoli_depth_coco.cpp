@@ -1,4 +1,4 @@
-// Experiment (issue 27): exports simulated broccoli sequences as a COCO set of depth-encoded
+// Experiment: exports simulated broccoli sequences as a COCO set of depth-encoded
 // images with one "head" class and polygon masks from the label images, so that
 // `cropsight train detector --coco` can learn a depth segmenter of heads.
 //
@@ -51,7 +51,8 @@ int run(int argc, char** argv) {
     for (int i = 0; i < seq.size(); i += step) {
       const cropsight::RgbdFrame f = seq.read(i);
       const std::string name = fs::path(dir).filename().string() + "-" + std::to_string(i) + ".png";
-      cropsight::io::write_color(out / name, cropsight::pipeline::encode_depth_for_cnn(f.depth, f.camera.depth_scale));
+      cropsight::io::write_color(out / name,
+                                 cropsight::pipeline::broccoli::encode_depth_for_cnn(f.depth, f.camera.depth_scale));
       ++image_id;
       images.push_back({{"id", image_id}, {"file_name", name}, {"width", f.depth.width}, {"height", f.depth.height}});
       std::map<int, cv::Mat> masks;

@@ -16,10 +16,11 @@
 
 #include "broccoli_probe_args.hpp"
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_truth.hpp"
+#include "cropsight/pipeline/broccoli/truth.hpp"
 
 using namespace cropsight;
 using namespace cropsight::pipeline;
+using namespace cropsight::pipeline::broccoli;
 
 namespace {
 double iou(const std::vector<int>& a_sorted, const std::vector<char>& in_b, long b_size) {
@@ -33,8 +34,8 @@ double iou(const std::vector<int>& a_sorted, const std::vector<char>& in_b, long
 int main(int argc, char** argv) {
   const auto args = tools::parse_probe_args("broccoli_dome_seed_probe", argc, argv);
   if (!args) return 2;
-  const BroccoliDetectorConfig& cfg = args->config;
-  BroccoliDetector det(cfg);
+  const pipeline::broccoli::DetectorConfig& cfg = args->config;
+  pipeline::broccoli::Detector det(cfg);
   det.set_model(args->model);
   const float tol2 = cfg.oes.distance_tolerance * cfg.oes.distance_tolerance;
   const double radii[] = {0.035, 0.05, 0.065, 0.08};

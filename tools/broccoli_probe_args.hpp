@@ -9,14 +9,14 @@
 #include <vector>
 
 #include "cropsight/learning/model.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_detector.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
+#include "cropsight/pipeline/broccoli/detector.hpp"
+#include "cropsight/pipeline/broccoli/pipeline.hpp"
 
 namespace cropsight::tools {
 
 struct BroccoliProbeArgs {
   std::shared_ptr<learning::Model> model;
-  pipeline::BroccoliDetectorConfig config;
+  pipeline::broccoli::DetectorConfig config;
   std::vector<std::string> sequences;
 };
 
@@ -35,7 +35,7 @@ inline std::optional<BroccoliProbeArgs> parse_probe_args(const char* tool, int a
     const auto eq = kv.find('=');
     overrides[kv.substr(0, eq)] = eq == std::string::npos ? "" : kv.substr(eq + 1);
   }
-  a.config = pipeline::broccoli_config_for_model(*a.model, overrides, model_path, "args").detector;
+  a.config = pipeline::broccoli::config_for_model(*a.model, overrides, model_path, "args").detector;
   std::stringstream ss(argv[2]);
   for (std::string dir; std::getline(ss, dir, ',');) a.sequences.push_back(dir);
   return a;
@@ -43,7 +43,7 @@ inline std::optional<BroccoliProbeArgs> parse_probe_args(const char* tool, int a
 
 /// The clusters a detector leaves unaccepted that the concave-crease split would look at: oversized
 /// regions and rejected clusters of detection.split_min_points or more.
-inline bool unaccepted_large(const pipeline::BroccoliCandidate& c, const pipeline::BroccoliDetectorConfig& cfg) {
+inline bool unaccepted_large(const pipeline::broccoli::Candidate& c, const pipeline::broccoli::DetectorConfig& cfg) {
   return !c.head && (c.oversized || int(c.segment.size()) >= cfg.detection.split_min_points);
 }
 

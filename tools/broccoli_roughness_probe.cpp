@@ -6,8 +6,8 @@
 //   build/bin/broccoli_roughness_probe MODEL.json seq1[,seq2] [key=value ...]
 //
 // (the model's recorded configuration, the key=value overrides on top; e.g. oes.max_size=200000 keeps
-// the regions OES would drop). docs/pipelines/broccoli-heads.md, "Fields drawn to the issue's
-// description", has the result that ended this idea (AUC 0.64).
+// the regions OES would drop). docs/experiments/2026-12-06-broccoli-split-accepted-field-maps.md
+// ("Fields drawn to the issue's description") has the result that ended this idea (AUC 0.64).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -24,8 +24,8 @@ using namespace cropsight::pipeline;
 int main(int argc, char** argv) {
   const auto args = tools::parse_probe_args("broccoli_roughness_probe", argc, argv);
   if (!args) return 2;
-  const BroccoliDetectorConfig& cfg = args->config;
-  BroccoliDetector det(cfg);
+  const pipeline::broccoli::DetectorConfig& cfg = args->config;
+  pipeline::broccoli::Detector det(cfg);
   det.set_model(args->model);
   std::vector<float> head, other;
   for (const std::string& dir : args->sequences) {

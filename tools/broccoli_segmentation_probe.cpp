@@ -1,7 +1,7 @@
 // A tuning tool (not a test): measures how well a detector preset SEGMENTS the labelled heads of recorded
 // sequences, independently of any classifier (the upper bound of AP50 recall). Used to tune the
 // simulator's plant geometry and the OES/ORG presets on training seeds (docs/simulator.md,
-// docs/pipelines/broccoli-heads.md "Tuning"). Run with
+// docs/experiments/2026-12-01-broccoli-oes-tuning.md). Run with
 //
 //   CROPSIGHT_SEG_PROBE=seq1[,seq2] [CROPSIGHT_SEG_PRESET=broccoli-oes-uk] [CROPSIGHT_SEG_FRAMES=10]
 //   [CROPSIGHT_SEG_SET="key=value;key=value"] build/bin/broccoli_segmentation_probe
@@ -33,12 +33,13 @@
 #include "cropsight/io/output.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/learning/model.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_detector.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_truth.hpp"
+#include "cropsight/pipeline/broccoli/detector.hpp"
+#include "cropsight/pipeline/broccoli/pipeline.hpp"
+#include "cropsight/pipeline/broccoli/truth.hpp"
 
 using namespace cropsight;
 using namespace cropsight::pipeline;
+using namespace cropsight::pipeline::broccoli;
 
 namespace {
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -48,8 +49,9 @@ std::vector<std::string> split(const std::string& s, char sep) {
     if (!item.empty()) out.push_back(item);
   return out;
 }
-void dump(const std::string& dir, int frame, const OrganizedCloud& cloud, std::span<const BroccoliCandidate> cands,
-          const std::vector<int>& merged_clusters, const std::vector<int>& merged_heads) {
+void dump(const std::string& dir, int frame, const OrganizedCloud& cloud,
+          std::span<const pipeline::broccoli::Candidate> cands, const std::vector<int>& merged_clusters,
+          const std::vector<int>& merged_heads) {
   const int w = cloud.width, h = cloud.height;
   cv::Mat gray(h, w, CV_8UC1, cv::Scalar(0)), cluster(h, w, CV_32SC1, cv::Scalar(-1));
   for (int i = 0; i < w * h; ++i) {
@@ -120,19 +122,19 @@ int probe() {
   std::shared_ptr<learning::Model> model;
   if (model_env) model = std::make_shared<learning::Model>(learning::load_model(model_env));
   const std::string preset = preset_env ? preset_env : model ? std::string(model_env) : "broccoli-oes-uk";
-  BroccoliDetectorConfig cfg;
+  pipeline::broccoli::DetectorConfig cfg;
   if (model && !preset_env) {
-    cfg = broccoli_config_for_model(*model, overrides, model_env, "CROPSIGHT_SEG_SET").detector;
+    cfg = pipeline::broccoli::config_for_model(*model, overrides, model_env, "CROPSIGHT_SEG_SET").detector;
   } else {
     ConfigMap values = io::load_config_map(io::find_preset(preset));
     for (const auto& [k, v] : overrides) values[k] = v;
     apply_config(cfg, values, preset);
   }
   cfg.validate(preset);
-  const int min_size = cfg.pipeline == BroccoliVariant::oes   ? cfg.oes.min_size
-                       : cfg.pipeline == BroccoliVariant::org ? cfg.org.min_size
-                                                              : cfg.fec.min_size;
-  BroccoliDetector det(cfg);
+  const int min_size = cfg.pipeline == pipeline::broccoli::Variant::oes   ? cfg.oes.min_size
+                       : cfg.pipeline == pipeline::broccoli::Variant::org ? cfg.org.min_size
+                                                                          : cfg.fec.min_size;
+  pipeline::broccoli::Detector det(cfg);
   // With CROPSIGHT_SEG_MODEL, also lists the misclassified clusters (size, share of their majority head).
   if (model) det.set_model(model, model_env);
   long all = 0, found = 0, merged = 0, clear = 0, clear_found = 0, clear_merged = 0, clear_split = 0, clusters = 0,

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Clean-checkout `make test` time of one or more revisions, one after the other, each in a fresh
-# worktree with an empty ccache (issue 21's build-time criterion; run on an otherwise idle machine).
+# worktree with an empty ccache (the build-time criterion; run on an otherwise idle machine).
 #   tools/build-time.sh REV [REV ...]    -> one line per revision: wall, user and system seconds
 set -euo pipefail
 repo=$(git rev-parse --show-toplevel)

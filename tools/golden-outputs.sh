@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Captures the outputs of the shipped models through one cropsight binary, so that a refactoring
-# can be checked to change no result (issue 21): run it with the binary before and after, then
+# can be checked to change no result: run it with the binary before and after, then
 # tools/golden-compare.py BEFORE AFTER (timings and paths are left out of the comparison).
 #
 #   tools/golden-outputs.sh BUILD/bin/cropsight OUT_DIR [DATA_DIR]

@@ -1,19 +1,19 @@
-// Long runs (issue 26, item 5): a pipeline fed many frames in one process, repeated from a short
+// Long runs (item 5): a pipeline fed many frames in one process, repeated from a short
 // sequence held in memory, while resident memory is sampled (/proc/self/statm). It reports memory
 // growth after warm-up, errors, and whether the outputs equal what they must:
 //
 //   long_run broccoli --data SEQ --model MODEL.json [--frames 10000] [--warmup 500] [--short 200]
-//     detect, size and track (BroccoliPipeline, tracking on, the model's config as `detect
+//     detect, size and track (pipeline::broccoli::Pipeline, tracking on, the model's config as `detect
 //     broccoli --track` runs it) over ONE pass of --frames frames: the sequence repeated, frames
 //     renumbered, so the filter sees a field --frames long and its map grows with it. Checks:
 //     the first --short frames' results (detections with sizes and track ids, predicted heads,
 //     camera estimate) equal a fresh pipeline's on those frames alone; every frame's detections
 //     (step 1 carries no state) equal those of its source frame.
-//   ... --pass-frames N: passes of N frames instead (finish() and start_pass() between them, as a
+//   ... --pass-frames N: passes of N frames instead (finish() and reset() between them, as a
 //     robot at the end of each row); every pass sees the same frames, so every pass's results
 //     must equal the short run's, and the pass state no longer grows with --frames.
 //   long_run potato --data SEQ [--config potato] [--frames 10000] [--warmup 500]
-//     the harvest loop (PotatoPipeline) over the sequence, an approach, repeated with reset()
+//     the harvest loop (pipeline::potato::Pipeline) over the sequence, an approach, repeated with reset()
 //     between approaches as a robot starts a new one: every approach's harvest messages must
 //     equal the first's (target ids, which count up over the pipeline's life, in order of first
 //     appearance within the approach).
@@ -35,11 +35,11 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_training.hpp"
 #include "cropsight/pipeline/broccoli/make_pipeline.hpp"
+#include "cropsight/pipeline/broccoli/pipeline.hpp"
+#include "cropsight/pipeline/broccoli/training.hpp"
 #include "cropsight/pipeline/potato/make_pipeline.hpp"
-#include "cropsight/pipeline/potato/potato_pipeline.hpp"
+#include "cropsight/pipeline/potato/pipeline.hpp"
 
 using namespace cropsight;
 
@@ -87,7 +87,7 @@ std::uint64_t detections_hash(const std::vector<Detection>& dets) {
 }
 
 // Everything process() returns online, timings aside.
-std::uint64_t broccoli_result_hash(const pipeline::BroccoliFrameResult& r) {
+std::uint64_t broccoli_result_hash(const pipeline::broccoli::FrameResult& r) {
   Hash h;
   h.add(detections_hash(r.detections));
   for (const Detection& d : r.detections) h.add(d.size_m).add(d.track_id);
@@ -97,7 +97,7 @@ std::uint64_t broccoli_result_hash(const pipeline::BroccoliFrameResult& r) {
   return h.h;
 }
 
-bool broccoli_result_finite(const pipeline::BroccoliFrameResult& r) {
+bool broccoli_result_finite(const pipeline::broccoli::FrameResult& r) {
   for (const Detection& d : r.detections)
     if (!std::isfinite(d.score) || !d.centroid.allFinite() || !std::isfinite(d.size_m)) return false;
   return r.association.camera_position.allFinite();
@@ -106,7 +106,7 @@ bool broccoli_result_finite(const pipeline::BroccoliFrameResult& r) {
 // Target ids count up over the pipeline's life (TargetTracker: 1, 2, ... per selected target; a
 // reset keeps counting, so ids never repeat). Within an approach they are compared in order of
 // first appearance: `ids` maps them to 1, 2, ... and is cleared at each approach.
-std::uint64_t harvest_hash(const pipeline::potato::PotatoFrameResult& r, std::map<int, int>& ids) {
+std::uint64_t harvest_hash(const pipeline::potato::FrameResult& r, std::map<int, int>& ids) {
   auto t = r.target;
   if (t.target_id != 0) t.target_id = ids.emplace(t.target_id, int(ids.size()) + 1).first->second;
   Hash h;
@@ -178,7 +178,7 @@ nlohmann::json run_broccoli(const Options& o) {
       source_dets(static_cast<std::size_t>(n));
   {
     const auto built = pipeline::broccoli::make_pipeline(spec);
-    pipeline::BroccoliPipeline& pipe = *built;
+    pipeline::broccoli::Pipeline& pipe = *built;
     RgbdFrame f = source[0];
     for (int i = 0; i < short_frames; ++i) {
       f = source[std::size_t(i % n)];
@@ -192,7 +192,7 @@ nlohmann::json run_broccoli(const Options& o) {
   }
 
   const auto built = pipeline::broccoli::make_pipeline(spec);
-  pipeline::BroccoliPipeline& pipe = *built;
+  pipeline::broccoli::Pipeline& pipe = *built;
   Memory mem;
   mem.before = resident_mib();
   int errors = 0, nonfinite = 0, short_mismatch = 0, detection_mismatch = 0, passes = 1;
@@ -203,7 +203,7 @@ nlohmann::json run_broccoli(const Options& o) {
     const int j = o.pass_frames > 0 ? i % o.pass_frames : i;  // frame of the current pass
     if (o.pass_frames > 0 && i > 0 && j == 0) {
       map_heads += long(pipe.finish().size());
-      pipe.start_pass();
+      pipe.reset();
       ++passes;
     }
     f = source[std::size_t(j % n)];  // copy-assign into the same buffers: no allocation per frame
@@ -259,11 +259,11 @@ nlohmann::json run_potato(const Options& o) {
   std::map<int, int> ids;
   {
     const auto built = pp::make_pipeline(spec);
-    pp::PotatoPipeline& pipe = *built;
+    pp::Pipeline& pipe = *built;
     for (int i = 0; i < n; ++i) first[std::size_t(i)] = harvest_hash(pipe.process(source[std::size_t(i)]), ids);
   }
   const auto built = pp::make_pipeline(spec);
-  pp::PotatoPipeline& pipe = *built;
+  pp::Pipeline& pipe = *built;
   Memory mem;
   mem.before = resident_mib();
   int errors = 0, nonfinite = 0, mismatch = 0, with_target = 0;
@@ -274,7 +274,7 @@ nlohmann::json run_potato(const Options& o) {
       ids.clear();
     }
     try {
-      const pp::PotatoFrameResult r = pipe.process(source[std::size_t(i % n)]);
+      const pp::FrameResult r = pipe.process(source[std::size_t(i % n)]);
       with_target += r.target.detection ? 1 : 0;
       if (!std::isfinite(r.target.x) || !std::isfinite(r.target.y) || !std::isfinite(r.target.z) ||
           !std::isfinite(r.target.angle))

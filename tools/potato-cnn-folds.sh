@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The fold table of docs/pipelines/potatoes.md ("A CNN from cut-and-paste composites"): the 11
+# The fold table of docs/experiments/2026-12-06-potato-cnn-fusion.md: the 11
 # shared detection images in 3 fixed folds (sorted names, index mod 3); per fold, 300 composites
 # and a CNN from the other folds' images only; each fold's CNN, alone and fused with the classical
 # detector, detects on its own images; the detections are pooled and scored once over the 11, and

@@ -1,4 +1,4 @@
-// Training-set builder (issue 22): cut-and-paste of the real potatoes of a VOC set onto the same
+// Training-set builder: cut-and-paste of the real potatoes of a VOC set onto the same
 // images with their potatoes painted out, written as COCO instance annotations with polygon masks,
 // so that `cropsight train detector --coco` learns from more than the few labelled images (and its
 // copy-paste augmentation pastes through masks). Dwibedi et al. 2017, "Cut, Paste and Learn".

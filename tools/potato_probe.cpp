@@ -1,4 +1,4 @@
-// Tuning probe (issue 22): the chroma of potato pixels against the chroma of the image's bright
+// Tuning probe: the chroma of potato pixels against the chroma of the image's bright
 // background, per image, on the detection set (VOC boxes) and on the orientation shots (boxes of
 // BoardBlobDetector). Shows whether the skin colour model holds across the two real scenes, and
 // whether a white reference taken from the image explains the difference.
@@ -18,9 +18,9 @@
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/output.hpp"
 #include "cropsight/measure/orientation.hpp"
+#include "cropsight/pipeline/potato/colour_fit.hpp"
+#include "cropsight/pipeline/potato/detection_eval.hpp"
 #include "cropsight/pipeline/potato/orientation_dataset.hpp"
-#include "cropsight/pipeline/potato/potato_colour_fit.hpp"
-#include "cropsight/pipeline/potato/potato_detection_eval.hpp"
 
 namespace {
 using namespace cropsight;

@@ -33,7 +33,7 @@ ros_io::BagTopics topics_of(const BagTopicOptions& o) {
 
 BagSequence::BagSequence(const std::string& bag, const BagTopicOptions& topics) {
   // /tmp/.cropsight-bag.tmp-PID-N: the process id in the name lets the next run remove what a
-  // run killed by a signal (which cannot unwind) left (kill safety, issue 26).
+  // run killed by a signal (which cannot unwind) left (kill safety).
   const fs::path name = fs::temp_directory_path() / "cropsight-bag";
   io::remove_stale_temporaries(name);
   root_ = io::temporary_sibling(name).string();

@@ -8,8 +8,8 @@
 
 namespace cropsight::cli {
 
-std::unique_ptr<pipeline::BroccoliPipeline> make_broccoli(const std::string& model, const CommonOptions& common,
-                                                          bool track) {
+std::unique_ptr<pipeline::broccoli::Pipeline> make_broccoli(const std::string& model, const CommonOptions& common,
+                                                            bool track) {
   pipeline::PipelineSpec spec{common.config, common.sets, model};
   spec.sets.push_back(track ? "track=true" : "track=false");
   return pipeline::broccoli::make_pipeline(spec);

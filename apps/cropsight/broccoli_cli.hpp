@@ -11,18 +11,19 @@
 #include "cli_common.hpp"
 #include "cropsight/core/timer.hpp"
 #include "cropsight/learning/model.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_timing.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_tracking_eval.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_training.hpp"
+#include "cropsight/pipeline/broccoli/eval.hpp"
 #include "cropsight/pipeline/broccoli/make_pipeline.hpp"
+#include "cropsight/pipeline/broccoli/pipeline.hpp"
+#include "cropsight/pipeline/broccoli/timing.hpp"
+#include "cropsight/pipeline/broccoli/tracking_eval.hpp"
+#include "cropsight/pipeline/broccoli/training.hpp"
 
 namespace cropsight::cli {
 
 /// The pipeline of --model (a shipped model's name or a file), --config, --set and --track, built
 /// by the library's one builder (pipeline::broccoli::make_pipeline).
-std::unique_ptr<pipeline::BroccoliPipeline> make_broccoli(const std::string& model, const CommonOptions& common,
-                                                          bool track);
+std::unique_ptr<pipeline::broccoli::Pipeline> make_broccoli(const std::string& model, const CommonOptions& common,
+                                                            bool track);
 /// --model NAME|FILE of the broccoli commands, defaulting to kDefaultBroccoliModel.
 void add_broccoli_model_option(CLI::App* cmd, std::string& model);
 
@@ -39,18 +40,18 @@ void add_track_options(CLI::App* cmd, TrackOptions& o, bool detect);
 nlohmann::json stages_json(const std::vector<StageTimer::Stage>& stages, long frames);
 
 /// Table I + II metrics of an evaluation as JSON (NaN → null).
-nlohmann::json eval_json(const pipeline::BroccoliEvalResult& r);
+nlohmann::json eval_json(const pipeline::broccoli::Figures& r);
 
 /// The tracking figures as the keys of `eval broccoli --track --json` (NaN → null).
 /// ap50_temporal / map50_95_temporal are the offline figures under their earlier names.
-nlohmann::json tracking_json(const pipeline::BroccoliTrackingFigures& f);
+nlohmann::json tracking_json(const pipeline::broccoli::TrackingFigures& f);
 
 /// One detection of `detect broccoli`'s JSON lines (id = 1-based number in the frame).
 nlohmann::json detection_json(const Detection& d, int id);
 
 /// detect --track: adds "heads" [{id, track_id, diameter_mm, bbox_mm, hull_mm, harvestable,
 /// field}], "predicted" [{track_id, points, centroid}] and "camera_estimate" to a frame's line.
-void add_tracking_json(const pipeline::BroccoliFrameResult& r, const tracking::HeadMapper& mapper,
+void add_tracking_json(const pipeline::broccoli::FrameResult& r, const tracking::HeadMapper& mapper,
                        nlohmann::json& line);
 
 /// bench broccoli: one timed pipeline (with its speedup over `pcl` when given) and the tracking
@@ -60,6 +61,6 @@ nlohmann::json tracking_timing_json(const pipeline::PipelineTiming& t, const pip
                                     const tracking::HeadMapperConfig& cfg);
 
 /// Human-readable lines of the tracking figures.
-void print_tracking_summary(const pipeline::BroccoliTrackingFigures& f);
+void print_tracking_summary(const pipeline::broccoli::TrackingFigures& f);
 
 }  // namespace cropsight::cli

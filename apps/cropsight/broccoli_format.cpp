@@ -36,7 +36,7 @@ nlohmann::json stages_json(const std::vector<StageTimer::Stage>& stages, long fr
   return j;
 }
 
-nlohmann::json eval_json(const pipeline::BroccoliEvalResult& r) {
+nlohmann::json eval_json(const pipeline::broccoli::Figures& r) {
   const auto& c = r.confusion;
   nlohmann::json j;
   j["frames"] = r.frames;
@@ -72,7 +72,7 @@ nlohmann::json eval_json(const pipeline::BroccoliEvalResult& r) {
   return j;
 }
 
-nlohmann::json tracking_json(const pipeline::BroccoliTrackingFigures& f) {
+nlohmann::json tracking_json(const pipeline::broccoli::TrackingFigures& f) {
   nlohmann::json j;
   const double nan = NAN;
   if (!f.map_aligned)
@@ -135,7 +135,7 @@ nlohmann::json detection_json(const Detection& d, int id) {
 // --track: each head's size and track id, the heads the frame missed (tracking.predict_missed:
 // where the filter expects them; their tracks may still fail to reach the map, compare track_id
 // with --map) and the camera estimate.
-void add_tracking_json(const pipeline::BroccoliFrameResult& r, const tracking::HeadMapper& mapper,
+void add_tracking_json(const pipeline::broccoli::FrameResult& r, const tracking::HeadMapper& mapper,
                        nlohmann::json& line) {
   nlohmann::json heads = nlohmann::json::array();
   const auto& measured = mapper.detections();
@@ -161,7 +161,7 @@ void add_tracking_json(const pipeline::BroccoliFrameResult& r, const tracking::H
   line["camera_estimate"] = {c.x(), c.y(), c.z()};
 }
 
-void print_tracking_summary(const pipeline::BroccoliTrackingFigures& f) {
+void print_tracking_summary(const pipeline::broccoli::TrackingFigures& f) {
   const double nan = NAN;
   std::printf("  map: precision %.3f  recall %.3f  duplicates %.3f  count error %+d (%d heads mapped, %d true)\n",
               f.map_aligned ? f.map_precision : nan, f.map_aligned ? f.map_recall : nan,

@@ -11,10 +11,10 @@
 // PCL reference unless --sor, so that both do the same work as the issue's reference
 // (normals + Euclidean clustering + VFH + SVM).
 //
-// The timing itself is the library's (pipeline/broccoli/broccoli_timing.hpp); this file picks the
+// The timing itself is the library's (pipeline/broccoli/timing.hpp); this file picks the
 // frames and presets and formats the figures.
 //
-// --track (issue 4) also times sizing + the temporal filter (tracking::HeadMapper with the OES
+// --track also times sizing + the temporal filter (tracking::HeadMapper with the OES
 // preset's sizing.* / tracking.* keys and --set) on the OES detections of the same frames: per
 // frame add_frame + predict_missed, and finish() once per pass, i.e. everything `detect broccoli
 // --track` adds to the detector. The detector runs untimed in that loop, so the figure is the
@@ -31,7 +31,7 @@
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/config_yaml.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_timing.hpp"
+#include "cropsight/pipeline/broccoli/timing.hpp"
 
 namespace cropsight::cli {
 
@@ -61,9 +61,9 @@ std::set<std::string> wanted_pipelines(const BenchOptions& o) {
 
 // The variety's preset of `pipe`, then --set: sizing.* / tracking.* are checked here too, so that a
 // typo is an error; the detector times with VFH and the bench's outlier setting.
-pipeline::BroccoliPipelineConfig preset_of(const BenchOptions& o, const std::string& pipe) {
+pipeline::broccoli::Config preset_of(const BenchOptions& o, const std::string& pipe) {
   const std::string name = "broccoli-" + pipe + "-" + o.variety;
-  pipeline::BroccoliPipelineConfig cfg;
+  pipeline::broccoli::Config cfg;
   apply_config(cfg, io::load_config_map(io::find_preset(name)), name);
   apply_config(cfg, o.common.config_map(), "--set");
   cfg.validate(name);
@@ -73,9 +73,8 @@ pipeline::BroccoliPipelineConfig preset_of(const BenchOptions& o, const std::str
 }
 
 // The model's own pipeline: what the model records, then --set (the bench's outlier setting too).
-pipeline::BroccoliPipelineConfig model_settings(const BenchOptions& o, const learning::Model& model) {
-  pipeline::BroccoliPipelineConfig cfg =
-      pipeline::broccoli_config_for_model(model, o.common.config_map(), o.model, "--set");
+pipeline::broccoli::Config model_settings(const BenchOptions& o, const learning::Model& model) {
+  pipeline::broccoli::Config cfg = pipeline::broccoli::config_for_model(model, o.common.config_map(), o.model, "--set");
   cfg.detector.outliers.enabled = o.sor;
   return cfg;
 }
@@ -105,7 +104,7 @@ void run(const BenchOptions& o) {
   if (o.variety != "uk" && o.variety != "spain") throw Error("--variety", "must be uk or spain");
   // Single-threaded: no stage may use TBB's pool (the paper's numbers are single-threaded too).
   tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
-  const auto model = pipeline::load_broccoli_model(o.model);
+  const auto model = pipeline::broccoli::load_model(o.model);
   // The first --frames frames in memory, without their label images: with labels the detector
   // would also copy them (evaluation bookkeeping, ~1 %).
   const std::vector<RgbdFrame> frames = read_bench_frames(o.data, o.frames);
@@ -115,23 +114,23 @@ void run(const BenchOptions& o) {
   std::optional<PipelineTiming> tracked;
   tracking::HeadMapperConfig mapping;  // the OES preset's sizing.* / tracking.* keys, then --set
   for (const auto variant :
-       {pipeline::BroccoliVariant::oes, pipeline::BroccoliVariant::org, pipeline::BroccoliVariant::fec}) {
+       {pipeline::broccoli::Variant::oes, pipeline::broccoli::Variant::org, pipeline::broccoli::Variant::fec}) {
     const std::string pipe = config_name(variant);
     if (!wanted.count(pipe)) continue;
     const bool own = model->info.pipeline == pipe;
     const auto cfg = own ? model_settings(o, *model) : preset_of(o, pipe);
     settings[pipe] = own ? "model" : "preset broccoli-" + pipe + "-" + o.variety;
-    pipeline::BroccoliDetector det(cfg.detector);
-    det.set_model(pipeline::model_for_variant(model, variant, o.model), o.model);
-    timings[pipe] = pipeline::time_detector(det, frames, o.repeat);
-    if (variant == pipeline::BroccoliVariant::oes && o.track) {
+    pipeline::broccoli::Detector det(cfg.detector);
+    det.set_model(pipeline::broccoli::model_for_variant(model, variant, o.model), o.model);
+    timings[pipe] = pipeline::broccoli::time_detector(det, frames, o.repeat);
+    if (variant == pipeline::broccoli::Variant::oes && o.track) {
       mapping = cfg.mapping();
-      tracked = pipeline::time_tracking(det, mapping, frames, o.repeat);
+      tracked = pipeline::broccoli::time_tracking(det, mapping, frames, o.repeat);
     }
   }
   if (wanted.count("pcl")) {
-    pipeline::PclReferencePipeline pcl(preset_of(o, "fec").detector, model, o.model);
-    timings["pcl_reference"] = pipeline::time_pcl_reference(pcl, frames, o.repeat);
+    pipeline::broccoli::PclReferencePipeline pcl(preset_of(o, "fec").detector, model, o.model);
+    timings["pcl_reference"] = pipeline::broccoli::time_pcl_reference(pcl, frames, o.repeat);
   }
   nlohmann::json out{{"data", o.data},
                      {"model", o.model},

@@ -1,9 +1,9 @@
-// cropsight bench potato (issue 22): the potato loop (detect, locate, ripeness, select / track,
+// cropsight bench potato: the potato loop (detect, locate, ripeness, select / track,
 // orient) timed per stage, single-threaded, on frames in memory, for each preset asked, beside an
 // RGB -> Lab conversion of the same frames timed in the same process (the ratio is the figure
 // that holds on a noisy machine). Without --data it simulates one approach (scene sheet, 640x480)
 // into a temporary folder (io::TempDirectory) that is removed afterwards. The timing is the library's
-// (pipeline/potato/potato_timing.hpp); this file picks frames and presets and prints.
+// (pipeline/potato/timing.hpp); this file picks frames and presets and prints.
 #include <oneapi/tbb/global_control.h>
 
 #include <cstdio>
@@ -14,7 +14,7 @@
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
-#include "cropsight/pipeline/potato/potato_timing.hpp"
+#include "cropsight/pipeline/potato/timing.hpp"
 #include "cropsight/sim/potato/potato_sim.hpp"
 
 namespace cropsight::cli {
@@ -70,9 +70,9 @@ void run(const BenchPotatoOptions& o) {
   // Single-threaded: the issue's target is one core; no stage may use TBB's pool (the library's
   // timing also runs OpenCV on one thread).
   tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
-  std::vector<std::pair<std::string, pp::PotatoPipelineConfig>> presets;
+  std::vector<std::pair<std::string, pp::Config>> presets;
   for (const auto& name : split_list(o.presets, "--presets"))
-    presets.emplace_back(name, pp::load_potato_config(name, o.common.config_map()));
+    presets.emplace_back(name, pp::load_config(name, o.common.config_map()));
   std::optional<io::TempDirectory> scratch;
   const std::vector<RgbdFrame> frames = bench_frames(o, scratch);
   const PipelineTiming baseline = pp::time_lab_conversion(frames, o.repeat);
@@ -88,7 +88,7 @@ void run(const BenchPotatoOptions& o) {
     std::printf("%zu frames x %d, %dx%d, single-threaded; baseline RGB->Lab %.3f ms/frame (CPU)\n", frames.size(),
                 o.repeat, frames[0].color.width, frames[0].color.height, baseline.cpu_ms_per_frame());
   for (auto& [name, cfg] : presets) {
-    pp::PotatoPipeline pipeline(cfg, name);
+    pp::Pipeline pipeline(cfg, name);
     const PipelineTiming t = pp::time_potato_pipeline(pipeline, frames, o.repeat);
     out["presets"][name] = timing_json(t, baseline);
     if (o.common.json) continue;

@@ -31,7 +31,7 @@ struct DetectOptions {
   std::string data, model, out, masks;
   BagTopicOptions topics;
   bool quiet = false, force = false;
-  TrackOptions track;  // --track, --map (issue 4)
+  TrackOptions track;  // --track, --map
 };
 
 void write_mask(const fs::path& dir, const RgbdFrame& frame, const std::vector<Detection>& dets) {
@@ -55,7 +55,7 @@ void run(const DetectOptions& o) {
   std::optional<io::OutputFolder> masks_out;
   if (!o.masks.empty()) masks_out.emplace(o.masks, policy);
   const auto built = make_broccoli(o.model, o.common, o.track.track);
-  pipeline::BroccoliPipeline& pipe = *built;
+  pipeline::broccoli::Pipeline& pipe = *built;
   const Recording recording(o.data, o.topics);
   io::SequenceReader reader(recording.sequence());
 
@@ -65,8 +65,8 @@ void run(const DetectOptions& o) {
   Progress progress("detect broccoli: " + o.data, reader.size(), o.quiet || o.common.json);
   for (int i = 0; i < reader.size(); ++i) {
     const RgbdFrame frame = reader.read(i);
-    const pipeline::BroccoliFrameResult& r = pipe.process(frame);
-    ms += r.detect_ms;
+    const pipeline::broccoli::FrameResult& r = pipe.process(frame);
+    ms += r.detect_ms();
     nlohmann::json line{{"frame", frame.index}, {"timestamp", frame.timestamp}};
     if (o.track.track) add_tracking_json(r, pipe.mapper(), line);
     nlohmann::json arr = nlohmann::json::array();

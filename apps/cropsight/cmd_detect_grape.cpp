@@ -1,5 +1,5 @@
 // cropsight detect grape: the grape pipeline from the camera on one RGB-D frame
-// (pipeline::GrapePipeline): bunch and peduncle boxes (the project's detector, or a COCO file)
+// (pipeline::grape::Pipeline): bunch and peduncle boxes (the project's detector, or a COCO file)
 // → ROIs (Eq. 1, overlapping ones merged) → coloured ROI clouds → normals → the grape segmenter →
 // per bunch a labelled cloud in metres (camera frame) and a cut point on its peduncle.
 //
@@ -23,8 +23,8 @@
 #include "cropsight/io/cloud_io.hpp"
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/files.hpp"
-#include "cropsight/pipeline/grape/grape_pipeline.hpp"
 #include "cropsight/pipeline/grape/make_pipeline.hpp"
+#include "cropsight/pipeline/grape/pipeline.hpp"
 #include "grape_cli.hpp"
 #include "grape_segmenter_options.hpp"
 
@@ -43,7 +43,7 @@ struct DetectGrapeOptions {
 
 nlohmann::json vec3(const Eigen::Vector3f& v) { return {v.x(), v.y(), v.z()}; }
 
-nlohmann::json bunch_json(const pipeline::GrapeBunch& b, const std::string& file) {
+nlohmann::json bunch_json(const pipeline::grape::Bunch& b, const std::string& file) {
   std::vector<long> counts(6, 0);  // the dataset's labels 0-5
   for (int l : b.cloud.labels)
     if (l >= 0 && l < 6) ++counts[std::size_t(l)];
@@ -68,15 +68,15 @@ void run(const DetectGrapeOptions& o) {
   pipeline::PipelineSpec spec{o.common.config, o.common.sets, "", o.detector, o.threads};
   o.segmenter.add_to_spec(spec);
   const auto built = pipeline::grape::make_pipeline(spec);
-  pipeline::GrapePipeline& pipe = *built;
-  const pipeline::GrapeSegmenterConfig& scfg = pipe.segmenter().config();
+  pipeline::grape::Pipeline& pipe = *built;
+  const pipeline::grape::SegmenterConfig& scfg = pipe.segmenter().config();
   const RgbdFrame frame = read_grape_frame(o.color, o.depth, o.camera);
-  std::vector<pipeline::GrapeDetection> given;
-  if (!o.detections.empty()) given = pipeline::read_coco_detections(o.detections, o.image_id);
+  std::vector<pipeline::grape::Detection> given;
+  if (!o.detections.empty()) given = pipeline::grape::read_coco_detections(o.detections, o.image_id);
 
   // Everything is computed before anything is written: no partial output on a failure.
   const Stopwatch clock;
-  const pipeline::GrapeFrameResult r = o.detections.empty() ? pipe.process(frame) : pipe.process(frame, given);
+  const pipeline::grape::FrameResult r = o.detections.empty() ? pipe.process(frame) : pipe.process(frame, given);
   const double ms = clock.ms();
   const std::string source = o.detections.empty() ? o.detector : o.detections;
   for (const auto& d : r.outside) {

@@ -1,7 +1,7 @@
-// cropsight detect potato (issue 22): every image of a folder (or one image file, or every colour
+// cropsight detect potato: every image of a folder (or one image file, or every colour
 // frame of an RGB-D sequence, whose depth then reaches the detector) -> <stem>.txt in the paper's
 // format ("potato score x1 y1 x2 y2"), optional overlays with the boxes and each box's length
-// axis, one JSON line per image. Detection and orientation are the library's PotatoPipeline steps
+// axis, one JSON line per image. Detection and orientation are the library's pipeline::potato::Pipeline steps
 // 1 and 5; this file parses options and writes the outputs, each output folder whole or not at all
 // (temporary folder, then rename).
 #include <algorithm>
@@ -18,7 +18,7 @@
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/io/voc.hpp"
 #include "cropsight/measure/position.hpp"
-#include "cropsight/pipeline/potato/potato_overlay.hpp"
+#include "cropsight/pipeline/potato/overlay.hpp"
 #include "potato_cli.hpp"
 
 namespace cropsight::cli {
@@ -101,7 +101,7 @@ void run(const Options& o) {
   }
   // A bad key or model fails before any image is read; --model: the ONNX backend with this model.
   const auto built = make_potato(o.common, o.model);
-  pipeline::potato::PotatoPipeline& pipeline = *built;
+  pipeline::potato::Pipeline& pipeline = *built;
   const std::vector<std::string> names = pipeline.detector_class_names();
   const Inputs inputs(o);
   nlohmann::json images = nlohmann::json::array();  // --json: one object at the end

@@ -1,5 +1,5 @@
-// cropsight detect seedling (issue 5): one stereo pair + calibration -> seedling envelope box,
-// image mask, top-view mask and per-stage timings. The detection is pipeline::SeedlingPipeline;
+// cropsight detect seedling: one stereo pair + calibration -> seedling envelope box,
+// image mask, top-view mask and per-stage timings. The detection is pipeline::seedling::Pipeline;
 // this file parses options, reads the pair, and writes the outputs.
 
 #include <cstdio>

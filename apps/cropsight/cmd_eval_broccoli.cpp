@@ -10,8 +10,9 @@
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_tracking_eval.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_training.hpp"
+#include "cropsight/pipeline/broccoli/eval.hpp"
+#include "cropsight/pipeline/broccoli/tracking_eval.hpp"
+#include "cropsight/pipeline/broccoli/training.hpp"
 
 namespace cropsight::cli {
 
@@ -20,18 +21,18 @@ struct EvalOptions {
   CommonOptions common;
   std::string data, model;
   bool quiet = false;
-  TrackOptions track;  // --track, --fit-size-bias, --map-min-points (issue 4)
+  TrackOptions track;  // --track, --fit-size-bias, --map-min-points
 };
 
 void run(const EvalOptions& o) {
   if (o.track.fit_size_bias && !o.track.track) throw Error("--fit-size-bias", "needs --track");
   if (o.track.map_min_points < 0) throw Error("--map-min-points", "must be >= 0 (0: every true head counts)");
   const auto built = make_broccoli(o.model, o.common, o.track.track);
-  pipeline::BroccoliPipeline& pipe = *built;
-  pipeline::BroccoliEvaluator evaluator(pipe);
-  std::optional<pipeline::BroccoliTrackingEvaluator> tracker;
+  pipeline::broccoli::Pipeline& pipe = *built;
+  pipeline::broccoli::Evaluator evaluator(pipe);
+  std::optional<pipeline::broccoli::TrackingEvaluator> tracker;
   if (o.track.track)
-    tracker.emplace(pipeline::BroccoliTrackingEvalOptions{o.track.map_min_points, o.track.fit_size_bias, {}});
+    tracker.emplace(pipeline::broccoli::TrackingEvalOptions{o.track.map_min_points, o.track.fit_size_bias, {}});
   for (const auto& dir : split_list(o.data, "--data")) {
     io::SequenceReader reader(dir);
     if (!reader.info().has_labels) throw Error(dir, "sequence has no labels/ (evaluation needs ground truth)");
@@ -39,7 +40,7 @@ void run(const EvalOptions& o) {
     if (tracker && !reader.info().has_groundtruth)
       throw Error(dir, "sequence has no groundtruth.json (--track evaluates the map and sizes against it)");
     Progress progress("eval broccoli: " + dir, reader.size(), o.quiet || o.common.json);
-    pipe.start_pass();
+    pipe.reset();
     if (tracker) tracker->begin_pass(reader.groundtruth(), !reader.poses().empty(), dir);
     for (int i = 0; i < reader.size(); ++i) {
       const RgbdFrame frame = reader.read(i);  // read outside the timed section
@@ -50,15 +51,15 @@ void run(const EvalOptions& o) {
     if (tracker) tracker->end_pass(pipe);
     progress.finish();
   }
-  const auto r = evaluator.result();
+  const auto r = evaluator.figures();
   nlohmann::json j = eval_json(r);
   j["model"] = o.model;
   j["data"] = o.data;
   j["pipeline"] = config_name(pipe.config().detector.pipeline);
   j["features"] = pipe.config().detector.features;
   j["classifier"] = pipe.detector().model()->params.type;
-  std::optional<pipeline::BroccoliTrackingFigures> figures;
-  if (tracker) j.update(tracking_json(*(figures = tracker->result())));
+  std::optional<pipeline::broccoli::TrackingFigures> figures;
+  if (tracker) j.update(tracking_json(*(figures = tracker->figures())));
   if (o.common.json) {
     print_json(j);
     return;

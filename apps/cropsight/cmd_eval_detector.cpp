@@ -1,5 +1,5 @@
 // cropsight eval detector: scores the project's 2D detector (.pt or .onnx) on a labelled set
-// (issue 24): per class COCO box AP50 and AP50:95 and the mask head's pixel accuracy and IoU
+//: per class COCO box AP50 and AP50:95 and the mask head's pixel accuracy and IoU
 // (nn/detector_eval.hpp says how).
 //
 //   cropsight eval detector (--coco ANN.json | --voc DIR) --images DIR --model M(.pt|.onnx)

@@ -15,9 +15,10 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/threads.hpp"
 #include "cropsight/io/grape_text.hpp"
-#include "cropsight/pipeline/grape/grape_eval.hpp"
-#include "cropsight/pipeline/grape/grape_model.hpp"
-#include "cropsight/pipeline/grape/grape_segmenter.hpp"
+#include "cropsight/pipeline/grape/eval.hpp"
+#include "cropsight/pipeline/grape/model.hpp"
+#include "cropsight/pipeline/grape/segmenter.hpp"
+#include "cropsight/pipeline/grape/truth.hpp"
 #include "grape_cli.hpp"
 #include "grape_segmenter_options.hpp"
 
@@ -37,25 +38,25 @@ void run(const EvalGrapeOptions& o) {
   check_thread_count(o.threads, "--threads");
   auto cfg = o.segmenter.config();
   cfg.threads = o.threads;
-  const pipeline::GrapeSegmenter segmenter(cfg, "command line");
-  const pipeline::GrapeModel& model = segmenter.model();
+  const pipeline::grape::Segmenter segmenter(cfg, "command line");
+  const pipeline::grape::Model& model = segmenter.model();
   if (o.limit_set && o.limit < 1) throw Error("--limit", "must be at least 1, got " + std::to_string(o.limit));
   auto files = io::list_grape_clouds(o.data);
   if (o.limit_set && std::size_t(o.limit) < files.size()) files.resize(std::size_t(o.limit));
   if (!o.fold.empty()) {
-    const auto [k, K] = pipeline::parse_fold(o.fold, "--fold");
+    const auto [k, K] = pipeline::grape::parse_fold(o.fold, "--fold");
     // Folds are dealt round-robin: K <= clouds leaves none empty (an empty fold scored "nan").
     if (std::size_t(K) > files.size())
       throw Error("--fold", std::to_string(K) + " folds need at least " + std::to_string(K) + " clouds, " + o.data +
                                 " has " + std::to_string(files.size()) + (o.limit_set ? " (after --limit)" : ""));
-    const auto fold = pipeline::grape_folds(files.size(), K, o.split_seed);
+    const auto fold = pipeline::grape::grape_folds(files.size(), K, o.split_seed);
     std::vector<std::filesystem::path> keep;
     for (std::size_t i = 0; i < files.size(); ++i)
       if (fold[i] == k) keep.push_back(files[i]);
     files = keep;
   }
-  const auto clouds = pipeline::load_grape_clouds(files);
-  const auto ev = pipeline::evaluate_grape(model, clouds);
+  const auto clouds = pipeline::grape::load_grape_clouds(files);
+  const auto ev = pipeline::grape::evaluate_grape(model, clouds);
   if (o.common.json) {
     auto j = grape_evaluation_json(ev);
     j["model"] = model.kind();

@@ -1,10 +1,10 @@
-// cropsight eval potato (issue 22): the whole harvest loop (PotatoPipeline from the preset) on a
+// cropsight eval potato: the whole harvest loop (pipeline::potato::Pipeline from the preset) on a
 // simulated approach (`cropsight simulate potato`), scored against the simulator's truth by
 // pipeline::potato::evaluate_potato_sequence. This file parses, builds, calls and prints.
 #include <cstdio>
 
 #include "commands.hpp"
-#include "cropsight/pipeline/potato/potato_eval.hpp"
+#include "cropsight/pipeline/potato/eval.hpp"
 #include "potato_cli.hpp"
 
 namespace cropsight::cli {
@@ -17,7 +17,7 @@ struct Options {
   bool frames = false;
 };
 
-nlohmann::json frames_json(const pipeline::potato::PotatoSequenceEvaluation& r) {
+nlohmann::json frames_json(const pipeline::potato::SequenceEvaluation& r) {
   nlohmann::json rows = nlohmann::json::array();
   for (const auto& s : r.figures.per_frame) {
     const auto& fr = r.run[std::size_t(s.frame)];
@@ -54,10 +54,10 @@ nlohmann::json axis_json(const pipeline::potato::AxisError& a) {
 void run(const Options& o) {
   namespace pp = pipeline::potato;
   const auto built = make_potato(o.common);
-  pp::PotatoPipeline& pipeline = *built;
-  const pp::PotatoSequenceEvaluation r = pp::evaluate_potato_sequence(pipeline, o.data, o.min_iou);
-  const pp::PotatoEvaluation& e = r.figures;
-  const pp::PotatoStageTimes& t = r.ms;
+  pp::Pipeline& pipeline = *built;
+  const pp::SequenceEvaluation r = pp::evaluate_potato_sequence(pipeline, o.data, o.min_iou);
+  const pp::Evaluation& e = r.figures;
+  const pp::StageTimes& t = r.ms;
   if (o.common.json) {
     nlohmann::json j{
         {"frames", e.frames},

@@ -1,10 +1,10 @@
-// cropsight eval potato-detection (issue 22): the paper's metric (Pascal VOC all-point AP with
+// cropsight eval potato-detection: the paper's metric (Pascal VOC all-point AP with
 // inclusive pixel areas) on a folder of images with VOC annotations, from the detector or from
 // saved detection files (--detections: so the paper's own outputs can be scored).
 #include <cstdio>
 
 #include "commands.hpp"
-#include "cropsight/pipeline/potato/potato_detection_eval.hpp"
+#include "cropsight/pipeline/potato/detection_eval.hpp"
 #include "potato_cli.hpp"
 
 namespace cropsight::cli {

@@ -1,4 +1,4 @@
-// cropsight eval potato-orientation (issue 22, paper Table 4.3): the orientation error (modulo
+// cropsight eval potato-orientation (paper Table 4.3): the orientation error (modulo
 // 180°) of one segmentation + axis + input combination on the paper's folder layout. The
 // evaluation is pipeline::potato::evaluate_orientation(); this file parses and formats.
 // The boxes come from BoardBlobDetector (one colour blob on the white board; --boxes board, the
@@ -10,7 +10,7 @@
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/pipeline/potato/orientation_dataset.hpp"
-#include "cropsight/pipeline/potato/potato_pipeline.hpp"
+#include "cropsight/pipeline/potato/pipeline.hpp"
 
 namespace cropsight::cli {
 
@@ -51,8 +51,8 @@ void run(const Options& o) {
     detector = std::make_unique<pipeline::potato::BoardBlobDetector>();
     boxes = "BoardBlobDetector on the RGB image";
   } else {
-    detector = pipeline::potato::make_potato_detector(pipeline::potato::load_potato_config(o.detector_config).detector,
-                                                      o.detector_config);
+    detector =
+        pipeline::potato::make_detector(pipeline::potato::load_config(o.detector_config).detector, o.detector_config);
     boxes = "the " + o.detector_config + " preset's detector on the RGB image";
   }
   const auto e =

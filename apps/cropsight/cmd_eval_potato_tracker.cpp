@@ -1,4 +1,4 @@
-// cropsight eval potato-tracker (issue 22, §3.4): which OpenCV tracker continues the potato target
+// cropsight eval potato-tracker (§3.4): which OpenCV tracker continues the potato target
 // when detection misses it, measured on simulated approaches by
 // pipeline::potato::evaluate_visual_tracker. This file parses, calls and prints.
 #include <cstdio>
@@ -29,8 +29,8 @@ void run(const Options& o) {
   namespace pp = pipeline::potato;
   std::vector<tracking::VisualTrackerKind> kinds;
   for (const auto& t : o.trackers) kinds.push_back(parse_tracker(t));
-  std::vector<pp::SimulatedPotatoTruthSequence> sequences;
-  for (const auto& d : o.data) sequences.push_back(pp::read_simulated_potato_truth(d));
+  std::vector<pp::TruthSequence> sequences;
+  for (const auto& d : o.data) sequences.push_back(pp::read_truth_sequence(d));
   nlohmann::json rows = nlohmann::json::array();
   for (const auto kind : kinds) {
     const pp::VisualTrackerEvaluation e = pp::evaluate_visual_tracker(kind, sequences, o.trial);

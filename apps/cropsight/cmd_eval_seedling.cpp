@@ -1,8 +1,8 @@
-// cropsight eval seedling (issue 5): runs the seedling pipeline over a simulated data set
+// cropsight eval seedling: runs the seedling pipeline over a simulated data set
 // (cropsight simulate seedling) and prints recognition rate (top-view IoU >= 0.5), sensitivity,
 // envelope volume ratio and timings; cv::ml::EM is timed on the same down-sampled points as our
 // GMM (same K, tolerance and iteration cap). The evaluation is the library's
-// (pipeline::evaluate_seedling_dataset); this file parses options and formats its figures.
+// (pipeline::seedling::evaluate_seedling_dataset); this file parses options and formats its figures.
 #include <cstdio>
 
 #include "commands.hpp"
@@ -18,7 +18,7 @@ struct Options {
   bool quiet = false, no_opencv = false;
 };
 
-void print_text(const pipeline::SeedlingEvaluation& e) {
+void print_text(const pipeline::seedling::Figures& e) {
   std::printf("pairs %d: recognition %.1f%%, sensitivity %.1f%%, volume ratio %.1f%%\n", e.pairs,
               100 * e.recognition_rate, 100 * e.sensitivity, 100 * e.volume_ratio);
   std::printf("ms per pair: total %.1f, SGM %.1f, GMM %.2f", e.ms_total, e.ms_sgm, e.ms_gmm);
@@ -28,11 +28,12 @@ void print_text(const pipeline::SeedlingEvaluation& e) {
 
 void run(const Options& o) {
   const auto seedlings = seedling_pipeline(o.common);
-  const auto data = pipeline::open_seedling_dataset(o.data, o.calib);
+  const auto data = pipeline::seedling::open_dataset(o.data, o.calib);
   Progress progress("eval seedling", long(data.pairs.size()), o.quiet || o.common.json);
-  pipeline::SeedlingEvaluator::Options eo;
+  pipeline::seedling::Evaluator::Options eo;
   eo.compare_opencv_em = !o.no_opencv;
-  const auto e = pipeline::evaluate_seedling_dataset(data, seedlings, eo, [&](int done) { progress.update(done); });
+  const auto e =
+      pipeline::seedling::evaluate_seedling_dataset(data, seedlings, eo, [&](int done) { progress.update(done); });
   progress.finish();
   if (o.common.json)
     print_json(seedling_evaluation_json(e));

@@ -1,4 +1,4 @@
-// cropsight eval stereo (issues 5, 23): bad-1 / bad-2 (percent of ground-truth pixels off by more
+// cropsight eval stereo: bad-1 / bad-2 (percent of ground-truth pixels off by more
 // than 1 / 2 px, a pixel without estimate counting as bad), holes, average error and time on the
 // classic Middlebury pairs (--middlebury) and / or any scene folders (--scenes, stereo_scenes.hpp),
 // also over the non-occluded pixels where a scene has a right-view truth, for our matcher and for
@@ -123,8 +123,7 @@ void run(const Options& o) {
 void add_eval_stereo(CLI::App& eval) {
   using namespace eval_stereo_cmd;
   auto o = std::make_shared<Options>();
-  auto* cmd =
-      eval.add_subcommand("stereo", "Disparity accuracy on Middlebury pairs or any scene folders (issues 5, 23)");
+  auto* cmd = eval.add_subcommand("stereo", "Disparity accuracy on Middlebury pairs or any scene folders");
   cmd->add_option("--middlebury", o->middlebury, "Folder with tsukuba/ venus/ teddy/ cones/");
   cmd->add_option("--scenes", o->scenes,
                   "Folder of scenes: subfolders with left.png, right.png, gt.{png,pgm,pfm} and scene.yaml (gt_scale, "

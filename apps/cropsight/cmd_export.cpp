@@ -24,7 +24,7 @@ struct ExportOptions {
   BagTopicOptions topics;
 };
 
-// The whole sequence as a ROS bag (issue 25).
+// The whole sequence as a ROS bag.
 void run_bag(const ExportOptions& o) {
   const BagExportResult r = export_bag(o.seq, o.bag, o.topics, o.fps, o.force);
   if (o.common.json) {

@@ -1,7 +1,7 @@
-// cropsight harvest potato (issue 22): the whole loop per frame of an RGB-D sequence (detect,
+// cropsight harvest potato: the whole loop per frame of an RGB-D sequence (detect,
 // locate, ripeness, select / track, orient) -> one harvest message per frame as a JSON line
 // (paper Table 3.2 plus frame, timestamp, target id, state, score). The loop is
-// pipeline::potato::PotatoPipeline; this file parses options, reads frames, writes the lines.
+// pipeline::potato::Pipeline; this file parses options, reads frames, writes the lines.
 #include <algorithm>
 #include <cstdio>
 #include <optional>
@@ -13,7 +13,7 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/pipeline/potato/potato_pipeline.hpp"
+#include "cropsight/pipeline/potato/pipeline.hpp"
 #include "potato_cli.hpp"
 
 namespace cropsight::cli {
@@ -32,7 +32,7 @@ void run(const Options& o) {
   // Before the pipeline loads or the loop prints progress.
   if (!o.out.empty()) io::check_output_file(o.out, output_policy("harvest potato", o.force, {o.data, o.common.config}));
   const auto built = make_potato(o.common);
-  pp::PotatoPipeline& pipeline = *built;
+  pp::Pipeline& pipeline = *built;
   const Recording recording(o.data, o.topics);
   const io::SequenceReader seq(recording.sequence());
   std::ostringstream lines;
@@ -41,8 +41,8 @@ void run(const Options& o) {
   double ms = 0;
   int with_target = 0;
   for (int i = 0; i < seq.size(); ++i) {
-    const pp::PotatoFrameResult r = pipeline.process(seq.read(i));
-    ms += r.ms_detect + r.ms_locate + r.ms_track + r.ms_orient;
+    const pp::FrameResult r = pipeline.process(seq.read(i));
+    ms += r.timer.total_ms();
     with_target += r.target.detection ? 1 : 0;
     const nlohmann::json message = harvest_json(r.target);
     lines << message.dump() << '\n';

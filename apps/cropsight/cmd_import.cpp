@@ -18,7 +18,7 @@ struct ImportCliOptions {
   BagTopicOptions topics;
 };
 
-// A ROS bag (issue 25): depth, camera_info and colour topics.
+// A ROS bag: depth, camera_info and colour topics.
 void run_bag(const ImportCliOptions& o) {
   if (!o.io.depth_dir.empty() || !o.io.pcd_dir.empty() || !o.io.camera_yaml.empty())
     throw Error("--data", "reads depth and camera info from the bag: leave out --depth, --pcd and --camera");

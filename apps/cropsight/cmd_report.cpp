@@ -22,7 +22,7 @@ namespace report_cmd {
 struct ReportOptions {
   CommonOptions common;
   std::string data, out, title;
-  std::string model;  // --model: broccoli detection, sizing and map sections (issue 4)
+  std::string model;  // --model: broccoli detection, sizing and map sections
   int frames = 4;
   bool force = false, quiet = false;
 };

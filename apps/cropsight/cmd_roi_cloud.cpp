@@ -1,4 +1,4 @@
-// cropsight roi-cloud: grape pipeline stages 1-3 on one RGB-D frame (pipeline::grape_roi_clouds).
+// cropsight roi-cloud: grape pipeline stages 1-3 on one RGB-D frame (pipeline::grape::grape_roi_clouds).
 // Bunch and peduncle boxes (COCO-style JSON) → ROIs (Eq. 1, overlapping ROIs merged) → coloured
 // ROI clouds (Algorithm 1) → KNN-PCA normals (k = 30, towards the camera) → unit-sphere
 // normalisation. Each ROI is
@@ -23,7 +23,7 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/grape_text.hpp"
-#include "cropsight/pipeline/grape/grape_roi.hpp"
+#include "cropsight/pipeline/grape/roi.hpp"
 #include "grape_cli.hpp"
 
 namespace cropsight::cli {
@@ -42,17 +42,17 @@ void run(const RoiCloudOptions& o) {
   // previous run's files or all of this run's, never a mix; the temporary goes on any failure.
   io::OutputFolder out(
       o.out, output_policy("roi-cloud", o.force, {o.color, o.depth, o.camera, o.detections, o.common.config}));
-  pipeline::GrapeRoiConfig cfg;
+  pipeline::grape::RoiConfig cfg;
   apply_config(cfg, o.common.config_map(o.common.config.empty() ? "grape-roi" : ""), "--config/--set");
   cfg.validate("--config/--set");
   const RgbdFrame f = read_grape_frame(o.color, o.depth, o.camera);
   const CameraIntrinsics& cam = f.camera;
   const DepthImage& depth = f.depth;
   const ColorImage& color = f.color;
-  const auto dets = pipeline::read_coco_detections(o.detections, o.image_id);
+  const auto dets = pipeline::grape::read_coco_detections(o.detections, o.image_id);
   // Compute everything first (the library's stages 1-3), then write: no partial output on a
   // failure half-way.
-  const pipeline::GrapeRoiFrame frame = pipeline::grape_roi_clouds(depth, color, cam, dets, cfg);
+  const pipeline::grape::RoiFrame frame = pipeline::grape::grape_roi_clouds(depth, color, cam, dets, cfg);
   for (const auto& d : frame.outside) {
     const Box2D& b = d.box;
     std::fprintf(stderr,

@@ -1,5 +1,5 @@
 // cropsight segment grape: labels every point of a text cloud with a grape segmenter
-// (pipeline::GrapeSegmenter: a preset, or --model and the mode flags) and writes the cloud back in
+// (pipeline::grape::Segmenter: a preset, or --model and the mode flags) and writes the cloud back in
 // the dataset's format with the predicted label in the last column.
 //
 //   cropsight segment grape [--config PRESET] [--model MODEL] --input CLOUD.txt --out LABELLED.txt
@@ -17,7 +17,7 @@
 #include "cropsight/core/threads.hpp"
 #include "cropsight/core/timer.hpp"
 #include "cropsight/io/grape_text.hpp"
-#include "cropsight/pipeline/grape/grape_segmenter.hpp"
+#include "cropsight/pipeline/grape/segmenter.hpp"
 #include "grape_segmenter_options.hpp"
 
 namespace cropsight::cli {
@@ -36,7 +36,7 @@ void run(const SegmentGrapeOptions& o) {
   auto cfg = o.segmenter.config();
   io::check_output_file(o.out, output_policy("segment grape", o.force, {o.input, cfg.model, cfg.ensemble}));
   cfg.threads = o.threads;
-  const pipeline::GrapeSegmenter segmenter(cfg, "command line");
+  const pipeline::grape::Segmenter segmenter(cfg, "command line");
   Cloud cloud = io::read_grape_text(o.input);
   const Stopwatch clock;
   cloud.labels = segmenter.segment(cloud);

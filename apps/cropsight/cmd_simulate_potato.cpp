@@ -1,4 +1,4 @@
-// cropsight simulate potato (issue 22): a D415-like camera on an arm that scans potatoes hanging
+// cropsight simulate potato: a D415-like camera on an arm that scans potatoes hanging
 // among roots and approaches one, with per-frame ground truth (docs/simulator.md, "Potatoes").
 #include <cstdint>
 #include <iostream>

@@ -1,4 +1,4 @@
-// cropsight simulate seedling (issue 5): stereo pairs of broccoli seedlings among weeds with
+// cropsight simulate seedling: stereo pairs of broccoli seedlings among weeds with
 // ground truth, checkerboard pairs, and the rig's calibration (rig.yaml).
 //
 // The data set is written into a hidden temporary sibling of --out and renamed into place at the

@@ -1,4 +1,4 @@
-// cropsight stereo calibrate | disparity (issue 5): checkerboard calibration of a stereo pair here,
+// cropsight stereo calibrate | disparity: checkerboard calibration of a stereo pair here,
 // dense disparity of one pair in cmd_stereo_disparity.cpp.
 #include <cmath>
 #include <cstdio>

@@ -1,4 +1,4 @@
-// cropsight stereo disparity (issue 5): dense disparity of one pair (optionally rectified with a
+// cropsight stereo disparity: dense disparity of one pair (optionally rectified with a
 // calibration first) with our matcher, plain OpenCV SGBM or the paper's SAD / SSD baselines.
 #include <cstdio>
 #include <filesystem>

@@ -10,7 +10,7 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/learning/grid_search.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_training.hpp"
+#include "cropsight/pipeline/broccoli/training.hpp"
 
 namespace cropsight::cli {
 
@@ -23,13 +23,13 @@ struct TrainOptions {
 };
 
 // defaults ← preset ← --set ← explicit flags; keys "grid.*" configure the grid search. The whole
-// preset is one BroccoliPipelineConfig: sizing.* / tracking.* configure detect/eval --track, not
+// preset is one pipeline::broccoli::Config: sizing.* / tracking.* configure detect/eval --track, not
 // training, and are checked all the same.
-std::pair<pipeline::BroccoliPipelineConfig, learning::GridSearchConfig> train_configs(const TrainOptions& o) {
+std::pair<pipeline::broccoli::Config, learning::GridSearchConfig> train_configs(const TrainOptions& o) {
   ConfigMap all = o.common.config_map();
   ConfigMap grid_keys, pipeline_keys;
   for (const auto& [k, v] : all) (k.rfind("grid.", 0) == 0 ? grid_keys : pipeline_keys)[k] = v;
-  pipeline::BroccoliPipelineConfig full;
+  pipeline::broccoli::Config full;
   apply_config(full, pipeline_keys, o.common.config.empty() ? "--set" : o.common.config);
   learning::GridSearchConfig grid;
   apply_config(grid, grid_keys, "--set", "grid.");
@@ -42,7 +42,7 @@ std::pair<pipeline::BroccoliPipelineConfig, learning::GridSearchConfig> train_co
 
 // Adds every frame of the --data sequences to `builder`; returns the provenance the model file
 // records (data, seeds, varieties, frames).
-std::map<std::string, std::string> add_sequences(const TrainOptions& o, pipeline::BroccoliDatasetBuilder& builder) {
+std::map<std::string, std::string> add_sequences(const TrainOptions& o, pipeline::broccoli::DatasetBuilder& builder) {
   std::string seeds, varieties;
   for (const auto& dir : split_list(o.data, "--data")) {
     io::SequenceReader reader(dir);
@@ -63,7 +63,7 @@ std::map<std::string, std::string> add_sequences(const TrainOptions& o, pipeline
 
 // The cross-validated grid search: sets cfg.classifier to the best point, returns its figures.
 nlohmann::json grid_search(const TrainOptions& o, const learning::Dataset& data, const learning::GridSearchConfig& grid,
-                           pipeline::BroccoliDetectorConfig& cfg) {
+                           pipeline::broccoli::DetectorConfig& cfg) {
   // One line per grid point at most once a second: a full grid is ~100 × folds SVM trainings.
   std::optional<Progress> progress;
   const auto r =
@@ -85,8 +85,8 @@ void run(const TrainOptions& o) {
   inputs.push_back(o.common.config);
   io::check_output_file(o.out, output_policy("train broccoli", o.force, inputs));  // before minutes of training
   auto [full, grid] = train_configs(o);
-  pipeline::BroccoliDetectorConfig& cfg = full.detector;
-  pipeline::BroccoliDatasetBuilder builder(cfg, full.truth);
+  pipeline::broccoli::DetectorConfig& cfg = full.detector;
+  pipeline::broccoli::DatasetBuilder builder(cfg, full.truth);
   const Stopwatch clock;
   std::map<std::string, std::string> provenance = add_sequences(o, builder);
   const auto& data = builder.dataset();
@@ -98,7 +98,7 @@ void run(const TrainOptions& o) {
     grid_json = grid_search(o, data, grid, cfg);
     provenance["grid_search"] = grid_json.dump();
   }
-  const learning::Model model = pipeline::train_broccoli_model(data, cfg, full.truth, provenance);
+  const learning::Model model = pipeline::broccoli::train_model(data, cfg, full.truth, provenance);
   learning::save_model(o.out, model);
   const double secs = clock.seconds();
 

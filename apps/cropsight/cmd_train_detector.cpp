@@ -1,4 +1,4 @@
-// cropsight train detector: trains the project's CenterNet (issue 24) from scratch on a COCO or
+// cropsight train detector: trains the project's CenterNet from scratch on a COCO or
 // VOC set, with augmentation, a held-out split scored every epoch, checkpoints and resume.
 //
 //   cropsight train detector (--coco ANN.json | --voc DIR) --images DIR [--classes a,b] --out det.pt

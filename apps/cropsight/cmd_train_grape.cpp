@@ -1,4 +1,4 @@
-// cropsight train grape: trains the grape bunch segmentation models (issue 6) on the dataset's
+// cropsight train grape: trains the grape bunch segmentation models on the dataset's
 // labelled text clouds, with optional k-fold cross-validation by cloud.
 //
 //   cropsight train grape --clouds DIR [--model gbdt|pointresnet|pointnet2]
@@ -16,8 +16,9 @@
 #include "cropsight/core/threads.hpp"
 #include "cropsight/core/timer.hpp"
 #include "cropsight/io/grape_text.hpp"
-#include "cropsight/pipeline/grape/grape_model.hpp"
-#include "cropsight/pipeline/grape/grape_training.hpp"
+#include "cropsight/pipeline/grape/model.hpp"
+#include "cropsight/pipeline/grape/training.hpp"
+#include "cropsight/pipeline/grape/truth.hpp"
 #include "grape_cli.hpp"
 #include "train_grape_options.hpp"
 
@@ -34,19 +35,19 @@ void run(const TrainGrapeOptions& o) {
   const io::OutputPolicy policy = output_policy("train grape", o.force, {o.data, o.common.config});
   if (!o.out.empty()) io::check_output_file(o.out, policy);
   if (!o.checkpoint.empty()) io::check_not_an_input(o.checkpoint, policy);
-  const pipeline::GrapeTrainConfig cfg = train_grape_config(o);
+  const pipeline::grape::TrainConfig cfg = train_grape_config(o);
   const auto say = [&o](const std::string& line) {
     if (!o.quiet) progress(line);
   };
   auto files = io::list_grape_clouds(o.data);
   if (o.limit_set && std::size_t(o.limit) < files.size()) files.resize(std::size_t(o.limit));
-  const auto clouds = pipeline::load_grape_clouds(files);
+  const auto clouds = pipeline::grape::load_grape_clouds(files);
   nlohmann::json result = {{"model", cfg.model}, {"clouds", clouds.size()}};
   if (cfg.model != "gbdt") result["features"] = o.features;
 
   if (!o.val_fold.empty() || o.folds_set) {
-    const pipeline::GrapeFoldPlan plan = train_grape_fold_plan(o, clouds.size());
-    const auto cv = pipeline::cross_validate_grape(cfg, clouds, plan, say);
+    const pipeline::grape::FoldPlan plan = train_grape_fold_plan(o, clouds.size());
+    const auto cv = pipeline::grape::cross_validate_grape(cfg, clouds, plan, say);
     result["validation"] = grape_evaluation_json(cv.pooled);
     result["validation"]["folds"] = plan.folds;
     result["validation"]["folds_run"] = plan.last - plan.first;
@@ -60,7 +61,7 @@ void run(const TrainGrapeOptions& o) {
   }
   if (!o.out.empty()) {
     const Stopwatch clock;
-    pipeline::train_grape_model(cfg, clouds, {}, o.out, [&](const std::string& line) { say("[all] " + line); });
+    pipeline::grape::train_grape_model(cfg, clouds, {}, o.out, [&](const std::string& line) { say("[all] " + line); });
     result["out"] = o.out;
     result["train_seconds"] = json_number(clock.seconds());
     if (!o.common.json)

@@ -19,20 +19,20 @@ void add_render(CLI::App& app);
 void add_report(CLI::App& app);
 CLI::App* add_report_demo(CLI::App& report);  // called by add_report; returns the sub-command
 
-// Broccoli heads (issue 3): train / detect / eval / bench broccoli
+// Broccoli heads: train / detect / eval / bench broccoli
 void add_train_broccoli(CLI::App& train);
 void add_detect_broccoli(CLI::App& detect);
 void add_eval_broccoli(CLI::App& eval);
 void add_bench_broccoli(CLI::App& bench);
 
-// Grape bunches (issue 6): train / segment / eval grape, roi-cloud; detect grape (issue 24)
+// Grape bunches: train / segment / eval grape, roi-cloud; detect grape
 void add_train_grape(CLI::App& train);
 void add_segment_grape(CLI::App& segment);
 void add_eval_grape(CLI::App& eval);
 void add_roi_cloud(CLI::App& app);
 void add_detect_grape(CLI::App& detect);
 
-// Broccoli seedlings from stereo (issue 5): stereo calibrate|disparity, detect / eval / simulate seedling, eval stereo
+// Broccoli seedlings from stereo: stereo calibrate|disparity, detect / eval / simulate seedling, eval stereo
 void add_stereo(CLI::App& app);
 void add_stereo_disparity(CLI::App& parent);  // called by add_stereo
 void add_detect_seedling(CLI::App& detect);
@@ -40,7 +40,7 @@ void add_eval_seedling(CLI::App& eval);
 void add_eval_stereo(CLI::App& eval);
 void add_simulate_seedling(CLI::App& simulate);
 
-// Potatoes (issue 22): detect potato, eval potato-detection, eval potato-orientation, eval potato,
+// Potatoes: detect potato, eval potato-detection, eval potato-orientation, eval potato,
 // harvest potato, bench potato
 void add_detect_potato(CLI::App& detect);
 void add_eval_potato_detection(CLI::App& eval);
@@ -50,7 +50,7 @@ void add_eval_potato_tracker(CLI::App& eval);  // which visual tracker continues
 void add_harvest_potato(CLI::App& harvest);
 void add_bench_potato(CLI::App& bench);
 
-// Our own 2D detector (issue 24): train detector, export-detector, detect objects, eval detector
+// Our own 2D detector: train detector, export-detector, detect objects, eval detector
 void add_train_detector(CLI::App& train);
 void add_export_detector(CLI::App& app);
 void add_calibrate_detector(CLI::App& app);

@@ -7,7 +7,7 @@
 
 namespace cropsight::cli {
 
-nlohmann::json grape_evaluation_json(const pipeline::GrapeEvaluation& e) {
+nlohmann::json grape_evaluation_json(const pipeline::grape::Evaluation& e) {
   const auto& m = e.confusion;
   nlohmann::json j;
   j["clouds"] = e.clouds;
@@ -22,7 +22,7 @@ nlohmann::json grape_evaluation_json(const pipeline::GrapeEvaluation& e) {
                               {"accuracy", json_number(m.class_accuracy(c))},
                               {"iou", json_number(m.class_iou(c))}});
   j["ms_per_cloud"] = json_number(e.ms_per_cloud());
-  for (const auto& p : pipeline::grape_protocols(e))
+  for (const auto& p : pipeline::grape::grape_protocols(e))
     j["protocols"][p.name] = {{"classes", p.classes}, {"miou", json_number(p.miou)}};
   return j;
 }

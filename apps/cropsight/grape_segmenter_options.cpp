@@ -27,7 +27,7 @@ void GrapeSegmenterOptions::add_options(CLI::App* cmd, const std::string& defaul
                   "ensemble; or a model file (.pt, .json) with the default settings; the flags below override its "
                   "keys" +
                       (default_preset.empty() ? std::string() : " (default without --model: " + default_preset + ")"));
-  // Each flag fills one key of pipeline::GrapeSegmenterConfig; only the flags given override. Numbers
+  // Each flag fills one key of pipeline::grape::SegmenterConfig; only the flags given override. Numbers
   // are typed, so that --help says INT / FLOAT and CLI11 refuses text before the config sees it.
   auto option = [&](const std::string& flag, const std::string& key, const std::string& help) {
     cmd->add_option_function<std::string>(
@@ -72,8 +72,8 @@ std::string GrapeSegmenterOptions::preset() const {
   return preset;
 }
 
-pipeline::GrapeSegmenterConfig GrapeSegmenterOptions::config() const {
-  return pipeline::grape_segmenter_config(preset(), flags_, "command line");
+pipeline::grape::SegmenterConfig GrapeSegmenterOptions::config() const {
+  return pipeline::grape::grape_segmenter_config(preset(), flags_, "command line");
 }
 
 void GrapeSegmenterOptions::add_to_spec(pipeline::PipelineSpec& spec) const {
@@ -81,7 +81,7 @@ void GrapeSegmenterOptions::add_to_spec(pipeline::PipelineSpec& spec) const {
   for (const auto& [key, value] : flags_) spec.sets.push_back("segmenter." + key + "=" + value);
 }
 
-void GrapeSegmenterOptions::describe(const pipeline::GrapeSegmenterConfig& cfg, nlohmann::json& j) {
+void GrapeSegmenterOptions::describe(const pipeline::grape::SegmenterConfig& cfg, nlohmann::json& j) {
   j["votes"] = cfg.votes;
   if (!cfg.ensemble.empty()) {
     j["ensemble"] = cfg.ensemble;

@@ -46,23 +46,23 @@ int main(int argc, char** argv) {
   add_detect_broccoli(*detect);
   add_eval_broccoli(*eval);
   add_bench_broccoli(*bench);
-  // Grape bunches (issue 6)
+  // Grape bunches
   auto* segment = app.add_subcommand("segment", "Label the points of a cloud with a trained model");
   segment->require_subcommand(1);
   add_train_grape(*train);
   add_segment_grape(*segment);
   add_eval_grape(*eval);
   add_roi_cloud(app);
-  add_detect_grape(*detect);  // issue 24: the whole grape pipeline from the camera
+  add_detect_grape(*detect);  // the whole grape pipeline from the camera
 
-  // Broccoli seedlings from stereo (issue 5)
+  // Broccoli seedlings from stereo
   add_stereo(app);
   add_detect_seedling(*detect);
   add_eval_seedling(*eval);
   add_eval_stereo(*eval);
   add_simulate_seedling(*simulate);
 
-  // Potatoes (issue 22)
+  // Potatoes
   add_detect_potato(*detect);
   add_eval_potato_detection(*eval);
   add_eval_potato_orientation(*eval);
@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
   add_harvest_potato(*harvest);
   add_bench_potato(*bench);
 
-  // Our own 2D detector (issue 24)
+  // Our own 2D detector
   add_train_detector(*train);
   add_export_detector(app);
   add_calibrate_detector(app);

@@ -6,16 +6,16 @@ namespace {
 std::string preset_of(const CommonOptions& common) { return common.config.empty() ? "potato" : common.config; }
 }  // namespace
 
-pipeline::potato::PotatoPipelineConfig potato_config(const CommonOptions& common) {
+pipeline::potato::Config potato_config(const CommonOptions& common) {
   return pipeline::potato::spec_config({common.config, common.sets});
 }
 
-std::unique_ptr<pipeline::potato::PotatoPipeline> make_potato(const CommonOptions& common, const std::string& model) {
+std::unique_ptr<pipeline::potato::Pipeline> make_potato(const CommonOptions& common, const std::string& model) {
   return pipeline::potato::make_pipeline({common.config, common.sets, model});
 }
 
 std::unique_ptr<Detector2D> potato_detector(const CommonOptions& common) {
-  return pipeline::potato::make_potato_detector(potato_config(common).detector, preset_of(common));
+  return pipeline::potato::make_detector(potato_config(common).detector, preset_of(common));
 }
 
 nlohmann::json harvest_json(const pipeline::potato::HarvestTarget& t) {

@@ -1,23 +1,22 @@
 #pragma once
-// Shared by the potato commands (issue 22): the detector a preset and --set choose.
+// Shared by the potato commands: the detector a preset and --set choose.
 #include <memory>
 #include <nlohmann/json.hpp>
 
 #include "cli_common.hpp"
 #include "cropsight/core/detection2d.hpp"
 #include "cropsight/pipeline/potato/make_pipeline.hpp"
-#include "cropsight/pipeline/potato/potato_pipeline.hpp"
+#include "cropsight/pipeline/potato/pipeline.hpp"
 
 namespace cropsight::cli {
 
 /// The pipeline configuration of the "potato" preset (or --config) overlaid with --set and
 /// validated; an unknown key or a bad value is an Error naming the preset or "--set".
-pipeline::potato::PotatoPipelineConfig potato_config(const CommonOptions& common);
+pipeline::potato::Config potato_config(const CommonOptions& common);
 
 /// The potato pipeline of --config, --set and --model (an ONNX detector; "" = the preset's),
 /// built by the library's one builder (pipeline::potato::make_pipeline).
-std::unique_ptr<pipeline::potato::PotatoPipeline> make_potato(const CommonOptions& common,
-                                                              const std::string& model = "");
+std::unique_ptr<pipeline::potato::Pipeline> make_potato(const CommonOptions& common, const std::string& model = "");
 
 /// The detector that configuration names (detector.backend: classical | onnx).
 std::unique_ptr<Detector2D> potato_detector(const CommonOptions& common);

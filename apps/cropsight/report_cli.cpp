@@ -11,10 +11,10 @@ namespace cropsight::cli {
 BroccoliReportPass broccoli_report_pass(const std::string& seq, const std::string& model, const CommonOptions& common,
                                         int overlay_frames, bool quiet) {
   const auto built = make_broccoli(model, common, /*track=*/true);
-  pipeline::BroccoliPipeline& pipe = *built;
+  pipeline::broccoli::Pipeline& pipe = *built;
   io::SequenceReader reader(seq);
   if (!reader.info().has_labels) throw Error(seq, "sequence has no labels/ (the broccoli report needs ground truth)");
-  pipeline::BroccoliTrackingEvaluator tracker(
+  pipeline::broccoli::TrackingEvaluator tracker(
       {.overlay_frames = report::evenly_spaced_frames(reader.size(), overlay_frames)});
   tracker.begin_pass(reader.groundtruth(), !reader.poses().empty(), seq);
   Progress progress("report broccoli: " + seq, reader.size(), common.json || quiet);
@@ -26,7 +26,7 @@ BroccoliReportPass broccoli_report_pass(const std::string& seq, const std::strin
   }
   progress.finish();
   tracker.end_pass(pipe);
-  BroccoliReportPass pass{tracker.result(), {}};
+  BroccoliReportPass pass{tracker.figures(), {}};
   pass.data = report::broccoli_report_data(pass.figures, tracker.material());
   pass.data.model = model;
   pass.data.stages = pipe.detector().timer().stages();

@@ -5,13 +5,13 @@
 #include <string>
 
 #include "cli_common.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_tracking_eval.hpp"
+#include "cropsight/pipeline/broccoli/tracking_eval.hpp"
 #include "cropsight/report/broccoli_report.hpp"
 
 namespace cropsight::cli {
 
 struct BroccoliReportPass {
-  pipeline::BroccoliTrackingFigures figures;
+  pipeline::broccoli::TrackingFigures figures;
   report::BroccoliReportData data;  ///< with the model and the detector's stage times
 };
 

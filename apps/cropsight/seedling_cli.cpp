@@ -6,11 +6,11 @@
 
 namespace cropsight::cli {
 
-pipeline::SeedlingPipeline seedling_pipeline(const CommonOptions& o) {
+pipeline::seedling::Pipeline seedling_pipeline(const CommonOptions& o) {
   return std::move(*pipeline::seedling::make_pipeline({o.config, o.sets}));
 }
 
-nlohmann::json seedling_json(const pipeline::SeedlingDetection& d) {
+nlohmann::json seedling_json(const pipeline::seedling::FrameResult& d) {
   nlohmann::json t = nlohmann::json::object();
   for (const auto& s : d.timer.stages()) t[s.name] = json_number(s.total_ms);
   t["total"] = json_number(d.timer.total_ms());
@@ -34,7 +34,7 @@ nlohmann::json seedling_json(const pipeline::SeedlingDetection& d) {
       {"timings_ms", t}};
 }
 
-nlohmann::json seedling_evaluation_json(const pipeline::SeedlingEvaluation& e) {
+nlohmann::json seedling_evaluation_json(const pipeline::seedling::Figures& e) {
   nlohmann::json per = nlohmann::json::array();
   for (const auto& r : e.per_pair)
     per.push_back({{"pair", r.pair},

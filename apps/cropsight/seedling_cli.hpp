@@ -7,8 +7,8 @@
 #include "cli_common.hpp"
 #include "cropsight/core/config.hpp"
 #include "cropsight/io/config_yaml.hpp"
-#include "cropsight/pipeline/seedling/seedling_eval.hpp"
-#include "cropsight/pipeline/seedling/seedling_pipeline.hpp"
+#include "cropsight/pipeline/seedling/eval.hpp"
+#include "cropsight/pipeline/seedling/pipeline.hpp"
 
 namespace cropsight::cli {
 
@@ -35,11 +35,11 @@ void apply_checked_config(Config& cfg, const CommonOptions& o, const std::string
 }
 
 /// The seedling pipeline of the preset (default configs/seedling.yaml) with the --set overrides,
-/// validated (pipeline::validate_seedling_config); errors name the preset file or "--set" and the key.
-pipeline::SeedlingPipeline seedling_pipeline(const CommonOptions& o);
+/// validated (pipeline::seedling::Config::validate); errors name the preset file or "--set" and the key.
+pipeline::seedling::Pipeline seedling_pipeline(const CommonOptions& o);
 /// found, envelope, plane, point counts, timings in ms per stage.
-nlohmann::json seedling_json(const pipeline::SeedlingDetection& d);
+nlohmann::json seedling_json(const pipeline::seedling::FrameResult& d);
 /// The figures of an evaluation, per pair and averaged (the cv::ml::EM keys only when compared).
-nlohmann::json seedling_evaluation_json(const pipeline::SeedlingEvaluation& e);
+nlohmann::json seedling_evaluation_json(const pipeline::seedling::Figures& e);
 
 }  // namespace cropsight::cli

@@ -4,7 +4,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/threads.hpp"
-#include "cropsight/pipeline/grape/grape_model.hpp"
+#include "cropsight/pipeline/grape/model.hpp"
 
 namespace cropsight::cli {
 namespace fs = std::filesystem;
@@ -26,8 +26,8 @@ void check_train_grape_options(const TrainGrapeOptions& o) {
   }
 }
 
-pipeline::GrapeTrainConfig train_grape_config(const TrainGrapeOptions& o) {
-  pipeline::GrapeTrainConfig c;
+pipeline::grape::TrainConfig train_grape_config(const TrainGrapeOptions& o) {
+  pipeline::grape::TrainConfig c;
   c.model = o.model;
   ConfigMap cfg_map;
   if (c.model.empty() && !o.common.config.empty()) {
@@ -65,11 +65,11 @@ pipeline::GrapeTrainConfig train_grape_config(const TrainGrapeOptions& o) {
   return c;
 }
 
-pipeline::GrapeFoldPlan train_grape_fold_plan(const TrainGrapeOptions& o, std::size_t clouds) {
-  pipeline::GrapeFoldPlan plan;
+pipeline::grape::FoldPlan train_grape_fold_plan(const TrainGrapeOptions& o, std::size_t clouds) {
+  pipeline::grape::FoldPlan plan;
   plan.folds = o.folds, plan.first = 0, plan.last = o.folds;
   if (!o.val_fold.empty()) {
-    const auto [k, K] = pipeline::parse_fold(o.val_fold, "--val-fold");
+    const auto [k, K] = pipeline::grape::parse_fold(o.val_fold, "--val-fold");
     plan.folds = K, plan.first = k, plan.last = k + 1;
     plan.keep_model = o.out;
   }

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "cli_common.hpp"
-#include "cropsight/pipeline/grape/grape_training.hpp"
+#include "cropsight/pipeline/grape/training.hpp"
 
 namespace cropsight::cli {
 
@@ -27,11 +27,11 @@ void check_train_grape_options(const TrainGrapeOptions& o);
 /// The configuration to train with, built and validated before any cloud is loaded, so that a
 /// bad --set value fails at once and names its key (not deep inside XGBoost or libtorch). A
 /// preset names its network (`arch`); without --model that decides, else gbdt.
-pipeline::GrapeTrainConfig train_grape_config(const TrainGrapeOptions& o);
+pipeline::grape::TrainConfig train_grape_config(const TrainGrapeOptions& o);
 
 /// --val-fold k/K (that fold, its model kept at --out) or --folds K (all, temporary models) as a
 /// plan for `clouds` clouds. Folds are dealt round-robin: K <= clouds leaves none empty (an
 /// empty fold scored "nan"), so more folds than clouds throw Error.
-pipeline::GrapeFoldPlan train_grape_fold_plan(const TrainGrapeOptions& o, std::size_t clouds);
+pipeline::grape::FoldPlan train_grape_fold_plan(const TrainGrapeOptions& o, std::size_t clouds);
 
 }  // namespace cropsight::cli

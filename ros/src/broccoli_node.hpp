@@ -1,7 +1,7 @@
 #pragma once
 // The broccoli node: depth (+ colour) + camera_info → heads (vision_msgs/Detection3DArray), the
 // online field map (visualization_msgs/MarkerArray), a debug image and input diagnostics. The
-// pipeline is the library's BroccoliPipeline (through bridge::BroccoliRunner); the map CSV is
+// pipeline is the library's pipeline::broccoli::Pipeline (through bridge::BroccoliRunner); the map CSV is
 // written on shutdown when ~map_file is set. One callback thread (ros::spin).
 //
 // Topics (relative, remap them): in  depth/image_raw, depth/camera_info, [color/image_raw]

@@ -2,7 +2,7 @@
 // The grape node: colour + aligned depth + camera_info → per frame the grape bunches
 // (cropsight_msgs/GrapeBunchArray: each bunch's ROI, its labelled PointCloud2 and its cut point),
 // all bunches' points as one labelled PointCloud2 (for rviz), the cut points as arrow markers, a
-// debug image and input diagnostics. The pipeline is the library's GrapePipeline (through
+// debug image and input diagnostics. The pipeline is the library's pipeline::grape::Pipeline (through
 // bridge::GrapeRunner), as `cropsight detect grape` runs it. One callback thread (ros::spin).
 //
 // Boxes: the project's detector (~detector, a .onnx or .pt file), or — with ~detector none — the

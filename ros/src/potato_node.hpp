@@ -2,7 +2,7 @@
 // The potato node: colour + aligned depth + camera_info → the harvest target
 // (cropsight_msgs/HarvestTarget, the paper's Table 3.2 with a header) at ~rate Hz (default 3, the
 // paper's; 0 = every frame), every frame's boxes (vision_msgs/Detection2DArray), a target marker,
-// a debug image and input diagnostics. The pipeline is the library's PotatoPipeline (through
+// a debug image and input diagnostics. The pipeline is the library's pipeline::potato::Pipeline (through
 // bridge::PotatoRunner): every frame is processed, since the target tracker needs them all; only
 // the harvest message is throttled. One callback thread (ros::spin).
 //

@@ -2,7 +2,7 @@
 // The seedling node: a rectified stereo pair (left and right images + their camera_info, as
 // stereo_image_proc publishes them) → the seedling's envelope box (vision_msgs/Detection3DArray,
 // empty when none is found), its points (sensor_msgs/PointCloud2, x y z float32, rectified
-// left camera frame) and input diagnostics. The pipeline is the library's SeedlingPipeline
+// left camera frame) and input diagnostics. The pipeline is the library's pipeline::seedling::Pipeline
 // (through bridge::SeedlingRunner). One callback thread (ros::spin).
 //
 // Topics (relative, remap them): in  left/image_rect_color, right/image_rect_color,

@@ -1,8 +1,8 @@
 #include "cropsight/bridge/broccoli_runner.hpp"
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
 #include "cropsight/pipeline/broccoli/make_pipeline.hpp"
+#include "cropsight/pipeline/broccoli/pipeline.hpp"
 #include "cropsight/tracking/field_map_io.hpp"
 #include "frame_conversion.hpp"
 
@@ -22,8 +22,8 @@ BroccoliMapHead map_head(const tracking::TrackedHead& h) {
 
 // The pipeline is neither copyable nor movable: the library's builder returns it on the heap.
 struct BroccoliRunner::Impl {
-  std::unique_ptr<pipeline::BroccoliPipeline> built;
-  pipeline::BroccoliPipeline& pipe;
+  std::unique_ptr<pipeline::broccoli::Pipeline> built;
+  pipeline::broccoli::Pipeline& pipe;
   explicit Impl(const BroccoliRunnerOptions& o) : built(pipeline::broccoli::make_pipeline(spec_of(o))), pipe(*built) {
     // A node runs for hours and never scores a pass offline: keeping every measured detection
     // would grow its memory with the frames (docs/reliability.md, "Long runs").
@@ -36,11 +36,11 @@ BroccoliRunner::~BroccoliRunner() = default;
 
 BroccoliFrameOut BroccoliRunner::process(const FrameBuffers& frame) {
   if (frame.depth.empty()) throw Error("frame " + std::to_string(frame.index), "has no depth image");
-  const pipeline::BroccoliFrameResult& r = impl_->pipe.process(to_rgbd_frame(frame));
+  const pipeline::broccoli::FrameResult& r = impl_->pipe.process(to_rgbd_frame(frame));
   BroccoliFrameOut out;
   out.frame = r.frame;
-  out.detect_ms = r.detect_ms;
-  out.track_ms = r.track_ms;
+  out.detect_ms = r.detect_ms();
+  out.track_ms = r.track_ms();
   for (std::size_t k = 0; k < r.detections.size(); ++k) {
     const Detection& d = r.detections[k];
     BroccoliHead h;
@@ -73,7 +73,7 @@ std::vector<BroccoliMapHead> BroccoliRunner::current_map() const {
 void BroccoliRunner::finish_and_write_map(const std::string& csv_path) {
   if (!impl_->pipe.config().track) throw Error(csv_path, "the field map needs tracking (track = true)");
   tracking::write_field_map(csv_path, impl_->pipe.finish());
-  impl_->pipe.start_pass();
+  impl_->pipe.reset();
 }
 
 bool BroccoliRunner::tracking() const { return impl_->pipe.config().track; }

@@ -4,22 +4,22 @@
 #include <cmath>
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/pipeline/grape/grape_pipeline.hpp"
 #include "cropsight/pipeline/grape/make_pipeline.hpp"
+#include "cropsight/pipeline/grape/pipeline.hpp"
 #include "frame_conversion.hpp"
 
 namespace cropsight::bridge {
 
 namespace {
 
-// The pipeline as every front-end builds it (pipeline::grape::make_pipeline). GrapePipeline moves.
-pipeline::GrapePipeline make_runner_pipeline(const GrapeRunnerOptions& o) {
+// The pipeline as every front-end builds it (pipeline::grape::make_pipeline). pipeline::grape::Pipeline moves.
+pipeline::grape::Pipeline make_runner_pipeline(const GrapeRunnerOptions& o) {
   return std::move(*pipeline::grape::make_pipeline({o.config, o.sets, o.segmenter, o.detector, o.threads}));
 }
 
 GrapeBox box_of(const Box2D& b, int category, float score) { return {b.x, b.y, b.width, b.height, category, score}; }
 
-GrapeBunchOut bunch_of(const pipeline::GrapeBunch& b) {
+GrapeBunchOut bunch_of(const pipeline::grape::Bunch& b) {
   GrapeBunchOut out;
   out.roi = box_of(b.roi, 1, 1.f);
   const Cloud& c = b.cloud;
@@ -42,7 +42,7 @@ GrapeBunchOut bunch_of(const pipeline::GrapeBunch& b) {
   return out;
 }
 
-GrapeFrameOut frame_out(const pipeline::GrapeFrameResult& r) {
+GrapeFrameOut frame_out(const pipeline::grape::FrameResult& r) {
   GrapeFrameOut out;
   for (const auto& d : r.detections) out.detections.push_back(box_of(d.box, d.category, d.score));
   for (const auto& b : r.bunches) out.bunches.push_back(bunch_of(b));
@@ -53,7 +53,7 @@ GrapeFrameOut frame_out(const pipeline::GrapeFrameResult& r) {
 
 // The pipeline owns its segmenter and detector (models loaded once, here).
 struct GrapeRunner::Impl {
-  pipeline::GrapePipeline pipe;
+  pipeline::grape::Pipeline pipe;
   explicit Impl(const GrapeRunnerOptions& o) : pipe(make_runner_pipeline(o)) {}
 };
 
@@ -67,11 +67,11 @@ GrapeFrameOut GrapeRunner::process(const FrameBuffers& frame) {
 
 GrapeFrameOut GrapeRunner::process(const FrameBuffers& frame, const std::vector<GrapeInputBox>& boxes) {
   if (frame.rgb.empty()) throw Error("frame " + std::to_string(frame.index), "has no colour image");
-  // As the project's detector's boxes: class_id = category - 1 (grape_detections adds it back).
+  // As the project's detector's boxes: class_id = category - 1 (pipeline::grape::grape_detections adds it back).
   std::vector<Detection2D> given;
   for (const GrapeInputBox& b : boxes)
     given.push_back({float(b.x1), float(b.y1), float(b.x2), float(b.y2), b.category - 1, b.score});
-  return frame_out(impl_->pipe.process(to_rgbd_frame(frame), pipeline::grape_detections(given)));
+  return frame_out(impl_->pipe.process(to_rgbd_frame(frame), pipeline::grape::grape_detections(given)));
 }
 
 bool GrapeRunner::has_detector() const { return impl_->pipe.has_detector(); }

@@ -2,7 +2,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/pipeline/potato/make_pipeline.hpp"
-#include "cropsight/pipeline/potato/potato_pipeline.hpp"
+#include "cropsight/pipeline/potato/pipeline.hpp"
 #include "frame_conversion.hpp"
 
 namespace cropsight::bridge {
@@ -10,8 +10,8 @@ namespace cropsight::bridge {
 namespace pp = pipeline::potato;
 
 struct PotatoRunner::Impl {
-  std::unique_ptr<pp::PotatoPipeline> built;
-  pp::PotatoPipeline& pipe;
+  std::unique_ptr<pp::Pipeline> built;
+  pp::Pipeline& pipe;
   explicit Impl(const std::string& preset, const std::vector<std::string>& sets)
       : built(pp::make_pipeline({preset, sets})), pipe(*built) {}
 };
@@ -36,12 +36,12 @@ PotatoRunner::~PotatoRunner() = default;
 
 PotatoFrameOut PotatoRunner::process(const FrameBuffers& frame) {
   if (frame.rgb.empty()) throw Error("frame " + std::to_string(frame.index), "has no colour image");
-  const pp::PotatoFrameResult r = impl_->pipe.process(to_rgbd_frame(frame));
+  const pp::FrameResult r = impl_->pipe.process(to_rgbd_frame(frame));
   PotatoFrameOut out;
-  out.ms_detect = r.ms_detect;
-  out.ms_locate = r.ms_locate;
-  out.ms_track = r.ms_track;
-  out.ms_orient = r.ms_orient;
+  out.ms_detect = r.timer.ms("detect");
+  out.ms_locate = r.timer.ms("locate");
+  out.ms_track = r.timer.ms("track");
+  out.ms_orient = r.timer.ms("orient");
   for (std::size_t k = 0; k < r.detections.size(); ++k) {
     PotatoBox b = box_of(r.detections[k]);
     if (k < r.ripe.size()) b.ripe = r.ripe[k];

@@ -1,9 +1,9 @@
 #include "cropsight/bridge/seedling_runner.hpp"
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/pipeline/seedling/config.hpp"
 #include "cropsight/pipeline/seedling/make_pipeline.hpp"
-#include "cropsight/pipeline/seedling/seedling_config.hpp"
-#include "cropsight/pipeline/seedling/seedling_pipeline.hpp"
+#include "cropsight/pipeline/seedling/pipeline.hpp"
 #include "cropsight/stereo/calibration.hpp"
 #include "cropsight/stereo/rectification.hpp"
 #include "cropsight/stereo/stereo_io.hpp"
@@ -24,7 +24,7 @@ RgbImage to_rgb(const ColorImage& c) { return {c.width, c.height, rgb_from_color
 }  // namespace
 
 struct SeedlingRunner::Impl {
-  pipeline::SeedlingPipeline pipe;
+  pipeline::seedling::Pipeline pipe;
 };
 
 SeedlingRunner::SeedlingRunner(const std::string& preset, const std::vector<std::string>& sets)
@@ -42,7 +42,8 @@ SeedlingOut SeedlingRunner::process(const RgbImage& left, const RgbImage& right,
   geo.cx_right = g.cx_right;
   geo.baseline = g.baseline;
   if (!(g.f > 0) || !(g.baseline > 0)) throw Error(where, "stereo geometry needs a focal length and a baseline > 0");
-  const pipeline::SeedlingDetection d = impl_->pipe.process(to_color(left, where), to_color(right, where), geo, where);
+  const pipeline::seedling::FrameResult d =
+      impl_->pipe.process(to_color(left, where), to_color(right, where), geo, where);
   SeedlingOut out;
   out.found = d.found;
   out.length = d.envelope.length;

@@ -13,8 +13,8 @@
 //    CMakeLists.txt) and a*b+c is never contracted; all clones then give the same values lane by
 //    lane and results do not depend on the CPU (checked: `detect broccoli` writes the same bytes
 //    with and without the AVX-512 clone, OES / ORG / FEC). The AVX-512 clone was added for
-//    issue 27's OES speed: 1.05-1.07x on an AMD EPYC (Zen 4) VM and 1.03-1.15x on an Intel
-//    Sapphire Rapids VM, alternating runs, docs/pipelines/broccoli-heads.md, "Timing".
+//    the OES speed: 1.05-1.07x on an AMD EPYC (Zen 4) VM and 1.03-1.15x on an Intel
+//    Sapphire Rapids VM, alternating runs, docs/experiments/2026-11-22-broccoli-timing.md.
 //
 // 2. CROPSIGHT_TARGET_AVX2 on an explicit variant that the caller picks with
 //    `if (cpu_has_avx2_fma())`: for a kernel written by hand in two shapes (GCC vector types of

@@ -1,6 +1,6 @@
 #pragma once
 // Private helper: the library's one parallel loop over rows. Every loop whose rows are written
-// independently and whose thread count a user sets (GrapeFeatureConfig::threads, GbdtConfig::
+// independently and whose thread count a user sets (pipeline::grape::FeatureConfig::threads, GbdtConfig::
 // nthread, the carry-back's threads, ...) goes through parallel_for(), so that a limit means the
 // same everywhere: at most `threads` threads, the calling thread one of them. TBB does the work
 // (src/core/parallel_for.cpp, in a tbb::task_arena of that size); this header stays free of TBB.

@@ -19,4 +19,21 @@ double StageTimer::total_ms() const {
   return t;
 }
 
+double StageTimer::ms(const std::string& name) const {
+  for (const auto& s : stages_)
+    if (s.name == name) return s.total_ms;
+  return 0.0;
+}
+
+StageTimer StageTimer::since(const std::vector<Stage>& earlier) const {
+  StageTimer out;
+  for (const auto& s : stages_) {
+    Stage d = s;
+    for (const auto& e : earlier)
+      if (e.name == s.name) d.total_ms -= e.total_ms, d.count -= e.count;
+    if (d.count > 0) out.stages_.push_back(std::move(d));
+  }
+  return out;
+}
+
 }  // namespace cropsight

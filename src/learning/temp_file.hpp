@@ -2,7 +2,7 @@
 // libsvm reads and writes models only through file names; this gives it a private temporary
 // file that goes when the object goes out of scope. It is an anonymous in-memory file (memfd),
 // named by its /proc/self/fd path, so a process killed while loading a model leaves nothing in
-// /tmp (issue 26, kill safety); a named file in the temporary folder only where memfd is missing.
+// /tmp (kill safety); a named file in the temporary folder only where memfd is missing.
 #include <filesystem>
 #include <string>
 

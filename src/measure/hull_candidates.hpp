@@ -3,7 +3,7 @@
 // building the hull (internal to the measure module; used by HeadSizer before qhull).
 //
 // Why: a hull of a broccoli head's ~2500 points costs 0.4 ms (our Quickhull) to 1.5 ms (qhull),
-// against a per-frame budget of 0.5 ms for sizing and tracking together (issue 4), and ~80 % of
+// against a per-frame budget of 0.5 ms for sizing and tracking together, and ~80 % of
 // those points cannot be hull vertices.
 //
 // Why it is exact: a vertex of the hull of a set is a vertex of the hull of every subset that

@@ -4,7 +4,7 @@
 //
 // Why not qhull: on a broccoli head's hull candidates (~450 points, ~300 vertices) qhull takes
 // ~1 ms, mostly per-facet bookkeeping (set allocation, neighbour matching, facet merging), and a
-// frame shows ~5 heads, against the 0.5 ms per frame budget of sizing and tracking (issue 4).
+// frame shows ~5 heads, against the 0.5 ms per frame budget of sizing and tracking.
 // This version keeps faces in one array, outside sets as linked lists through one index array,
 // and finds the horizon by a depth-first walk, so nothing is allocated per facet.
 //

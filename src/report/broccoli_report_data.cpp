@@ -15,7 +15,7 @@ std::string fixed3(double v) {
   return b;
 }
 
-std::vector<std::pair<std::string, std::string>> key_figures(const pipeline::BroccoliTrackingFigures& f) {
+std::vector<std::pair<std::string, std::string>> key_figures(const pipeline::broccoli::TrackingFigures& f) {
   auto map_fig = [&](double v) { return f.map_aligned ? fixed3(v) : std::string("n/a"); };
   return {{"map_precision", map_fig(f.map_precision)},
           {"map_precision_visible", map_fig(f.map_precision_visible)},
@@ -37,7 +37,7 @@ std::vector<std::pair<std::string, std::string>> key_figures(const pipeline::Bro
           {"tracking_ms_per_frame", fixed3(f.tracking_ms_per_frame)}};
 }
 
-Figure overlay_figure(const pipeline::BroccoliPassMaterial::Overlay& o) {
+Figure overlay_figure(const pipeline::broccoli::PassMaterial::Overlay& o) {
   ColorImage img = depth_colormap(o.depth, o.depth_scale);
   for (const auto& [pixels, mapped] : o.detections)
     for (int i : pixels) {
@@ -55,8 +55,8 @@ Figure overlay_figure(const pipeline::BroccoliPassMaterial::Overlay& o) {
 }
 }  // namespace
 
-BroccoliReportData broccoli_report_data(const pipeline::BroccoliTrackingFigures& figures,
-                                        const pipeline::BroccoliPassMaterial& material) {
+BroccoliReportData broccoli_report_data(const pipeline::broccoli::TrackingFigures& figures,
+                                        const pipeline::broccoli::PassMaterial& material) {
   BroccoliReportData d;
   d.sequence = material.sequence;
   d.estimator = figures.size_estimator;

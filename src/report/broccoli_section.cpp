@@ -7,7 +7,7 @@
 
 namespace cropsight::report {
 
-SystemSummary broccoli_summary(const pipeline::BroccoliTrackingFigures& f, BroccoliReportData& d,
+SystemSummary broccoli_summary(const pipeline::broccoli::TrackingFigures& f, BroccoliReportData& d,
                                const std::filesystem::path& dir) {
   using detail::format_number;
   if (d.overlays.empty()) throw Error(d.sequence, "the broccoli pass kept no overlay frame");

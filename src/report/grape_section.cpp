@@ -7,7 +7,7 @@
 
 #include "cropsight/eval/segmentation_metrics.hpp"
 #include "cropsight/io/grape_text.hpp"
-#include "cropsight/pipeline/grape/grape_pipeline.hpp"
+#include "cropsight/pipeline/grape/pipeline.hpp"
 #include "cropsight/report/cloud_view.hpp"
 #include "cropsight/report/demo_page.hpp"
 #include "cropsight/report/render.hpp"
@@ -66,7 +66,7 @@ std::vector<Rgb8> colors_of(const std::vector<int>& labels) {
 // Front (from the camera: x right, y up in the dataset frame) and side (from +x) views framing the
 // true bunch, peduncle and leaves; the predicted labels in both, the true labels in front.
 std::string picture(const Cloud& truth, const std::vector<int>& predicted, const ToCamera& to_cam,
-                    const std::optional<pipeline::GrapeCutPoint>& cut, const Eigen::Vector3f& true_cut_m) {
+                    const std::optional<pipeline::grape::CutPoint>& cut, const Eigen::Vector3f& true_cut_m) {
   std::vector<Eigen::Vector3f> framed;
   for (std::size_t k = 0; k < truth.size(); ++k)
     if (truth.labels[k] >= 1 && truth.labels[k] <= 3) framed.push_back(truth.points[k]);
@@ -120,7 +120,7 @@ SystemSummary grape_summary(const fs::path& dir) {
   // The cut point as the camera pipeline computes it: on the segmented cloud in metres.
   const ToCamera to_cam = to_camera_of(t, truth_file);
   for (auto& p : labelled.points) p = to_cam(p);
-  const std::optional<pipeline::GrapeCutPoint> cut = pipeline::grape_cut_point(labelled);
+  const std::optional<pipeline::grape::CutPoint> cut = pipeline::grape::grape_cut_point(labelled);
   Eigen::Vector3f true_cut;
   for (int r = 0; r < 3; ++r)
     true_cut[r] = float(number_at(t, "/cut_point/position_m/" + std::to_string(r), truth_file));

@@ -4,7 +4,7 @@
 // (internal to the tracking module; used per detection for the head's top depth).
 //
 // Why: the top-of-head centroid takes the 2nd percentile of ~2000 depths per detection, and
-// std::nth_element's partitioning was ~10 % of sizing + tracking's per-frame time (issue 4's
+// std::nth_element's partitioning was ~10 % of sizing + tracking's per-frame time (the
 // 0.5 ms budget). Bucket b holds the values v with floor((v − lo) · B / (hi − lo)) = b (clamped to
 // B − 1); that map is monotone in v under float rounding, so every value of bucket b is at least
 // every value of bucket b − 1 and the k-th smallest is the (k − values before)-th of its bucket.

@@ -1,4 +1,4 @@
-// The bad-input matrix (issue 26, deliverable 3): every CLI command against each class of bad
+// The bad-input matrix (deliverable 3): every CLI command against each class of bad
 // input its inputs can have. A cell is one (command, input, class); it passes when the command
 // exits 2, prints exactly one line on stderr that starts "cropsight: " and names the broken file
 // (or the --set key, or the output folder), and leaves the cell's folder exactly as it was (no
@@ -316,7 +316,7 @@ const Input kRoiDet{"roi.json", Kind::Json, "/0/bbox/2", "-50"};
 // One annotation file fewer (or a sub-folder) in the folder is a valid set: images without truth.
 const Input kVoc{"voc/a.xml", Kind::Xml, "xmin", "1000", {Bad::Missing, Bad::Directory}};
 const Input kOut{"out", Kind::Output, "", ""};
-// A ROS bag of the sequence (cropsight export --bag), in builds with ROS (issue 25).
+// A ROS bag of the sequence (cropsight export --bag), in builds with ROS.
 const Input kBag{"s.bag", Kind::Binary, "", ""};
 Input set(const std::string& key, const std::string& range) { return {key, Kind::Set, key, range}; }
 

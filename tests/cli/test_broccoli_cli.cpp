@@ -11,7 +11,7 @@
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/learning/model.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_training.hpp"
+#include "cropsight/pipeline/broccoli/training.hpp"
 #include "pipeline/broccoli/broccoli_sim_frames.hpp"
 #include "testing/testing.hpp"
 
@@ -129,7 +129,7 @@ TEST_F(BroccoliCli, BenchReportsEveryPipelineAndThePclReference) {
   EXPECT_EQ(j["settings"]["oes"], "preset broccoli-oes-uk");
 }
 
-// bench --track (issue 4's timing target on the pipeline's own frames): the sizing + tracking time
+// bench --track (the tracking timing target on the pipeline's own frames): the sizing + tracking time
 // of the OES detections, with the --set sizing keys it ran under; --pipelines picks what is timed.
 TEST_F(BroccoliCli, BenchTrackTimesSizingOnTheOesDetections) {
   const fs::path model = dir() / "bench-track.json";
@@ -172,7 +172,7 @@ TEST_F(BroccoliCli, BenchTrackTimesSizingOnTheOesDetections) {
   }
 }
 
-// A preset may carry the sizing.* / tracking.* keys of issue 4 (detect/eval --track read them):
+// A preset may carry the sizing.* / tracking.* keys (detect/eval --track read them):
 // train and bench must split them off before configuring the detector, and still reject typos.
 TEST_F(BroccoliCli, TrainAndBenchIgnoreTrackingKeysOfAPreset) {
   const fs::path preset = dir() / "with-tracking.yaml";
@@ -291,7 +291,7 @@ TEST_F(BroccoliCli, OutputsNeverDestroyUnrelatedFilesAndBadOptionsAreRefused) {
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;  // libsvm printed nothing
 }
 
-// Randomised fields from the CLI (issue 27): --variety random / random-wide and --randomize
+// Randomised fields from the CLI: --variety random / random-wide and --randomize
 // draw a field and record it in groundtruth.json; a malformed range is one error line, exit 2.
 TEST_F(BroccoliCli, SimulateRandomizedFields) {
   for (const std::string opts : {"--variety random", "--variety random-wide", "--variety spain --randomize"}) {
@@ -308,7 +308,7 @@ TEST_F(BroccoliCli, SimulateRandomizedFields) {
   EXPECT_FALSE(fs::exists(dir() / "bad-range"));
 }
 
-// cropsight import (issue 27, Deliver 4): a RealSense-style folder pair (rs-convert names whose
+// cropsight import (Deliver 4): a RealSense-style folder pair (rs-convert names whose
 // depth and colour timestamps differ) becomes a sequence that detect broccoli runs on without
 // ground truth; a bad image is one line naming it, exit 2, and no output folder.
 TEST_F(BroccoliCli, ImportRecordingThenDetect) {

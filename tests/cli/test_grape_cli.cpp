@@ -36,7 +36,7 @@ TEST(GrapeCli, TrainEvalSegmentAndBadInput) {
     EXPECT_TRUE(j.contains(k)) << k;
   EXPECT_EQ(j["clouds"], 2);
   EXPECT_EQ(j["per_class"].size(), 6u);
-  // The named protocols beside the old keys (grape_eval.hpp); the pooled six-label one is `miou`.
+  // The named protocols beside the old keys (grape/eval.hpp); the pooled six-label one is `miou`.
   for (const char* p : {"pooled_all_labels", "pooled_named_classes", "per_cloud_named_classes", "per_cloud_all_labels"})
     EXPECT_TRUE(j["protocols"].contains(p)) << p;
   EXPECT_EQ(j["protocols"]["pooled_all_labels"]["miou"], j["miou"]);

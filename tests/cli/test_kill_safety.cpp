@@ -1,4 +1,4 @@
-// Kill safety (issue 26, item 4): the commands that write outputs are killed with SIGKILL at seeded
+// Kill safety (item 4): the commands that write outputs are killed with SIGKILL at seeded
 // random moments spread over their run time (measured first on a clean run) and must leave
 // nothing partial under a final name: each output is either absent or byte-identical to the clean
 // run's, and anything else beside them is a temporary (".NAME.tmp-*"). Then the same

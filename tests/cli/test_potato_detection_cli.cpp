@@ -11,7 +11,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cropsight/io/voc.hpp"
-#include "cropsight/pipeline/potato/potato_detection_eval.hpp"
+#include "cropsight/pipeline/potato/detection_eval.hpp"
 #include "testing/testing.hpp"
 
 namespace {

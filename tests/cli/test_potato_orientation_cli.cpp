@@ -11,7 +11,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "cropsight/pipeline/potato/potato_blob_detector.hpp"
+#include "cropsight/pipeline/potato/blob_detector.hpp"
 #include "testing/testing.hpp"
 
 namespace {
@@ -27,7 +27,7 @@ void draw_shot(const fs::path& root, int angle_deg, int number) {
   fs::create_directories(root / "rgb" / (a + "_high_rgb"));
   fs::create_directories(root / "depth" / (a + "_high_depth"));
   const std::string name = "image" + std::to_string(number) + ".png";
-  const cropsight::pipeline::potato::PotatoBlobConfig model;  // the shipped colour model's mean
+  const cropsight::pipeline::potato::BlobConfig model;  // the shipped colour model's mean
   cv::Mat lab(1, 1, CV_8UC3, cv::Scalar(110, model.mean_a, model.mean_b)), skin;
   cv::cvtColor(lab, skin, cv::COLOR_Lab2BGR);
   cv::Mat rgb(480, 640, CV_8UC3, cv::Scalar(225, 228, 230));  // BGR: a white board

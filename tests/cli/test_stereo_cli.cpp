@@ -1,4 +1,4 @@
-// CLI tests of the seedling / stereo commands (issue 5): stereo disparity, detect seedling,
+// CLI tests of the seedling / stereo commands: stereo disparity, detect seedling,
 // eval seedling and eval stereo, each on a success path and on error paths (missing file,
 // mismatched image sizes): exit code 2, one line naming the input, and no output written.
 #include <gtest/gtest.h>

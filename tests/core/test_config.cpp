@@ -75,6 +75,24 @@ TEST(StageTimer, Accumulates) {
   EXPECT_DOUBLE_EQ(t.stages()[0].total_ms, 4.0);
   EXPECT_EQ(t.stages()[0].count, 2);
   EXPECT_DOUBLE_EQ(t.total_ms(), 6.0);
+  EXPECT_DOUBLE_EQ(t.ms("b"), 2.0);
+  EXPECT_DOUBLE_EQ(t.ms("none"), 0.0);
+}
+
+TEST(StageTimer, SinceGivesOnlyWhatRanAfterTheCopy) {
+  StageTimer t;
+  t.add("a", 1.0);
+  t.add("b", 2.0);
+  const std::vector<StageTimer::Stage> before = t.stages();
+  t.add("a", 0.5);
+  t.add("c", 4.0);
+  const StageTimer frame = t.since(before);
+  ASSERT_EQ(frame.stages().size(), 2u);  // b did not run again
+  EXPECT_EQ(frame.stages()[0].name, "a");
+  EXPECT_DOUBLE_EQ(frame.stages()[0].total_ms, 0.5);
+  EXPECT_EQ(frame.stages()[0].count, 1);
+  EXPECT_EQ(frame.stages()[1].name, "c");
+  EXPECT_DOUBLE_EQ(frame.total_ms(), 4.5);
 }
 
 namespace enum_test {

@@ -75,7 +75,7 @@ TEST(GrapeText, WriteReadRoundTripAndListing) {
 TEST(GrapeText, ReadsSharedCloud) {
   const auto archive = cropsight::testing::shared_data_dir() / "grape" / "grape_points_train.tar.gz";
   CROPSIGHT_REQUIRE_DATA(archive);
-  // The archive is not read in place (issue 6); this test only checks that the loader rejects
+  // The archive is not read in place; this test only checks that the loader rejects
   // a .tar.gz with a clear message rather than parsing binary data.
   EXPECT_NE(error_of(archive).find("line 1"), std::string::npos);
 }

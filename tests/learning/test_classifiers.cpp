@@ -52,7 +52,7 @@ double accuracy(const Classifier& c, const Dataset& d) {
 }  // namespace
 
 // libsvm's model goes through a file: an anonymous in-memory one, so that a process killed while
-// it exists (kill safety, issue 26) leaves nothing in the temporary folder.
+// it exists (kill safety) leaves nothing in the temporary folder.
 TEST(Svm, ItsTemporaryModelFileIsNeverInTheTemporaryFolder) {
   cropsight::testing::TempDir tmp;
   ASSERT_EQ(setenv("TMPDIR", tmp.path().c_str(), 1), 0);

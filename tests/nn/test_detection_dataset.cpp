@@ -1,4 +1,4 @@
-// COCO / VOC detection sets and the training augmentation of the detector (issue 24).
+// COCO / VOC detection sets and the training augmentation of the detector.
 #include <gtest/gtest.h>
 
 #include "cropsight/core/error.hpp"

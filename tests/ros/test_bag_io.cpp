@@ -171,8 +171,8 @@ TEST(BagIo, DamagedLengthsAreErrorsNotAllocations) {
 
 // `detect broccoli --bag` unpacks the bag to a temporary sequence and gives what `--data` gives on
 // the sequence the bag was made from. The unpacked folder goes at the end, and the one a run killed
-// by a signal left (.cropsight-bag.tmp-PID-N of a dead PID) goes at the next run (kill safety,
-// issue 26); a live run's is left alone.
+// by a signal left (.cropsight-bag.tmp-PID-N of a dead PID) goes at the next run (kill safety);
+// a live run's is left alone.
 TEST(BagIo, DetectOnABagEqualsDetectOnItsSequenceAndCleansWhatKilledRunsLeft) {
   using ros_test::run;
   const fs::path d = ros_test::scratch_dir("bag_detect");

@@ -15,7 +15,7 @@ std::string md5() {
 }
 
 TEST(RosMessages, VisionMsgsDetection2DArrayMatchesUpstreamNoetic) {
-  // The MD5 of vision_msgs/Detection2DArray on the noetic branch (issue 25).
+  // The MD5 of vision_msgs/Detection2DArray on the noetic branch.
   EXPECT_EQ(md5<vision_msgs::Detection2DArray>(), "402071f61477de256df9f1aa45e6e4c8");
   EXPECT_EQ(std::string(ros::message_traits::DataType<vision_msgs::Detection2DArray>::value()),
             "vision_msgs/Detection2DArray");

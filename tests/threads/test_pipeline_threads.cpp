@@ -1,4 +1,4 @@
-// The thread-safety claims of docs/library.md (issue 26, deliverable 6): one pipeline object per
+// The thread-safety claims of docs/library.md (deliverable 6): one pipeline object per
 // thread, read-only models shared between threads. Broccoli (one shared SVM model), potato and
 // seedling pipelines run at once, two threads of each, on the same simulated inputs; every
 // thread's results must equal a single-threaded run's. In the ordinary build this checks the
@@ -18,10 +18,10 @@
 #include <vector>
 
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
-#include "cropsight/pipeline/potato/potato_pipeline.hpp"
-#include "cropsight/pipeline/seedling/seedling_config.hpp"
-#include "cropsight/pipeline/seedling/seedling_pipeline.hpp"
+#include "cropsight/pipeline/broccoli/pipeline.hpp"
+#include "cropsight/pipeline/potato/pipeline.hpp"
+#include "cropsight/pipeline/seedling/config.hpp"
+#include "cropsight/pipeline/seedling/pipeline.hpp"
 #include "cropsight/sim/broccoli/broccoli_sim.hpp"
 #include "cropsight/sim/potato/potato_sim.hpp"
 #include "cropsight/sim/seedling/seedling_sim.hpp"
@@ -63,9 +63,9 @@ struct Outcome {
 };
 
 // Detections, sizes and track ids of a tracked pass.
-Outcome run_broccoli(const pipeline::BroccoliPipelineConfig& cfg, const std::shared_ptr<const learning::Model>& model,
+Outcome run_broccoli(const pipeline::broccoli::Config& cfg, const std::shared_ptr<const learning::Model>& model,
                      const std::vector<RgbdFrame>& frames) {
-  pipeline::BroccoliPipeline p(cfg, model, "test");
+  pipeline::broccoli::Pipeline p(cfg, model, "test");
   Hash h;
   int found = 0;
   for (const RgbdFrame& f : frames) {
@@ -88,8 +88,8 @@ std::vector<RgbdFrame> potato_frames(const std::filesystem::path& dir) {
 }
 
 // Detections and the harvest message of every frame (CSRT tracking included).
-Outcome run_potato(const pipeline::potato::PotatoPipelineConfig& cfg, const std::vector<RgbdFrame>& frames) {
-  pipeline::potato::PotatoPipeline p(cfg);
+Outcome run_potato(const pipeline::potato::Config& cfg, const std::vector<RgbdFrame>& frames) {
+  pipeline::potato::Pipeline p(cfg);
   Hash h;
   int found = 0;
   for (const RgbdFrame& f : frames) {
@@ -104,9 +104,9 @@ Outcome run_potato(const pipeline::potato::PotatoPipelineConfig& cfg, const std:
 }
 
 // Found flag, envelope and point count of each pair (census SGM, GMM).
-Outcome run_seedling(const pipeline::SeedlingConfig& cfg, const std::vector<sim::SeedlingPair>& pairs,
+Outcome run_seedling(const pipeline::seedling::Config& cfg, const std::vector<sim::SeedlingPair>& pairs,
                      const stereo::RectifiedGeometry& g) {
-  const pipeline::SeedlingPipeline p(cfg);
+  const pipeline::seedling::Pipeline p(cfg);
   Hash h;
   int found = 0;
   for (const auto& pair : pairs) {
@@ -129,16 +129,16 @@ TEST(PipelineThreads, ParallelPipelinesEqualASingleThreadedRun) {
   testing::TempDir tmp;
   // Inputs and configurations, built before any thread starts.
   const auto model =
-      pipeline::load_broccoli_model(testing::source_dir() / "models" / "broccoli-oes-uk.json");  // shared, read-only
+      pipeline::broccoli::load_model(testing::source_dir() / "models" / "broccoli-oes-uk.json");  // shared, read-only
   const auto broccoli_cfg = [&] {
-    auto c = pipeline::broccoli_config_for_model(*model, {}, "broccoli-oes-uk.json");
+    auto c = pipeline::broccoli::config_for_model(*model, {}, "broccoli-oes-uk.json");
     c.track = true;
     return c;
   }();
   const auto broccoli_in = broccoli_frames();
-  const auto potato_cfg = pipeline::potato::load_potato_config("potato");
+  const auto potato_cfg = pipeline::potato::load_config("potato");
   const auto potato_in = potato_frames(tmp / "potato");
-  const auto seedling_cfg = pipeline::load_seedling_config("seedling");
+  const auto seedling_cfg = pipeline::seedling::load_config("seedling");
   sim::SeedlingSimConfig sim_cfg;
   sim_cfg.supersample = 1;
   const stereo::RectifiedGeometry geometry = sim::rectified_geometry(sim_cfg.rig());

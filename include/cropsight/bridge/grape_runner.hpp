@@ -1,5 +1,5 @@
 #pragma once
-// The grape pipeline from the camera (pipeline::GrapePipeline, Luo et al.) behind a C++17 header,
+// The grape pipeline from the camera (pipeline::grape::Pipeline, Luo et al.) behind a C++17 header,
 // for the ROS node: bunch and peduncle boxes (the project's detector, or boxes given per frame)
 // → ROI (Eq. 1, overlapping bunches merged) → coloured ROI cloud → normals → the grape segmenter
 // → per bunch a labelled cloud and a cut point on its peduncle. One runner per camera; not
@@ -24,7 +24,7 @@ struct GrapeRunnerOptions {
 };
 
 /// A box of the user's own detector, continuous pixel corners; the pipeline takes the pixel box
-/// that covers it, as it takes the project's detector's boxes (pipeline::grape_detections).
+/// that covers it, as it takes the project's detector's boxes (pipeline::grape::grape_detections).
 struct GrapeInputBox {
   double x1 = 0, y1 = 0, x2 = 0, y2 = 0;  ///< pixels
   int category = 1;                       ///< 1 bunch, 2 peduncle (the dataset's COCO categories)

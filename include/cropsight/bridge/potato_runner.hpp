@@ -1,5 +1,5 @@
 #pragma once
-// The potato pipeline (pipeline::potato::PotatoPipeline) behind a C++17 header, for the ROS node.
+// The potato pipeline (pipeline::potato::Pipeline) behind a C++17 header, for the ROS node.
 // One runner per camera; not thread-safe. Errors: cropsight::Error naming the file or input.
 #include <memory>
 #include <string>

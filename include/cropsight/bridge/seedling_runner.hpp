@@ -1,5 +1,5 @@
 #pragma once
-// The seedling pipeline (pipeline::SeedlingPipeline, SGM + GMM on a rectified stereo pair)
+// The seedling pipeline (pipeline::seedling::Pipeline, SGM + GMM on a rectified stereo pair)
 // behind a C++17 header, for the ROS node. process() keeps no state between pairs; one runner
 // per thread. Errors: cropsight::Error naming the file or input.
 #include <cstdint>

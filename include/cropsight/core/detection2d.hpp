@@ -1,7 +1,7 @@
 #pragma once
 // A 2D detector's output and the one interface every 2D detector implements: the potato
 // pipeline's classical (colour and range foreground) and ONNX (OpenCV DNN) backends, and the
-// project's own CNN detector (issue 24). A pipeline holds a Detector2D chosen by its preset and
+// project's own CNN detector. A pipeline holds a Detector2D chosen by its preset and
 // never knows which backend it runs.
 #include <algorithm>
 #include <memory>

@@ -51,6 +51,12 @@ class StageTimer {
   void add(const std::string& name, double ms);
   const std::vector<Stage>& stages() const { return stages_; }  ///< in first-seen order
   double total_ms() const;
+  /// Total of stage `name`, ms; 0 when it never ran.
+  double ms(const std::string& name) const;
+  /// What ran since `earlier` (a copy of stages() taken then): each stage's added time and count,
+  /// stages that did not run left out. A pipeline whose steps keep one cumulative timer gives each
+  /// frame its own stages this way.
+  StageTimer since(const std::vector<Stage>& earlier) const;
   void clear() { stages_.clear(); }
 
  private:

@@ -1,5 +1,5 @@
 #pragma once
-// Orientation accuracy (issue 22, paper Table 4.3): the error of an axis angle is the smallest
+// Orientation accuracy (paper Table 4.3): the error of an axis angle is the smallest
 // difference modulo 180° (an axis has no head or tail), so it lies in [0°, 90°]. Figures are
 // degrees; times milliseconds.
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// Real recordings in (issue 27, Deliver 4): folders of 16-bit depth PNGs (+ registered colour
+// Real recordings in (Deliver 4): folders of 16-bit depth PNGs (+ registered colour
 // PNGs) or organised PCD files, plus a camera.yaml, become a sequence (sequence.hpp) with no
 // ground truth, which `detect broccoli` runs on. docs/formats.md, "Importing recordings".
 //

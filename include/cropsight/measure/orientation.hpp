@@ -1,5 +1,5 @@
 #pragma once
-// The length axis of a potato seen from above (issue 22, paper §3.5.2 and Table 4.3): inside a
+// The length axis of a potato seen from above (paper §3.5.2 and Table 4.3): inside a
 // detector's box, widened by a margin, the potato is segmented and the angle of its long axis is
 // measured, so that the gripper can close across it.
 //
@@ -85,7 +85,7 @@ struct OrientationConfig {
   void visit(V& v) {
     v("segmentation", segmentation,
       "canny | kmeans | ours (see measure/orientation.hpp); paper Table 4.3: canny, kmeans");
-    v("axis", axis, "pca | ellipse; paper: PCA; ellipse = cv::fitEllipse (issue 22)");
+    v("axis", axis, "pca | ellipse; paper: PCA; ellipse = cv::fitEllipse");
     v("input", input, "rgb | depth (the RealSense colourised depth PNG as an image); paper Table 4.3: both");
     v("box_margin", box_margin,
       "fraction of the box side added on each side before segmenting (paper: 'widened box', value not given; 0.15 "

@@ -1,5 +1,5 @@
 #pragma once
-// The project's own 2D detector with masks (issue 24): CenterNet ("Objects as Points", Zhou et
+// The project's own 2D detector with masks: CenterNet ("Objects as Points", Zhou et
 // al. 2019), trained from scratch on the CPU. A small BatchNorm backbone (strided Conv-BN-ReLU
 // blocks to stride 32) with an FPN-lite path back to stride 4 (nearest upsampling, 1x1 lateral
 // convs, Add) feeds four heads at stride 4: a per-class centre heatmap (sigmoid; penalty-reduced

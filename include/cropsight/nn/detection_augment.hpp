@@ -1,5 +1,5 @@
 #pragma once
-// Training augmentation for the 2D detector (issue 24): what lets a network trained from scratch
+// Training augmentation for the 2D detector: what lets a network trained from scratch
 // on tens of images generalise. One call turns a sample into a new one, drawn from `draw`:
 //   mosaic      (probability `mosaic`) the sample and three others of the pool, each shrunk to a
 //               quarter of the frame, in a 2 x 2 grid (YOLOv4);

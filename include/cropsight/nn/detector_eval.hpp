@@ -1,6 +1,6 @@
 #pragma once
-// Scoring the 2D detector (nn::CenterNet, .pt or .onnx) on a labelled image set (issue 24,
-// `cropsight eval detector`): per class COCO box AP50 and AP50:95 (eval/coco_box_ap.hpp: COCO's
+// Scoring the 2D detector (nn::CenterNet, .pt or .onnx) on a labelled image set
+// (`cropsight eval detector`): per class COCO box AP50 and AP50:95 (eval/coco_box_ap.hpp: COCO's
 // matching and 101-point interpolation) and the grape paper's Table 2 2D segmentation metrics of
 // the mask head, per class over the whole image set.
 //

@@ -1,6 +1,6 @@
 #pragma once
 // A user's ONNX detector run by OpenCV DNN (part of cropsight_nn, not of the libtorch plugin):
-// the `onnx` backend of the potato pipeline's Detector2D (issue 22).
+// the `onnx` backend of the potato pipeline's Detector2D.
 //
 // Per image: the colour image is fitted to the network's input size (letterbox: scaled to fit,
 // aspect kept, centred on a pad colour; or stretched), made into an NCHW float blob

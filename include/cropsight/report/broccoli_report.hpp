@@ -1,6 +1,6 @@
 #pragma once
-// The broccoli sections of `cropsight report --data SEQ --model MODEL` (issue 4), in the order
-// the page shows them (the result first, issue 21): overlays of a few frames with the
+// The broccoli sections of `cropsight report --data SEQ --model MODEL`, in the order
+// the page shows them (the result first): overlays of a few frames with the
 // detections, the field map with true and estimated heads (Kusumam et al. Fig. 17/18), estimated
 // against true size (Fig. 15) and size error against the head's distance from the optical axis
 // (Fig. 16), per-stage timing, the key figures, and precision–recall curves at IoU 0.50…0.95

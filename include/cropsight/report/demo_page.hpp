@@ -24,7 +24,7 @@
 // Every function throws Error(file, ...) naming the first missing or malformed file.
 #include <filesystem>
 
-#include "cropsight/pipeline/broccoli/broccoli_tracking_eval.hpp"
+#include "cropsight/pipeline/broccoli/tracking_eval.hpp"
 #include "cropsight/report/broccoli_report.hpp"
 #include "cropsight/report/html_page.hpp"
 #include "cropsight/report/system_summary.hpp"
@@ -33,7 +33,7 @@ namespace cropsight::report {
 
 /// Broccoli heads and the field map: the overlay frames of `data` (moved out of it, so that the
 /// broccoli sections that follow do not show them twice), AP, map, size and time per frame.
-SystemSummary broccoli_summary(const pipeline::BroccoliTrackingFigures& figures, BroccoliReportData& data,
+SystemSummary broccoli_summary(const pipeline::broccoli::TrackingFigures& figures, BroccoliReportData& data,
                                const std::filesystem::path& dir);
 /// Broccoli seedlings from stereo: the pair with the detected seedling outlined (truth in white),
 /// the measured envelope, the SGM disparity.

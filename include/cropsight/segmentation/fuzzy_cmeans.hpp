@@ -1,5 +1,5 @@
 #pragma once
-// Fuzzy c-means (Bezdek 1981) of 3D points: a baseline to the seedling GMM (issue 5).
+// Fuzzy c-means (Bezdek 1981) of 3D points: a baseline to the seedling GMM.
 // Memberships u_ij = 1 / sum_k (d_ij / d_ik)^(2/(m-1)); centres are u^m-weighted means.
 #include <Eigen/Core>
 #include <cstdint>

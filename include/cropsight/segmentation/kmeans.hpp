@@ -1,5 +1,5 @@
 #pragma once
-// k-means (Lloyd, k-means++ seeding) of 3D points: a baseline to the seedling GMM (issue 5).
+// k-means (Lloyd, k-means++ seeding) of 3D points: a baseline to the seedling GMM.
 #include <Eigen/Core>
 #include <cstdint>
 #include <string>

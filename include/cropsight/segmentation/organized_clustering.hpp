@@ -47,7 +47,7 @@ struct OesConfig {
     v("debris_tolerance", debris_tolerance,
       "m; when > 0, a second pass with this looser tolerance segments the valid pixels that no kept segment holds "
       "(pieces below min_size): a rough or noisy surface that the first tolerance shattered into debris gets a "
-      "segment, while what the first pass separated stays separated (ours, issue 27; 0 = off, the paper's one pass)");
+      "segment, while what the first pass separated stays separated (ours; 0 = off, the paper's one pass)");
   }
 };
 

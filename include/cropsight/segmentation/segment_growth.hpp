@@ -1,5 +1,5 @@
 #pragma once
-// Completing a segment over the pixels no segment holds (issue 27, docs/pipelines/broccoli-heads.md,
+// Completing a segment over the pixels no segment holds (docs/pipelines/broccoli-heads.md,
 // "Completing fragmented heads").
 //
 // An organised clustering with a fixed neighbour tolerance breaks a rough or noisy surface (a

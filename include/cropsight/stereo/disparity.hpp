@@ -43,7 +43,7 @@ struct DisparityConfig {
   int census_height = 5;          ///< px; odd
   int census_p1 = 15;             ///< Hamming bits; SGM penalty of a +-1 px step (census engine)
   /// Hamming bits; SGM penalty of a larger step (census engine). 100 with census_p2_step 2: chosen
-  /// on all eight shared Middlebury scenes together (issue 23; was 120 / 4, tuned on the classic four)
+  /// on all eight shared Middlebury scenes together (was 120 / 4, tuned on the classic four)
   int census_p2 = 100;
   int census_p2_step = 2;     ///< grey levels; P2 / (1 + |dI| / this) along a path (0 = constant)
   int census_blur = 0;        ///< px; Gaussian kernel applied to the grey images before the census (0 = none)
@@ -127,7 +127,7 @@ struct DisparityConfig {
 /// in visit() (num_disparities not a multiple of 16 in 16..kMaxDisparities, non-positive or
 /// non-finite penalties, uniqueness_ratio outside 0..100, ...) or breaks a rule between fields
 /// (unknown engine or mode, p2 <= p1, census window over 65 pixels, ...). `prefix` is prepended to the key
-/// names ("disparity." inside SeedlingConfig). compute_disparity() runs it too (where = the image).
+/// names ("disparity." inside pipeline::seedling::Config). compute_disparity() runs it too (where = the image).
 void validate_disparity_config(const DisparityConfig& cfg, const std::string& where, const std::string& prefix = "");
 
 /// Left-reference disparity of a rectified pair. Images must have equal, non-zero size, else

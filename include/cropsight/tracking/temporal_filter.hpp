@@ -160,7 +160,7 @@ struct TemporalFilterConfig {
       "fraction; when > 0, a map head is dropped at the end when a map head with a higher score lies closer in the "
       "field plane than this times the mean of their two diameters (the known one when only one is known): two real "
       "heads cannot overlap seen from above, so the weaker is a leaf beside a head tracked as a second head "
-      "(extension, issue 27: on the validation passes with poses 0.75 and 1.0 gave uk map precision 0.881 -> 0.945, "
+      "(extension: on the validation passes with poses 0.75 and 1.0 gave uk map precision 0.881 -> 0.945, "
       "spain 0.909 -> 0.968, recall unchanged; 0 = off, the paper's map)",
       Range::at_least(0.0));
     v("predict_missed", predict_missed,

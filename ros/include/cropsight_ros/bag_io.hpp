@@ -1,5 +1,5 @@
 #pragma once
-// Sequence folders <-> ROS 1 bag files (issue 25), without a ROS master. Valid C++17 and C++20
+// Sequence folders <-> ROS 1 bag files, without a ROS master. Valid C++17 and C++20
 // with standard types only, so that the C++20 CLI calls it without seeing a ROS header.
 //
 // A bag holds per frame, all stamped with the frame's time (timestamp, or index / fps when the

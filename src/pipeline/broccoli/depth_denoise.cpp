@@ -9,7 +9,7 @@
 
 #include "cropsight/core/error.hpp"
 
-namespace cropsight::pipeline {
+namespace cropsight::pipeline::broccoli {
 
 float estimate_depth_noise(std::span<const std::uint16_t> depth, int width, int height, float scale, float min_depth,
                            float max_depth, std::vector<std::uint32_t>& histogram) {
@@ -70,4 +70,4 @@ void bilateral_depth(std::span<const std::uint16_t> depth, int width, int height
   }
 }
 
-}  // namespace cropsight::pipeline
+}  // namespace cropsight::pipeline::broccoli

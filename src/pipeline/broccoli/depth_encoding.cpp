@@ -7,7 +7,7 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
-namespace cropsight::pipeline {
+namespace cropsight::pipeline::broccoli {
 
 ColorImage encode_depth_for_cnn(const DepthImage& depth, double depth_scale) {
   const int w = depth.width, h = depth.height;
@@ -64,4 +64,4 @@ std::vector<int> mask_points_in_box(const Detection2D& box, const GrayImage& mas
   return pixels;
 }
 
-}  // namespace cropsight::pipeline
+}  // namespace cropsight::pipeline::broccoli

@@ -4,12 +4,11 @@
 
 namespace cropsight::pipeline::broccoli {
 
-std::unique_ptr<BroccoliPipeline> make_pipeline(const PipelineSpec& spec) {
+std::unique_ptr<Pipeline> make_pipeline(const PipelineSpec& spec) {
   const std::string file = io::find_model(spec.model.empty() ? kDefaultModel : spec.model).string();
-  std::shared_ptr<const learning::Model> model = load_broccoli_model(file);
-  const BroccoliPipelineConfig cfg =
-      broccoli_config_for_model(*model, spec_values(spec, ""), file, spec_where(spec, ""));
-  return std::make_unique<BroccoliPipeline>(cfg, std::move(model), file);
+  std::shared_ptr<const learning::Model> model = load_model(file);
+  const Config cfg = config_for_model(*model, spec_values(spec, ""), file, spec_where(spec, ""));
+  return std::make_unique<Pipeline>(cfg, std::move(model), file);
 }
 
 }  // namespace cropsight::pipeline::broccoli

@@ -14,10 +14,10 @@
 
 #include "cropsight/core/error.hpp"
 
-namespace cropsight::pipeline {
+namespace cropsight::pipeline::broccoli {
 
 struct PclReferencePipeline::Impl {
-  BroccoliDetectorConfig cfg;
+  DetectorConfig cfg;
   std::shared_ptr<const learning::Model> model;
   StageTimer timer;
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud{new pcl::PointCloud<pcl::PointXYZ>};
@@ -58,7 +58,7 @@ pcl::Indices organised_cloud(const RgbdFrame& frame, const geometry::DepthRangeC
   return valid;
 }
 
-void integral_normals(const BroccoliDetectorConfig& cfg, const PclCloud::Ptr& cloud, PclNormals& normals) {
+void integral_normals(const DetectorConfig& cfg, const PclCloud::Ptr& cloud, PclNormals& normals) {
   pcl::IntegralImageNormalEstimation<pcl::PointXYZ, pcl::Normal> ne;
   ne.setNormalEstimationMethod(ne.COVARIANCE_MATRIX);
   ne.setMaxDepthChangeFactor(cfg.normals.max_depth_change_factor);
@@ -68,7 +68,7 @@ void integral_normals(const BroccoliDetectorConfig& cfg, const PclCloud::Ptr& cl
 }
 
 // The points of `valid` that survive the statistical outlier filter.
-pcl::IndicesPtr remove_outliers(const BroccoliDetectorConfig& cfg, const PclCloud::Ptr& cloud, pcl::Indices valid) {
+pcl::IndicesPtr remove_outliers(const DetectorConfig& cfg, const PclCloud::Ptr& cloud, pcl::Indices valid) {
   pcl::IndicesPtr kept(new pcl::Indices);
   pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
   sor.setInputCloud(cloud);
@@ -79,7 +79,7 @@ pcl::IndicesPtr remove_outliers(const BroccoliDetectorConfig& cfg, const PclClou
   return kept;
 }
 
-std::vector<pcl::PointIndices> euclidean_clusters(const BroccoliDetectorConfig& cfg, const PclCloud::Ptr& cloud,
+std::vector<pcl::PointIndices> euclidean_clusters(const DetectorConfig& cfg, const PclCloud::Ptr& cloud,
                                                   const pcl::IndicesPtr& kept) {
   std::vector<pcl::PointIndices> found;
   pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
@@ -123,8 +123,8 @@ std::vector<std::vector<float>> vfh_histograms(const PclCloud::Ptr& cloud, const
 }
 }  // namespace
 
-PclReferencePipeline::PclReferencePipeline(const BroccoliDetectorConfig& cfg,
-                                           std::shared_ptr<const learning::Model> model, const std::string& where)
+PclReferencePipeline::PclReferencePipeline(const DetectorConfig& cfg, std::shared_ptr<const learning::Model> model,
+                                           const std::string& where)
     : impl_(std::make_unique<Impl>()) {
   cfg.validate("config");
   if (!model) throw Error(where, "the PCL reference pipeline needs a model");
@@ -142,7 +142,7 @@ StageTimer& PclReferencePipeline::timer() { return impl_->timer; }
 
 std::size_t PclReferencePipeline::process(const RgbdFrame& frame) {
   Impl& m = *impl_;
-  const BroccoliDetectorConfig& cfg = m.cfg;
+  const DetectorConfig& cfg = m.cfg;
   pcl::Indices valid;
   {
     auto t = m.timer.scope("cloud");
@@ -178,4 +178,4 @@ std::size_t PclReferencePipeline::process(const RgbdFrame& frame) {
   return found.size();
 }
 
-}  // namespace cropsight::pipeline
+}  // namespace cropsight::pipeline::broccoli

@@ -40,28 +40,28 @@ std::pair<std::vector<std::string>, ConfigMap> split_sets(const PipelineSpec& sp
 
 }  // namespace
 
-GrapeSegmenterConfig segmenter_config(const PipelineSpec& spec) {
+SegmenterConfig segmenter_config(const PipelineSpec& spec) {
   const ConfigMap overrides = split_sets(spec).second;
   const std::string source =
       spec.model.empty() ? (overrides.count("model") ? "" : kDefaultSegmenter) : segmenter_source(spec.model);
-  GrapeSegmenterConfig cfg = grape_segmenter_config(source, overrides, "--set segmenter.*");
+  SegmenterConfig cfg = grape_segmenter_config(source, overrides, "--set segmenter.*");
   if (spec.threads > 0) cfg.threads = spec.threads;
   return cfg;
 }
 
-std::unique_ptr<GrapePipeline> make_pipeline(const PipelineSpec& spec) {
+std::unique_ptr<Pipeline> make_pipeline(const PipelineSpec& spec) {
   PipelineSpec pipeline_spec = spec;
   pipeline_spec.sets = split_sets(spec).first;
   const std::string where = spec_where(pipeline_spec, kDefaultPreset);
-  GrapePipelineConfig cfg;
+  Config cfg;
   apply_config(cfg, spec_values(pipeline_spec, kDefaultPreset), where);
   cfg.validate(where);
-  const GrapeSegmenterConfig scfg = segmenter_config(spec);
-  GrapeSegmenter segmenter(scfg, spec.model.empty() ? kDefaultSegmenter : spec.model);
+  const SegmenterConfig scfg = segmenter_config(spec);
+  Segmenter segmenter(scfg, spec.model.empty() ? kDefaultSegmenter : spec.model);
   std::unique_ptr<Detector2D> detector;
   if (!spec.detector.empty())
     detector = nn::load_center_detector(io::find_model(spec.detector).string(), std::max(1, scfg.threads));
-  return std::make_unique<GrapePipeline>(std::move(cfg), std::move(segmenter), std::move(detector), where);
+  return std::make_unique<Pipeline>(std::move(cfg), std::move(segmenter), std::move(detector), where);
 }
 
 }  // namespace cropsight::pipeline::grape

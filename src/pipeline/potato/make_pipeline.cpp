@@ -4,17 +4,17 @@
 
 namespace cropsight::pipeline::potato {
 
-PotatoPipelineConfig spec_config(const PipelineSpec& spec) {
+Config spec_config(const PipelineSpec& spec) {
   ConfigMap sets = io::load_preset_with_overrides("", spec.sets);
   if (!spec.model.empty()) {
     sets["detector.backend"] = "onnx";
     sets["detector.onnx.model"] = io::find_model(spec.model).string();
   }
-  return load_potato_config(spec.preset.empty() ? kDefaultPreset : spec.preset, sets);
+  return load_config(spec.preset.empty() ? kDefaultPreset : spec.preset, sets);
 }
 
-std::unique_ptr<PotatoPipeline> make_pipeline(const PipelineSpec& spec) {
-  return std::make_unique<PotatoPipeline>(spec_config(spec), spec.preset.empty() ? kDefaultPreset : spec.preset);
+std::unique_ptr<Pipeline> make_pipeline(const PipelineSpec& spec) {
+  return std::make_unique<Pipeline>(spec_config(spec), spec.preset.empty() ? kDefaultPreset : spec.preset);
 }
 
 }  // namespace cropsight::pipeline::potato

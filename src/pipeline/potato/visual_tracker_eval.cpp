@@ -10,14 +10,14 @@
 namespace cropsight::pipeline::potato {
 namespace {
 
-const sim::PotatoFrameTruth* simulated_target(const std::vector<sim::PotatoFrameTruth>& frame) {
+const FrameTruth* simulated_target(const std::vector<FrameTruth>& frame) {
   for (const auto& p : frame)
     if (p.target) return &p;
   return nullptr;
 }
 
 // A start needs the whole potato in view: a box cut by the border is not what the loop hands over.
-bool in_full_view(const sim::PotatoFrameTruth& p, const ColorImage& image, int min_pixels) {
+bool in_full_view(const FrameTruth& p, const ColorImage& image, int min_pixels) {
   const Detection2D& b = p.box;
   return p.visible_pixels >= min_pixels && b.x1 > 1 && b.y1 > 1 && b.x2 < float(image.width - 1) &&
          b.y2 < float(image.height - 1);
@@ -26,7 +26,7 @@ bool in_full_view(const sim::PotatoFrameTruth& p, const ColorImage& image, int m
 }  // namespace
 
 VisualTrackerEvaluation evaluate_visual_tracker(tracking::VisualTrackerKind kind,
-                                                const std::vector<SimulatedPotatoTruthSequence>& sequences,
+                                                const std::vector<TruthSequence>& sequences,
                                                 const VisualTrackerTrialConfig& config) {
   const std::string where = "visual tracker evaluation";
   if (kind == tracking::VisualTrackerKind::none) throw Error(where, "tracker 'none' has nothing to evaluate");
@@ -39,7 +39,7 @@ VisualTrackerEvaluation evaluate_visual_tracker(tracking::VisualTrackerKind kind
   for (const auto& seq : sequences) {
     const int n = int(seq.colour.size());
     for (int s = 0; s + 1 < n; s += config.stride) {
-      const sim::PotatoFrameTruth* start = simulated_target(seq.truth[std::size_t(s)]);
+      const FrameTruth* start = simulated_target(seq.truth[std::size_t(s)]);
       if (!start || !in_full_view(*start, seq.colour[std::size_t(s)], config.min_visible_pixels)) continue;
       auto tracker = tracking::make_visual_tracker(kind, config.csrt);
       const double c0 = thread_cpu_ms();
@@ -65,7 +65,7 @@ VisualTrackerEvaluation evaluate_visual_tracker(tracking::VisualTrackerKind kind
           ++e.update_calls;
           lost = !box;
         }
-        const sim::PotatoFrameTruth* truth = simulated_target(seq.truth[f]);
+        const FrameTruth* truth = simulated_target(seq.truth[f]);
         if (!truth || truth->visible_pixels < config.min_visible_pixels) continue;
         const double overlap = box ? double(iou(*box, truth->box)) : 0.0;
         ++e.updates;

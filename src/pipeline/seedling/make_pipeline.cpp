@@ -4,14 +4,14 @@
 
 namespace cropsight::pipeline::seedling {
 
-std::unique_ptr<SeedlingPipeline> make_pipeline(const PipelineSpec& spec) {
+std::unique_ptr<Pipeline> make_pipeline(const PipelineSpec& spec) {
   const std::string preset = spec.preset.empty() ? kDefaultPreset : spec.preset;
-  SeedlingConfig cfg = load_seedling_config(preset);  // validated, errors name the preset file
+  Config cfg = load_config(preset);  // validated, errors name the preset file
   if (!spec.sets.empty()) {
     apply_config(cfg, io::load_preset_with_overrides("", spec.sets), "--set");
-    validate_seedling_config(cfg, "--set");
+    cfg.validate("--set");
   }
-  return std::make_unique<SeedlingPipeline>(std::move(cfg), preset);
+  return std::make_unique<Pipeline>(std::move(cfg), preset);
 }
 
 }  // namespace cropsight::pipeline::seedling

@@ -6,7 +6,7 @@
 
 #include "stereo/cv_convert.hpp"
 
-namespace cropsight::pipeline {
+namespace cropsight::pipeline::seedling {
 
 double TopViewMask::area() const {
   long n = 0;
@@ -32,4 +32,4 @@ TopViewMask rasterize_top_view(const std::vector<Eigen::Vector3d>& points, const
   return t;
 }
 
-}  // namespace cropsight::pipeline
+}  // namespace cropsight::pipeline::seedling

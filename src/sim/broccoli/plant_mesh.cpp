@@ -325,7 +325,7 @@ std::shared_ptr<const Mesh> BroccoliField::build_plant(PlantSpec& spec) const {
   }
 
   // Inner leaves: young leaves hugging the head, rising past it and curling back over its rim;
-  // their tips are often the highest points of the plant (issue 2: "some leaf tips above the head").
+  // their tips are often the highest points of the plant ("some leaf tips above the head").
   const int n_inner = rng.uniform_int(P.inner_leaves_min, P.inner_leaves_max) / (spec.has_head ? 1 : 2);
   for (int i = 0; i < n_inner; ++i) {
     const detail::LeafShape L = inner_leaf(P, rng, spec, stem_top, head_r, rim_radius);

@@ -134,45 +134,6 @@ io::GroundTruth make_truth(const PotatoSimConfig& cfg, const detail::PotatoScene
 
 }  // namespace
 
-std::vector<PotatoFrameTruth> potato_frame_truth(const io::GroundTruth& truth, const Eigen::Vector3d& camera_position,
-                                                 const CameraIntrinsics& camera, const LabelImage& labels) {
-  const Eigen::Matrix3d R = field_to_camera_rotation();
-  std::vector<PotatoFrameTruth> out;
-  for (const auto& t : truth.instances) {
-    PotatoFrameTruth p;
-    p.id = t.id;
-    auto extra = [&](const char* k) {
-      const auto it = t.extra.find(k);
-      return it == t.extra.end() ? 0.0 : it->second;
-    };
-    p.target = extra("target") > 0.5;
-    p.centre_world = t.position;
-    p.centre_camera = R * (t.position - camera_position);
-    p.length_m = extra("length_m");
-    p.width_m = extra("width_m");
-    const Eigen::Vector3d axis = R * Eigen::Vector3d(extra("axis_x"), extra("axis_y"), extra("axis_z"));
-    if (p.centre_camera.z() > 0) {
-      const Eigen::Vector3d a = p.centre_camera - 0.5 * p.length_m * axis,
-                            b = p.centre_camera + 0.5 * p.length_m * axis;
-      const Eigen::Vector2f pa = camera.project(a.cast<float>()), pb = camera.project(b.cast<float>());
-      // Image y points down: counter-clockwise on screen is -dv.
-      double ang = std::atan2(-(pb.y() - pa.y()), pb.x() - pa.x());
-      ang = std::fmod(ang + 2 * M_PI, M_PI);
-      p.angle_rad = ang >= M_PI ? 0.0 : ang;
-    }
-    int u0 = labels.width, v0 = labels.height, u1 = -1, v1 = -1;
-    for (int v = 0; v < labels.height; ++v)
-      for (int u = 0; u < labels.width; ++u)
-        if (labels.at(u, v) == t.id) {
-          u0 = std::min(u0, u), u1 = std::max(u1, u), v0 = std::min(v0, v), v1 = std::max(v1, v);
-          ++p.visible_pixels;
-        }
-    if (p.visible_pixels > 0) p.box = {float(u0), float(v0), float(u1 + 1), float(v1 + 1), 0, 1.f};
-    out.push_back(p);
-  }
-  return out;
-}
-
 PotatoSimSummary simulate_potato_sequence(const PotatoSimConfig& config, std::uint64_t seed, int frames,
                                           const std::filesystem::path& out, bool overwrite,
                                           const std::function<void(int, int)>& progress) {

@@ -16,18 +16,20 @@
 #include "cropsight/eval/detection_ap.hpp"
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/learning/model.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_training.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_truth.hpp"
+#include "cropsight/pipeline/broccoli/eval.hpp"
 #include "cropsight/pipeline/broccoli/pcl_reference.hpp"
+#include "cropsight/pipeline/broccoli/pipeline.hpp"
+#include "cropsight/pipeline/broccoli/training.hpp"
+#include "cropsight/pipeline/broccoli/truth.hpp"
 #include "testing/testing.hpp"
 
 using namespace cropsight;
 using namespace cropsight::pipeline;
+using namespace cropsight::pipeline::broccoli;
 
 namespace {
-BroccoliDetectorConfig preset(const std::string& name) {
-  BroccoliDetectorConfig cfg;
+pipeline::broccoli::DetectorConfig preset(const std::string& name) {
+  pipeline::broccoli::DetectorConfig cfg;
   const auto path = cropsight::testing::source_dir() / "configs" / (name + ".yaml");
   apply_config(cfg, io::load_config_map(path), path.string());
   cfg.validate(path.string());
@@ -58,32 +60,32 @@ TEST(BroccoliPresets, EveryPresetAppliesAndValidates) {
 }
 
 TEST(BroccoliDetector, RejectsBadConfigAndMismatchingModels) {
-  BroccoliDetectorConfig bad;
+  pipeline::broccoli::DetectorConfig bad;
   EXPECT_THROW(apply_config(bad, {{"pipeline", "kmeans"}}, "preset"), Error);  // oes | org | fec
 
   bad.features = "vfh,sift";
-  EXPECT_THROW(BroccoliDetector{bad}, Error);
+  EXPECT_THROW(pipeline::broccoli::Detector{bad}, Error);
 
-  BroccoliDetectorConfig cfg = preset("broccoli-oes-uk");
-  BroccoliDatasetBuilder builder(cfg, {});
+  pipeline::broccoli::DetectorConfig cfg = preset("broccoli-oes-uk");
+  pipeline::broccoli::DatasetBuilder builder(cfg, {});
   for (int i = 0; i < 3; ++i) builder.add_frame(train_frames()[std::size_t(i)]);
-  auto model = std::make_shared<learning::Model>(train_broccoli_model(builder.dataset(), cfg, {}, {}));
-  cfg.pipeline = BroccoliVariant::fec;
-  BroccoliDetector fec(cfg);
+  auto model = std::make_shared<learning::Model>(pipeline::broccoli::train_model(builder.dataset(), cfg, {}, {}));
+  cfg.pipeline = pipeline::broccoli::Variant::fec;
+  pipeline::broccoli::Detector fec(cfg);
   try {
     fec.set_model(model, "m.json");
     FAIL() << "a model trained on OES clusters was accepted by an FEC detector";
   } catch (const Error& e) {
     EXPECT_NE(e.problem().find("pipeline 'oes'"), std::string::npos) << e.what();
   }
-  cfg.pipeline = BroccoliVariant::oes;
+  cfg.pipeline = pipeline::broccoli::Variant::oes;
   cfg.features = "vfh,va";
-  BroccoliDetector other_features(cfg);
+  pipeline::broccoli::Detector other_features(cfg);
   EXPECT_THROW(other_features.set_model(model, "m.json"), Error);
 }
 
 TEST(BroccoliDetector, ReusedWorkspacesGiveIdenticalResults) {
-  BroccoliDetector det(preset("broccoli-oes-uk"));
+  pipeline::broccoli::Detector det(preset("broccoli-oes-uk"));
   const RgbdFrame& a = train_frames()[0];
   const RgbdFrame& b = train_frames()[1];
   auto snapshot = [&] {
@@ -110,7 +112,7 @@ TEST(BroccoliDetector, CloudMatchesTheScalarDeprojection) {
   // (ray slopes in double rounded to float, z = d·scale, NaN for 0 or outside the depth range),
   // compared bit for bit (NaN included). Depth values are spread over and outside the range.
   auto cfg = preset("broccoli-oes-uk");
-  BroccoliDetector det(cfg);
+  pipeline::broccoli::Detector det(cfg);
   RgbdFrame f = test_frames()[0];
   for (std::size_t i = 0; i < f.depth.data.size(); i += 7) f.depth.data[i] = std::uint16_t((i * 37) % 1400);
   f.depth.data[1] = 0;
@@ -144,19 +146,19 @@ TEST(BroccoliDetector, CloudMatchesTheScalarDeprojection) {
 
 // End to end: train on simulated seed 11, test on seed 12 (never seen in training).
 TEST(BroccoliDetector, TrainedOnOneSeedDetectsHeadsOnAnother) {
-  const BroccoliDetectorConfig cfg = preset("broccoli-oes-uk");
-  BroccoliDatasetBuilder builder(cfg, {});
+  const pipeline::broccoli::DetectorConfig cfg = preset("broccoli-oes-uk");
+  pipeline::broccoli::DatasetBuilder builder(cfg, {});
   for (const auto& f : train_frames()) builder.add_frame(f);
   ASSERT_GT(builder.dataset().positives(), 5u);
   auto model = std::make_shared<learning::Model>(
-      train_broccoli_model(builder.dataset(), cfg, {}, {{"data", "simulated uk seed 11"}}));
-  BroccoliPipelineConfig pc;
+      pipeline::broccoli::train_model(builder.dataset(), cfg, {}, {{"data", "simulated uk seed 11"}}));
+  pipeline::broccoli::Config pc;
   pc.detector = cfg;
   pc.track = false;
-  BroccoliPipeline pipe(pc, model);
-  BroccoliEvaluator ev(pipe);
+  pipeline::broccoli::Pipeline pipe(pc, model);
+  pipeline::broccoli::Evaluator ev(pipe);
   for (const auto& f : test_frames()) ev.add_frame(f);
-  const auto r = ev.result();
+  const auto r = ev.figures();
   EXPECT_EQ(r.frames, 6);
   EXPECT_GT(r.truth_heads, 0);
   // Modest bounds for a 16-frame training set (docs/pipelines/broccoli-heads.md has the
@@ -172,13 +174,13 @@ TEST(BroccoliDetector, TrainedOnOneSeedDetectsHeadsOnAnother) {
   EXPECT_GE(r.ap50_visible, r.ap50);
   EXPECT_GE(r.ap50_in_view, r.ap50);
   // With the threshold at 1 point, "visible" is every head: the same AP.
-  BroccoliPipelineConfig all = pc;
+  pipeline::broccoli::Config all = pc;
   all.truth.visible_truth_points = 1;
-  BroccoliPipeline pipe1(all, model);
-  BroccoliEvaluator ev1(pipe1);
+  pipeline::broccoli::Pipeline pipe1(all, model);
+  pipeline::broccoli::Evaluator ev1(pipe1);
   for (const auto& f : test_frames()) ev1.add_frame(f);
-  EXPECT_EQ(ev1.result().truth_heads_visible, r.truth_heads);
-  EXPECT_DOUBLE_EQ(ev1.result().ap50_visible, r.ap50);
+  EXPECT_EQ(ev1.figures().truth_heads_visible, r.truth_heads);
+  EXPECT_DOUBLE_EQ(ev1.figures().ap50_visible, r.ap50);
   // Detections are the positive candidates, best first, with camera-frame centroids in range.
   const auto dets = pipe.process(test_frames()[0]).detections;
   for (std::size_t i = 0; i < dets.size(); ++i) {
@@ -196,15 +198,15 @@ TEST(BroccoliDetector, TrainedOnOneSeedDetectsHeadsOnAnother) {
 // detection.min_normal_points they are never heads and stay out of training; every other cluster
 // keeps its score.
 TEST(BroccoliDetector, ClustersWithoutNormalsAreNeverHeads) {
-  BroccoliDetectorConfig cfg = preset("broccoli-oes-uk");
+  pipeline::broccoli::DetectorConfig cfg = preset("broccoli-oes-uk");
   cfg.detection.min_normal_points = 0;
-  BroccoliDatasetBuilder all(cfg, {});
+  pipeline::broccoli::DatasetBuilder all(cfg, {});
   for (const auto& f : train_frames()) all.add_frame(f);
-  auto model = std::make_shared<learning::Model>(train_broccoli_model(all.dataset(), cfg, {}, {}));
-  BroccoliDetector plain(cfg);
+  auto model = std::make_shared<learning::Model>(pipeline::broccoli::train_model(all.dataset(), cfg, {}, {}));
+  pipeline::broccoli::Detector plain(cfg);
   plain.set_model(model);
   cfg.detection.min_normal_points = 3;
-  BroccoliDetector strict(cfg);
+  pipeline::broccoli::Detector strict(cfg);
   strict.set_model(model);
   int undescribed = 0, compared = 0;
   for (const auto& f : test_frames()) {
@@ -232,7 +234,7 @@ TEST(BroccoliDetector, ClustersWithoutNormalsAreNeverHeads) {
   EXPECT_GT(undescribed, 0) << "the simulated frames have border slivers without normals";
   EXPECT_GT(compared, 0);
   // Training leaves them out.
-  BroccoliDatasetBuilder some(cfg, {});
+  pipeline::broccoli::DatasetBuilder some(cfg, {});
   for (const auto& f : train_frames()) some.add_frame(f);
   EXPECT_LT(some.dataset().size(), all.dataset().size());
   cfg.detection.min_normal_points = -1;
@@ -242,12 +244,12 @@ TEST(BroccoliDetector, ClustersWithoutNormalsAreNeverHeads) {
 // The PCL reference pipeline (bench baseline) and our FEC find the same clusters and, with the
 // same model, nearly the same scores (our VFH is bin-exact with PCL's given the same normals).
 TEST(PclReference, MatchesOurFecPipeline) {
-  BroccoliDetectorConfig cfg = preset("broccoli-fec-uk");
+  pipeline::broccoli::DetectorConfig cfg = preset("broccoli-fec-uk");
   cfg.outliers.enabled = false;
-  BroccoliDatasetBuilder builder(cfg, {});
+  pipeline::broccoli::DatasetBuilder builder(cfg, {});
   for (int i = 0; i < 3; ++i) builder.add_frame(train_frames()[std::size_t(i)]);
-  auto model = std::make_shared<learning::Model>(train_broccoli_model(builder.dataset(), cfg, {}, {}));
-  BroccoliDetector ours(cfg);
+  auto model = std::make_shared<learning::Model>(pipeline::broccoli::train_model(builder.dataset(), cfg, {}, {}));
+  pipeline::broccoli::Detector ours(cfg);
   ours.set_model(model);
   PclReferencePipeline pcl(cfg, model);
   const RgbdFrame& f = test_frames()[1];
@@ -276,11 +278,11 @@ TEST(PclReference, MatchesOurFecPipeline) {
   EXPECT_LT(diffs[diffs.size() / 2], 0.02);
 }
 
-// Range-aware detection options (issue 27): the soil estimate, the soil-relative depth window
+// Range-aware detection options: the soil estimate, the soil-relative depth window
 // and the range-scaled OES thresholds.
 namespace {
 // Valid cloud points on labelled head pixels.
-long range_head_points(const BroccoliDetector& d, const RgbdFrame& f) {
+long range_head_points(const pipeline::broccoli::Detector& d, const RgbdFrame& f) {
   long n = 0;
   for (std::size_t i = 0; i < f.labels.data.size(); ++i) n += f.labels.data[i] && std::isfinite(d.cloud().z[i]);
   return n;
@@ -294,9 +296,9 @@ TEST(BroccoliRange, SoilRelativeWindowFollowsTheCameraHeight) {
   sim::BroccoliSimConfig sim_cfg;
   sim_cfg.camera.height_m = 1.55;
   const auto frames = testdata::simulate(sim_cfg, 21, 1);
-  BroccoliDetectorConfig fixed = preset("broccoli-oes-uk"), rel = preset("broccoli-oes-uk");
+  pipeline::broccoli::DetectorConfig fixed = preset("broccoli-oes-uk"), rel = preset("broccoli-oes-uk");
   rel.range.soil_relative = true;
-  BroccoliDetector a(fixed), b(rel);
+  pipeline::broccoli::Detector a(fixed), b(rel);
   a.process(frames[0]);
   b.process(frames[0]);
   EXPECT_TRUE(std::isnan(a.soil_depth()));
@@ -309,12 +311,12 @@ TEST(BroccoliRange, SoilRelativeWindowFollowsTheCameraHeight) {
 // camera gets the soil-relative window (heads beyond 1.0 m kept); a low one keeps the paper's
 // 1.0 m window where the soil-relative end (soil - 0.25 m) would cut the low heads' tops.
 TEST(BroccoliRange, ExtendOnlyGrowsTheWindowButNeverNarrowsIt) {
-  auto finite = [](const BroccoliDetector& d) {
+  auto finite = [](const pipeline::broccoli::Detector& d) {
     long n = 0;
     for (float z : d.cloud().z) n += std::isfinite(z);
     return n;
   };
-  BroccoliDetectorConfig fixed = preset("broccoli-oes-uk"), rel = fixed, ext = fixed;
+  pipeline::broccoli::DetectorConfig fixed = preset("broccoli-oes-uk"), rel = fixed, ext = fixed;
   rel.range.soil_relative = ext.range.soil_relative = true;
   ext.range.extend_only = true;
   for (const double height : {1.55, 1.10}) {
@@ -322,7 +324,7 @@ TEST(BroccoliRange, ExtendOnlyGrowsTheWindowButNeverNarrowsIt) {
     sim::BroccoliSimConfig sim_cfg;
     sim_cfg.camera.height_m = height;
     const auto frames = testdata::simulate(sim_cfg, 23, 1);
-    BroccoliDetector a(fixed), b(rel), c(ext);
+    pipeline::broccoli::Detector a(fixed), b(rel), c(ext);
     a.process(frames[0]);
     b.process(frames[0]);
     c.process(frames[0]);
@@ -347,15 +349,15 @@ TEST(BroccoliRange, AnyDepthFiguresCountHeadsOutsideTheWindow) {
   const auto model_path = cropsight::testing::source_dir() / "models" / "broccoli-oes-general.json";
   const auto model = std::make_shared<const learning::Model>(learning::load_model(model_path.string()));
   auto run = [&](bool extend) {
-    BroccoliPipelineConfig cfg = broccoli_config_for_model(*model, {}, model_path.string());
+    pipeline::broccoli::Config cfg = pipeline::broccoli::config_for_model(*model, {}, model_path.string());
     cfg.detector.range.soil_relative = cfg.detector.range.extend_only = extend;
     cfg.track = false;
-    BroccoliPipeline pipe(cfg, model);
-    BroccoliEvaluator ev(pipe);
+    pipeline::broccoli::Pipeline pipe(cfg, model);
+    pipeline::broccoli::Evaluator ev(pipe);
     for (const auto& f : frames) ev.add_frame(f);
-    return ev.result();
+    return ev.figures();
   };
-  const BroccoliEvalResult fixed = run(false), extended = run(true);
+  const pipeline::broccoli::Figures fixed = run(false), extended = run(true);
   EXPECT_EQ(fixed.truth_heads, 0);
   EXPECT_GT(fixed.truth_heads_any_depth, 0);
   EXPECT_EQ(fixed.ap50_any_depth, 0.0);
@@ -368,15 +370,15 @@ TEST(BroccoliRange, AnyDepthFiguresCountHeadsOutsideTheWindow) {
 // detector as before (same candidates).
 TEST(BroccoliRange, ScalingIsNeutralAtTheReferenceRange) {
   const auto frames = testdata::simulate(sim::BroccoliSimConfig{}, 22, 1);
-  BroccoliDetectorConfig base = preset("broccoli-oes-uk"), scaled = preset("broccoli-oes-uk");
-  BroccoliDetector a(base);
+  pipeline::broccoli::DetectorConfig base = preset("broccoli-oes-uk"), scaled = preset("broccoli-oes-uk");
+  pipeline::broccoli::Detector a(base);
   const std::size_t n_base = a.process(frames[0]).size();
   scaled.range.soil_relative = false;
   scaled.range.reference_range = 1.0f;  // placeholder, replaced by the measured head range below
-  BroccoliDetector measure(scaled);
+  pipeline::broccoli::Detector measure(scaled);
   measure.process(frames[0]);
   scaled.range.reference_range = measure.soil_depth() - scaled.range.head_height;
-  BroccoliDetector c(scaled);
+  pipeline::broccoli::Detector c(scaled);
   EXPECT_EQ(c.process(frames[0]).size(), n_base);
 }
 
@@ -392,7 +394,7 @@ double head_iou(const OrganizedCloud& cloud, const std::vector<int>& indices, st
 // True when `c`, a candidate of detector `with`, is a head that covers a labelled head with IoU
 // >= 0.5 and no candidate in `plain` (of detector `without`, same frame) covers that head so.
 // Which candidate holds each of the cloud's pixels (-1: none).
-std::vector<int> candidate_owners(std::size_t pixels, std::span<const BroccoliCandidate> cands) {
+std::vector<int> candidate_owners(std::size_t pixels, std::span<const pipeline::broccoli::Candidate> cands) {
   std::vector<int> owner(pixels, -1);
   for (std::size_t k = 0; k < cands.size(); ++k)
     for (int i : cands[k].segment.indices) owner[std::size_t(i)] = int(k);
@@ -402,10 +404,11 @@ std::vector<int> candidate_owners(std::size_t pixels, std::span<const BroccoliCa
 // Runs two detectors with `model` over `frames` and hands each frame's two candidate lists
 // (`plain` from the first config, `changed` from the second) and the detectors to `check`.
 template <class Check>
-void run_side_by_side(const BroccoliDetectorConfig& plain_cfg, const BroccoliDetectorConfig& changed_cfg,
+void run_side_by_side(const pipeline::broccoli::DetectorConfig& plain_cfg,
+                      const pipeline::broccoli::DetectorConfig& changed_cfg,
                       const std::shared_ptr<const learning::Model>& model, const std::vector<RgbdFrame>& frames,
                       Check check) {
-  BroccoliDetector plain(plain_cfg), changed(changed_cfg);
+  pipeline::broccoli::Detector plain(plain_cfg), changed(changed_cfg);
   plain.set_model(model);
   changed.set_model(model);
   for (const auto& f : frames) {
@@ -415,8 +418,9 @@ void run_side_by_side(const BroccoliDetectorConfig& plain_cfg, const BroccoliDet
   }
 }
 
-bool found_only_with(const BroccoliCandidate& c, const BroccoliDetector& with, const BroccoliDetector& without,
-                     std::span<const BroccoliCandidate> plain) {
+bool found_only_with(const pipeline::broccoli::Candidate& c, const pipeline::broccoli::Detector& with,
+                     const pipeline::broccoli::Detector& without,
+                     std::span<const pipeline::broccoli::Candidate> plain) {
   if (!c.head) return false;
   const auto truth = cluster_truth(c.segment.indices, with.cloud().labels, 0.5f);
   if (truth.head_id == 0) return false;
@@ -428,18 +432,18 @@ bool found_only_with(const BroccoliCandidate& c, const BroccoliDetector& with, c
 }
 }  // namespace
 
-// Issue 27: under ToF noise a head breaks into one kept piece and debris below min_size. The
+// Under ToF noise a head breaks into one kept piece and debris below min_size. The
 // debris pass (oes.debris_tolerance) segments what the first pass dropped without touching what it
 // kept; completion (detection.grow_tolerance) grows a head's mask over unclustered pixels only.
 TEST(BroccoliDetector, DebrisPassAndCompletionRecoverNoisyHeads) {
   sim::BroccoliSimConfig noisy;
   noisy.sensor.noise_at_1m_m = 0.006;
   const auto frames = testdata::simulate(noisy, 31, 3);
-  BroccoliDetectorConfig one = preset("broccoli-oes-uk");
+  pipeline::broccoli::DetectorConfig one = preset("broccoli-oes-uk");
   one.oes.distance_tolerance = 0.0065f;
-  BroccoliDetectorConfig two = one;
+  pipeline::broccoli::DetectorConfig two = one;
   two.oes.debris_tolerance = 0.01f;
-  BroccoliDetector a(one), b(two);
+  pipeline::broccoli::Detector a(one), b(two);
   int extra = 0;
   for (const auto& f : frames) {
     const auto ca = a.process(f);
@@ -467,9 +471,9 @@ TEST(BroccoliDetector, DebrisPassAndCompletionRecoverNoisyHeads) {
   // grown pixels belong to no other candidate, and the heads' IoU with their truth rises.
   auto model = std::make_shared<learning::Model>(
       learning::load_model((cropsight::testing::source_dir() / "models" / "broccoli-oes-general.json").string()));
-  BroccoliDetectorConfig grown_cfg = one;
+  pipeline::broccoli::DetectorConfig grown_cfg = one;
   grown_cfg.detection.grow_tolerance = 0.013f;
-  BroccoliDetector plain(one), grown(grown_cfg);
+  pipeline::broccoli::Detector plain(one), grown(grown_cfg);
   plain.set_model(model);
   grown.set_model(model);
   double iou_plain = 0.0, iou_grown = 0.0;
@@ -510,12 +514,12 @@ TEST(BroccoliDetector, DebrisPassAndCompletionRecoverNoisyHeads) {
   // and never into another candidate. (FEC builds its owner map: grow_into_free_pixels' own tests.)
   {
     const std::string name = "org";
-    BroccoliDetectorConfig base = preset("broccoli-" + name + "-uk");
-    BroccoliDetectorConfig grow = base;
+    pipeline::broccoli::DetectorConfig base = preset("broccoli-" + name + "-uk");
+    pipeline::broccoli::DetectorConfig grow = base;
     grow.detection.grow_tolerance = 0.013f;
     auto m = std::make_shared<learning::Model>(learning::load_model(
         (cropsight::testing::source_dir() / "models" / ("broccoli-" + name + "-uk.json")).string()));
-    BroccoliDetector p(base), g(grow);
+    pipeline::broccoli::Detector p(base), g(grow);
     p.set_model(m);
     g.set_model(m);
     int grown_heads = 0, org_heads = 0;
@@ -539,7 +543,7 @@ TEST(BroccoliDetector, DebrisPassAndCompletionRecoverNoisyHeads) {
   }
 }
 
-// Issue 27: a head that OES joined to a leaf at the same depth is one rejected cluster. With
+// A head that OES joined to a leaf at the same depth is one rejected cluster. With
 // detection.split_concave_angle_deg, the rejected clusters are split at their concave creases and
 // the pieces classified: the heads already found stay as they were, the replaced clusters' pieces
 // are disjoint parts of them, and some head that had no cluster of its own gets one. Frames of a
@@ -548,14 +552,15 @@ TEST(BroccoliDetector, DebrisPassAndCompletionRecoverNoisyHeads) {
 TEST(BroccoliDetector, ConcaveSplitFreesHeadsJoinedToLeaves) {
   const auto frames = testdata::simulate(testdata::sim_preset("random-wide"), 6111, 12);
   const auto model_path = cropsight::testing::source_dir() / "models" / "broccoli-oes-general.json";
-  const auto model = load_broccoli_model(model_path.string());
-  BroccoliDetectorConfig on = broccoli_config_for_model(*model, {}, model_path.string()).detector;
+  const auto model = pipeline::broccoli::load_model(model_path.string());
+  pipeline::broccoli::DetectorConfig on =
+      pipeline::broccoli::config_for_model(*model, {}, model_path.string()).detector;
   ASSERT_GT(on.detection.split_concave_angle_deg, 0.0f) << "the shipped general model splits";
-  BroccoliDetectorConfig org = on;
-  org.pipeline = BroccoliVariant::org;
+  pipeline::broccoli::DetectorConfig org = on;
+  org.pipeline = pipeline::broccoli::Variant::org;
   EXPECT_THROW(org.validate("test"), Error) << "the split is OES's: another pipeline is told, not ignored";
   on.detection.split_accepted = false;  // this test is about rejected clusters (next test: accepted ones)
-  BroccoliDetectorConfig off = on;
+  pipeline::broccoli::DetectorConfig off = on;
   off.detection.split_concave_angle_deg = 0.0f;
   int replaced = 0, recovered = 0;
   run_side_by_side(off, on, model, frames, [&](auto ca, auto cb, const auto& a, const auto& b) {
@@ -601,10 +606,11 @@ TEST(BroccoliDetector, ConcaveSplitFreesHeadsJoinedToLeaves) {
 TEST(BroccoliDetector, AcceptedClustersGiveWayOnlyToABetterPiece) {
   const auto frames = testdata::simulate(testdata::sim_preset("random-wide"), 6111, 20);
   const auto model_path = cropsight::testing::source_dir() / "models" / "broccoli-oes-general.json";
-  const auto model = load_broccoli_model(model_path.string());
-  BroccoliDetectorConfig on = broccoli_config_for_model(*model, {}, model_path.string()).detector;
+  const auto model = pipeline::broccoli::load_model(model_path.string());
+  pipeline::broccoli::DetectorConfig on =
+      pipeline::broccoli::config_for_model(*model, {}, model_path.string()).detector;
   on.detection.split_accepted = true;
-  BroccoliDetectorConfig off = on;
+  pipeline::broccoli::DetectorConfig off = on;
   off.detection.split_accepted = false;
   int replaced = 0, recovered = 0;
   run_side_by_side(off, on, model, frames, [&](auto ca, auto cb, const auto& a, const auto& b) {
@@ -645,14 +651,15 @@ TEST(BroccoliDetector, AcceptedClustersGiveWayOnlyToABetterPiece) {
 TEST(BroccoliDetector, OversizedRegionsAreOnlySplit) {
   const auto frames = testdata::simulate(testdata::sim_preset("random-wide"), 6109, 12);
   const auto model_path = cropsight::testing::source_dir() / "models" / "broccoli-oes-general.json";
-  const auto model = load_broccoli_model(model_path.string());
-  BroccoliDetectorConfig on = broccoli_config_for_model(*model, {}, model_path.string()).detector;
+  const auto model = pipeline::broccoli::load_model(model_path.string());
+  pipeline::broccoli::DetectorConfig on =
+      pipeline::broccoli::config_for_model(*model, {}, model_path.string()).detector;
   on.oes.max_size = 40000;
   on.detection.split_oversized_above = 10000;
-  BroccoliDetectorConfig off = on;
+  pipeline::broccoli::DetectorConfig off = on;
   off.detection.split_oversized_above = 0;
   off.oes.max_size = 10000;
-  BroccoliDetector a(off), b(on);
+  pipeline::broccoli::Detector a(off), b(on);
   a.set_model(model);
   b.set_model(model);
   int oversized = 0, recovered = 0;
@@ -681,20 +688,20 @@ namespace {
 // head CNN (`on`).
 struct WithHeadCnn {
   std::shared_ptr<const learning::Model> model;
-  BroccoliDetectorConfig off, on;
+  pipeline::broccoli::DetectorConfig off, on;
 };
 WithHeadCnn general_model_with_head_cnn() {
   const auto models = cropsight::testing::source_dir() / "models";
   WithHeadCnn w;
-  w.model = load_broccoli_model((models / "broccoli-oes-general.json").string());
-  w.off = broccoli_config_for_model(*w.model, {}, "model").detector;
+  w.model = pipeline::broccoli::load_model((models / "broccoli-oes-general.json").string());
+  w.off = pipeline::broccoli::config_for_model(*w.model, {}, "model").detector;
   w.on = w.off;
   w.on.cnn.model = (models / "broccoli-head-cnn.onnx").string();
   return w;
 }
 }  // namespace
 
-// cnn.model (issue 27): the depth CNN proposes heads where no accepted head lies. Its proposals
+// cnn.model: the depth CNN proposes heads where no accepted head lies. Its proposals
 // never change what the classifier accepted; they are heads ranked just above the threshold (after
 // every classifier head), overlap no accepted head by more than cnn.max_overlap, take their pixels
 // from the rejected clusters they cover (no pixel is in a proposal and a rejected cluster), and some
@@ -708,7 +715,7 @@ TEST(BroccoliDetector, HeadCnnAddsHeadsOnlyWhereNoAcceptedHeadLies) {
   run_side_by_side(off, on, model, frames, [&](auto ca, auto cb, const auto& a, const auto& b) {
     for (const auto& p : ca) {
       if (!p.head) continue;
-      const bool kept = std::any_of(cb.begin(), cb.end(), [&](const BroccoliCandidate& c) {
+      const bool kept = std::any_of(cb.begin(), cb.end(), [&](const pipeline::broccoli::Candidate& c) {
         return c.head && !c.proposed && c.segment.indices == p.segment.indices && c.score == p.score;
       });
       EXPECT_TRUE(kept) << "an accepted head of the plain run is unchanged";
@@ -743,13 +750,13 @@ TEST(BroccoliDetector, HeadCnnAddsHeadsOnlyWhereNoAcceptedHeadLies) {
 TEST(BroccoliDetector, HeadCnnModelMustBeAnOnnxHeadDetector) {
   const auto models = cropsight::testing::source_dir() / "models";
   auto with = [](const std::string& path) {
-    BroccoliDetectorConfig cfg;
+    pipeline::broccoli::DetectorConfig cfg;
     cfg.cnn.model = path;
     return cfg;
   };
   auto message = [&](const std::string& path) {
     try {
-      BroccoliDetector d(with(path));
+      pipeline::broccoli::Detector d(with(path));
     } catch (const Error& e) {
       return std::string(e.what());
     }
@@ -758,7 +765,7 @@ TEST(BroccoliDetector, HeadCnnModelMustBeAnOnnxHeadDetector) {
   EXPECT_NE(message("head.pt").find(".onnx"), std::string::npos);
   EXPECT_NE(message("/nonexistent/head.onnx").find("/nonexistent/head.onnx"), std::string::npos);
   EXPECT_NE(message((models / "detector-grape.onnx").string()).find("one class 'head'"), std::string::npos);
-  EXPECT_NO_THROW(BroccoliDetector{with((models / "broccoli-head-cnn.onnx").string())});
+  EXPECT_NO_THROW(pipeline::broccoli::Detector{with((models / "broccoli-head-cnn.onnx").string())});
 }
 
 // Training never runs the head CNN: its proposals have no features and the clusters it carves would
@@ -767,7 +774,7 @@ TEST(BroccoliDetector, HeadCnnModelMustBeAnOnnxHeadDetector) {
 TEST(BroccoliDetector, TrainingSamplesIgnoreTheHeadCnn) {
   const auto frames = testdata::simulate(testdata::sim_preset("spain"), 2002, 2);
   const auto [model, off, on] = general_model_with_head_cnn();
-  BroccoliDatasetBuilder plain(off, {}), with_cnn(on, {});
+  pipeline::broccoli::DatasetBuilder plain(off, {}), with_cnn(on, {});
   for (const auto& f : frames) plain.add_frame(f), with_cnn.add_frame(f);
   ASSERT_GT(plain.dataset().size(), 0u);
   EXPECT_EQ(with_cnn.dataset().size(), plain.dataset().size());

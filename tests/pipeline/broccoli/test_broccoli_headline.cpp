@@ -9,9 +9,10 @@
 #include <string>
 
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_tracking_eval.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_training.hpp"
+#include "cropsight/pipeline/broccoli/eval.hpp"
+#include "cropsight/pipeline/broccoli/pipeline.hpp"
+#include "cropsight/pipeline/broccoli/tracking_eval.hpp"
+#include "cropsight/pipeline/broccoli/training.hpp"
 #include "testing/testing.hpp"
 
 using namespace cropsight;
@@ -38,11 +39,12 @@ TEST(BroccoliHeadline, ShippedOesUkModelOnTheDocumentedTestPass) {
   const auto seq = simulate(tmp, "uk-2001", "--variety uk --seed 2001 --frames 50");
   ASSERT_FALSE(::testing::Test::HasFailure());
   const auto model_path = shipped_model("broccoli-oes-uk.json");
-  const auto model = load_broccoli_model(model_path);
+  const auto model = pipeline::broccoli::load_model(model_path);
   // The sizing-tracking doc's AP table: poses on (AP50 does not depend on the size settings).
-  BroccoliPipeline pipe(broccoli_config_for_model(*model, {{"tracking.use_poses", "true"}}, model_path), model);
-  BroccoliEvaluator detection(pipe);
-  BroccoliTrackingEvaluator tracking;
+  pipeline::broccoli::Pipeline pipe(
+      pipeline::broccoli::config_for_model(*model, {{"tracking.use_poses", "true"}}, model_path), model);
+  pipeline::broccoli::Evaluator detection(pipe);
+  pipeline::broccoli::TrackingEvaluator tracking;
   const io::SequenceReader reader(seq);
   tracking.begin_pass(reader.groundtruth(), !reader.poses().empty(), seq.string());
   for (int i = 0; i < reader.size(); ++i) {
@@ -51,8 +53,8 @@ TEST(BroccoliHeadline, ShippedOesUkModelOnTheDocumentedTestPass) {
     tracking.add_frame(frame, pipe);
   }
   tracking.end_pass(pipe);
-  const auto d = detection.result();
-  const auto t = tracking.result();
+  const auto d = detection.figures();
+  const auto t = tracking.figures();
   EXPECT_EQ(d.frames, 50);
   // broccoli-heads.md, OES uk → uk row: kappa 0.951, AP50 0.815 (every labelled head), 0.980 with
   // heads of fewer than 300 visible points as ignore regions, mAP50:95 0.785.
@@ -73,7 +75,7 @@ TEST(BroccoliHeadline, ShippedOesUkModelOnTheDocumentedTestPass) {
   EXPECT_NEAR(t.ap50_offline_visible, 0.9856, 0.00006);
 }
 
-// broccoli-heads.md, "Generalisation": the shipped general model on one of its held-out randomised
+// docs/experiments/2026-12-02-broccoli-generalisation.md: the shipped general model on one of its held-out randomised
 // fields (`simulate broccoli --variety random --seed 7103 --frames 30`; no model was trained or
 // tuned on it): kappa 0.953, AP50 0.882 over every labelled head, 0.961 on visible heads, mAP50:95
 // 0.875 with the OES tolerance of 7 mm (the model of 2026-12-05, 22:38 UTC; with 6.5 mm: 0.953 /
@@ -88,12 +90,12 @@ TEST(BroccoliHeadline, ShippedOesGeneralModelOnAHeldOutRandomisedField) {
   const auto seq = simulate(tmp, "random-7103", "--variety random --seed 7103 --frames 30");
   ASSERT_FALSE(::testing::Test::HasFailure());
   const auto model_path = shipped_model("broccoli-oes-general.json");
-  const auto model = load_broccoli_model(model_path);
-  BroccoliPipeline pipe(broccoli_config_for_model(*model, {}, model_path), model);
-  BroccoliEvaluator detection(pipe);
+  const auto model = pipeline::broccoli::load_model(model_path);
+  pipeline::broccoli::Pipeline pipe(pipeline::broccoli::config_for_model(*model, {}, model_path), model);
+  pipeline::broccoli::Evaluator detection(pipe);
   const io::SequenceReader reader(seq);
   for (int i = 0; i < reader.size(); ++i) detection.add_frame(reader.read(i));
-  const auto d = detection.result();
+  const auto d = detection.figures();
   EXPECT_EQ(d.frames, 30);
   EXPECT_NEAR(d.confusion.kappa(), 0.9526, 0.00006);
   EXPECT_NEAR(d.ap50, 0.8822, 0.00006);
@@ -101,7 +103,7 @@ TEST(BroccoliHeadline, ShippedOesGeneralModelOnAHeldOutRandomisedField) {
   EXPECT_NEAR(d.map50_95, 0.8751, 0.00006);
 }
 
-// broccoli-heads.md, "A depth CNN proposes the heads the clustering missed": the held-out spain pass
+// docs/experiments/2026-12-06-broccoli-depth-cnn.md: the held-out spain pass
 // (seed 2002, 50 frames) with the shipped general model, without and with the shipped head CNN
 // (cnn.model, min_score 0.7 chosen on validation). Offline, per frame; AP over the one class.
 TEST(BroccoliHeadline, ShippedHeadCnnOnTheHeldOutSpainPass) {
@@ -109,13 +111,13 @@ TEST(BroccoliHeadline, ShippedHeadCnnOnTheHeldOutSpainPass) {
   const auto seq = simulate(tmp, "spain-2002", "--variety spain --seed 2002 --frames 50");
   ASSERT_FALSE(::testing::Test::HasFailure());
   const auto model_path = shipped_model("broccoli-oes-general.json");
-  const auto model = load_broccoli_model(model_path);
+  const auto model = pipeline::broccoli::load_model(model_path);
   auto run = [&](const ConfigMap& overrides) {
-    BroccoliPipeline pipe(broccoli_config_for_model(*model, overrides, model_path), model);
-    BroccoliEvaluator detection(pipe);
+    pipeline::broccoli::Pipeline pipe(pipeline::broccoli::config_for_model(*model, overrides, model_path), model);
+    pipeline::broccoli::Evaluator detection(pipe);
     const io::SequenceReader reader(seq);
     for (int i = 0; i < reader.size(); ++i) detection.add_frame(reader.read(i));
-    return detection.result();
+    return detection.figures();
   };
   const auto plain = run({});
   const auto cnn = run({{"cnn.model", shipped_model("broccoli-head-cnn.onnx")}});

@@ -2,10 +2,11 @@
 
 #include <cmath>
 
-#include "cropsight/pipeline/broccoli/broccoli_truth.hpp"
+#include "cropsight/pipeline/broccoli/truth.hpp"
 
 using namespace cropsight;
 using namespace cropsight::pipeline;
+using namespace cropsight::pipeline::broccoli;
 
 TEST(BroccoliTruth, MajorityOfOneHeadMakesAHeadCluster) {
   // 10 pixels: labels 0 0 3 3 3 3 3 5 5 0

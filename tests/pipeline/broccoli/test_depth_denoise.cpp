@@ -8,15 +8,15 @@
 
 #include "broccoli_sim_frames.hpp"
 #include "cropsight/core/error.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_detector.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_pipeline.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_training.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_truth.hpp"
 #include "cropsight/pipeline/broccoli/depth_denoise.hpp"
+#include "cropsight/pipeline/broccoli/detector.hpp"
+#include "cropsight/pipeline/broccoli/pipeline.hpp"
+#include "cropsight/pipeline/broccoli/training.hpp"
+#include "cropsight/pipeline/broccoli/truth.hpp"
 #include "testing/testing.hpp"
 
 // Inside the namespace rather than `using namespace`: this file shares unity batches with others.
-namespace cropsight::pipeline {
+namespace cropsight::pipeline::broccoli {
 
 namespace {
 constexpr int kW = 200, kH = 150;
@@ -100,12 +100,13 @@ TEST(DepthDenoise, BilateralRemovesNoiseAndKeepsStepsAndHoles) {
 // shatter the heads without it; a clean uk frame is left as it is.
 TEST(DepthDenoise, DetectorFiltersOnlyNoisyFramesAndFindsTheHeadsThere) {
   const auto model_path = cropsight::testing::source_dir() / "models" / "broccoli-oes-general.json";
-  const auto model = load_broccoli_model(model_path.string());
-  const BroccoliDetectorConfig on = broccoli_config_for_model(*model, {}, model_path.string()).detector;
+  const auto model = pipeline::broccoli::load_model(model_path.string());
+  const pipeline::broccoli::DetectorConfig on =
+      pipeline::broccoli::config_for_model(*model, {}, model_path.string()).detector;
   ASSERT_GT(on.denoise.above, 0.0f) << "the shipped general model denoises";
-  BroccoliDetectorConfig off = on;
+  pipeline::broccoli::DetectorConfig off = on;
   off.denoise.above = 0.0f;
-  BroccoliDetector a(off), b(on);
+  pipeline::broccoli::Detector a(off), b(on);
   a.set_model(model);
   b.set_model(model);
 
@@ -131,7 +132,7 @@ TEST(DepthDenoise, DetectorFiltersOnlyNoisyFramesAndFindsTheHeadsThere) {
     for (const auto& t : truth) {
       if (t.indices.size() < 300) continue;
       ++truths;
-      auto found = [&](std::span<const BroccoliCandidate> cands, const OrganizedCloud& cloud) {
+      auto found = [&](std::span<const pipeline::broccoli::Candidate> cands, const OrganizedCloud& cloud) {
         for (const auto& c : cands) {
           if (!c.head) continue;
           long inter = 0;
@@ -157,13 +158,13 @@ TEST(DepthDenoise, InTrainingFalseBuildsSamplesFromRawFrames) {
   sun.sensor.sunlight = true;
   sun.sensor.noise_at_1m_m = 0.005;
   const auto frames = testdata::simulate(sun, 32, 1);
-  BroccoliDetectorConfig raw;
+  pipeline::broccoli::DetectorConfig raw;
   const auto preset_path = cropsight::testing::source_dir() / "configs" / "broccoli-oes-uk.yaml";
   apply_config(raw, io::load_config_map(preset_path), preset_path.string());
-  BroccoliDetectorConfig at_detection = raw, always = raw;
+  pipeline::broccoli::DetectorConfig at_detection = raw, always = raw;
   at_detection.denoise.above = always.denoise.above = 0.006f;
   at_detection.denoise.in_training = false;
-  BroccoliDatasetBuilder r(raw, {}), d(at_detection, {}), w(always, {});
+  pipeline::broccoli::DatasetBuilder r(raw, {}), d(at_detection, {}), w(always, {});
   r.add_frame(frames[0]);
   d.add_frame(frames[0]);
   w.add_frame(frames[0]);
@@ -173,4 +174,4 @@ TEST(DepthDenoise, InTrainingFalseBuildsSamplesFromRawFrames) {
   EXPECT_EQ(config_map(at_detection, {}).at("denoise.above"), config_map(always, {}).at("denoise.above"));
 }
 
-}  // namespace cropsight::pipeline
+}  // namespace cropsight::pipeline::broccoli

@@ -8,7 +8,7 @@ namespace {
 
 using cropsight::DepthImage;
 using cropsight::Rgb8;
-using cropsight::pipeline::encode_depth_for_cnn;
+using cropsight::pipeline::broccoli::encode_depth_for_cnn;
 
 // Soil at 1.2 m, a 20 x 20 px block 0.3 m above it (0.9 m) at columns/rows 20..39, one pixel
 // without a return on the soil.

@@ -8,13 +8,13 @@
 #include <vector>
 
 #include "cropsight/core/rgbd_frame.hpp"
-#include "cropsight/pipeline/grape/grape_roi.hpp"
+#include "cropsight/pipeline/grape/roi.hpp"
 
 namespace cropsight::testing {
 
 struct GrapeTestFrame {
   RgbdFrame frame;
-  std::vector<pipeline::GrapeDetection> boxes;
+  std::vector<pipeline::grape::Detection> boxes;
 };
 
 inline GrapeTestFrame grape_test_frame() {

@@ -1,14 +1,15 @@
-// The evaluation protocols of grape_eval.hpp on confusion matrices computed by hand.
+// The evaluation protocols of grape/eval.hpp on confusion matrices computed by hand.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/pipeline/grape/grape_eval.hpp"
+#include "cropsight/pipeline/grape/eval.hpp"
 
 namespace {
 using namespace cropsight;
 using namespace cropsight::pipeline;
+using namespace cropsight::pipeline::grape;
 
 // Cloud A: (truth, pred) = (0,0) x4, (1,1) x3, (1,2) x1, (2,2) x2.
 //   IoU 0 = 4/4 = 1, IoU 1 = 3/(4+3-3) = 0.75, IoU 2 = 2/(2+3-2) = 2/3.
@@ -55,14 +56,14 @@ TEST(GrapeEvalProtocols, PerCloudCountsAnAbsentClassAsOne) {
 }
 
 TEST(GrapeEvalProtocols, MergedEvaluationsGiveEveryProtocol) {
-  GrapeEvaluation a, b;
+  pipeline::grape::Evaluation a, b;
   a.confusion = cloud_a(), a.per_cloud = {cloud_a()}, a.clouds = 1, a.points = 10;
   b.confusion = cloud_b(), b.per_cloud = {cloud_b()}, b.clouds = 1, b.points = 6;
   a.merge(b);
   ASSERT_EQ(a.per_cloud.size(), 2u);
   EXPECT_EQ(a.named_classes(), (std::vector<int>{1, 2}));  // the named classes below 3 labels
   EXPECT_NEAR(a.confusion.mean_iou(), (0.75 + 0.625 + 2.0 / 3) / 3, 1e-12);
-  const auto p = grape_protocols(a);
+  const auto p = pipeline::grape::grape_protocols(a);
   ASSERT_EQ(p.size(), 4u);
   EXPECT_EQ(p[0].name, "pooled_all_labels");
   EXPECT_NEAR(p[0].miou, a.confusion.mean_iou(), 1e-12);
@@ -77,7 +78,7 @@ TEST(GrapeEvalProtocols, MergedEvaluationsGiveEveryProtocol) {
 }
 
 TEST(GrapeEvalProtocols, SixLabelsNameTheFiveClassesOfThePaper) {
-  GrapeEvaluation e;  // the default: the dataset's six labels
+  pipeline::grape::Evaluation e;  // the default: the dataset's six labels
   EXPECT_EQ(e.named_classes(), (std::vector<int>{1, 2, 3, 4, 5}));
   EXPECT_EQ(e.all_labels(), (std::vector<int>{0, 1, 2, 3, 4, 5}));
 }

@@ -17,14 +17,16 @@
 #include "cropsight/geometry/farthest_point.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/learning/gbdt.hpp"
-#include "cropsight/pipeline/grape/grape_eval.hpp"
-#include "cropsight/pipeline/grape/grape_gbdt.hpp"
-#include "cropsight/pipeline/grape/grape_model.hpp"
+#include "cropsight/pipeline/grape/eval.hpp"
+#include "cropsight/pipeline/grape/gbdt.hpp"
+#include "cropsight/pipeline/grape/model.hpp"
+#include "cropsight/pipeline/grape/truth.hpp"
 #include "testing/testing.hpp"
 
 namespace {
 using namespace cropsight;
 using namespace cropsight::pipeline;
+using namespace cropsight::pipeline::grape;
 
 // Two touching blobs: a dark "bunch" sphere (label 1) and a green "leaf" plane (label 3).
 Cloud synthetic(std::uint32_t seed) {
@@ -48,8 +50,8 @@ Cloud synthetic(std::uint32_t seed) {
   return c;
 }
 
-GrapeGbdtConfig small_config() {
-  GrapeGbdtConfig cfg;
+pipeline::grape::GbdtConfig small_config() {
+  pipeline::grape::GbdtConfig cfg;
   cfg.gbdt.rounds = 10;
   cfg.gbdt.max_depth = 4;
   cfg.points_per_cloud = 800;
@@ -57,40 +59,40 @@ GrapeGbdtConfig small_config() {
 }
 
 TEST(GrapeFeatures, CountNamesAndRecipe) {
-  GrapeFeatureConfig f;
-  EXPECT_EQ(grape_feature_names(f).size(), grape_feature_count(f));
+  pipeline::grape::FeatureConfig f;
+  EXPECT_EQ(pipeline::grape::grape_feature_names(f).size(), pipeline::grape::grape_feature_count(f));
   f.fpfh = false;
-  EXPECT_EQ(grape_feature_names(f).size(), grape_feature_count(f));
+  EXPECT_EQ(pipeline::grape::grape_feature_names(f).size(), pipeline::grape::grape_feature_count(f));
   f.k_small = 10;
-  const auto back = GrapeFeatureConfig::from_recipe(f.recipe(), "test");
+  const auto back = pipeline::grape::FeatureConfig::from_recipe(f.recipe(), "test");
   EXPECT_EQ(back.k_small, 10);
   EXPECT_FALSE(back.fpfh);
-  EXPECT_THROW(GrapeFeatureConfig::from_recipe("k_small=3", "test"), Error);
+  EXPECT_THROW(pipeline::grape::FeatureConfig::from_recipe("k_small=3", "test"), Error);
   const Cloud c = synthetic(1);
-  const auto X = grape_point_features(c, GrapeFeatureConfig{}, {0, 700});
-  ASSERT_EQ(X.size(), 2 * grape_feature_count(GrapeFeatureConfig{}));
+  const auto X = pipeline::grape::grape_point_features(c, pipeline::grape::FeatureConfig{}, {0, 700});
+  ASSERT_EQ(X.size(), 2 * pipeline::grape::grape_feature_count(pipeline::grape::FeatureConfig{}));
   for (float v : X) EXPECT_TRUE(std::isfinite(v));
   Cloud bare = c;
   bare.normals.clear();
-  EXPECT_THROW(grape_point_features(bare, GrapeFeatureConfig{}), Error);
+  EXPECT_THROW(pipeline::grape::grape_point_features(bare, pipeline::grape::FeatureConfig{}), Error);
 }
 
 TEST(GrapeGbdt, SegmentsHeldOutSyntheticCloudAndRoundTrips) {
-  const auto model = train_grape_gbdt({synthetic(1), synthetic(2)}, small_config());
+  const auto model = pipeline::grape::train_grape_gbdt({synthetic(1), synthetic(2)}, small_config());
   cropsight::testing::TempDir t;
   model.save(t / "m.json");
-  const auto loaded = GrapeModel::load(t / "m.json", 1);
+  const auto loaded = pipeline::grape::Model::load(t / "m.json", 1);
   EXPECT_EQ(loaded.kind(), "gbdt");
   const Cloud test = synthetic(3);
   const auto pred = loaded.segment(test);
-  EXPECT_EQ(pred, segment_grape_gbdt(model, test, 1));
-  const auto ev = evaluate_grape(loaded, {test});
+  EXPECT_EQ(pred, pipeline::grape::segment_grape_gbdt(model, test, 1));
+  const auto ev = pipeline::grape::evaluate_grape(loaded, {test});
   EXPECT_GT(ev.confusion.overall_accuracy(), 0.98);
   EXPECT_NE(ev.text().find("mIoU by protocol"), std::string::npos);
 }
 
-GrapeGbdtConfig fast_config() {
-  GrapeGbdtConfig cfg = small_config();
+pipeline::grape::GbdtConfig fast_config() {
+  pipeline::grape::GbdtConfig cfg = small_config();
   cfg.features.fpfh = false;
   cfg.features.k_small = 6;
   cfg.features.k_large = 16;
@@ -104,38 +106,38 @@ GrapeGbdtConfig fast_config() {
 
 TEST(GrapeFeatures, SampleAndSampleFeaturesAreDeterministic) {
   const Cloud c = synthetic(1);
-  GrapeFeatureConfig f = fast_config().features;
-  const auto s1 = grape_sample(c.size(), f, 5);
-  EXPECT_EQ(s1, grape_sample(c.size(), f, 5));
-  EXPECT_NE(s1, grape_sample(c.size(), f, 6));
+  pipeline::grape::FeatureConfig f = fast_config().features;
+  const auto s1 = pipeline::grape::grape_sample(c.size(), f, 5);
+  EXPECT_EQ(s1, pipeline::grape::grape_sample(c.size(), f, 5));
+  EXPECT_NE(s1, pipeline::grape::grape_sample(c.size(), f, 6));
   ASSERT_EQ(s1.size(), 300u);
   EXPECT_TRUE(std::is_sorted(s1.begin(), s1.end()));
   EXPECT_EQ(std::set<int>(s1.begin(), s1.end()).size(), s1.size());
   EXPECT_GE(s1.front(), 0);
   EXPECT_LT(s1.back(), int(c.size()));
-  const auto X = grape_sample_features(c, f, s1);
-  ASSERT_EQ(X.size(), s1.size() * grape_feature_count(f));
-  EXPECT_EQ(X, grape_sample_features(c, f, grape_sample(c.size(), f, 5)));
+  const auto X = pipeline::grape::grape_sample_features(c, f, s1);
+  ASSERT_EQ(X.size(), s1.size() * pipeline::grape::grape_feature_count(f));
+  EXPECT_EQ(X, pipeline::grape::grape_sample_features(c, f, pipeline::grape::grape_sample(c.size(), f, 5)));
   for (float v : X) ASSERT_TRUE(std::isfinite(v));
   // Neighbourhoods are searched within the sample: the features differ from whole-cloud ones.
-  EXPECT_NE(X, grape_point_features(c, f, s1));
+  EXPECT_NE(X, pipeline::grape::grape_point_features(c, f, s1));
   // A cloud no larger than the sample is taken whole.
   f.sample = 5000;
-  EXPECT_EQ(grape_sample(c.size(), f, 5).size(), c.size());
+  EXPECT_EQ(pipeline::grape::grape_sample(c.size(), f, 5).size(), c.size());
   f.sample = -1;
-  EXPECT_THROW(grape_sample_features(c, f, s1), Error);
+  EXPECT_THROW(pipeline::grape::grape_sample_features(c, f, s1), Error);
 }
 
 TEST(GrapeFeatures, RecipeWithSampleRoundTripsAndOldRecipesMeanEveryPoint) {
   // Recipes written before the fast recipe existed (models/grape-gbdt.json) parse as sample = 0
   // and print back unchanged.
   const std::string old = "k_small=16;k_large=64;fpfh=1";
-  const auto o = GrapeFeatureConfig::from_recipe(old, "test");
+  const auto o = pipeline::grape::FeatureConfig::from_recipe(old, "test");
   EXPECT_EQ(o.sample, 0);
   EXPECT_EQ(o.recipe(), old);
-  EXPECT_EQ(GrapeFeatureConfig{}.recipe(), old);
-  const GrapeFeatureConfig f = fast_config().features;
-  const auto back = GrapeFeatureConfig::from_recipe(f.recipe(), "test");
+  EXPECT_EQ(pipeline::grape::FeatureConfig{}.recipe(), old);
+  const pipeline::grape::FeatureConfig f = fast_config().features;
+  const auto back = pipeline::grape::FeatureConfig::from_recipe(f.recipe(), "test");
   EXPECT_EQ(back.sample, 300);
   EXPECT_EQ(back.sample_seed, 7u);
   EXPECT_EQ(back.carry_k, f.carry_k);
@@ -148,7 +150,7 @@ TEST(GrapeFeatures, RecipeWithSampleRoundTripsAndOldRecipesMeanEveryPoint) {
 // The problem of `from_recipe(text, "m.json")`, or "" when it parses.
 std::string recipe_error(const std::string& text) {
   try {
-    GrapeFeatureConfig::from_recipe(text, "m.json");
+    pipeline::grape::FeatureConfig::from_recipe(text, "m.json");
   } catch (const Error& e) {
     return e.what();
   }
@@ -182,14 +184,14 @@ TEST(GrapeFeatures, CorruptRecipeNamesTheFileAndTheKey) {
 
 TEST(GrapeFeatures, FpfhTrueRoundTrips) {
   // The bool parser of every config (true/false, 1/0, on/off, yes/no), not `v == "1"`.
-  EXPECT_TRUE(GrapeFeatureConfig::from_recipe("k_small=16;k_large=64;fpfh=true", "m.json").fpfh);
-  EXPECT_FALSE(GrapeFeatureConfig::from_recipe("k_small=16;k_large=64;fpfh=false", "m.json").fpfh);
+  EXPECT_TRUE(pipeline::grape::FeatureConfig::from_recipe("k_small=16;k_large=64;fpfh=true", "m.json").fpfh);
+  EXPECT_FALSE(pipeline::grape::FeatureConfig::from_recipe("k_small=16;k_large=64;fpfh=false", "m.json").fpfh);
   for (bool fpfh : {true, false}) {
-    GrapeFeatureConfig f;
+    pipeline::grape::FeatureConfig f;
     f.fpfh = fpfh;
     f.sample = 512;
     f.carry_soft = !fpfh;
-    const auto back = GrapeFeatureConfig::from_recipe(f.recipe(), "m.json");
+    const auto back = pipeline::grape::FeatureConfig::from_recipe(f.recipe(), "m.json");
     EXPECT_EQ(back.fpfh, fpfh);
     EXPECT_EQ(back.carry_soft, !fpfh);
     EXPECT_EQ(back.recipe(), f.recipe());
@@ -197,7 +199,7 @@ TEST(GrapeFeatures, FpfhTrueRoundTrips) {
 }
 
 TEST(GrapeFeatures, RangesAreDeclaredByTheFieldAndNamedWithTheirPrefix) {
-  GrapeGbdtConfig cfg;
+  pipeline::grape::GbdtConfig cfg;
   EXPECT_NO_THROW(cfg.validate("preset.yaml"));
   cfg.features.threads = kMaxThreads + 1;
   try {
@@ -217,11 +219,11 @@ TEST(GrapeFeatures, RangesAreDeclaredByTheFieldAndNamedWithTheirPrefix) {
 }
 
 TEST(GrapeGbdt, FastRecipeSeparatesHeldOutCloudAndCarriesLabelsToEveryPoint) {
-  const GrapeGbdtConfig cfg = fast_config();
-  const auto model = train_grape_gbdt({synthetic(1), synthetic(2)}, cfg);
+  const pipeline::grape::GbdtConfig cfg = fast_config();
+  const auto model = pipeline::grape::train_grape_gbdt({synthetic(1), synthetic(2)}, cfg);
   cropsight::testing::TempDir t;
   model.save(t / "fast.json");
-  const auto loaded = GrapeModel::load(t / "fast.json", 1);
+  const auto loaded = pipeline::grape::Model::load(t / "fast.json", 1);
   // The recipe travels in the file: the loaded model samples as it was trained.
   const auto recipe = learning::Gbdt::load(t / "fast.json", 1).attribute("cropsight.features");
   EXPECT_EQ(recipe, cfg.features.recipe());
@@ -230,34 +232,34 @@ TEST(GrapeGbdt, FastRecipeSeparatesHeldOutCloudAndCarriesLabelsToEveryPoint) {
   ASSERT_EQ(pred.size(), test.size());
   for (int l : pred) ASSERT_TRUE(l == 1 || l == 3) << l;
   EXPECT_EQ(pred, loaded.segment(test));  // fixed sample seed: same labels every time
-  EXPECT_EQ(pred, segment_grape_gbdt(model, test, 1));
+  EXPECT_EQ(pred, pipeline::grape::segment_grape_gbdt(model, test, 1));
   // Sampled points keep the label the trees gave them (each is its own nearest sample).
-  const auto s = grape_sample(test.size(), cfg.features, cfg.features.sample_seed);
-  const auto own =
-      model.predict(grape_sample_features(test, cfg.features, s), s.size(), grape_feature_count(cfg.features));
+  const auto s = pipeline::grape::grape_sample(test.size(), cfg.features, cfg.features.sample_seed);
+  const auto own = model.predict(pipeline::grape::grape_sample_features(test, cfg.features, s), s.size(),
+                                 pipeline::grape::grape_feature_count(cfg.features));
   for (std::size_t i = 0; i < s.size(); ++i) EXPECT_EQ(pred[std::size_t(s[i])], own[i]);
-  const auto ev = evaluate_grape(loaded, {test});
+  const auto ev = pipeline::grape::evaluate_grape(loaded, {test});
   EXPECT_GT(ev.confusion.overall_accuracy(), 0.97) << ev.text();
 }
 
 TEST(GrapeGbdt, CarryBackLabelsEveryPoint) {
   const Cloud c = synthetic(4);
-  GrapeFeatureConfig f = fast_config().features;
-  const auto s = grape_sample(c.size(), f, 3);
+  pipeline::grape::FeatureConfig f = fast_config().features;
+  const auto s = pipeline::grape::grape_sample(c.size(), f, 3);
   std::vector<int> truth;
   for (int i : s) truth.push_back(c.labels[std::size_t(i)]);
   // carry_k = 1: the nearest sample's label, as geometry::carry_labels_back.
   f.carry_k = 1;
   std::vector<Eigen::Vector3f> pts;
   for (int i : s) pts.push_back(c.points[std::size_t(i)]);
-  EXPECT_EQ(grape_carry_back(c, s, truth, f, 6, 2), geometry::carry_labels_back(pts, truth, c.points));
+  EXPECT_EQ(pipeline::grape::grape_carry_back(c, s, truth, f, 6, 2), geometry::carry_labels_back(pts, truth, c.points));
   // Colour-guided vote, hard and with probabilities (one-hot = hard): every point labelled, the
   // two touching blobs recovered almost everywhere from a quarter of their points.
   f.carry_k = 4;
-  const auto hard = grape_carry_back(c, s, truth, f, 6, 2);
+  const auto hard = pipeline::grape::grape_carry_back(c, s, truth, f, 6, 2);
   std::vector<float> onehot(s.size() * 6, 0.f);
   for (std::size_t i = 0; i < s.size(); ++i) onehot[i * 6 + std::size_t(truth[i])] = 1.f;
-  EXPECT_EQ(grape_carry_back(c, s, truth, f, 6, 1, &onehot), hard);
+  EXPECT_EQ(pipeline::grape::grape_carry_back(c, s, truth, f, 6, 1, &onehot), hard);
   ASSERT_EQ(hard.size(), c.size());
   std::size_t ok = 0;
   for (std::size_t i = 0; i < c.size(); ++i) ok += hard[i] == c.labels[i];
@@ -265,16 +267,16 @@ TEST(GrapeGbdt, CarryBackLabelsEveryPoint) {
   for (std::size_t i = 0; i < s.size(); ++i) EXPECT_EQ(hard[std::size_t(s[i])], truth[i]);
   // Scores: normalised votes per point; the argmax is the label.
   std::vector<float> scores;
-  EXPECT_EQ(grape_carry_back(c, s, truth, f, 6, 2, nullptr, &scores), hard);
+  EXPECT_EQ(pipeline::grape::grape_carry_back(c, s, truth, f, 6, 2, nullptr, &scores), hard);
   ASSERT_EQ(scores.size(), c.size() * 6);
   for (std::size_t i = 0; i < c.size(); ++i) {
     const float* r = &scores[i * 6];
     EXPECT_NEAR(r[0] + r[1] + r[2] + r[3] + r[4] + r[5], 1.0f, 1e-5f);
     EXPECT_EQ(int(std::max_element(r, r + 6) - r), hard[i]);
   }
-  EXPECT_THROW(grape_carry_back(c, s, {1}, f, 6), Error);
+  EXPECT_THROW(pipeline::grape::grape_carry_back(c, s, {1}, f, 6), Error);
   f.carry_k = 0;
-  EXPECT_THROW(grape_carry_back(c, s, truth, f, 6), Error);
+  EXPECT_THROW(pipeline::grape::grape_carry_back(c, s, truth, f, 6), Error);
 }
 
 // A point whose colour is far from all its voters' makes every exp() weight underflow to zero;
@@ -290,28 +292,28 @@ TEST(GrapeGbdt, CarryBackOfAnOddColouredPointTakesTheNearestLabel) {
   c.colors.emplace_back(0.f, 0.f, 0.f);  // a black point next to them: |Δrgb|² = 3
   c.labels.push_back(3);
   const std::vector<int> s = {0, 1, 2, 3, 4, 5, 6, 7}, labels(8, 3);
-  GrapeFeatureConfig f = fast_config().features;
+  pipeline::grape::FeatureConfig f = fast_config().features;
   f.carry_k = 4;
   f.carry_colour = 200;
   std::vector<float> scores;
-  const auto out = grape_carry_back(c, s, labels, f, 6, 1, nullptr, &scores);
+  const auto out = pipeline::grape::grape_carry_back(c, s, labels, f, 6, 1, nullptr, &scores);
   EXPECT_EQ(out[8], 3);
   EXPECT_FLOAT_EQ(scores[8 * 6 + 3], 1.0f);
 }
 
 TEST(GrapeModel, FoldsAndBadFiles) {
-  const auto f = grape_folds(10, 4, 3);
+  const auto f = pipeline::grape::grape_folds(10, 4, 3);
   std::vector<int> size(4, 0);
   for (int k : f) ++size[std::size_t(k)];
   for (int s : size) EXPECT_TRUE(s == 2 || s == 3);
-  EXPECT_EQ(f, grape_folds(10, 4, 3));
+  EXPECT_EQ(f, pipeline::grape::grape_folds(10, 4, 3));
   EXPECT_EQ(parse_fold("2/5", "--val-fold"), (std::pair<int, int>{1, 5}));
   EXPECT_THROW(parse_fold("6/5", "--val-fold"), Error);
   EXPECT_THROW(parse_fold("x", "--val-fold"), Error);
   cropsight::testing::TempDir t;
-  EXPECT_THROW(GrapeModel::load(t / "none.json"), Error);
+  EXPECT_THROW(pipeline::grape::Model::load(t / "none.json"), Error);
   std::ofstream(t / "junk.pt") << "junk";
-  EXPECT_THROW(GrapeModel::load(t / "junk.pt"), Error);
+  EXPECT_THROW(pipeline::grape::Model::load(t / "junk.pt"), Error);
 }
 
 // The shared clouds unpacked by scripts/unpack-grape.sh: $CROPSIGHT_GRAPE_DIR, else
@@ -330,13 +332,13 @@ TEST(GrapeGbdt, RealCloudsHeldOut) {
   CROPSIGHT_REQUIRE_DATA(dir / "points");
   const auto files = io::list_grape_clouds(dir);
   ASSERT_GE(files.size(), 2u);
-  const auto clouds = load_grape_clouds({files[0], files[1]});
+  const auto clouds = pipeline::grape::load_grape_clouds({files[0], files[1]});
   auto cfg = small_config();
   cfg.points_per_cloud = 2000;
-  const auto model = train_grape_gbdt({clouds[0]}, cfg);
+  const auto model = pipeline::grape::train_grape_gbdt({clouds[0]}, cfg);
   cropsight::testing::TempDir t;
   model.save(t / "m.json");
-  const auto ev = evaluate_grape(GrapeModel::load(t / "m.json"), {clouds[1]});
+  const auto ev = pipeline::grape::evaluate_grape(pipeline::grape::Model::load(t / "m.json"), {clouds[1]});
   // Baseline: the training cloud's majority label everywhere. One training cloud and ten
   // rounds are far from the shipped recipe; this only checks that the features carry signal.
   std::vector<int> count(8, 0);
@@ -349,7 +351,7 @@ TEST(GrapeGbdt, RealCloudsHeldOut) {
 }
 
 // Why the named-class protocol leaves label 0 out instead of merging it with background 4
-// (grape_eval.hpp): in every shared cloud all label-0 points sit at one identical position, where
+// (grape/eval.hpp): in every shared cloud all label-0 points sit at one identical position, where
 // no point of another label is, while every label-4 point has a position of its own.
 TEST(GrapeData, Label0PointsShareOnePositionPerCloudLabel4DoNot) {
   const auto dir = shared_grape_dir();
@@ -378,7 +380,7 @@ TEST(GrapeModel, ShippedNetworksLoad) {
   // within the 20 MB.
   for (const char* name : {"grape-pointresnet.pt", "grape-pointresnet-fold1.pt"}) {
     const auto path = cropsight::testing::source_dir() / "models" / name;
-    const auto model = GrapeModel::load(path, 1);
+    const auto model = pipeline::grape::Model::load(path, 1);
     EXPECT_EQ(model.kind(), "pointresnet") << name;
     EXPECT_EQ(model.features(), "xyzrgbn") << name;
     EXPECT_LT(std::filesystem::file_size(path), 20u << 20) << name;
@@ -391,8 +393,9 @@ TEST(GrapeModel, ShippedNetworksLoad) {
                                                                              {"grape-gbdt.json", 0}}) {
     const auto path = cropsight::testing::source_dir() / "models" / name;
     const auto gbdt = learning::Gbdt::load(path, 1);
-    EXPECT_EQ(GrapeFeatureConfig::from_recipe(gbdt.attribute("cropsight.features"), name).sample, sample) << name;
-    EXPECT_EQ(GrapeModel::load(path, 1).kind(), "gbdt") << name;
+    EXPECT_EQ(pipeline::grape::FeatureConfig::from_recipe(gbdt.attribute("cropsight.features"), name).sample, sample)
+        << name;
+    EXPECT_EQ(pipeline::grape::Model::load(path, 1).kind(), "gbdt") << name;
   }
 }
 
@@ -410,11 +413,11 @@ std::vector<Cloud> fold1_held_out_clouds(std::size_t count, std::string& why) {
     why = "needs all 96 shared clouds for the fold split, found " + std::to_string(files.size());
     return {};
   }
-  const auto fold = grape_folds(files.size(), 4, 1);
+  const auto fold = pipeline::grape::grape_folds(files.size(), 4, 1);
   std::vector<std::filesystem::path> held_out;
   for (std::size_t i = 0; i < files.size() && held_out.size() < count; ++i)
     if (fold[i] == 0) held_out.push_back(files[i]);
-  return load_grape_clouds(held_out);
+  return pipeline::grape::load_grape_clouds(held_out);
 }
 
 TEST(GrapeModel, ShippedNetworkOnHeldOutClouds) {
@@ -427,10 +430,10 @@ TEST(GrapeModel, ShippedNetworkOnHeldOutClouds) {
   std::string why;
   const auto clouds = fold1_held_out_clouds(3, why);
   if (clouds.empty()) GTEST_SKIP() << why;
-  auto model = GrapeModel::load(model_path, 2);
+  auto model = pipeline::grape::Model::load(model_path, 2);
   for (const bool sampled : {false, true}) {
     model.set_sampled(sampled, false, 4);
-    const auto ev = evaluate_grape(model, clouds);
+    const auto ev = pipeline::grape::evaluate_grape(model, clouds);
     std::printf("%s: OAcc %.4f mIoU %.4f\n", sampled ? "one pass" : "every point", ev.confusion.overall_accuracy(),
                 ev.confusion.mean_iou());
     EXPECT_GT(ev.confusion.overall_accuracy(), 0.92) << ev.text();
@@ -439,7 +442,7 @@ TEST(GrapeModel, ShippedNetworkOnHeldOutClouds) {
 }
 
 TEST(GrapeModel, ShippedEnsembleOnHeldOutClouds) {
-  // The best recipe (docs/pipelines/grape-bunches.md, "Ensemble"): the network in the one-pass mode
+  // The best recipe (docs/experiments/2026-12-01-grape-votes-ensemble.md): the network in the one-pass mode
   // with 6 rotated votes, mixed half and half with the fast GBDT on 4096 samples, both trained on
   // folds 2-4 (models/grape-pointresnet-fold1.pt, models/grape-gbdt-fast4096-fold1.json). On three
   // clouds of fold 1 the mix must beat each of its two members alone (fold-1 mIoU: network one pass
@@ -451,14 +454,14 @@ TEST(GrapeModel, ShippedEnsembleOnHeldOutClouds) {
   std::string why;
   const auto clouds = fold1_held_out_clouds(3, why);
   if (clouds.empty()) GTEST_SKIP() << why;
-  auto gbdt = std::make_shared<const GrapeModel>(GrapeModel::load(gbdt_path, 2));
-  auto net = GrapeModel::load(net_path, 2);
+  auto gbdt = std::make_shared<const pipeline::grape::Model>(pipeline::grape::Model::load(gbdt_path, 2));
+  auto net = pipeline::grape::Model::load(net_path, 2);
   net.set_sampled(true, false, 4);
   net.set_votes(6);
-  const double net_miou = evaluate_grape(net, clouds).confusion.mean_iou();
-  const double gbdt_miou = evaluate_grape(*gbdt, clouds).confusion.mean_iou();
+  const double net_miou = pipeline::grape::evaluate_grape(net, clouds).confusion.mean_iou();
+  const double gbdt_miou = pipeline::grape::evaluate_grape(*gbdt, clouds).confusion.mean_iou();
   net.set_ensemble(gbdt, 0.5);
-  const auto ev = evaluate_grape(net, clouds);
+  const auto ev = pipeline::grape::evaluate_grape(net, clouds);
   std::printf("network (6 votes) mIoU %.4f, GBDT %.4f, ensemble OAcc %.4f mIoU %.4f\n", net_miou, gbdt_miou,
               ev.confusion.overall_accuracy(), ev.confusion.mean_iou());
   EXPECT_GT(ev.confusion.mean_iou(), std::max(net_miou, gbdt_miou)) << ev.text();

@@ -1,4 +1,4 @@
-// GrapeModel's sampled (paper) mode for networks: with carry_k = 1 it must give exactly the
+// pipeline::grape::Model's sampled (paper) mode for networks: with carry_k = 1 it must give exactly the
 // network's own segment_sampled (nearest-neighbour carry-back), and its options are checked.
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/nn/point_segmenter.hpp"
-#include "cropsight/pipeline/grape/grape_model.hpp"
+#include "cropsight/pipeline/grape/model.hpp"
 #include "testing/testing.hpp"
 
 namespace {
@@ -45,7 +45,7 @@ TEST(GrapeModel, SampledModeMatchesTheNetworksNearestNeighbourCarryBack) {
   cropsight::testing::TempDir t;
   net.save(t / "n.pt");
 
-  auto model = pipeline::GrapeModel::load(t / "n.pt", 1);
+  auto model = pipeline::grape::Model::load(t / "n.pt", 1);
   const Cloud big = sphere_cloud(3, 500);
   model.set_sampled(true, false, 1);
   EXPECT_EQ(model.segment(big), net.segment_sampled(big));
@@ -90,8 +90,8 @@ TEST(GrapeModel, EnsembleMixesTheTwoModelsScores) {
   cropsight::testing::TempDir t;
   a.save(t / "a.pt");
   b.save(t / "b.pt");
-  auto ma = pipeline::GrapeModel::load(t / "a.pt", 1);
-  const auto mb = std::make_shared<const pipeline::GrapeModel>(pipeline::GrapeModel::load(t / "b.pt", 1));
+  auto ma = pipeline::grape::Model::load(t / "a.pt", 1);
+  const auto mb = std::make_shared<const pipeline::grape::Model>(pipeline::grape::Model::load(t / "b.pt", 1));
   const Cloud big = sphere_cloud(3, 300);
   const auto alone = ma.segment(big), partner = mb->segment(big);
   const auto sa = ma.scores(big), sb = mb->scores(big);

@@ -1,4 +1,4 @@
-#include "cropsight/pipeline/grape/grape_pipeline.hpp"
+#include "cropsight/pipeline/grape/pipeline.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,14 +14,14 @@ namespace {
 using namespace cropsight;
 // Declarations, not `using namespace cropsight::pipeline` (unity batches: see
 // test_grape_segmenter.cpp).
-using pipeline::grape_cut_point;
-using pipeline::grape_detections;
-using pipeline::GrapeCutPointConfig;
-using pipeline::GrapeFrameResult;
-using pipeline::GrapePipeline;
-using pipeline::GrapePipelineConfig;
-using pipeline::GrapeSegmenter;
-using pipeline::GrapeSegmenterConfig;
+using pipeline::grape::Config;
+using pipeline::grape::CutPointConfig;
+using pipeline::grape::FrameResult;
+using pipeline::grape::grape_cut_point;
+using pipeline::grape::grape_detections;
+using pipeline::grape::Pipeline;
+using pipeline::grape::Segmenter;
+using pipeline::grape::SegmenterConfig;
 
 // A labelled bunch cloud (m): berries (label 1) in a 4 cm cube, and a peduncle (label 2) of `n` points
 // along `axis` around `centre`, with a few millimetres of jitter; plus, when `stray`, five
@@ -53,7 +53,7 @@ TEST(GrapeCutPoint, CentroidAndUpwardDirectionOfTheLargestPeduncleCluster) {
   // Given pointing down-left in the image (+y): the result must point up (-y), the same line.
   const Eigen::Vector3f down = Eigen::Vector3f(-0.3f, 1.f, 0.2f).normalized();
   const Cloud c = peduncle_cloud(centre, down, 80, true);
-  const auto cut = grape_cut_point(c);
+  const auto cut = pipeline::grape::grape_cut_point(c);
   ASSERT_TRUE(cut.has_value());
   EXPECT_EQ(cut->confidence, 80);  // the stray five are another cluster
   EXPECT_LT((cut->position - centre).norm(), 0.001f) << cut->position.transpose();
@@ -61,13 +61,13 @@ TEST(GrapeCutPoint, CentroidAndUpwardDirectionOfTheLargestPeduncleCluster) {
   EXPECT_LT(cut->direction.y(), 0.f);
   EXPECT_GT(cut->direction.dot(-down), 0.999f) << cut->direction.transpose();
   // The same rod given pointing up gives the same answer.
-  const auto up = grape_cut_point(peduncle_cloud(centre, -down, 80, true));
+  const auto up = pipeline::grape::grape_cut_point(peduncle_cloud(centre, -down, 80, true));
   ASSERT_TRUE(up.has_value());
   EXPECT_GT(up->direction.dot(cut->direction), 0.999f);
   // Another label id: the berries' ball is then "the peduncle".
-  GrapeCutPointConfig cfg;
+  pipeline::grape::CutPointConfig cfg;
   cfg.peduncle_label = 1;
-  const auto berries = grape_cut_point(c, cfg);
+  const auto berries = pipeline::grape::grape_cut_point(c, cfg);
   ASSERT_TRUE(berries.has_value());
   EXPECT_EQ(berries->confidence, 300);
 }
@@ -77,22 +77,22 @@ TEST(GrapeCutPoint, NoneWithoutEnoughPedunclePoints) {
   Cloud c = peduncle_cloud(centre, axis, 20, false);
   for (auto& l : c.labels)
     if (l == 2) l = 3;  // no peduncle point at all
-  EXPECT_FALSE(grape_cut_point(c).has_value());
+  EXPECT_FALSE(pipeline::grape::grape_cut_point(c).has_value());
   // Nine peduncle points (min_points 10) in one cluster, plus the five strays: none.
-  EXPECT_FALSE(grape_cut_point(peduncle_cloud(centre, axis, 9, true)).has_value());
-  GrapeCutPointConfig cfg;
+  EXPECT_FALSE(pipeline::grape::grape_cut_point(peduncle_cloud(centre, axis, 9, true)).has_value());
+  pipeline::grape::CutPointConfig cfg;
   cfg.min_points = 9;
-  EXPECT_TRUE(grape_cut_point(peduncle_cloud(centre, axis, 9, true), cfg).has_value());
+  EXPECT_TRUE(pipeline::grape::grape_cut_point(peduncle_cloud(centre, axis, 9, true), cfg).has_value());
   // A tolerance below the rod's spacing (4 cm / 8 steps = 5 mm) splits it: no cluster of 9.
   cfg.cluster_tolerance = 0.002;
-  EXPECT_FALSE(grape_cut_point(peduncle_cloud(centre, axis, 9, true), cfg).has_value());
+  EXPECT_FALSE(pipeline::grape::grape_cut_point(peduncle_cloud(centre, axis, 9, true), cfg).has_value());
   c.labels.clear();
-  EXPECT_THROW(grape_cut_point(c), Error);
+  EXPECT_THROW(pipeline::grape::grape_cut_point(c), Error);
 }
 
 TEST(GrapeDetections, DetectorClassesBecomeCocoCategories) {
   Detection2D grape{10.5f, 20.2f, 30.1f, 40.9f, 0, 0.8f}, peduncle{1, 2, 3, 4, 1, 0.6f};
-  const auto d = grape_detections({grape, peduncle});
+  const auto d = pipeline::grape::grape_detections({grape, peduncle});
   ASSERT_EQ(d.size(), 2u);
   EXPECT_EQ(d[0].box, (Box2D{10, 20, 21, 21}));  // covers [10.5, 30.1) x [20.2, 40.9)
   EXPECT_EQ(d[0].category, 1);
@@ -102,11 +102,11 @@ TEST(GrapeDetections, DetectorClassesBecomeCocoCategories) {
 }
 
 TEST(GrapePipelineConfig, PresetHoldsTheDefaultsAndRangesNameTheirSection) {
-  GrapePipelineConfig preset;
+  pipeline::grape::Config preset;
   const auto path = cropsight::testing::source_dir() / "configs" / "grape-camera.yaml";
   apply_config(preset, io::load_config_map(path), path.string());
-  EXPECT_EQ(dump_config(preset), dump_config(GrapePipelineConfig{}));
-  GrapePipelineConfig c;
+  EXPECT_EQ(dump_config(preset), dump_config(pipeline::grape::Config{}));
+  pipeline::grape::Config c;
   c.cut_point.min_points = 2;
   try {
     c.validate("cfg");
@@ -119,18 +119,18 @@ TEST(GrapePipelineConfig, PresetHoldsTheDefaultsAndRangesNameTheirSection) {
   EXPECT_THROW(c.validate("cfg"), Error);
 }
 
-GrapeSegmenter shipped_gbdt() {
-  GrapeSegmenterConfig s;
+pipeline::grape::Segmenter shipped_gbdt() {
+  pipeline::grape::SegmenterConfig s;
   s.model = (cropsight::testing::source_dir() / "models" / "grape-gbdt-fast.json").string();
   s.threads = 1;
-  return GrapeSegmenter(s, "test");
+  return pipeline::grape::Segmenter(s, "test");
 }
 
 // The whole pipeline on the synthetic frame with the shipped fast GBDT segmenter.
 TEST(GrapePipeline, SyntheticFrameEndToEnd) {
   const auto t = cropsight::testing::grape_test_frame();
-  GrapePipeline pipe(GrapePipelineConfig{}, shipped_gbdt());
-  const GrapeFrameResult r = pipe.process(t.frame, t.boxes);
+  pipeline::grape::Pipeline pipe(pipeline::grape::Config{}, shipped_gbdt());
+  const pipeline::grape::FrameResult r = pipe.process(t.frame, t.boxes);
   EXPECT_EQ(r.detections.size(), 4u);
   EXPECT_TRUE(r.outside.empty());
   ASSERT_EQ(r.bunches.size(), 2u);
@@ -153,7 +153,7 @@ TEST(GrapePipeline, SyntheticFrameEndToEnd) {
       EXPECT_LT(c.labels[i], 6);
     }
     // Whatever the model labels peduncle, the cut point is that of the labelled cloud.
-    const auto again = grape_cut_point(c);
+    const auto again = pipeline::grape::grape_cut_point(c);
     ASSERT_EQ(b.cut_point.has_value(), again.has_value());
     if (again) {
       EXPECT_EQ(b.cut_point->confidence, again->confidence);
@@ -172,8 +172,8 @@ TEST(GrapePipeline, SyntheticFrameEndToEnd) {
 // exact on the real frame's geometry, from the cloud the pipeline produced.
 TEST(GrapePipeline, CutPointOnTheFramesPeduncle) {
   const auto t = cropsight::testing::grape_test_frame();
-  const GrapePipeline pipe(GrapePipelineConfig{}, shipped_gbdt());
-  GrapeFrameResult r = pipe.process(t.frame, t.boxes);
+  const pipeline::grape::Pipeline pipe(pipeline::grape::Config{}, shipped_gbdt());
+  pipeline::grape::FrameResult r = pipe.process(t.frame, t.boxes);
   ASSERT_FALSE(r.bunches.empty());
   Cloud c = r.bunches[0].cloud;
   Eigen::Vector3f sum = Eigen::Vector3f::Zero();
@@ -184,7 +184,7 @@ TEST(GrapePipeline, CutPointOnTheFramesPeduncle) {
     if (rod) sum += c.points[i], ++n;
   }
   ASSERT_EQ(n, 4 * 20);
-  const auto cut = grape_cut_point(c);
+  const auto cut = pipeline::grape::grape_cut_point(c);
   ASSERT_TRUE(cut.has_value());
   EXPECT_EQ(cut->confidence, n);
   EXPECT_LT((cut->position - sum / float(n)).norm(), 1e-5f);

@@ -4,12 +4,13 @@
 #include <fstream>
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/pipeline/grape/grape_roi.hpp"
+#include "cropsight/pipeline/grape/roi.hpp"
 #include "testing/testing.hpp"
 
 namespace {
 using namespace cropsight;
 using namespace cropsight::pipeline;
+using namespace cropsight::pipeline::grape;
 
 TEST(GrapeRoi, Equation1) {
   // bunch g = (X 100, Y 200, W 80, H 120); peduncle p = (X 130, Y 150, W 10, H 40)
@@ -21,7 +22,7 @@ TEST(GrapeRoi, Equation1) {
 }
 
 TEST(GrapeRoi, PairsPedunclesAndMergesOverlaps) {
-  std::vector<GrapeDetection> d = {
+  std::vector<pipeline::grape::Detection> d = {
       {{100, 200, 80, 120}, 1, 0.9f},  // bunch A
       {{130, 150, 10, 40}, 2, 0.9f},   // its peduncle (centre x 135 inside A, above it)
       {{400, 100, 50, 60}, 1, 0.9f},   // bunch B, no peduncle
@@ -29,12 +30,12 @@ TEST(GrapeRoi, PairsPedunclesAndMergesOverlaps) {
       {{600, 50, 10, 10}, 2, 0.9f},    // stray peduncle
       {{700, 300, 20, 20}, 1, 0.1f},   // low score: ignored
   };
-  auto rois = grape_rois(d, 640, 480);
+  auto rois = pipeline::grape::grape_rois(d, 640, 480);
   ASSERT_EQ(rois.size(), 2u);
   EXPECT_EQ(rois[0], (Box2D{100, 150, 120, 170}));  // union of A's Eq.1 ROI and C
   EXPECT_EQ(rois[1], (Box2D{400, 100, 50, 60}));
   // Clipping to the image.
-  rois = grape_rois({{{600, 400, 100, 100}, 1, 1.f}}, 640, 480);
+  rois = pipeline::grape::grape_rois({{{600, 400, 100, 100}, 1, 1.f}}, 640, 480);
   ASSERT_EQ(rois.size(), 1u);
   EXPECT_EQ(rois[0], (Box2D{600, 400, 40, 80}));
 }
@@ -76,15 +77,15 @@ TEST(GrapeRoi, FrameStagesGiveNormalisedCloudsWithNormals) {
   ColorImage color(40, 30, Rgb8{20, 200, 40});
   for (int v = 0; v < 30; ++v)
     for (int u = 0; u < 40; ++u) depth.at(u, v) = std::uint16_t(1000 + 10 * u);
-  const std::vector<GrapeDetection> dets = {{{10, 10, 10, 10}, 1, 0.9f, 0},
-                                            {{14, 5, 2, 5}, 2, 0.9f, 1},
-                                            {{100, 100, 5, 5}, 1, 0.9f, 2},
-                                            {{0, 0, 5, 5}, 7, 0.9f, 3}};
-  const GrapeRoiFrame f = grape_roi_clouds(depth, color, cam, dets);
+  const std::vector<pipeline::grape::Detection> dets = {{{10, 10, 10, 10}, 1, 0.9f, 0},
+                                                        {{14, 5, 2, 5}, 2, 0.9f, 1},
+                                                        {{100, 100, 5, 5}, 1, 0.9f, 2},
+                                                        {{0, 0, 5, 5}, 7, 0.9f, 3}};
+  const pipeline::grape::RoiFrame f = pipeline::grape::grape_roi_clouds(depth, color, cam, dets);
   ASSERT_EQ(f.rois.size(), 1u);
   ASSERT_EQ(f.outside.size(), 1u);
   EXPECT_EQ(f.outside[0].annotation, 2);
-  const GrapeRoiCloud& r = f.rois[0];
+  const pipeline::grape::RoiCloud& r = f.rois[0];
   EXPECT_EQ(r.box, (Box2D{10, 5, 10, 15}));  // Eq. 1
   ASSERT_EQ(r.cloud.size(), 150u);           // every pixel of the ROI has a kept depth
   ASSERT_EQ(r.cloud.normals.size(), r.cloud.size());
@@ -102,7 +103,7 @@ TEST(GrapeRoi, FrameStagesGiveNormalisedCloudsWithNormals) {
   const Eigen::Vector3f first = r.cloud.points[0] * r.scale + r.centroid;
   EXPECT_NEAR((first - cam.deproject(10, 5, 1.1f)).norm(), 0.f, 1e-5f);
   cam.width = 41;
-  EXPECT_THROW(grape_roi_clouds(depth, color, cam, dets), Error);
+  EXPECT_THROW(pipeline::grape::grape_roi_clouds(depth, color, cam, dets), Error);
 }
 
 TEST(GrapeRoi, ReadsCocoDetections) {
@@ -129,8 +130,8 @@ TEST(GrapeRoi, SharedCocoAnnotationsGiveRois) {
   CROPSIGHT_REQUIRE_DATA(ann);
   const auto all = read_coco_detections(ann, 1);  // one image's annotations
   ASSERT_FALSE(all.empty());
-  std::vector<GrapeDetection> one = all;
-  const auto rois = grape_rois(one, 1280, 720);
+  std::vector<pipeline::grape::Detection> one = all;
+  const auto rois = pipeline::grape::grape_rois(one, 1280, 720);
   EXPECT_FALSE(rois.empty());
   for (const auto& r : rois) {
     EXPECT_GE(r.x, 0);
@@ -139,8 +140,8 @@ TEST(GrapeRoi, SharedCocoAnnotationsGiveRois) {
   }
 }
 TEST(GrapeRoi, ConfigValidated) {
-  auto named = [](void (*set)(GrapeRoiConfig&), const std::string& key) {
-    GrapeRoiConfig c;
+  auto named = [](void (*set)(pipeline::grape::RoiConfig&), const std::string& key) {
+    pipeline::grape::RoiConfig c;
     set(c);
     try {
       c.validate("cfg");
@@ -148,12 +149,12 @@ TEST(GrapeRoi, ConfigValidated) {
     } catch (const Error& e) {
       EXPECT_EQ(e.problem().rfind("'" + key + "'", 0), 0u) << e.what();
     }
-    EXPECT_THROW(grape_rois({}, 10, 10, c), Error) << key;
+    EXPECT_THROW(pipeline::grape::grape_rois({}, 10, 10, c), Error) << key;
   };
-  named([](GrapeRoiConfig& c) { c.normal_k = 100000000; }, "normal_k");
-  named([](GrapeRoiConfig& c) { c.z_min = 5, c.z_max = 1; }, "z_max");
-  named([](GrapeRoiConfig& c) { c.bunch_category = -1; }, "bunch_category");
-  named([](GrapeRoiConfig& c) { c.min_score = 5; }, "min_score");
-  EXPECT_NO_THROW(GrapeRoiConfig{}.validate("cfg"));
+  named([](pipeline::grape::RoiConfig& c) { c.normal_k = 100000000; }, "normal_k");
+  named([](pipeline::grape::RoiConfig& c) { c.z_min = 5, c.z_max = 1; }, "z_max");
+  named([](pipeline::grape::RoiConfig& c) { c.bunch_category = -1; }, "bunch_category");
+  named([](pipeline::grape::RoiConfig& c) { c.min_score = 5; }, "min_score");
+  EXPECT_NO_THROW(pipeline::grape::RoiConfig{}.validate("cfg"));
 }
 }  // namespace

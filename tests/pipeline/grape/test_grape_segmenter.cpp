@@ -3,7 +3,7 @@
 #include <fstream>
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/pipeline/grape/grape_segmenter.hpp"
+#include "cropsight/pipeline/grape/segmenter.hpp"
 #include "testing/testing.hpp"
 
 namespace {
@@ -12,14 +12,14 @@ using namespace cropsight;
 // Declarations, not `using namespace cropsight::pipeline`: the tests compile as unity batches,
 // where a using-directive in the shared anonymous namespace reaches the next files (the potato
 // tests' helper potato() then clashes with namespace pipeline::potato).
-using cropsight::pipeline::GrapeSegmenter;
-using cropsight::pipeline::GrapeSegmenterConfig;
-using cropsight::pipeline::load_grape_segmenter_config;
+using cropsight::pipeline::grape::load_segmenter_config;
+using cropsight::pipeline::grape::Segmenter;
+using cropsight::pipeline::grape::SegmenterConfig;
 namespace fs = std::filesystem;
 
 TEST(GrapeSegmenterConfig, ShippedPresetsNameTheirModelsRelativeToThemselves) {
   const fs::path configs = cropsight::testing::source_dir() / "configs";
-  const auto best = load_grape_segmenter_config(configs / "grape-best.yaml");
+  const auto best = pipeline::grape::load_segmenter_config(configs / "grape-best.yaml");
   EXPECT_TRUE(best.sampled);
   EXPECT_EQ(best.votes, 6);
   EXPECT_EQ(best.carry_k, 4);
@@ -27,10 +27,10 @@ TEST(GrapeSegmenterConfig, ShippedPresetsNameTheirModelsRelativeToThemselves) {
   EXPECT_EQ(fs::path(best.model).filename(), "grape-pointresnet.pt");
   EXPECT_EQ(fs::path(best.ensemble).filename(), "grape-gbdt-fast4096.json");
   EXPECT_TRUE(fs::exists(best.model) && fs::exists(best.ensemble)) << best.model << " " << best.ensemble;
-  const auto fold1 = load_grape_segmenter_config(configs / "grape-best-fold1.yaml");
+  const auto fold1 = pipeline::grape::load_segmenter_config(configs / "grape-best-fold1.yaml");
   EXPECT_EQ(fs::path(fold1.model).filename(), "grape-pointresnet-fold1.pt");
   EXPECT_EQ(fs::path(fold1.ensemble).filename(), "grape-gbdt-fast4096-fold1.json");
-  const auto paper = load_grape_segmenter_config(configs / "grape-paper.yaml", {{"votes", "3"}});
+  const auto paper = pipeline::grape::load_segmenter_config(configs / "grape-paper.yaml", {{"votes", "3"}});
   EXPECT_EQ(paper.carry_k, 1);
   EXPECT_TRUE(paper.ensemble.empty());
   EXPECT_EQ(paper.votes, 3);  // overrides apply after the preset
@@ -40,18 +40,20 @@ TEST(GrapeSegmenterConfig, ErrorsNameTheKeyAndWhereItCameFrom) {
   cropsight::testing::TempDir t;
   std::ofstream(t / "p.yaml") << "model: m.pt\nensemble_weight: 1.5\n";
   EXPECT_NE(error_message([&] {
-              load_grape_segmenter_config(t / "p.yaml");
+              pipeline::grape::load_segmenter_config(t / "p.yaml");
             }).find("p.yaml: 'ensemble_weight' must be at most 1"),
             std::string::npos);
   std::ofstream(t / "q.yaml") << "model: m.pt\nvotes: many\n";
-  EXPECT_NE(error_message([&] { load_grape_segmenter_config(t / "q.yaml"); }).find("q.yaml: 'votes' expects a number"),
+  EXPECT_NE(error_message([&] {
+              pipeline::grape::load_segmenter_config(t / "q.yaml");
+            }).find("q.yaml: 'votes' expects a number"),
             std::string::npos);
   std::ofstream(t / "r.yaml") << "model: m.pt\n";
   EXPECT_NE(error_message([&] {
-              load_grape_segmenter_config(t / "r.yaml", {{"carry_k", "0"}}, "flags");
+              pipeline::grape::load_segmenter_config(t / "r.yaml", {{"carry_k", "0"}}, "flags");
             }).find("flags: 'carry_k' must be at least 1"),
             std::string::npos);
-  GrapeSegmenterConfig c;
+  pipeline::grape::SegmenterConfig c;
   EXPECT_NE(error_message([&] { c.validate("cfg"); }).find("cfg: 'model' is not set"), std::string::npos);
   c.model = "m.pt";
   c.sampling = "grid";
@@ -59,24 +61,26 @@ TEST(GrapeSegmenterConfig, ErrorsNameTheKeyAndWhereItCameFrom) {
 }
 
 TEST(GrapeSegmenter, AGbdtTakesNoNetworkModeAndAWeightNeedsAPartner) {
-  GrapeSegmenterConfig c;
+  pipeline::grape::SegmenterConfig c;
   c.model = (cropsight::testing::source_dir() / "models" / "grape-gbdt-fast.json").string();
   c.threads = 1;
-  EXPECT_EQ(GrapeSegmenter(c, "cfg").model().kind(), "gbdt");
+  EXPECT_EQ(pipeline::grape::Segmenter(c, "cfg").model().kind(), "gbdt");
   c.sampled = true;
-  EXPECT_NE(error_message([&] { GrapeSegmenter(c, "cfg"); }).find("cfg: 'sampled' is only for network models"),
-            std::string::npos);
+  EXPECT_NE(
+      error_message([&] { pipeline::grape::Segmenter(c, "cfg"); }).find("cfg: 'sampled' is only for network models"),
+      std::string::npos);
   c.sampled = false;
   c.votes = 2;
-  EXPECT_NE(error_message([&] { GrapeSegmenter(c, "cfg"); }).find("cfg: 'votes'"), std::string::npos);
+  EXPECT_NE(error_message([&] { pipeline::grape::Segmenter(c, "cfg"); }).find("cfg: 'votes'"), std::string::npos);
   c.votes = 1;
   c.ensemble_weight = 0.3;
-  EXPECT_NE(error_message([&] { GrapeSegmenter(c, "cfg"); }).find("cfg: 'ensemble_weight' needs 'ensemble'"),
-            std::string::npos);
+  EXPECT_NE(
+      error_message([&] { pipeline::grape::Segmenter(c, "cfg"); }).find("cfg: 'ensemble_weight' needs 'ensemble'"),
+      std::string::npos);
   c.ensemble = c.model;  // an ensemble with itself: the same labels as the model alone
-  const GrapeSegmenter both(c, "cfg");
+  const pipeline::grape::Segmenter both(c, "cfg");
   c.ensemble.clear(), c.ensemble_weight = 0.5;
-  const GrapeSegmenter one(c, "cfg");
+  const pipeline::grape::Segmenter one(c, "cfg");
   Cloud cloud;
   for (int i = 0; i < 300; ++i) {
     const float a = 0.02f * float(i);

@@ -1,6 +1,6 @@
-// Orientation on simulated approaches (issue 22): the simulator's truth angle of each potato that is
+// Orientation on simulated approaches: the simulator's truth angle of each potato that is
 // fully in view, boxes from the labels, each segmentation with PCA on the colour image and on the
-// colourised depth (io::colorize_depth over 0.2-1.0 m, as PotatoPipeline::orient). The measurement
+// colourised depth (io::colorize_depth over 0.2-1.0 m, as pipeline::potato::Pipeline::orient). The measurement
 // behind docs/pipelines/potatoes.md, on held-out seeds 3001..3000+N that no test or tuning used:
 //   CROPSIGHT_POTATO_SEEDS=3 build/bin/test_pipeline --gtest_also_run_disabled_tests
 //     --gtest_filter='OrientationSim.DISABLED_*'
@@ -20,6 +20,7 @@
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/measure/orientation.hpp"
 #include "cropsight/measure/position.hpp"
+#include "cropsight/pipeline/potato/truth.hpp"
 #include "cropsight/sim/potato/potato_sim.hpp"
 #include "testing/testing.hpp"
 
@@ -44,7 +45,8 @@ TEST(OrientationSim, DISABLED_MeasureHeldOutApproaches) {
         const RgbdFrame f = reader.read(i);
         const Image<float> depth = measure::depth_in_metres(f.depth, f.camera.depth_scale);
         const ColorImage colour_depth = io::colorize_depth(depth, 0.2f, 1.0f);
-        for (const auto& p : sim::potato_frame_truth(reader.groundtruth(), *f.camera_position, f.camera, f.labels)) {
+        for (const auto& p :
+             pipeline::potato::frame_truth(reader.groundtruth(), *f.camera_position, f.camera, f.labels)) {
           // Fully in view, and long enough that the axis is defined (width / length <= 0.85).
           if (p.visible_pixels < 1500 || p.box.x1 < 2 || p.box.y1 < 2 || p.box.x2 > f.color.width - 2 ||
               p.box.y2 > f.color.height - 2 || p.width_m > 0.85 * p.length_m)

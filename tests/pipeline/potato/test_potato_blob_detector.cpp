@@ -1,7 +1,7 @@
 // The classical potato detector: synthetic scenes with known answers (a potato on a sheet, a
 // string, a blue object, touching potatoes, a notch that must not split, contrast, depth gating) and the shared images
 // (AP50 with the colour model refit leaving each image out).
-#include "cropsight/pipeline/potato/potato_blob_detector.hpp"
+#include "cropsight/pipeline/potato/blob_detector.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,18 +12,20 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/image_io.hpp"
-#include "cropsight/pipeline/potato/potato_colour_fit.hpp"
-#include "cropsight/pipeline/potato/potato_detection_eval.hpp"
+#include "cropsight/pipeline/potato/colour_fit.hpp"
+#include "cropsight/pipeline/potato/detection_eval.hpp"
 #include "testing/testing.hpp"
 
 namespace {
 using namespace cropsight;
-using pipeline::potato::PotatoBlobConfig;
-using pipeline::potato::PotatoBlobDetector;
+using pipeline::potato::BlobConfig;
+using pipeline::potato::BlobDetector;
 
 // The default skin colour (Lab mean) in RGB, so the scene does not depend on a guessed colour.
 cv::Scalar skin_rgb() {
-  cv::Mat lab(1, 1, CV_8UC3, cv::Scalar(110, PotatoBlobConfig{}.mean_a, PotatoBlobConfig{}.mean_b)), rgb;
+  cv::Mat lab(1, 1, CV_8UC3,
+              cv::Scalar(110, pipeline::potato::BlobConfig{}.mean_a, pipeline::potato::BlobConfig{}.mean_b)),
+      rgb;
   cv::cvtColor(lab, rgb, cv::COLOR_Lab2RGB);
   const cv::Vec3b p = rgb.at<cv::Vec3b>(0, 0);
   return {double(p[0]), double(p[1]), double(p[2])};
@@ -48,7 +50,7 @@ cv::Mat scene() {
 
 TEST(PotatoBlobDetector, FindsThePotatoNotTheStringOrTheBlueObject) {
   const ColorImage im = to_image(scene());
-  PotatoBlobDetector det;
+  pipeline::potato::BlobDetector det;
   const auto d = det.detect({&im, nullptr});
   ASSERT_EQ(d.size(), 1u);
   Detection2D truth;
@@ -85,11 +87,11 @@ TEST(PotatoBlobDetector, SplitsTwoPotatoesJoinedByANeck) {
   cv::ellipse(m, {150, 200}, {22, 35}, 0, 0, 360, skin_rgb(), cv::FILLED);
   cv::ellipse(m, {196, 205}, {22, 35}, 0, 0, 360, skin_rgb(), cv::FILLED);
   const ColorImage im = to_image(m);
-  PotatoBlobConfig cfg;
-  expect_boxes(PotatoBlobDetector(cfg).detect({&im, nullptr}),
+  pipeline::potato::BlobConfig cfg;
+  expect_boxes(pipeline::potato::BlobDetector(cfg).detect({&im, nullptr}),
                {ellipse_box(150, 200, 22, 35), ellipse_box(196, 205, 22, 35)}, 0.85f);
   cfg.split_concavity_depth = 0;  // no split: one blob
-  EXPECT_EQ(PotatoBlobDetector(cfg).detect({&im, nullptr}).size(), 1u);
+  EXPECT_EQ(pipeline::potato::BlobDetector(cfg).detect({&im, nullptr}).size(), 1u);
 }
 
 // Two potatoes side by side that overlap by 4 px along most of their length (as in the shared
@@ -100,11 +102,11 @@ TEST(PotatoBlobDetector, SplitsTwoPotatoesTouchingAlongAWideEdge) {
   cv::ellipse(m, {200, 200}, {22, 55}, 0, 0, 360, skin_rgb(), cv::FILLED);
   cv::ellipse(m, {236, 215}, {18, 38}, 0, 0, 360, skin_rgb(), cv::FILLED);
   const ColorImage im = to_image(m);
-  PotatoBlobConfig cfg;
-  expect_boxes(PotatoBlobDetector(cfg).detect({&im, nullptr}),
+  pipeline::potato::BlobConfig cfg;
+  expect_boxes(pipeline::potato::BlobDetector(cfg).detect({&im, nullptr}),
                {ellipse_box(200, 200, 22, 55), ellipse_box(236, 215, 18, 38)}, 0.8f);
   cfg.split_max_depth = 0;
-  EXPECT_EQ(PotatoBlobDetector(cfg).detect({&im, nullptr}).size(), 1u);
+  EXPECT_EQ(pipeline::potato::BlobDetector(cfg).detect({&im, nullptr}).size(), 1u);
 }
 
 // One potato with a shallow notch (a string's attachment, an eye) stays one detection.
@@ -113,7 +115,7 @@ TEST(PotatoBlobDetector, DoesNotSplitOnePotatoWithANotch) {
   cv::ellipse(m, {200, 200}, {25, 50}, 0, 0, 360, skin_rgb(), cv::FILLED);
   cv::circle(m, {225, 200}, 7, cv::Scalar(235, 235, 240), cv::FILLED);  // notch 7 px deep, radius 25
   const ColorImage im = to_image(m);
-  expect_boxes(PotatoBlobDetector().detect({&im, nullptr}), {ellipse_box(200, 200, 25, 50)}, 0.85f);
+  expect_boxes(pipeline::potato::BlobDetector().detect({&im, nullptr}), {ellipse_box(200, 200, 25, 50)}, 0.85f);
 }
 
 // The same potato scores lower among dark surroundings than on the light sheet, by the logistic
@@ -128,11 +130,11 @@ TEST(PotatoBlobDetector, ContrastWithTheBackgroundRanksTheScore) {
   // level with a grey of the same lightness (clutter that does not stand out).
   const ColorImage sheet = on(cv::Scalar(235, 235, 240)), dark = on(cv::Scalar(20, 20, 20)),
                    level = on(cv::Scalar(105, 105, 105));
-  PotatoBlobConfig cfg;
+  pipeline::potato::BlobConfig cfg;
   cfg.min_score = 0;  // report every blob
-  const auto a = PotatoBlobDetector(cfg).detect({&sheet, nullptr}),
-             b = PotatoBlobDetector(cfg).detect({&dark, nullptr}),
-             g = PotatoBlobDetector(cfg).detect({&level, nullptr});
+  const auto a = pipeline::potato::BlobDetector(cfg).detect({&sheet, nullptr}),
+             b = pipeline::potato::BlobDetector(cfg).detect({&dark, nullptr}),
+             g = pipeline::potato::BlobDetector(cfg).detect({&level, nullptr});
   ASSERT_EQ(a.size(), 1u);
   ASSERT_EQ(b.size(), 1u);
   ASSERT_EQ(g.size(), 1u);
@@ -141,8 +143,8 @@ TEST(PotatoBlobDetector, ContrastWithTheBackgroundRanksTheScore) {
   EXPECT_NEAR(b[0].score, a[0].score, 0.02f * a[0].score);
   EXPECT_LT(g[0].score, 0.7f * a[0].score);
   cfg.contrast_scale = 0;
-  const auto c = PotatoBlobDetector(cfg).detect({&sheet, nullptr}),
-             d = PotatoBlobDetector(cfg).detect({&level, nullptr});
+  const auto c = pipeline::potato::BlobDetector(cfg).detect({&sheet, nullptr}),
+             d = pipeline::potato::BlobDetector(cfg).detect({&level, nullptr});
   ASSERT_EQ(c.size(), 1u);
   ASSERT_EQ(d.size(), 1u);
   EXPECT_NEAR(c[0].score, d[0].score, 1e-3);
@@ -151,13 +153,13 @@ TEST(PotatoBlobDetector, ContrastWithTheBackgroundRanksTheScore) {
 TEST(PotatoBlobDetector, DepthGatesTheForeground) {
   const ColorImage im = to_image(scene());
   Image<float> far(416, 416, 2.5f), near(416, 416, 0.4f), holes(416, 416, 0.f);
-  PotatoBlobDetector det;
+  pipeline::potato::BlobDetector det;
   EXPECT_TRUE(det.detect({&im, &far}).empty());  // the room behind the sheet
   EXPECT_EQ(det.detect({&im, &near}).size(), 1u);
   EXPECT_EQ(det.detect({&im, &holes}).size(), 1u);  // no depth: colour decides
-  PotatoBlobConfig cfg;
+  pipeline::potato::BlobConfig cfg;
   cfg.keep_depth_holes = false;
-  EXPECT_TRUE(PotatoBlobDetector(cfg).detect({&im, &holes}).empty());
+  EXPECT_TRUE(pipeline::potato::BlobDetector(cfg).detect({&im, &holes}).empty());
   Image<float> wrong(100, 100, 0.4f);
   EXPECT_THROW(det.detect({&im, &wrong}), Error);
 }
@@ -177,20 +179,20 @@ TEST(PotatoBlobDetector, DepthCompletesTheBoxOfAShadedPotato) {
   cv::ellipse(dm, {200, 220}, {45, 30}, 0, 0, 360, cv::Scalar(0.4), cv::FILLED);
   const Detection2D whole = ellipse_box(200, 220, 45, 30);
 
-  PotatoBlobConfig off;
+  pipeline::potato::BlobConfig off;
   off.depth_completion = 0;
-  const auto colour_only = PotatoBlobDetector(off).detect({&im, &depth});
+  const auto colour_only = pipeline::potato::BlobDetector(off).detect({&im, &depth});
   ASSERT_EQ(colour_only.size(), 1u);
   EXPECT_LT(iou(colour_only[0], whole), 0.65);  // the upper half
 
-  const auto completed = PotatoBlobDetector().detect({&im, &depth});
+  const auto completed = pipeline::potato::BlobDetector().detect({&im, &depth});
   ASSERT_EQ(completed.size(), 1u);
   EXPECT_GT(iou(completed[0], whole), 0.9)
       << completed[0].x1 << " " << completed[0].y1 << " " << completed[0].x2 << " " << completed[0].y2;
   EXPECT_GT(completed[0].y1, 180.f);  // not up the root
 
   Image<float> wall(416, 416, 0.4f);
-  const auto flat = PotatoBlobDetector().detect({&im, &wall});
+  const auto flat = pipeline::potato::BlobDetector().detect({&im, &wall});
   ASSERT_EQ(flat.size(), 1u);
   EXPECT_NEAR(iou(flat[0], colour_only[0]), 1.0, 1e-6);
 }
@@ -210,29 +212,29 @@ TEST(PotatoBlobDetector, SaturationKeepsTheGreyShadowOutOfTheBox) {
   cv::ellipse(m, {175, 120}, {50, 34}, 0, 0, 360, lab_to_rgb(110, 137, 153), cv::FILLED);
   const ColorImage im = to_image(m);
   const Detection2D truth{125, 86, 225, 154, 0, 1.f};
-  PotatoBlobConfig cfg;
+  pipeline::potato::BlobConfig cfg;
   ASSERT_GT(cfg.min_saturation, 0.105);  // the shadow's 9.5 / 90
   {
-    PotatoBlobDetector det(cfg);
+    pipeline::potato::BlobDetector det(cfg);
     const auto d = det.detect({&im, nullptr});
     ASSERT_FALSE(d.empty());
     EXPECT_GT(iou(d[0], truth), 0.85) << d[0].x1 << " " << d[0].x2;
   }
   cfg.min_saturation = 0;  // the shadow joins the potato and the box grows over it
-  PotatoBlobDetector det(cfg);
+  pipeline::potato::BlobDetector det(cfg);
   const auto d = det.detect({&im, nullptr});
   ASSERT_FALSE(d.empty());
   EXPECT_LT(iou(d[0], truth), 0.85) << d[0].x1 << " " << d[0].x2;
 }
 
 TEST(PotatoBlobDetector, ConfigIsChecked) {
-  PotatoBlobConfig cfg;
+  pipeline::potato::BlobConfig cfg;
   EXPECT_THROW(apply_config(cfg, {{"detector.colour_distance", "3"}}, "--set", "detector."), Error);
   apply_config(cfg, {{"detector.max_colour_distance", "2.5"}}, "--set", "detector.");
   EXPECT_EQ(cfg.max_colour_distance, 2.5);
   EXPECT_THROW(apply_config(cfg, {{"detector.opening_fraction", "-1"}}, "--set", "detector."), Error);
   cfg.cov_ab = 100;  // not positive definite
-  EXPECT_THROW(PotatoBlobDetector{cfg}, Error);
+  EXPECT_THROW(pipeline::potato::BlobDetector{cfg}, Error);
 }
 
 // One shared real scene: annotated images with their truth boxes (as Detection2D for the colour fit).
@@ -292,16 +294,16 @@ Pooled pool(const std::vector<const SharedSet*>& sets) {
 
 // AP per scene of `base` with the colour model refit on all the other images of both scenes for
 // each one (leave-one-image-out).
-std::array<eval::VocApSummary, 2> leave_one_out(const Pooled& p, const PotatoBlobConfig& base) {
+std::array<eval::VocApSummary, 2> leave_one_out(const Pooled& p, const pipeline::potato::BlobConfig& base) {
   std::array<std::vector<eval::VocImage>, 2> per_scene;
   for (std::size_t i = 0; i < p.images.size(); ++i) {
     std::vector<const ColorImage*> train_images;
     std::vector<std::vector<Detection2D>> train_boxes;
     for (std::size_t j = 0; j < p.images.size(); ++j)
       if (j != i) train_images.push_back(p.images[j]), train_boxes.push_back(p.boxes[j]);
-    PotatoBlobConfig cfg = base;
+    pipeline::potato::BlobConfig cfg = base;
     pipeline::potato::fit_potato_colour(train_images, train_boxes).apply_to(cfg);
-    PotatoBlobDetector det(cfg);
+    pipeline::potato::BlobDetector det(cfg);
     eval::VocImage v;
     v.truth = p.truth[i];
     v.detections = pipeline::potato::detection_boxes(det.detect({p.images[i], nullptr}));
@@ -310,8 +312,8 @@ std::array<eval::VocApSummary, 2> leave_one_out(const Pooled& p, const PotatoBlo
   return {eval::voc_ap_summary(per_scene[0]), eval::voc_ap_summary(per_scene[1])};
 }
 
-eval::VocApSummary score(const SharedSet& s, const PotatoBlobConfig& cfg) {
-  PotatoBlobDetector det(cfg);
+eval::VocApSummary score(const SharedSet& s, const pipeline::potato::BlobConfig& cfg) {
+  pipeline::potato::BlobDetector det(cfg);
   std::vector<eval::VocImage> v(s.set.size());
   for (std::size_t i = 0; i < s.set.size(); ++i) {
     v[i].truth = pipeline::potato::truth_boxes(s.set[i].truth);
@@ -328,8 +330,9 @@ TEST(PotatoBlobDetector, SharedImagesLeaveOneOut) {
   CROPSIGHT_REQUIRE_DATA(shared_orientation_rgb_dir());
   const SharedSet det = load_detection_set(), ori = load_orientation_set();
   const Pooled p = pool({&det, &ori});
-  const auto loo = leave_one_out(p, PotatoBlobConfig{});
-  const auto fixed_det = score(det, PotatoBlobConfig{}), fixed_ori = score(ori, PotatoBlobConfig{});
+  const auto loo = leave_one_out(p, pipeline::potato::BlobConfig{});
+  const auto fixed_det = score(det, pipeline::potato::BlobConfig{}),
+             fixed_ori = score(ori, pipeline::potato::BlobConfig{});
   std::printf("[ classical ] detection images (11), colour leave-one-out: AP50 %.4f AP75 %.4f mAP50:95 %.4f\n",
               loo[0].ap50, loo[0].ap75, loo[0].map50_95);
   std::printf("[ classical ] orientation shots (15), colour leave-one-out: AP50 %.4f AP75 %.4f mAP50:95 %.4f\n",
@@ -348,7 +351,7 @@ TEST(PotatoBlobDetector, SharedImagesLeaveOneOut) {
 
   // The shipped colour model is the fit on all 26 images (to the printed digits).
   const auto fit = pipeline::potato::fit_potato_colour(p.images, p.boxes);
-  const PotatoBlobConfig def;
+  const pipeline::potato::BlobConfig def;
   EXPECT_NEAR(fit.mean_a, def.mean_a, 0.01);
   EXPECT_NEAR(fit.mean_b, def.mean_b, 0.01);
   EXPECT_NEAR(fit.cov_aa, def.cov_aa, 0.01);
@@ -367,7 +370,7 @@ TEST(PotatoBlobDetector, ColourFitAcrossScenes) {
   auto fitted_on = [](const SharedSet& s) {
     std::vector<const ColorImage*> im;
     for (const auto& i : s.images) im.push_back(&i);
-    PotatoBlobConfig cfg;
+    pipeline::potato::BlobConfig cfg;
     pipeline::potato::fit_potato_colour(im, s.boxes).apply_to(cfg);
     return cfg;
   };
@@ -378,7 +381,7 @@ TEST(PotatoBlobDetector, ColourFitAcrossScenes) {
               ori_on_det.ap50);
   EXPECT_GT(ori_on_det.ap50, 0.85);  // measured 0.870
   // Measured 0.510 against 0.983 for the shipped (pooled) fit: one scene's fit does not carry to the other.
-  EXPECT_LT(det_on_ori.ap50 + 0.2, score(ori, PotatoBlobConfig{}).ap50);
+  EXPECT_LT(det_on_ori.ap50 + 0.2, score(ori, pipeline::potato::BlobConfig{}).ap50);
 }
 
 // The leave-one-out figures of the thresholds chosen on these images, one at a time around the
@@ -391,7 +394,7 @@ TEST(PotatoBlobDetector, DISABLED_SharedImagesSweep) {
   const Pooled s = pool({&det, &ori});
   auto run = [&](const char* key, std::initializer_list<double> values, auto set) {
     for (const double v : values) {
-      PotatoBlobConfig cfg;
+      pipeline::potato::BlobConfig cfg;
       set(cfg, v);
       const auto r = leave_one_out(s, cfg);
       std::printf(
@@ -400,15 +403,15 @@ TEST(PotatoBlobDetector, DISABLED_SharedImagesSweep) {
     }
   };
   run("split_concavity_depth", {0, 0.3, 0.4, 0.5, 0.6, 0.7},
-      [](PotatoBlobConfig& c, double v) { c.split_concavity_depth = v; });
-  run("contrast_scale", {0, 3, 5, 10, 20}, [](PotatoBlobConfig& c, double v) { c.contrast_scale = v; });
+      [](pipeline::potato::BlobConfig& c, double v) { c.split_concavity_depth = v; });
+  run("contrast_scale", {0, 3, 5, 10, 20}, [](pipeline::potato::BlobConfig& c, double v) { c.contrast_scale = v; });
   run("split_min_part_solidity", {0, 0.8, 0.9, 0.95},
-      [](PotatoBlobConfig& c, double v) { c.split_min_part_solidity = v; });
-  run("split_max_depth", {1, 2, 3}, [](PotatoBlobConfig& c, double v) { c.split_max_depth = int(v); });
+      [](pipeline::potato::BlobConfig& c, double v) { c.split_min_part_solidity = v; });
+  run("split_max_depth", {1, 2, 3}, [](pipeline::potato::BlobConfig& c, double v) { c.split_max_depth = int(v); });
   run("split_min_part_fraction", {0.1, 0.15, 0.25},
-      [](PotatoBlobConfig& c, double v) { c.split_min_part_fraction = v; });
+      [](pipeline::potato::BlobConfig& c, double v) { c.split_min_part_fraction = v; });
   run("min_saturation", {0, 0.1, 0.11, 0.12, 0.13, 0.14, 0.15, 0.16},
-      [](PotatoBlobConfig& c, double v) { c.min_saturation = v; });
+      [](pipeline::potato::BlobConfig& c, double v) { c.min_saturation = v; });
 }
 
 }  // namespace

@@ -1,13 +1,13 @@
 // The harvest-run evaluator on scripted runs (switches, lost events, angle modulo 180) and end to
-// end on a simulated approach: PotatoPipeline with a ground-truth-box detector (boxes from the
-// simulator's labels) through evaluate_potato_sequence, and with the preset's classical detector.
+// end on a simulated approach: pipeline::potato::Pipeline with a ground-truth-box detector (boxes from the
+// simulator's labels) through pipeline::potato::evaluate_potato_sequence, and with the preset's classical detector.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <iostream>
 
 #include "cropsight/io/sequence.hpp"
-#include "cropsight/pipeline/potato/potato_eval.hpp"
+#include "cropsight/pipeline/potato/eval.hpp"
 #include "testing/testing.hpp"
 
 using namespace cropsight;
@@ -15,8 +15,8 @@ using namespace cropsight::pipeline::potato;
 
 namespace {
 
-sim::PotatoFrameTruth potato_truth(int id, float cu, Eigen::Vector3d c) {
-  sim::PotatoFrameTruth t;
+pipeline::potato::FrameTruth potato_truth(int id, float cu, Eigen::Vector3d c) {
+  pipeline::potato::FrameTruth t;
   t.id = id;
   t.box = {cu - 20, 100, cu + 20, 140, 0, 1};
   t.visible_pixels = 1600;
@@ -36,7 +36,7 @@ class TruthBoxDetector final : public Detector2D {
     for (int i = 0; i < reader.size(); ++i) {
       const RgbdFrame f = reader.read(i);
       std::vector<Detection2D> boxes;
-      for (const auto& t : sim::potato_frame_truth(reader.groundtruth(), *f.camera_position, f.camera, f.labels))
+      for (const auto& t : pipeline::potato::frame_truth(reader.groundtruth(), *f.camera_position, f.camera, f.labels))
         if (t.visible_pixels >= 50) boxes.push_back(t.box);
       frames_.push_back(boxes);
     }
@@ -51,8 +51,8 @@ class TruthBoxDetector final : public Detector2D {
   std::size_t next_ = 0;
 };
 
-PotatoFrameResult frame(int id, const Detection2D& box, const Eigen::Vector3d& xyz) {
-  PotatoFrameResult r;
+pipeline::potato::FrameResult frame(int id, const Detection2D& box, const Eigen::Vector3d& xyz) {
+  pipeline::potato::FrameResult r;
   HarvestTarget& t = r.target;
   t.state = tracking::TargetState::detected;
   t.target_id = id;
@@ -63,7 +63,7 @@ PotatoFrameResult frame(int id, const Detection2D& box, const Eigen::Vector3d& x
   t.width = 0.081f, t.height = 0.05f;
   t.angle = float(M_PI - 0.1);
   t.angle_ok = true;
-  r.ms_detect = 2, r.ms_locate = 1, r.ms_track = 0.5, r.ms_orient = 3;
+  r.timer.add("detect", 2), r.timer.add("locate", 1), r.timer.add("track", 0.5), r.timer.add("orient", 3);
   return r;
 }
 
@@ -77,16 +77,16 @@ TEST(PotatoEval, AngleErrorIsModulo180) {
 
 TEST(PotatoEval, ScriptedRunCountsSwitchesLossAndErrors) {
   const Eigen::Vector3d a(0, 0, 0.4), b(0.1, 0, 0.45);
-  sim::PotatoFrameTruth target = potato_truth(1, 100, a);
+  pipeline::potato::FrameTruth target = potato_truth(1, 100, a);
   target.target = true;
-  std::vector<std::vector<sim::PotatoFrameTruth>> truth(4, {target, potato_truth(2, 300, b)});
-  std::vector<PotatoFrameResult> run;
+  std::vector<std::vector<pipeline::potato::FrameTruth>> truth(4, {target, potato_truth(2, 300, b)});
+  std::vector<pipeline::potato::FrameResult> run;
   for (int f = 0; f < 3; ++f) run.push_back(frame(1, truth[0][f == 2 ? 1 : 0].box, f == 2 ? b : a));  // frame 2 jumps
   run[1].target.cut = true;  // the border cuts the box: its error goes to cut_*, not x, y, z
   run[1].target.x += 0.05f;
   run.emplace_back();
   run[3].target.state = tracking::TargetState::lost;
-  const PotatoEvaluation ev = evaluate_potato_run(run, truth);
+  const pipeline::potato::Evaluation ev = pipeline::potato::evaluate_potato_run(run, truth);
   EXPECT_EQ(ev.frames, 4);
   EXPECT_EQ(ev.frames_with_target, 3);
   EXPECT_EQ(ev.frames_on_target, 2);
@@ -102,12 +102,12 @@ TEST(PotatoEval, ScriptedRunCountsSwitchesLossAndErrors) {
   EXPECT_NEAR(ev.angle_mae_deg, 0.2 * 180 / M_PI, 1e-4);
   EXPECT_EQ(ev.angles_full_view, ev.angles - 1);  // frame 1's box is cut by the border
   EXPECT_NEAR(ev.angle_mae_full_view_deg, 0.2 * 180 / M_PI, 1e-4);
-  const PotatoStageTimes ms = stage_times(run);
+  const pipeline::potato::StageTimes ms = stage_times(run);
   EXPECT_NEAR(ms.detect, 1.5, 1e-9);  // three frames of 2 ms, one of 0
   EXPECT_NEAR(ms.total, 4.875, 1e-9);
   EXPECT_NEAR(ms.max_total, 6.5, 1e-9);
   run.pop_back();
-  EXPECT_THROW(evaluate_potato_run(run, truth), Error);
+  EXPECT_THROW(pipeline::potato::evaluate_potato_run(run, truth), Error);
 }
 
 TEST(PotatoEval, SimulatedApproachWithGroundTruthBoxes) {
@@ -116,9 +116,10 @@ TEST(PotatoEval, SimulatedApproachWithGroundTruthBoxes) {
   cfg.width = 320;
   cfg.height = 240;
   sim::simulate_potato_sequence(cfg, 11, 10, dir / "seq", false);
-  PotatoPipeline pipeline(load_potato_config("potato"), std::make_unique<TruthBoxDetector>(dir / "seq"));
-  const PotatoSequenceEvaluation r = evaluate_potato_sequence(pipeline, dir / "seq");
-  const PotatoEvaluation& ev = r.figures;
+  pipeline::potato::Pipeline pipeline(pipeline::potato::load_config("potato"),
+                                      std::make_unique<TruthBoxDetector>(dir / "seq"));
+  const pipeline::potato::SequenceEvaluation r = pipeline::potato::evaluate_potato_sequence(pipeline, dir / "seq");
+  const pipeline::potato::Evaluation& ev = r.figures;
   ASSERT_EQ(r.run.size(), 10u);
   EXPECT_EQ(ev.target_switches, 0);
   EXPECT_EQ(ev.frames_with_target, 10);
@@ -140,9 +141,9 @@ TEST(PotatoEval, SequenceWithoutSimulatorTruthIsAnErrorNamingTheFile) {
   cfg.height = 120;
   sim::simulate_potato_sequence(cfg, 11, 1, dir / "seq", false);
   std::filesystem::remove(dir / "seq" / "poses.csv");
-  PotatoPipeline pipeline(load_potato_config("potato"));
+  pipeline::potato::Pipeline pipeline(pipeline::potato::load_config("potato"));
   try {
-    evaluate_potato_sequence(pipeline, dir / "seq");
+    pipeline::potato::evaluate_potato_sequence(pipeline, dir / "seq");
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("poses.csv"), std::string::npos) << e.what();

@@ -9,7 +9,7 @@
 #include <map>
 #include <set>
 
-#include "cropsight/pipeline/potato/potato_detection_eval.hpp"
+#include "cropsight/pipeline/potato/detection_eval.hpp"
 #include "testing/testing.hpp"
 
 namespace {

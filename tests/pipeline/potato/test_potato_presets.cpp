@@ -8,7 +8,7 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/image_io.hpp"
-#include "cropsight/pipeline/potato/potato_pipeline.hpp"
+#include "cropsight/pipeline/potato/pipeline.hpp"
 #include "testing/testing.hpp"
 
 namespace {
@@ -31,21 +31,21 @@ TEST(PotatoPresets, FusionPresetDiffersOnlyInTheDetector) {
 TEST(PotatoPresets, FusionPresetFindsItsModelFromAnyDirectory) {
   const auto cwd = std::filesystem::current_path();
   std::filesystem::current_path(std::filesystem::temp_directory_path());
-  const auto cfg = pp::load_potato_config(cropsight::io::find_preset("potato-fusion").string());
+  const auto cfg = pp::load_config(cropsight::io::find_preset("potato-fusion").string());
   std::filesystem::current_path(cwd);
   ASSERT_EQ(cfg.detector.backend, pp::DetectorBackend::fusion);
   EXPECT_TRUE(std::filesystem::path(cfg.detector.cnn_model).is_absolute());
   EXPECT_TRUE(std::filesystem::exists(cfg.detector.cnn_model)) << cfg.detector.cnn_model;
-  EXPECT_EQ(pp::make_potato_detector(cfg.detector, "potato-fusion")->class_names(), std::vector<std::string>{"potato"});
+  EXPECT_EQ(pp::make_detector(cfg.detector, "potato-fusion")->class_names(), std::vector<std::string>{"potato"});
 }
 
-// The message of make_potato_detector's error for backend fusion with `cnn_model` ("" when none).
+// The message of pipeline::potato::make_detector's error for backend fusion with `cnn_model` ("" when none).
 std::string fusion_detector_error(const std::string& cnn_model) {
-  pp::PotatoDetectorConfig cfg;
+  pp::DetectorConfig cfg;
   cfg.backend = pp::DetectorBackend::fusion;
   cfg.cnn_model = cnn_model;
   try {
-    pp::make_potato_detector(cfg, "test.yaml");
+    pp::make_detector(cfg, "test.yaml");
   } catch (const cropsight::Error& e) {
     return e.what();
   }
@@ -71,8 +71,8 @@ TEST(PotatoPresets, FusionFindsThePotatoesOfASharedImage) {
   const auto image =
       cropsight::testing::shared_data_dir() / "potato/detection/images/i.rf.131c6a11f891c8b9e8de4659d829e30e.jpg";
   CROPSIGHT_REQUIRE_DATA(image);
-  const auto cfg = pp::load_potato_config("potato-fusion");
-  auto detector = pp::make_potato_detector(cfg.detector, "potato-fusion");
+  const auto cfg = pp::load_config("potato-fusion");
+  auto detector = pp::make_detector(cfg.detector, "potato-fusion");
   const auto color = cropsight::io::read_color(image);
   const auto boxes = detector->detect({&color, nullptr});
   int confident = 0;

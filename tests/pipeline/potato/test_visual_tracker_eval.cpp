@@ -4,6 +4,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/pipeline/potato/visual_tracker_eval.hpp"
+#include "cropsight/sim/potato/potato_sim.hpp"
 #include "testing/testing.hpp"
 
 using namespace cropsight;
@@ -11,12 +12,12 @@ using namespace cropsight::pipeline::potato;
 
 namespace {
 
-SimulatedPotatoTruthSequence simulated(const std::filesystem::path& dir, int frames) {
+pipeline::potato::TruthSequence simulated(const std::filesystem::path& dir, int frames) {
   sim::PotatoSimConfig cfg;
   cfg.width = 320;
   cfg.height = 240;
   sim::simulate_potato_sequence(cfg, 11, frames, dir / "seq", false);
-  return read_simulated_potato_truth(dir / "seq");
+  return pipeline::potato::read_truth_sequence(dir / "seq");
 }
 
 }  // namespace
@@ -86,7 +87,7 @@ TEST(VisualTrackerEval, ASequenceWithoutColourIsAnErrorNamingTheFolder) {
   sim::simulate_potato_sequence(cfg, 11, 1, dir / "seq", false);
   std::filesystem::remove_all(dir / "seq" / "color");
   try {
-    read_simulated_potato_truth(dir / "seq");
+    pipeline::potato::read_truth_sequence(dir / "seq");
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("color"), std::string::npos) << e.what();

@@ -1,6 +1,5 @@
-// Pins the seedling pipeline's held-out figure (docs/pipelines/broccoli-seedlings.md, "Held-out
-// test, seed 4711"): the default preset (then named seedling-fast) on simulated seed 4711, which was
-// simulated after every choice of the preset and scored once with it (issue 23's top-view join
+// Pins the seedling pipeline's held-out figure (docs/experiments/2026-11-30-seedling-census-preset.md): the default preset (then named seedling-fast) on simulated seed 4711, which was
+// simulated after every choice of the preset and scored once with it (the top-view join
 // leaves its scores unchanged). The docs' headline is over 30 pairs (100 % / 90.8 % /
 // 99.9 %); rendering a pair costs ~0.6 s of CPU, so this test scores the first 8 of them, whose
 // figure the docs state beside it: recognition 100 %, sensitivity 91.6 %, envelope volume ratio
@@ -14,24 +13,26 @@
 // (one pair of 8 losing 2.4 points of sensitivity moves the mean by 0.3 point).
 #include <gtest/gtest.h>
 
-#include "cropsight/pipeline/seedling/seedling_eval.hpp"
-#include "cropsight/pipeline/seedling/seedling_pipeline.hpp"
+#include "cropsight/pipeline/seedling/eval.hpp"
+#include "cropsight/pipeline/seedling/pipeline.hpp"
 #include "cropsight/sim/seedling/seedling_sim.hpp"
+#include "pipeline/seedling/sim_truth.hpp"
 
 using namespace cropsight;
 using namespace cropsight::pipeline;
 
 TEST(SeedlingFigures, DefaultPresetOnSeed4711MatchesTheDocs) {
   constexpr double kTolerance = 0.003;  // 0.3 point of a percent, see above
-  const auto seedlings = SeedlingPipeline::from_preset("seedling");
+  const auto seedlings = pipeline::seedling::Pipeline::from_preset("seedling");
   const sim::SeedlingSimConfig scenes;  // the defaults `simulate seedling` renders with
   const stereo::RectifiedGeometry g = sim::rectified_geometry(scenes.rig());
-  SeedlingEvaluator ev(seedlings.config().gmm);
+  pipeline::seedling::Evaluator ev(seedlings.config().gmm);
   for (int k = 0; k < 8; ++k) {
     const sim::SeedlingPair p = sim::simulate_seedling_pair(scenes, 4711, k);
-    ev.add("pair_" + std::to_string(k), seedlings.process(p.left, p.right, g), seedling_truth(p), g);
+    ev.add("pair_" + std::to_string(k), seedlings.process(p.left, p.right, g), cropsight::testing::seedling_truth(p),
+           g);
   }
-  const SeedlingEvaluation e = ev.result();
+  const pipeline::seedling::Figures e = ev.figures();
   EXPECT_EQ(e.pairs, 8);
   EXPECT_DOUBLE_EQ(e.recognition_rate, 1.0);  // 8 / 8: a single miss is 87.5 %
   EXPECT_NEAR(e.sensitivity, 0.916, kTolerance);

@@ -1,4 +1,4 @@
-// The seedling pipeline (SeedlingPipeline and its steps), its config and its data-set reader, on
+// The seedling pipeline (pipeline::seedling::Pipeline and its steps), its config and its data-set reader, on
 // scenes rendered by the seedling simulator.
 #include <gtest/gtest.h>
 
@@ -7,11 +7,12 @@
 #include <random>
 
 #include "cropsight/core/error.hpp"
-#include "cropsight/pipeline/seedling/seedling_eval.hpp"
-#include "cropsight/pipeline/seedling/seedling_pipeline.hpp"
-#include "cropsight/pipeline/seedling/seedling_steps.hpp"
-#include "cropsight/pipeline/seedling/seedling_truth.hpp"
+#include "cropsight/pipeline/seedling/eval.hpp"
+#include "cropsight/pipeline/seedling/pipeline.hpp"
+#include "cropsight/pipeline/seedling/steps.hpp"
+#include "cropsight/pipeline/seedling/truth.hpp"
 #include "cropsight/sim/seedling/seedling_sim.hpp"
+#include "pipeline/seedling/sim_truth.hpp"
 #include "testing/testing.hpp"
 
 using namespace cropsight;
@@ -33,13 +34,13 @@ void expect_throw_naming(F&& f, const std::string& what) {
 }
 
 // The shipped default preset, configs/seedling.yaml (census engine, excess-green test).
-SeedlingConfig default_preset() { return load_seedling_config("seedling"); }
+pipeline::seedling::Config default_preset() { return pipeline::seedling::load_config("seedling"); }
 
 // The detection found the simulated seedling: top-view IoU >= 0.5, envelope volume within 30 %.
-void expect_recognised(const SeedlingDetection& d, const sim::SeedlingPair& p, const stereo::RectifiedGeometry& g,
-                       int k) {
+void expect_recognised(const pipeline::seedling::FrameResult& d, const sim::SeedlingPair& p,
+                       const stereo::RectifiedGeometry& g, int k) {
   ASSERT_TRUE(d.found) << "pair " << k;
-  const auto s = score_seedling(d, seedling_truth(p), g);
+  const auto s = pipeline::seedling::score(d, cropsight::testing::seedling_truth(p), g);
   EXPECT_GE(s.iou, 0.5) << "pair " << k;
   EXPECT_NEAR(s.volume_ratio, 1.0, 0.3) << "pair " << k;
 }
@@ -55,13 +56,13 @@ sim::SeedlingSimConfig fast_sim() {
 TEST(SeedlingPipeline, RecognisesSimulatedSeedlings) {
   const sim::SeedlingSimConfig cfg = fast_sim();
   const stereo::RectifiedGeometry g = sim::rectified_geometry(cfg.rig());
-  const SeedlingPipeline seedlings{SeedlingConfig{}};
+  const pipeline::seedling::Pipeline seedlings{pipeline::seedling::Config{}};
   for (int k = 0; k < 2; ++k) {
     const auto p = sim::simulate_seedling_pair(cfg, 4242, k);
     const auto det = seedlings.process(p.left, p.right, g);
     ASSERT_TRUE(det.found);
     EXPECT_EQ(det.points_sampled, 4096);
-    const auto s = score_seedling(det, seedling_truth(p), g);
+    const auto s = pipeline::seedling::score(det, cropsight::testing::seedling_truth(p), g);
     EXPECT_GE(s.iou, 0.5) << "pair " << k;
     EXPECT_NEAR(s.volume_ratio, 1.0, 0.35) << "pair " << k;
     // The stages a caller times, in the paper's order.
@@ -80,15 +81,15 @@ TEST(SeedlingPipeline, CandidateOpeningDropsCensusSoilSpeckles) {
   const sim::SeedlingSimConfig cfg = fast_sim();
   const stereo::RectifiedGeometry g = sim::rectified_geometry(cfg.rig());
   // The default preset, colour test off, opening switched off and on.
-  SeedlingConfig sc = default_preset();
+  pipeline::seedling::Config sc = default_preset();
   ASSERT_EQ(sc.disparity.engine, "census");
   sc.candidate_min_exg = -1.0;
   for (int k = 0; k < 2; ++k) {
     const auto p = sim::simulate_seedling_pair(cfg, 4242, k);
     sc.candidate_open = 0;
-    const auto raw = SeedlingPipeline(sc).process(p.left, p.right, g);
+    const auto raw = pipeline::seedling::Pipeline(sc).process(p.left, p.right, g);
     sc.candidate_open = 1;
-    const auto opened = SeedlingPipeline(sc).process(p.left, p.right, g);
+    const auto opened = pipeline::seedling::Pipeline(sc).process(p.left, p.right, g);
     EXPECT_LT(opened.points_candidates, raw.points_candidates) << "pair " << k;
     expect_recognised(opened, p, g, k);
   }
@@ -100,10 +101,10 @@ TEST(SeedlingPipeline, CandidateOpeningDropsCensusSoilSpeckles) {
 TEST(SeedlingPipeline, ExcessGreenTestDropsFattenedSoilPixels) {
   const sim::SeedlingSimConfig cfg = fast_sim();
   const stereo::RectifiedGeometry g = sim::rectified_geometry(cfg.rig());
-  SeedlingConfig sc = default_preset();
+  pipeline::seedling::Config sc = default_preset();
   ASSERT_GT(sc.candidate_min_exg, -1.0) << "the default preset is expected to use the colour test";
   const double exg = sc.candidate_min_exg;
-  auto outside = [](const SeedlingDetection& d, const GrayImage& truth) {
+  auto outside = [](const pipeline::seedling::FrameResult& d, const GrayImage& truth) {
     int n = 0;
     for (int px : d.pixels) n += truth.data[std::size_t(px)] == 0;
     return d.pixels.empty() ? 1.0 : double(n) / double(d.pixels.size());
@@ -111,9 +112,9 @@ TEST(SeedlingPipeline, ExcessGreenTestDropsFattenedSoilPixels) {
   for (int k = 0; k < 2; ++k) {
     const auto p = sim::simulate_seedling_pair(cfg, 4242, k);
     sc.candidate_min_exg = -1.0;
-    const auto off = SeedlingPipeline(sc).process(p.left, p.right, g);
+    const auto off = pipeline::seedling::Pipeline(sc).process(p.left, p.right, g);
     sc.candidate_min_exg = exg;
-    const auto on = SeedlingPipeline(sc).process(p.left, p.right, g);
+    const auto on = pipeline::seedling::Pipeline(sc).process(p.left, p.right, g);
     ASSERT_TRUE(off.found && on.found) << "pair " << k;
     EXPECT_LT(on.points_candidates, off.points_candidates) << "pair " << k;
     EXPECT_LT(outside(on, p.mask), outside(off, p.mask)) << "pair " << k;
@@ -133,13 +134,17 @@ TEST(SeedlingSteps, SoilPlaneIgnoresPlantsAndFacesTheCamera) {
   std::vector<Eigen::Vector3f> pts;
   for (int i = 0; i < 5000; ++i)
     pts.push_back((base + u(rng) * e1 + u(rng) * e2 + (i % 10 < 3 ? h(rng) : 0.0) * n).cast<float>());
-  const seedling::SoilPlane pl = seedling::fit_soil_plane(pts, SeedlingConfig{}, "test");
+  const seedling::SoilPlane pl = seedling::fit_soil_plane(pts, pipeline::seedling::Config{}, "test");
   EXPECT_GT(pl.n.dot(n), 0.9999);
   EXPECT_NEAR(pl.d, d, 1e-4);
   const auto hts = seedling::heights_above(pts, pl);
   EXPECT_NEAR(hts[5], 0.0, 1e-3);  // soil (i % 10 >= 3); points 0-2 are raised
   EXPECT_GT(hts[0] + hts[1] + hts[2], 0.06);
-  expect_throw_naming([&] { seedling::fit_soil_plane({pts[0], pts[1]}, SeedlingConfig{}, "three"); }, "three");
+  expect_throw_naming(
+      [&] {
+        seedling::fit_soil_plane({pts[0], pts[1]}, pipeline::seedling::Config{}, "three");
+      },
+      "three");
 }
 
 // Recognition rule on hand-made components: the highest large component seeds, a touching one of
@@ -156,11 +161,11 @@ TEST(SeedlingSteps, ComponentSelectionFollowsTheRule) {
       gmm.labels.push_back(label);
     }
   };
-  SeedlingConfig cfg;         // min_component_points 15, height_ratio 0.3, join_distance 0.015
-  add(0, 0.00f, 0.10f, 20);   // seed: highest; spans x 0 .. 0.019
-  add(1, 0.025f, 0.05f, 20);  // touches the seed (0.006 m gap), high enough: joins
-  add(2, 0.50f, 0.09f, 20);   // high but far away: a weed
-  add(3, 0.046f, 0.01f, 20);  // touches component 1 but too low (0.1 < 0.3 x seed)
+  pipeline::seedling::Config cfg;  // min_component_points 15, height_ratio 0.3, join_distance 0.015
+  add(0, 0.00f, 0.10f, 20);        // seed: highest; spans x 0 .. 0.019
+  add(1, 0.025f, 0.05f, 20);       // touches the seed (0.006 m gap), high enough: joins
+  add(2, 0.50f, 0.09f, 20);        // high but far away: a weed
+  add(3, 0.046f, 0.01f, 20);       // touches component 1 but too low (0.1 < 0.3 x seed)
   ASSERT_EQ(gmm.model.size(), 4);
   const auto chosen = seedling::select_components(pts, height, gmm, cfg);
   EXPECT_EQ(chosen, (std::vector<int>{0, 1}));
@@ -187,7 +192,7 @@ TEST(SeedlingSteps, TopViewJoinKeepsALeafWhosePetioleWasLost) {
     height.push_back(0.06f);
     gmm.labels.push_back(1);
   }
-  SeedlingConfig cfg;
+  pipeline::seedling::Config cfg;
   ASSERT_TRUE(cfg.join_top_view);
   EXPECT_EQ(seedling::select_components(pts, height, gmm, cfg), (std::vector<int>{0, 1}));
   cfg.join_top_view = false;
@@ -195,30 +200,30 @@ TEST(SeedlingSteps, TopViewJoinKeepsALeafWhosePetioleWasLost) {
 }
 
 TEST(SeedlingConfig, ErrorsNameTheKeyAndPresetsLoad) {
-  SeedlingConfig s;
+  pipeline::seedling::Config s;
   s.gmm.tolerance = -1;
-  expect_throw_naming([&] { validate_seedling_config(s, "x"); }, "'gmm.tolerance'");
-  expect_throw_naming([&] { SeedlingPipeline{s}; }, "'gmm.tolerance'");
-  s = SeedlingConfig{};
+  expect_throw_naming([&] { s.validate("x"); }, "'gmm.tolerance'");
+  expect_throw_naming([&] { pipeline::seedling::Pipeline{s}; }, "'gmm.tolerance'");
+  s = pipeline::seedling::Config{};
   s.topview_cell = 1e-9;
-  expect_throw_naming([&] { validate_seedling_config(s, "x"); }, "'topview_cell'");
-  EXPECT_NO_THROW(validate_seedling_config(SeedlingConfig{}, "x"));
+  expect_throw_naming([&] { s.validate("x"); }, "'topview_cell'");
+  EXPECT_NO_THROW(pipeline::seedling::Config{}.validate("x"));
   // The default preset is the struct's defaults written down; the paper's differs in engine and
   // has no colour test.
-  const SeedlingConfig def = load_seedling_config("seedling"), none{};
+  const pipeline::seedling::Config def = pipeline::seedling::load_config("seedling"), none{};
   EXPECT_EQ(def.disparity.engine, none.disparity.engine);
   EXPECT_EQ(def.disparity.census_p1, none.disparity.census_p1);
   EXPECT_EQ(def.disparity.census_p2, none.disparity.census_p2);
   EXPECT_EQ(def.disparity.census_p2_step, none.disparity.census_p2_step);
   EXPECT_EQ(def.candidate_min_exg, none.candidate_min_exg);
-  const SeedlingConfig paper = SeedlingPipeline::from_preset("seedling-paper").config();
+  const pipeline::seedling::Config paper = pipeline::seedling::Pipeline::from_preset("seedling-paper").config();
   EXPECT_EQ(paper.disparity.engine, "opencv");
   EXPECT_EQ(paper.candidate_min_exg, -1.0);
   EXPECT_FALSE(paper.join_top_view);
   cropsight::testing::TempDir tmp;
   std::ofstream(tmp / "bad.yaml") << "gmm:\n  components: 0\n";
-  expect_throw_naming([&] { load_seedling_config((tmp / "bad.yaml").string()); }, "bad.yaml");
-  expect_throw_naming([&] { load_seedling_config((tmp / "bad.yaml").string()); }, "'gmm.components'");
+  expect_throw_naming([&] { pipeline::seedling::load_config((tmp / "bad.yaml").string()); }, "bad.yaml");
+  expect_throw_naming([&] { pipeline::seedling::load_config((tmp / "bad.yaml").string()); }, "'gmm.components'");
 }
 
 // The reader of the simulator's data set returns the truth the simulator rendered.
@@ -227,11 +232,11 @@ TEST(SeedlingTruth, ReadsWhatTheSimulatorWrote) {
   const sim::SeedlingSimConfig cfg = fast_sim();
   sim::write_seedling_dataset(tmp / "d", cfg, 1, 77, 0);
   stereo::save_calibration(tmp / "d" / "rig.yaml", sim::ideal_calibration(cfg.rig()));
-  const SeedlingDataset ds = open_seedling_dataset(tmp / "d");
+  const pipeline::seedling::Dataset ds = pipeline::seedling::open_dataset(tmp / "d");
   ASSERT_EQ(ds.pairs.size(), 1u);
   EXPECT_NEAR(ds.geometry.f, cfg.rig().f, 1e-9);  // through rig.yaml's text
   EXPECT_DOUBLE_EQ(ds.geometry.baseline, cfg.rig().baseline());
-  const SeedlingTruth t = read_seedling_truth(ds.pairs[0]);
+  const pipeline::seedling::Truth t = pipeline::seedling::read_truth(ds.pairs[0]);
   const sim::SeedlingPair p = sim::simulate_seedling_pair(cfg, 77, 0);
   EXPECT_DOUBLE_EQ(t.envelope.volume(), p.envelope.volume());
   EXPECT_DOUBLE_EQ(t.plane_d, p.plane_d);
@@ -245,9 +250,9 @@ TEST(SeedlingTruth, ReadsWhatTheSimulatorWrote) {
   }
   // A truth without a plane fails naming the file and the key.
   std::ofstream(ds.pairs[0] / "truth.json") << R"({"envelope": {"length_m": 0.1, "width_m": 0.1, "height_m": 0.1}})";
-  expect_throw_naming([&] { read_seedling_truth(ds.pairs[0]); }, "truth.json");
-  expect_throw_naming([&] { read_seedling_truth(ds.pairs[0]); }, "plane");
-  expect_throw_naming([&] { open_seedling_dataset(tmp / "none"); }, "data folder not found");
+  expect_throw_naming([&] { pipeline::seedling::read_truth(ds.pairs[0]); }, "truth.json");
+  expect_throw_naming([&] { pipeline::seedling::read_truth(ds.pairs[0]); }, "plane");
+  expect_throw_naming([&] { pipeline::seedling::open_dataset(tmp / "none"); }, "data folder not found");
 }
 
 // The evaluator's figures: a detection equal to the truth scores IoU 1, and means are per pair.
@@ -255,21 +260,21 @@ TEST(SeedlingEvaluator, PerfectDetectionScoresOneAndMeansArePerPair) {
   const sim::SeedlingSimConfig cfg = fast_sim();
   const stereo::RectifiedGeometry g = sim::rectified_geometry(cfg.rig());
   const sim::SeedlingPair p = sim::simulate_seedling_pair(cfg, 4242, 0);
-  const SeedlingTruth truth = seedling_truth(p);
-  SeedlingDetection perfect;
+  const pipeline::seedling::Truth truth = cropsight::testing::seedling_truth(p);
+  pipeline::seedling::FrameResult perfect;
   stereo::DisparityImage masked = p.disparity;
   for (std::size_t i = 0; i < masked.size(); ++i)
     if (!p.mask.data[i]) masked.data[i] = std::nanf("");
   perfect.points = stereo::reconstruct(masked, g).points;
   perfect.envelope = p.envelope;
   perfect.found = true;
-  SeedlingEvaluator ev(segmentation::GmmConfig{});
+  pipeline::seedling::Evaluator ev(segmentation::GmmConfig{});
   const auto& row = ev.add("a", perfect, truth, g);
   EXPECT_DOUBLE_EQ(row.score.iou, 1.0);
   EXPECT_DOUBLE_EQ(row.score.sensitivity, 1.0);
   EXPECT_DOUBLE_EQ(row.score.volume_ratio, 1.0);
-  ev.add("b", SeedlingDetection{}, truth, g);  // nothing found: IoU 0, volume 0
-  const SeedlingEvaluation e = ev.result();
+  ev.add("b", pipeline::seedling::FrameResult{}, truth, g);  // nothing found: IoU 0, volume 0
+  const pipeline::seedling::Figures e = ev.figures();
   EXPECT_EQ(e.pairs, 2);
   EXPECT_DOUBLE_EQ(e.recognition_rate, 0.5);
   EXPECT_DOUBLE_EQ(e.sensitivity, 0.5);

@@ -1,4 +1,4 @@
-// Randomised broccoli fields (issue 27): reproducible from the seed, every drawn value within its
+// Randomised broccoli fields: reproducible from the seed, every drawn value within its
 // configured range, ground truth exact (labels on the heads they name, tilted camera included).
 #include <gtest/gtest.h>
 

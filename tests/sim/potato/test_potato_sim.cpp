@@ -7,6 +7,7 @@
 #include "cropsight/io/depth_colormap.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/sequence.hpp"
+#include "cropsight/pipeline/potato/truth.hpp"
 #include "cropsight/sim/potato/potato_sim.hpp"
 #include "testing/testing.hpp"
 
@@ -33,7 +34,7 @@ TEST(PotatoSim, WritesASequenceWhoseTruthMatchesTheRendering) {
   const auto& gt = reader.groundtruth();
   ASSERT_EQ(gt.instances.size(), 4u);
   const RgbdFrame f = reader.read(3);  // end of the approach: target at 0.3 m
-  const auto truth = sim::potato_frame_truth(gt, *f.camera_position, f.camera, f.labels);
+  const auto truth = pipeline::potato::frame_truth(gt, *f.camera_position, f.camera, f.labels);
   const auto& t = truth[0];
   ASSERT_TRUE(t.target);
   EXPECT_NEAR(t.centre_camera.z(), 0.3, 0.01);

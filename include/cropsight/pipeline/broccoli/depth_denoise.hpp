@@ -1,5 +1,5 @@
 #pragma once
-// Noise-adaptive depth denoising for the broccoli detector (issue 27): a ToF camera in direct sun
+// Noise-adaptive depth denoising for the broccoli detector: a ToF camera in direct sun
 // (or far from a dark surface) returns depth with several times its usual noise; OES's neighbour
 // tolerance (millimetres) then breaks every surface into debris and no head is a cluster. The
 // frame's noise is estimated from the depth itself, and only a noisy frame is smoothed, by an
@@ -11,7 +11,7 @@
 
 #include "cropsight/core/config.hpp"
 
-namespace cropsight::pipeline {
+namespace cropsight::pipeline::broccoli {
 
 struct DepthDenoiseConfig {
   float above = 0.0f;         ///< m; frames whose noise estimate exceeds this are filtered (0 = off)
@@ -24,7 +24,7 @@ struct DepthDenoiseConfig {
   void visit(V& v) {
     v("above", above,
       "m; when > 0, a frame whose depth noise estimate (robust sigma of the row second differences inside the "
-      "depth window) exceeds this is smoothed by a bilateral filter before the cloud is made (ours, issue 27: "
+      "depth window) exceeds this is smoothed by a bilateral filter before the cloud is made (ours: "
       "ToF in direct sun; 0 = off, the paper's raw depth)",
       Range::at_least(0.0));
     v("sigma_factor", sigma_factor, "bilateral range sigma in units of the frame's noise estimate (ours)",
@@ -53,4 +53,4 @@ float estimate_depth_noise(std::span<const std::uint16_t> depth, int width, int 
 void bilateral_depth(std::span<const std::uint16_t> depth, int width, int height, float scale, float sigma_color,
                      int diameter, float sigma_space, std::vector<std::uint16_t>& out);
 
-}  // namespace cropsight::pipeline
+}  // namespace cropsight::pipeline::broccoli

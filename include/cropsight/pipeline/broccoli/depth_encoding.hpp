@@ -1,6 +1,6 @@
 #pragma once
-// A depth frame as the 3-channel 8-bit image the broccoli head CNN reads (issue 27,
-// cnn.model of BroccoliDetectorConfig; the training images of tools/broccoli_depth_coco).
+// A depth frame as the 3-channel 8-bit image the broccoli head CNN reads
+// (cnn.model of DetectorConfig; the training images of tools/broccoli_depth_coco).
 // Channels, per pixel (no return: 0 / 128 / 0):
 //   R: height above the soil, clamp((soil - z) / 0.5 m) · 255 (at least 1 where there is a return),
 //      soil = the frame's 90th depth percentile (most of a nadir frame is soil or low canopy);
@@ -15,7 +15,7 @@
 #include "cropsight/core/detection2d.hpp"
 #include "cropsight/core/image.hpp"
 
-namespace cropsight::pipeline {
+namespace cropsight::pipeline::broccoli {
 
 /// `depth` in sensor units, `depth_scale` metres per unit. Thread-safe (no shared state).
 ColorImage encode_depth_for_cnn(const DepthImage& depth, double depth_scale);
@@ -25,4 +25,4 @@ ColorImage encode_depth_for_cnn(const DepthImage& depth, double depth_scale);
 /// cloud's depths, width·height) is finite.
 std::vector<int> mask_points_in_box(const Detection2D& box, const GrayImage& mask, std::span<const float> z);
 
-}  // namespace cropsight::pipeline
+}  // namespace cropsight::pipeline::broccoli

@@ -10,15 +10,15 @@
 #include "cropsight/core/rgbd_frame.hpp"
 #include "cropsight/core/timer.hpp"
 #include "cropsight/learning/model.hpp"
-#include "cropsight/pipeline/broccoli/broccoli_config.hpp"
+#include "cropsight/pipeline/broccoli/detector_config.hpp"
 
-namespace cropsight::pipeline {
+namespace cropsight::pipeline::broccoli {
 
 class PclReferencePipeline {
  public:
   /// Uses cfg.depth, cfg.normals, cfg.outliers (when enabled) and cfg.fec. The model's features
   /// must be exactly {"vfh"} (PCL computes VFH only); throws Error(where, ...) otherwise.
-  PclReferencePipeline(const BroccoliDetectorConfig& cfg, std::shared_ptr<const learning::Model> model,
+  PclReferencePipeline(const DetectorConfig& cfg, std::shared_ptr<const learning::Model> model,
                        const std::string& where = "model");
   ~PclReferencePipeline();
   PclReferencePipeline(const PclReferencePipeline&) = delete;
@@ -37,4 +37,4 @@ class PclReferencePipeline {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace cropsight::pipeline
+}  // namespace cropsight::pipeline::broccoli

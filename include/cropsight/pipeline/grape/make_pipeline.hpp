@@ -11,8 +11,8 @@
 //   threads   the segmenter's and the detector's threads; 0 = the segmenter preset's
 #include <memory>
 
-#include "cropsight/pipeline/grape/grape_pipeline.hpp"
-#include "cropsight/pipeline/grape/grape_segmenter.hpp"
+#include "cropsight/pipeline/grape/pipeline.hpp"
+#include "cropsight/pipeline/grape/segmenter.hpp"
 #include "cropsight/pipeline/pipeline_spec.hpp"
 
 namespace cropsight::pipeline::grape {
@@ -23,9 +23,9 @@ inline constexpr const char* kDefaultPreset = "grape-camera";
 inline constexpr const char* kDefaultSegmenter = "grape-best";
 
 /// The segmenter's configuration from `spec` (model and the segmenter.* sets; threads).
-GrapeSegmenterConfig segmenter_config(const PipelineSpec& spec);
+SegmenterConfig segmenter_config(const PipelineSpec& spec);
 
 /// Throws Error naming the preset, the --set key or the model file.
-std::unique_ptr<GrapePipeline> make_pipeline(const PipelineSpec& spec);
+std::unique_ptr<Pipeline> make_pipeline(const PipelineSpec& spec);
 
 }  // namespace cropsight::pipeline::grape

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "cropsight/pipeline/pipeline_spec.hpp"
-#include "cropsight/pipeline/potato/potato_pipeline.hpp"
+#include "cropsight/pipeline/potato/pipeline.hpp"
 
 namespace cropsight::pipeline::potato {
 
@@ -14,9 +14,9 @@ namespace cropsight::pipeline::potato {
 inline constexpr const char* kDefaultPreset = "potato";
 
 /// The configuration make_pipeline builds from `spec` (for callers that need only a step of it).
-PotatoPipelineConfig spec_config(const PipelineSpec& spec);
+Config spec_config(const PipelineSpec& spec);
 
 /// Throws Error naming the preset file, the --set key or the model file.
-std::unique_ptr<PotatoPipeline> make_pipeline(const PipelineSpec& spec);
+std::unique_ptr<Pipeline> make_pipeline(const PipelineSpec& spec);
 
 }  // namespace cropsight::pipeline::potato

@@ -1,5 +1,5 @@
 #pragma once
-// The paper's orientation test set (issue 22, Table 4.3) and its evaluation: folders
+// The paper's orientation test set (Table 4.3) and its evaluation: folders
 // `<rgb dir>/<angle>_<light>_rgb/imageN.png` with their colourised depth in
 // `<depth dir>/<angle>_<light>_depth/imageM.png` (M = N or N ± 1: the two cameras' shots are
 // numbered in turn). As in the paper, the box comes from a detector run on the RGB image and is

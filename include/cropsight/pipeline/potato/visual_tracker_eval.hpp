@@ -1,5 +1,5 @@
 #pragma once
-// Which OpenCV tracker continues the potato target when detection misses it (issue 22, §3.4: the
+// Which OpenCV tracker continues the potato target when detection misses it (§3.4: the
 // paper's dlib correlation tracker is not in OpenCV). Measured on simulated approaches: from
 // frames where the target potato is in full view, a tracker starts on the target's true visible
 // box and is updated on the next `horizon` frames (the paper's TRACKING_LIM: how long the loop
@@ -9,7 +9,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "cropsight/pipeline/potato/potato_eval.hpp"
+#include "cropsight/pipeline/potato/eval.hpp"
 #include "cropsight/tracking/target_tracker.hpp"
 #include "cropsight/tracking/visual_tracker.hpp"
 
@@ -42,7 +42,7 @@ struct VisualTrackerEvaluation {
 /// Runs the trials of `config` with a tracker of `kind` over `sequences`, on one OpenCV thread.
 /// Throws Error when kind is none or no trial could start.
 VisualTrackerEvaluation evaluate_visual_tracker(tracking::VisualTrackerKind kind,
-                                                const std::vector<SimulatedPotatoTruthSequence>& sequences,
+                                                const std::vector<TruthSequence>& sequences,
                                                 const VisualTrackerTrialConfig& config = {});
 
 }  // namespace cropsight::pipeline::potato

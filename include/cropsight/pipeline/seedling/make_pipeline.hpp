@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "cropsight/pipeline/pipeline_spec.hpp"
-#include "cropsight/pipeline/seedling/seedling_pipeline.hpp"
+#include "cropsight/pipeline/seedling/pipeline.hpp"
 
 namespace cropsight::pipeline::seedling {
 
@@ -12,6 +12,6 @@ namespace cropsight::pipeline::seedling {
 inline constexpr const char* kDefaultPreset = "seedling";
 
 /// Throws Error naming the preset file or the --set key.
-std::unique_ptr<SeedlingPipeline> make_pipeline(const PipelineSpec& spec);
+std::unique_ptr<Pipeline> make_pipeline(const PipelineSpec& spec);
 
 }  // namespace cropsight::pipeline::seedling

@@ -6,7 +6,7 @@
 
 #include "cropsight/core/image.hpp"
 
-namespace cropsight::pipeline {
+namespace cropsight::pipeline::seedling {
 
 /// A raster of the soil plane: cell (i, j) covers plane coordinates origin + (i, j) * cell along
 /// the axes e1 = n.unitOrthogonal(), e2 = n x e1.
@@ -23,4 +23,4 @@ struct TopViewMask {
 TopViewMask rasterize_top_view(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& n, double cell,
                                const Eigen::Vector2d& origin, int width, int height);
 
-}  // namespace cropsight::pipeline
+}  // namespace cropsight::pipeline::seedling

@@ -3,7 +3,7 @@
 //
 // Defaults are the `uk` preset (variety Ironman; configs/sim-broccoli-uk.yaml repeats them and
 // configs/sim-broccoli-spain.yaml changes what differs). Sources in the doc strings:
-//   [issue2]    issue 2 of this project, which summarises the papers' field set-up
+//   [issue2]    the project's field brief, which summarises the papers' field set-up
 //   [kusumam]   Kusumam et al. 2017, "3D-vision based detection, localization, and sizing of
 //               broccoli heads in the field", J. Field Robotics (Kinect v2 on a tractor, UK and
 //               Spain datasets, 7.5 / 3.3 / 6.4 fps)
@@ -358,7 +358,7 @@ struct SimRandomizeConfig {
     v("enabled", enabled,
       "draw every sequence's field from the ranges below, from the seed (simulate broccoli --randomize); off = the "
       "preset as written");
-    v("camera_height_m", camera_height_m, "m; camera height above the soil {min, max} (issue 27: 1.1-1.5)");
+    v("camera_height_m", camera_height_m, "m; camera height above the soil {min, max} (held-back generator: 1.1-1.5)");
     v("camera_tilt_deg", camera_tilt_deg, "deg; optical axis tilt from nadir {min, max}, towards a random azimuth");
     v("one_row_prob", one_row_prob, "probability of one row under the camera (else two)");
     v("row_spacing_m", row_spacing_m, "m; distance between rows {min, max}");
@@ -373,7 +373,7 @@ struct SimRandomizeConfig {
     v("leaf_ruffle_m", leaf_ruffle_m, "m; wavy-margin amplitude {min, max} (0 = flat margins)");
     v("plant_height_m", plant_height_m, "m; canopy top above the soil {min, max}");
     v("head_diameter_mm", head_diameter_mm,
-      "mm; head diameters {min, max} (issue 27: 50-180): a sequence's heads span a window of it");
+      "mm; head diameters {min, max} (held-back generator: 50-180): a sequence's heads span a window of it");
     v("head_dome_ratio", head_dome_ratio, "dome height / head radius {min, max}");
     v("floret_ratio", floret_ratio, "floret radius / head radius {min, max} (small = mm-scale bumps)");
     v("floret_height", floret_height, "floret bump height / floret radius {min, max} (0.05 = a smooth dome)");

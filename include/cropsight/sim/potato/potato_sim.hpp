@@ -1,5 +1,5 @@
 #pragma once
-// The potato simulator (issue 22; docs/simulator.md, "Potatoes"): potatoes hanging on strings
+// The potato simulator (docs/simulator.md, "Potatoes"): potatoes hanging on strings
 // among roots, seen by a RealSense D415-like camera on the gripper of an arm that scans the scene
 // and then approaches one potato (the target).
 //
@@ -57,7 +57,7 @@ struct PotatoSimConfig {
 
   template <class V>
   void visit(V& v) {
-    v("scene", scene, "sheet | room | chamber; backdrop (issue 22)");
+    v("scene", scene, "sheet | room | chamber; backdrop");
     v("potatoes", potatoes, "count; potatoes hanging in the scene, the first is the target", Range::within(1, 8));
     v("length_min_m", length_min_m, "m; shortest potato length", Range::within(0.02, 0.2));
     v("length_max_m", length_max_m, "m; longest potato length", Range::within(0.02, 0.2));
@@ -93,23 +93,7 @@ struct PotatoSimConfig {
   CameraIntrinsics camera() const;
 };
 
-/// One frame's truth of one potato (from groundtruth.json, poses.csv and labels/; see
-/// potato_frame_truth).
-struct PotatoFrameTruth {
-  int id = 0;
-  bool target = false;
-  Eigen::Vector3d centre_world = Eigen::Vector3d::Zero();
-  Eigen::Vector3d centre_camera = Eigen::Vector3d::Zero();  ///< camera frame, m
-  double length_m = 0, width_m = 0;                         ///< ellipsoid's full axes
-  double angle_rad = 0;  ///< length axis in the image, counter-clockwise from image x, [0, pi)
-  Detection2D box;       ///< visible pixels' box (labels), continuous pixel coordinates
-  int visible_pixels = 0;
-};
-
-/// The truth of every potato in one frame: centres from the instances and the camera position,
-/// the angle by projecting the length axis (extras axis_x/y/z), boxes from the label image.
-std::vector<PotatoFrameTruth> potato_frame_truth(const io::GroundTruth& truth, const Eigen::Vector3d& camera_position,
-                                                 const CameraIntrinsics& camera, const LabelImage& labels);
+// The truth of each frame is read back from the files by pipeline/potato/truth.hpp.
 
 struct PotatoSimSummary {
   int frames = 0, potatoes = 0;

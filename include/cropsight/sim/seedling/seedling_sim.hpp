@@ -1,5 +1,5 @@
 #pragma once
-// Binocular-stereo scenes of transplanted broccoli seedlings (issue 5): a seedling with 4-6 true
+// Binocular-stereo scenes of transplanted broccoli seedlings: a seedling with 4-6 true
 // leaves on textured soil among weeds of similar colour, seen by a side-by-side pinhole rig
 // (640x480 per eye, 60 mm baseline, wide field of view) from 0.5-0.8 m (configurable up to 2 m),
 // at random tilt and exposure (some over-exposed), with exact ground truth. Checkerboard pairs

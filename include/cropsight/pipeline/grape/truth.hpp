@@ -1,0 +1,22 @@
+#pragma once
+// Ground truth of the grape pipeline: labelled ROI clouds in the authors' text format
+// (io::read_grape_text: x y z nx ny nz r g b label per line, docs/formats.md) and the label ids
+// they use. Boxes given as COCO files are read by read_coco_detections (roi.hpp).
+#include <filesystem>
+#include <vector>
+
+#include "cropsight/core/cloud.hpp"
+
+namespace cropsight::pipeline::grape {
+
+/// The paper's classes as the dataset's label ids: 1 grape, 2 peduncle, 3 leaf, 4 background,
+/// 5 noise (label 0 left out, see above).
+inline const std::vector<int>& grape_named_classes() {
+  static const std::vector<int> classes = {1, 2, 3, 4, 5};
+  return classes;
+}
+
+/// Loads every labelled cloud (io::read_grape_text) of `files`; throws Error(file, ...).
+std::vector<Cloud> load_grape_clouds(const std::vector<std::filesystem::path>& files);
+
+}  // namespace cropsight::pipeline::grape
