@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
       if (fold[i] == k) held_out.push_back(files[i]);
     const auto clouds = pipeline::grape::load_grape_clouds(held_out);
     // segmenter.segment(cloud) labels one cloud; the evaluator does it for each and counts.
-    const pipeline::grape::Evaluation ev = pipeline::grape::evaluate_grape(segmenter.model(), clouds);
+    const pipeline::grape::Figures ev = pipeline::grape::evaluate_grape(segmenter.model(), clouds);
     std::printf("%zu held-out clouds, %zu points, %.0f ms per cloud\n", ev.clouds, ev.points, ev.ms_per_cloud());
     std::printf("OAcc %.3f  mAcc %.3f  mIoU %.3f (pooled, six labels)\n", ev.confusion.overall_accuracy(),
                 ev.confusion.mean_accuracy(), ev.confusion.mean_iou());

@@ -6,7 +6,8 @@
 JSON outputs must agree on every key they share, numbers to 1e-9 relative, except timings and
 paths (key names with a part ms, fps, seconds, time or stages; the keys out, masks, model, data, map); keys only in
 AFTER are listed as new, keys only in BEFORE are an error. Other files must be byte-identical
-(the HTML report only in its figures, not compared). Exit 1 on any difference."""
+(the HTML report only in its figures, not compared). A file on one side only, or a command that
+failed on either side ("exit N" in its .err), is a difference too. Exit 1 on any difference."""
 import filecmp
 import json
 import math
@@ -53,8 +54,23 @@ def json_documents(path):
         return [json.loads(l) for l in text.splitlines() if l.strip()]
 
 
+def failed_runs(folder):
+    """The commands golden-outputs.sh saw fail: their .err ends with "exit N"."""
+    out = []
+    for name in sorted(os.listdir(folder)):
+        if name.endswith(".err"):
+            lines = open(os.path.join(folder, name)).read().splitlines()
+            if lines and lines[-1].startswith("exit "):
+                out.append(f"{name[:-4]} failed in {folder} ({lines[-1]})")
+    return out
+
+
 def main(before, after):
-    errors, new = [], []
+    errors, new = failed_runs(before) + failed_runs(after), []
+    # A run that stopped early leaves fewer files on one side: that is a difference, not agreement.
+    for name in sorted(set(os.listdir(after)) - set(os.listdir(before))):
+        if not (name == "data" or name.endswith(".err") or name.endswith(".html")):
+            errors.append(f"{name}: missing before")
     for name in sorted(os.listdir(before)):
         pa, pb = os.path.join(before, name), os.path.join(after, name)
         if name == "data" or name.endswith(".err") or name.endswith(".html"):

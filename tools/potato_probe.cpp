@@ -15,6 +15,7 @@
 #include <optional>
 #include <vector>
 
+#include "cropsight/core/statistics.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/output.hpp"
 #include "cropsight/measure/orientation.hpp"
@@ -24,12 +25,6 @@
 
 namespace {
 using namespace cropsight;
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
 
 void report(const char* name, const ColorImage& im, const std::vector<std::array<double, 4>>& boxes) {
   cv::Mat rgb(im.height, im.width, CV_8UC3, const_cast<Rgb8*>(im.data.data())), lab;

@@ -8,12 +8,14 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <optional>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
+#include "cropsight/pipeline/potato/make_pipeline.hpp"
 #include "cropsight/pipeline/potato/timing.hpp"
 #include "cropsight/sim/potato/potato_sim.hpp"
 
@@ -70,9 +72,10 @@ void run(const BenchPotatoOptions& o) {
   // Single-threaded: the target is one core; no stage may use TBB's pool (the library's
   // timing also runs OpenCV on one thread).
   tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
-  std::vector<std::pair<std::string, pp::Config>> presets;
+  // Every preset is built before the frames are made, so that a bad name or key fails first.
+  std::vector<std::pair<std::string, std::unique_ptr<pp::Pipeline>>> presets;
   for (const auto& name : split_list(o.presets, "--presets"))
-    presets.emplace_back(name, pp::load_config(name, o.common.config_map()));
+    presets.emplace_back(name, pp::make_pipeline({.preset = name, .sets = o.common.sets}));
   std::optional<io::TempDirectory> scratch;
   const std::vector<RgbdFrame> frames = bench_frames(o, scratch);
   const PipelineTiming baseline = pp::time_lab_conversion(frames, o.repeat);
@@ -87,9 +90,8 @@ void run(const BenchPotatoOptions& o) {
   if (!o.common.json)
     std::printf("%zu frames x %d, %dx%d, single-threaded; baseline RGB->Lab %.3f ms/frame (CPU)\n", frames.size(),
                 o.repeat, frames[0].color.width, frames[0].color.height, baseline.cpu_ms_per_frame());
-  for (auto& [name, cfg] : presets) {
-    pp::Pipeline pipeline(cfg, name);
-    const PipelineTiming t = pp::time_potato_pipeline(pipeline, frames, o.repeat);
+  for (auto& [name, pipeline] : presets) {
+    const PipelineTiming t = pp::time_potato_pipeline(*pipeline, frames, o.repeat);
     out["presets"][name] = timing_json(t, baseline);
     if (o.common.json) continue;
     std::printf("  %-14s %7.2f ms/frame %6.1f fps (CPU %.2f ms, %.1f fps, %.1fx baseline)  [", name.c_str(),

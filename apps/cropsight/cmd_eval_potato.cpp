@@ -56,7 +56,7 @@ void run(const Options& o) {
   const auto built = make_potato(o.common);
   pp::Pipeline& pipeline = *built;
   const pp::SequenceEvaluation r = pp::evaluate_potato_sequence(pipeline, o.data, o.min_iou);
-  const pp::Evaluation& e = r.figures;
+  const pp::Figures& e = r.figures;
   const pp::StageTimes& t = r.ms;
   if (o.common.json) {
     nlohmann::json j{

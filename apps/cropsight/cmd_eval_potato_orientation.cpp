@@ -9,6 +9,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "cropsight/pipeline/potato/make_pipeline.hpp"
 #include "cropsight/pipeline/potato/orientation_dataset.hpp"
 #include "cropsight/pipeline/potato/pipeline.hpp"
 
@@ -51,8 +52,8 @@ void run(const Options& o) {
     detector = std::make_unique<pipeline::potato::BoardBlobDetector>();
     boxes = "BoardBlobDetector on the RGB image";
   } else {
-    detector =
-        pipeline::potato::make_detector(pipeline::potato::load_config(o.detector_config).detector, o.detector_config);
+    detector = pipeline::potato::make_detector(pipeline::potato::spec_config({.preset = o.detector_config}).detector,
+                                               o.detector_config);
     boxes = "the " + o.detector_config + " preset's detector on the RGB image";
   }
   const auto e =

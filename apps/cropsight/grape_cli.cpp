@@ -7,7 +7,7 @@
 
 namespace cropsight::cli {
 
-nlohmann::json grape_evaluation_json(const pipeline::grape::Evaluation& e) {
+nlohmann::json grape_evaluation_json(const pipeline::grape::Figures& e) {
   const auto& m = e.confusion;
   nlohmann::json j;
   j["clouds"] = e.clouds;

@@ -13,7 +13,7 @@ namespace cropsight::cli {
 /// "iou"}], "ms_per_cloud", "protocols": {"pooled_all_labels", "pooled_named_classes",
 /// "per_cloud_named_classes", "per_cloud_all_labels": {"classes": [...], "miou"}}}; undefined
 /// figures are null.
-nlohmann::json grape_evaluation_json(const pipeline::grape::Evaluation& e);
+nlohmann::json grape_evaluation_json(const pipeline::grape::Figures& e);
 
 /// The frame of a colour image, a 16-bit depth image and its camera.yaml (intrinsics and
 /// depth_scale). Throws Error naming the file: unreadable, depth not 16-bit, colour not 8-bit,

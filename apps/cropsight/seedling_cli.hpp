@@ -24,11 +24,7 @@ void apply_checked_config(Config& cfg, const CommonOptions& o, const std::string
     apply_config(cfg, io::load_config_map(io::find_preset(preset)), where);
     validate(cfg, where);
   }
-  ConfigMap sets;
-  for (const auto& s : o.sets) {
-    auto [k, v] = parse_assignment(s);
-    sets[k] = v;
-  }
+  const ConfigMap sets = io::load_preset_with_overrides("", o.sets);
   if (sets.empty()) return;
   apply_config(cfg, sets, "--set");
   validate(cfg, "--set");

@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cropsight/bridge/seedling_runner.hpp>
+#include <cropsight/core/statistics.hpp>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -69,11 +70,7 @@ std::vector<Frame> stereo_frames(const std::string& dir) {
   return frames;
 }
 
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1, std::size_t(q * double(v.size() - 1) + 0.5))];
-}
+double percentile(const std::vector<double>& v, double q) { return v.empty() ? 0.0 : cropsight::quantile(v, q); }
 
 }  // namespace
 

@@ -125,21 +125,21 @@ void BroccoliNode::run_frame(bridge::FrameBuffers& f, const std_msgs::Header& he
                              bool color) {
   f.index = frame_;
   f.timestamp = header.stamp.toSec();
-  bridge::BroccoliFrameOut out;
+  pipeline::broccoli::FrameResult out;
   if (!run_pipeline(*health_, topic, [&] { out = runner_->process(f); })) return;
   ++frame_;
 
   vision_msgs::Detection3DArray arr;
   arr.header = header;
-  for (const bridge::BroccoliHead& h : out.heads) {
+  for (const Detection& h : out.detections) {
     vision_msgs::Detection3D d;
     d.header = header;
     vision_msgs::ObjectHypothesisWithPose hyp;
     hyp.id = 1;  // the broccoli head class
     hyp.score = h.score;
-    hyp.pose.pose.position.x = h.x;
-    hyp.pose.pose.position.y = h.y;
-    hyp.pose.pose.position.z = h.z;
+    hyp.pose.pose.position.x = h.centroid.x();
+    hyp.pose.pose.position.y = h.centroid.y();
+    hyp.pose.pose.position.z = h.centroid.z();
     hyp.pose.pose.orientation.w = 1;
     d.results.push_back(hyp);
     d.bbox.center = hyp.pose.pose;
@@ -153,8 +153,8 @@ void BroccoliNode::run_frame(bridge::FrameBuffers& f, const std_msgs::Header& he
     sensor_msgs::Image im = color ? image_from_rgb(f.rgb, f.camera.width, f.camera.height)
                                   : depth_preview(f.depth, f.camera.width, f.camera.height);
     im.header = header;
-    for (const bridge::BroccoliHead& h : out.heads)
-      draw_box(im, h.box_x, h.box_y, h.box_x + h.box_w - 1, h.box_y + h.box_h - 1, kHeadColour);
+    for (const Detection& h : out.detections)
+      draw_box(im, h.box.x, h.box.y, h.box.x + h.box.width - 1, h.box.y + h.box.height - 1, kHeadColour);
     debug_pub_.publish(im);
   }
 }
@@ -166,7 +166,7 @@ void BroccoliNode::publish_map(const std_msgs::Header& header) {
   visualization_msgs::Marker clear;
   clear.action = visualization_msgs::Marker::DELETEALL;
   arr.markers.push_back(clear);
-  for (const bridge::BroccoliMapHead& h : runner_->current_map()) {
+  for (const tracking::TrackedHead& h : runner_->current_map()) {
     visualization_msgs::Marker m;
     m.header.stamp = header.stamp;
     m.header.frame_id = field_frame_;
@@ -174,9 +174,9 @@ void BroccoliNode::publish_map(const std_msgs::Header& header) {
     m.id = h.id;
     m.type = visualization_msgs::Marker::SPHERE;
     m.action = visualization_msgs::Marker::ADD;
-    m.pose.position.x = h.x;
-    m.pose.position.y = h.y;
-    m.pose.position.z = h.z;
+    m.pose.position.x = h.position.x();
+    m.pose.position.y = h.position.y();
+    m.pose.position.z = h.position.z();
     m.pose.orientation.w = 1;
     const double d = h.diameter_mm > 0 ? h.diameter_mm / 1000.0 : 0.05;
     m.scale.x = m.scale.y = m.scale.z = d;

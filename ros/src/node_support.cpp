@@ -6,6 +6,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/install_paths.hpp"
+#include "cropsight/core/statistics.hpp"
 #include "ros_conversions.hpp"
 
 namespace fs = std::filesystem;
@@ -64,12 +65,8 @@ void InputHealth::processed(double pipeline_ms) {
 }
 
 namespace {
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  const std::size_t k = std::min(v.size() - 1, std::size_t(q * double(v.size() - 1) + 0.5));
-  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
-  return v[k];
-}
+// 0 before the first frame: a diagnostics value a monitor can plot.
+double percentile(const std::vector<double>& v, double q) { return v.empty() ? 0.0 : quantile(v, q); }
 }  // namespace
 
 long InputHealth::skipped_total() const {

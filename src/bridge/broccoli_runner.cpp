@@ -15,9 +15,6 @@ pipeline::PipelineSpec spec_of(const BroccoliRunnerOptions& o) {
   return spec;
 }
 
-BroccoliMapHead map_head(const tracking::TrackedHead& h) {
-  return {h.id, h.position.x(), h.position.y(), h.position.z(), h.diameter_mm, h.frames_seen, h.harvestable};
-}
 }  // namespace
 
 // The pipeline is neither copyable nor movable: the library's builder returns it on the heap.
@@ -34,39 +31,17 @@ struct BroccoliRunner::Impl {
 BroccoliRunner::BroccoliRunner(const BroccoliRunnerOptions& options) : impl_(std::make_unique<Impl>(options)) {}
 BroccoliRunner::~BroccoliRunner() = default;
 
-BroccoliFrameOut BroccoliRunner::process(const FrameBuffers& frame) {
+pipeline::broccoli::FrameResult BroccoliRunner::process(const FrameBuffers& frame) {
   if (frame.depth.empty()) throw Error("frame " + std::to_string(frame.index), "has no depth image");
-  const pipeline::broccoli::FrameResult& r = impl_->pipe.process(to_rgbd_frame(frame));
-  BroccoliFrameOut out;
-  out.frame = r.frame;
-  out.detect_ms = r.detect_ms();
-  out.track_ms = r.track_ms();
-  for (std::size_t k = 0; k < r.detections.size(); ++k) {
-    const Detection& d = r.detections[k];
-    BroccoliHead h;
-    h.id = int(k) + 1;
-    h.score = d.score;
-    h.x = d.centroid.x();
-    h.y = d.centroid.y();
-    h.z = d.centroid.z();
-    h.box_x = d.box.x;
-    h.box_y = d.box.y;
-    h.box_w = d.box.width;
-    h.box_h = d.box.height;
-    h.points = int(d.indices.size());
-    h.size_m = d.size_m;
-    h.track_id = d.track_id;
-    out.heads.push_back(h);
-  }
-  return out;
+  return impl_->pipe.process(to_rgbd_frame(frame));
 }
 
-std::vector<BroccoliMapHead> BroccoliRunner::current_map() const {
-  std::vector<BroccoliMapHead> out;
+std::vector<tracking::TrackedHead> BroccoliRunner::current_map() const {
+  std::vector<tracking::TrackedHead> out;
   if (!impl_->pipe.config().track) return out;
   const tracking::TemporalFilter& filter = impl_->pipe.mapper().filter();
   for (const auto& h : filter.all_heads())
-    if (filter.confirmed_now(h)) out.push_back(map_head(h));
+    if (filter.confirmed_now(h)) out.push_back(h);
   return out;
 }
 

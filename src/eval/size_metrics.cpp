@@ -8,16 +8,6 @@
 
 namespace cropsight::eval {
 
-double median(std::vector<double> v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const std::size_t m = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(m), v.end());
-  const double hi = v[m];
-  if (v.size() % 2) return hi;
-  const double lo = *std::max_element(v.begin(), v.begin() + std::ptrdiff_t(m));
-  return 0.5 * (lo + hi);
-}
-
 double pearson_r(const std::vector<double>& a, const std::vector<double>& b) {
   const std::size_t n = std::min(a.size(), b.size());
   if (n < 2) return std::numeric_limits<double>::quiet_NaN();

@@ -216,31 +216,43 @@ const PCLPointField* color_field(const FieldReader& r, const fs::path& path) {
   return f;
 }
 
+// The PCD/PLY fields of a written cloud, in PCL's names and order: x y z [normal_x normal_y
+// normal_z [curvature]] [rgb] [label]. Returns the field index of normal_x, rgb and label (-1: absent).
+struct CloudFieldIndex {
+  int normals = -1, rgb = -1, label = -1;
+};
+CloudFieldIndex add_cloud_fields(BlobBuilder& b, bool normals, bool curvature, bool rgb, bool label,
+                                 std::uint8_t label_type) {
+  CloudFieldIndex at;
+  b.add("x", PCLPointField::FLOAT32);
+  b.add("y", PCLPointField::FLOAT32);
+  b.add("z", PCLPointField::FLOAT32);
+  if (normals) {
+    at.normals = int(b.blob.fields.size());
+    b.add("normal_x", PCLPointField::FLOAT32);
+    b.add("normal_y", PCLPointField::FLOAT32);
+    b.add("normal_z", PCLPointField::FLOAT32);
+    if (curvature) b.add("curvature", PCLPointField::FLOAT32);
+  }
+  if (rgb) {
+    at.rgb = int(b.blob.fields.size());
+    b.add("rgb", PCLPointField::FLOAT32);
+  }
+  if (label) {
+    at.label = int(b.blob.fields.size());
+    b.add("label", label_type);
+  }
+  return at;
+}
+
 }  // namespace
 
 void write_cloud(const fs::path& path, const OrganizedCloud& cloud, bool binary) {
   if (cloud.width <= 0 || cloud.height <= 0 || cloud.size() != std::size_t(cloud.width) * std::size_t(cloud.height))
     throw Error(path.string(), "cannot write an empty or inconsistent organised cloud");
   BlobBuilder b;
-  b.add("x", PCLPointField::FLOAT32);
-  b.add("y", PCLPointField::FLOAT32);
-  b.add("z", PCLPointField::FLOAT32);
-  int fn = -1, frgb = -1, flabel = -1;
-  if (cloud.has_normals()) {
-    fn = int(b.blob.fields.size());
-    b.add("normal_x", PCLPointField::FLOAT32);
-    b.add("normal_y", PCLPointField::FLOAT32);
-    b.add("normal_z", PCLPointField::FLOAT32);
-    b.add("curvature", PCLPointField::FLOAT32);
-  }
-  if (cloud.has_color()) {
-    frgb = int(b.blob.fields.size());
-    b.add("rgb", PCLPointField::FLOAT32);
-  }
-  if (cloud.has_labels()) {
-    flabel = int(b.blob.fields.size());
-    b.add("label", PCLPointField::UINT32);
-  }
+  const auto [fn, frgb, flabel] =
+      add_cloud_fields(b, cloud.has_normals(), true, cloud.has_color(), cloud.has_labels(), PCLPointField::UINT32);
   b.allocate(std::uint32_t(cloud.width), std::uint32_t(cloud.height));
   bool dense = true;
   for (std::size_t i = 0; i < cloud.size(); ++i) {
@@ -264,24 +276,8 @@ void write_cloud(const fs::path& path, const OrganizedCloud& cloud, bool binary)
 void write_cloud(const fs::path& path, const Cloud& cloud, bool binary) {
   cloud.validate(path.string());
   BlobBuilder b;
-  b.add("x", PCLPointField::FLOAT32);
-  b.add("y", PCLPointField::FLOAT32);
-  b.add("z", PCLPointField::FLOAT32);
-  int fn = -1, frgb = -1, flabel = -1;
-  if (cloud.has_normals()) {
-    fn = int(b.blob.fields.size());
-    b.add("normal_x", PCLPointField::FLOAT32);
-    b.add("normal_y", PCLPointField::FLOAT32);
-    b.add("normal_z", PCLPointField::FLOAT32);
-  }
-  if (cloud.has_colors()) {
-    frgb = int(b.blob.fields.size());
-    b.add("rgb", PCLPointField::FLOAT32);
-  }
-  if (cloud.has_labels()) {
-    flabel = int(b.blob.fields.size());
-    b.add("label", PCLPointField::INT32);
-  }
+  const auto [fn, frgb, flabel] =
+      add_cloud_fields(b, cloud.has_normals(), false, cloud.has_colors(), cloud.has_labels(), PCLPointField::INT32);
   b.allocate(std::uint32_t(cloud.size()), 1);
   for (std::size_t i = 0; i < cloud.size(); ++i) {
     for (int k = 0; k < 3; ++k) b.set(i, k, cloud.points[i][k]);

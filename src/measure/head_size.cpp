@@ -12,6 +12,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/organized_cloud.hpp"
+#include "cropsight/core/statistics.hpp"
 #include "cropsight/geometry/pca.hpp"
 #include "measure/hull_candidates.hpp"
 #include "measure/quickhull.hpp"
@@ -203,12 +204,6 @@ BiasFit fit_size_bias(const std::vector<double>& est, const std::vector<double>&
     for (std::size_t j = i + step; j < n; j += step)
       if (std::abs(truth[j] - truth[i]) > 1e-9) slopes.push_back((est[j] - est[i]) / (truth[j] - truth[i]));
   if (slopes.empty()) throw Error(where, "measured diameters have no spread (one head?); cannot fit a scale");
-  auto median = [](std::vector<double> v) {
-    const std::size_t m = v.size() / 2;
-    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(m), v.end());
-    if (v.size() % 2) return v[m];
-    return 0.5 * (v[m] + *std::max_element(v.begin(), v.begin() + std::ptrdiff_t(m)));
-  };
   const double a = median(slopes);
   if (!(a > 1e-6)) throw Error(where, "estimated diameters do not grow with the measured ones; cannot fit a scale");
   std::vector<double> icpt(n);

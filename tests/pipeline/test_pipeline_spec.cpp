@@ -55,6 +55,9 @@ TEST(MakePipeline, GrapeSplitsTheSegmenterSets) {
   EXPECT_EQ(pipe->segmenter().config().threads, 1);
   EXPECT_NE(pipe->segmenter().config().model.find("grape-gbdt-fast.json"), std::string::npos);
   EXPECT_FALSE(pipe->has_detector());
+  // The pipeline's one config records the segmenter it runs.
+  EXPECT_EQ(pipe->config().segmenter.threads, 1);
+  EXPECT_EQ(pipe->config().segmenter.model, pipe->segmenter().config().model);
   EXPECT_EQ(pl::grape::segmenter_config({.model = "grape-gbdt-fast", .threads = 3}).threads, 3);
   EXPECT_NE(error_message([] {
               pl::grape::make_pipeline({.sets = {"segmenter.no_such=1"}, .model = "grape-gbdt-fast"});

@@ -1,5 +1,6 @@
 #pragma once
-// Small value types shared by detections, segments and measurements.
+// Small value types shared by detections, segments and measurements. C++17, so that results
+// holding them reach the ROS nodes (built as C++17) as they are.
 #include <algorithm>
 
 namespace cropsight {
@@ -9,7 +10,10 @@ struct Box2D {
   int x = 0, y = 0, width = 0, height = 0;
   int area() const { return width * height; }
   bool empty() const { return width <= 0 || height <= 0; }
-  friend bool operator==(const Box2D&, const Box2D&) = default;
+  friend bool operator==(const Box2D& a, const Box2D& b) {
+    return a.x == b.x && a.y == b.y && a.width == b.width && a.height == b.height;
+  }
+  friend bool operator!=(const Box2D& a, const Box2D& b) { return !(a == b); }
 };
 
 /// Intersection over union of two pixel boxes (0 when either is empty).

@@ -11,6 +11,8 @@
 // is NaN and n = 0.
 #include <vector>
 
+#include "cropsight/core/statistics.hpp"  // median
+
 namespace cropsight::eval {
 
 struct SizeMetrics {
@@ -22,7 +24,6 @@ struct SizeMetrics {
 /// value.
 SizeMetrics size_metrics(const std::vector<double>& estimate_mm, const std::vector<double>& truth_mm);
 
-double median(std::vector<double> v);  ///< NaN for an empty vector
 double pearson_r(const std::vector<double>& a, const std::vector<double>& b);
 
 }  // namespace cropsight::eval

@@ -67,16 +67,6 @@ struct MeasuredDetection {
   bool confirmed_online = false;
 };
 
-/// A head of T that the last frame did not detect, and its points in that frame (see above).
-struct PredictedHead {
-  int track_id = -1;
-  std::vector<int> indices;                            ///< pixel indices, ascending
-  Eigen::Vector3f centroid = Eigen::Vector3f::Zero();  ///< of those points, camera frame (m)
-  Eigen::Vector3f centre = Eigen::Vector3f::Zero();    ///< the ball's centre, camera frame (m)
-  float radius_m = 0.0f;                               ///< the ball's radius (m)
-  bool confirmed_online = false;                       ///< the head was confirmed at this frame
-};
-
 class HeadMapper {
  public:
   explicit HeadMapper(const HeadMapperConfig& cfg = {});

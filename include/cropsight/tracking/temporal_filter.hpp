@@ -55,6 +55,7 @@
 #include "cropsight/core/config.hpp"
 #include "cropsight/measure/head_size.hpp"
 #include "cropsight/tracking/field_transform.hpp"
+#include "cropsight/tracking/track_results.hpp"
 
 namespace cropsight::tracking {
 
@@ -182,33 +183,6 @@ struct HeadObservation {
   float score = 0.0f;                                  ///< classifier score
   measure::HeadSize size;                              ///< per-frame size (may be invalid)
   bool partial = false;  ///< cut by the image border: labelled with a head id, never updates state
-};
-
-/// A head of T or M.
-struct TrackedHead {
-  int id = 0;
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< field frame, metres (running average)
-  double score = 0.0;                                  ///< tracking score
-  int frames_seen = 0;                                 ///< associated detections (whole and partial)
-  int partial_frames = 0;                              ///< of which partial (cut by the border)
-  int whole_frames() const { return frames_seen - partial_frames; }
-  int first_frame = 0, last_frame = 0;
-  int missed = 0;                       ///< consecutive frames without a detection (T only)
-  double mean_detection_score = 0.0;    ///< running average of the classifier scores
-  int size_samples = 0;                 ///< frames with a valid size
-  double bbox_mm = 0.0, hull_mm = 0.0;  ///< running averages of the raw estimators
-  double diameter_mm = 0.0;             ///< corrected diameter of the chosen estimator
-  bool harvestable = false;
-};
-
-/// What update() did with each detection of the frame.
-struct FrameAssociation {
-  std::vector<int> track_ids;                                 ///< per input detection: head id, or -1 when ignored
-  std::vector<bool> new_track;                                ///< per input detection: started a new head
-  Eigen::Vector3d camera_position = Eigen::Vector3d::Zero();  ///< x_c after the update
-  Eigen::Vector3d camera_velocity = Eigen::Vector3d::Zero();  ///< v_c after the update
-  int associated = 0;
-  bool motion_searched = false;
 };
 
 class TemporalFilter {

@@ -45,20 +45,20 @@ double per_cloud_miou(const std::vector<eval::ConfusionMatrix>& clouds, const st
   return sum / double(clouds.size());
 }
 
-std::vector<int> Evaluation::all_labels() const {
+std::vector<int> Figures::all_labels() const {
   std::vector<int> out(std::size_t(confusion.num_classes()));
   for (int c = 0; c < confusion.num_classes(); ++c) out[std::size_t(c)] = c;
   return out;
 }
 
-std::vector<int> Evaluation::named_classes() const {
+std::vector<int> Figures::named_classes() const {
   std::vector<int> out;
   for (int c : grape_named_classes())
     if (c < confusion.num_classes()) out.push_back(c);
   return out;
 }
 
-void Evaluation::merge(const Evaluation& o) {
+void Figures::merge(const Figures& o) {
   confusion.merge(o.confusion);
   per_cloud.insert(per_cloud.end(), o.per_cloud.begin(), o.per_cloud.end());
   clouds += o.clouds;
@@ -66,7 +66,7 @@ void Evaluation::merge(const Evaluation& o) {
   seconds += o.seconds;
 }
 
-std::vector<Protocol> grape_protocols(const Evaluation& e) {
+std::vector<Protocol> grape_protocols(const Figures& e) {
   const std::vector<int> all = e.all_labels(), named = e.named_classes();
   return {{"pooled_all_labels", "pooled, all labels", all, e.confusion.mean_iou()},
           {"pooled_named_classes", "pooled, named classes", named, pooled_miou(e.confusion, named)},
@@ -74,7 +74,7 @@ std::vector<Protocol> grape_protocols(const Evaluation& e) {
           {"per_cloud_all_labels", "per cloud, all labels", all, per_cloud_miou(e.per_cloud, all)}};
 }
 
-std::string Evaluation::text() const {
+std::string Figures::text() const {
   std::ostringstream o;
   o.precision(4);
   o << "clouds " << clouds << ", points " << points << "\n";
@@ -93,22 +93,29 @@ std::string Evaluation::text() const {
   return o.str();
 }
 
-Evaluation evaluate_grape(const Model& model, const std::vector<Cloud>& clouds, int num_classes) {
-  Evaluation e;
-  e.confusion = eval::ConfusionMatrix(num_classes);
+Evaluator::Evaluator(int num_classes) { figures_.confusion = eval::ConfusionMatrix(num_classes); }
+
+void Evaluator::add(const std::vector<int>& predicted, const Cloud& truth, double seconds) {
+  if (!truth.has_labels()) throw Error("eval grape", "cloud without labels");
+  if (predicted.size() != truth.size()) throw Error("eval grape", "a label per point is needed");
+  eval::ConfusionMatrix one(figures_.confusion.num_classes());
+  one.add(truth.labels, predicted);
+  figures_.confusion.merge(one);
+  figures_.per_cloud.push_back(std::move(one));
+  figures_.clouds += 1;
+  figures_.points += truth.size();
+  figures_.seconds += seconds;
+}
+
+Figures evaluate_grape(const Model& model, const std::vector<Cloud>& clouds, int num_classes) {
+  Evaluator ev(num_classes);
   for (const auto& c : clouds) {
     if (!c.has_labels()) throw Error("eval grape", "cloud without labels");
     const Stopwatch clock;
     const std::vector<int> pred = model.segment(c);
-    e.seconds += clock.seconds();
-    eval::ConfusionMatrix one(num_classes);
-    one.add(c.labels, pred);
-    e.confusion.merge(one);
-    e.per_cloud.push_back(std::move(one));
-    e.clouds += 1;
-    e.points += c.size();
+    ev.add(pred, c, clock.seconds());
   }
-  return e;
+  return ev.figures();
 }
 
 }  // namespace cropsight::pipeline::grape

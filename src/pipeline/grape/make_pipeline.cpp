@@ -24,43 +24,48 @@ std::string segmenter_source(const std::string& name) {
   return name;
 }
 
-// The spec's sets split: the pipeline's keys, and the segmenter's without their prefix.
-std::pair<std::vector<std::string>, ConfigMap> split_sets(const PipelineSpec& spec) {
-  std::vector<std::string> pipeline_sets;
+// The segmenter's keys (segmenter.*, from the preset or --set) taken out of `values`, without
+// their prefix: they are laid over the segmenter preset or model the spec names.
+ConfigMap take_segmenter_keys(ConfigMap& values) {
   ConfigMap segmenter;
-  for (const std::string& s : spec.sets) {
-    auto [key, value] = parse_assignment(s);
-    if (key.rfind(kSegmenterPrefix, 0) == 0)
-      segmenter[key.substr(std::string(kSegmenterPrefix).size())] = value;
-    else
-      pipeline_sets.push_back(s);
+  for (auto it = values.begin(); it != values.end();) {
+    if (it->first.rfind(kSegmenterPrefix, 0) == 0) {
+      segmenter[it->first.substr(std::string(kSegmenterPrefix).size())] = it->second;
+      it = values.erase(it);
+    } else {
+      ++it;
+    }
   }
-  return {pipeline_sets, segmenter};
+  return segmenter;
+}
+
+SegmenterConfig segmenter_config(const PipelineSpec& spec, const ConfigMap& overrides) {
+  const std::string source =
+      spec.model.empty() ? (overrides.count("model") ? "" : kDefaultSegmenter) : segmenter_source(spec.model);
+  SegmenterConfig cfg = grape_segmenter_config(source, overrides, "segmenter.* (preset or --set)");
+  if (spec.threads > 0) cfg.threads = spec.threads;
+  return cfg;
 }
 
 }  // namespace
 
 SegmenterConfig segmenter_config(const PipelineSpec& spec) {
-  const ConfigMap overrides = split_sets(spec).second;
-  const std::string source =
-      spec.model.empty() ? (overrides.count("model") ? "" : kDefaultSegmenter) : segmenter_source(spec.model);
-  SegmenterConfig cfg = grape_segmenter_config(source, overrides, "--set segmenter.*");
-  if (spec.threads > 0) cfg.threads = spec.threads;
-  return cfg;
+  ConfigMap values = spec_values(spec, kDefaultPreset);
+  return segmenter_config(spec, take_segmenter_keys(values));
 }
 
 std::unique_ptr<Pipeline> make_pipeline(const PipelineSpec& spec) {
-  PipelineSpec pipeline_spec = spec;
-  pipeline_spec.sets = split_sets(spec).first;
-  const std::string where = spec_where(pipeline_spec, kDefaultPreset);
+  const std::string where = spec_where(spec, kDefaultPreset);
+  ConfigMap values = spec_values(spec, kDefaultPreset);
+  const ConfigMap segmenter_keys = take_segmenter_keys(values);
   Config cfg;
-  apply_config(cfg, spec_values(pipeline_spec, kDefaultPreset), where);
+  apply_config(cfg, values, where);
   cfg.validate(where);
-  const SegmenterConfig scfg = segmenter_config(spec);
-  Segmenter segmenter(scfg, spec.model.empty() ? kDefaultSegmenter : spec.model);
+  cfg.segmenter = segmenter_config(spec, segmenter_keys);
+  Segmenter segmenter(cfg.segmenter, spec.model.empty() ? kDefaultSegmenter : spec.model);
   std::unique_ptr<Detector2D> detector;
   if (!spec.detector.empty())
-    detector = nn::load_center_detector(io::find_model(spec.detector).string(), std::max(1, scfg.threads));
+    detector = nn::load_center_detector(io::find_model(spec.detector).string(), std::max(1, cfg.segmenter.threads));
   return std::make_unique<Pipeline>(std::move(cfg), std::move(segmenter), std::move(detector), where);
 }
 

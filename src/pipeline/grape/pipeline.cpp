@@ -64,6 +64,7 @@ std::vector<Detection> grape_detections(const std::vector<Detection2D>& boxes) {
 
 Pipeline::Pipeline(Config cfg, Segmenter segmenter, std::unique_ptr<Detector2D> detector, const std::string& where)
     : cfg_(std::move(cfg)), segmenter_(std::move(segmenter)), detector_(std::move(detector)) {
+  cfg_.segmenter = segmenter_.config();  // what runs, whatever the caller's config said
   cfg_.validate(where);
 }
 

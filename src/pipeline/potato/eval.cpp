@@ -28,77 +28,82 @@ AxisError summarise(const std::vector<double>& e) {
 }
 }  // namespace
 
-Evaluation evaluate_potato_run(const std::vector<FrameResult>& run, const std::vector<std::vector<FrameTruth>>& truth,
-                               double min_iou) {
-  if (run.size() != truth.size()) throw Error("potato evaluation", "run and truth have different frame counts");
-  Evaluation ev;
-  ev.frames = int(run.size());
-  std::vector<double> ex, ey, ez, el, ew, ea, ea_full, cx, cy, cz;
-  std::map<int, int> potato_of_target;  // target id -> matched potato id
-  for (std::size_t f = 0; f < run.size(); ++f) {
-    const HarvestTarget& r = run[f].target;
-    FrameScore& row = ev.per_frame.emplace_back();
-    row.frame = int(f);
-    if (r.state == tracking::TargetState::lost) ++ev.lost_events;
-    if (!r.detection) continue;
-    ++ev.frames_with_target;
-    const FrameTruth* best = nullptr;
-    float best_iou = float(min_iou);
-    for (const auto& t : truth[f]) {
-      if (t.visible_pixels == 0) continue;
-      const float o = iou(r.box, t.box);
-      if (o >= best_iou) best_iou = o, best = &t;
-    }
-    if (!best) continue;
-    row.potato = best->id;
-    row.on_target = best->target;
-    row.iou = best_iou;
-    row.true_z_m = best->centre_camera.z();
-    ++ev.frames_matched;
-    if (best->target) ++ev.frames_on_target;
-    auto [it, fresh] = potato_of_target.emplace(r.target_id, best->id);
-    if (fresh) ++ev.targets;
-    if (!fresh && it->second != best->id) {
-      ++ev.target_switches;
-      it->second = best->id;
-    }
-    if (r.depth_ok) {
-      row.positioned = true;
-      row.cut = r.cut;
-      row.error_mm = 1000.0 * (Eigen::Vector3d(r.x, r.y, r.z) - best->centre_camera);
-    }
-    if (r.depth_ok && r.cut) {
-      ++ev.frames_cut;
-      cx.push_back(row.error_mm.x());
-      cy.push_back(row.error_mm.y());
-      cz.push_back(row.error_mm.z());
-    } else if (r.depth_ok) {
-      ++ev.frames_positioned;
-      ex.push_back(row.error_mm.x());
-      ey.push_back(row.error_mm.y());
-      ez.push_back(row.error_mm.z());
-      el.push_back(1000.0 * (std::max(r.width, r.height) - best->length_m));
-      ew.push_back(1000.0 * (std::min(r.width, r.height) - best->width_m));
-    }
-    if (r.angle_ok) {
-      row.angle_error_deg = axis_angle_error(r.angle, best->angle_rad) * 180.0 / M_PI;
-      ea.push_back(row.angle_error_deg);
-      if (!r.cut) ea_full.push_back(row.angle_error_deg);
-    }
+void Evaluator::add(const FrameResult& result, const std::vector<FrameTruth>& truth) {
+  Figures& ev = figures_;
+  const HarvestTarget& r = result.target;
+  FrameScore& row = ev.per_frame.emplace_back();
+  row.frame = ev.frames++;
+  if (r.state == tracking::TargetState::lost) ++ev.lost_events;
+  if (!r.detection) return;
+  ++ev.frames_with_target;
+  const FrameTruth* best = nullptr;
+  float best_iou = float(min_iou_);
+  for (const auto& t : truth) {
+    if (t.visible_pixels == 0) continue;
+    const float o = iou(r.box, t.box);
+    if (o >= best_iou) best_iou = o, best = &t;
   }
-  ev.x = summarise(ex);
-  ev.y = summarise(ey);
-  ev.z = summarise(ez);
-  ev.cut_x = summarise(cx);
-  ev.cut_y = summarise(cy);
-  ev.cut_z = summarise(cz);
-  ev.length_mae_mm = summarise(el).mae_mm;
-  ev.width_mae_mm = summarise(ew).mae_mm;
-  ev.angle_mae_deg = summarise(ea).mae_mm;
-  ev.angles = int(ea.size());
-  ev.angle_mae_full_view_deg = summarise(ea_full).mae_mm;
-  ev.angles_full_view = int(ea_full.size());
+  if (!best) return;
+  row.potato = best->id;
+  row.on_target = best->target;
+  row.iou = best_iou;
+  row.true_z_m = best->centre_camera.z();
+  ++ev.frames_matched;
+  if (best->target) ++ev.frames_on_target;
+  auto [it, fresh] = potato_of_target_.emplace(r.target_id, best->id);
+  if (fresh) ++ev.targets;
+  if (!fresh && it->second != best->id) {
+    ++ev.target_switches;
+    it->second = best->id;
+  }
+  if (r.depth_ok) {
+    row.positioned = true;
+    row.cut = r.cut;
+    row.error_mm = 1000.0 * (Eigen::Vector3d(r.x, r.y, r.z) - best->centre_camera);
+  }
+  if (r.depth_ok && r.cut) {
+    ++ev.frames_cut;
+    errors_.cx.push_back(row.error_mm.x());
+    errors_.cy.push_back(row.error_mm.y());
+    errors_.cz.push_back(row.error_mm.z());
+  } else if (r.depth_ok) {
+    ++ev.frames_positioned;
+    errors_.ex.push_back(row.error_mm.x());
+    errors_.ey.push_back(row.error_mm.y());
+    errors_.ez.push_back(row.error_mm.z());
+    errors_.el.push_back(1000.0 * (std::max(r.width, r.height) - best->length_m));
+    errors_.ew.push_back(1000.0 * (std::min(r.width, r.height) - best->width_m));
+  }
+  if (r.angle_ok) {
+    row.angle_error_deg = axis_angle_error(r.angle, best->angle_rad) * 180.0 / M_PI;
+    errors_.ea.push_back(row.angle_error_deg);
+    if (!r.cut) errors_.ea_full.push_back(row.angle_error_deg);
+  }
+}
+
+Figures Evaluator::figures() const {
+  Figures ev = figures_;
+  ev.x = summarise(errors_.ex);
+  ev.y = summarise(errors_.ey);
+  ev.z = summarise(errors_.ez);
+  ev.cut_x = summarise(errors_.cx);
+  ev.cut_y = summarise(errors_.cy);
+  ev.cut_z = summarise(errors_.cz);
+  ev.length_mae_mm = summarise(errors_.el).mae_mm;
+  ev.width_mae_mm = summarise(errors_.ew).mae_mm;
+  ev.angle_mae_deg = summarise(errors_.ea).mae_mm;
+  ev.angles = int(errors_.ea.size());
+  ev.angle_mae_full_view_deg = summarise(errors_.ea_full).mae_mm;
+  ev.angles_full_view = int(errors_.ea_full.size());
   return ev;
+}
+
+Figures evaluate_potato_run(const std::vector<FrameResult>& run, const std::vector<std::vector<FrameTruth>>& truth,
+                            double min_iou) {
+  if (run.size() != truth.size()) throw Error("potato evaluation", "run and truth have different frame counts");
+  Evaluator ev(min_iou);
+  for (std::size_t f = 0; f < run.size(); ++f) ev.add(run[f], truth[f]);
+  return ev.figures();
 }
 
 StageTimes stage_times(const std::vector<FrameResult>& run) {

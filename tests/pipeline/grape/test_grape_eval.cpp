@@ -56,7 +56,7 @@ TEST(GrapeEvalProtocols, PerCloudCountsAnAbsentClassAsOne) {
 }
 
 TEST(GrapeEvalProtocols, MergedEvaluationsGiveEveryProtocol) {
-  pipeline::grape::Evaluation a, b;
+  pipeline::grape::Figures a, b;
   a.confusion = cloud_a(), a.per_cloud = {cloud_a()}, a.clouds = 1, a.points = 10;
   b.confusion = cloud_b(), b.per_cloud = {cloud_b()}, b.clouds = 1, b.points = 6;
   a.merge(b);
@@ -78,8 +78,45 @@ TEST(GrapeEvalProtocols, MergedEvaluationsGiveEveryProtocol) {
 }
 
 TEST(GrapeEvalProtocols, SixLabelsNameTheFiveClassesOfThePaper) {
-  pipeline::grape::Evaluation e;  // the default: the dataset's six labels
+  pipeline::grape::Figures e;  // the default: the dataset's six labels
   EXPECT_EQ(e.named_classes(), (std::vector<int>{1, 2, 3, 4, 5}));
   EXPECT_EQ(e.all_labels(), (std::vector<int>{0, 1, 2, 3, 4, 5}));
 }
 }  // namespace
+
+namespace {
+// Cloud A as points: the labels of its (truth, pred) pairs, in that order.
+std::pair<cropsight::Cloud, std::vector<int>> points_of_cloud_a() {
+  const std::vector<std::pair<int, int>> pairs = {{0, 0}, {0, 0}, {0, 0}, {0, 0}, {1, 1},
+                                                  {1, 1}, {1, 1}, {1, 2}, {2, 2}, {2, 2}};
+  cropsight::Cloud c;
+  std::vector<int> pred;
+  for (const auto& [t, p] : pairs) {
+    c.points.emplace_back(0.f, 0.f, 0.f);
+    c.labels.push_back(t);
+    pred.push_back(p);
+  }
+  return {c, pred};
+}
+}  // namespace
+
+TEST(GrapeEvaluator, AddingACloudGivesItsConfusionPooledAndPerCloud) {
+  const auto [cloud, pred] = points_of_cloud_a();
+  cropsight::pipeline::grape::Evaluator ev(3);
+  ev.add(pred, cloud, 0.25);
+  ev.add(pred, cloud, 0.25);
+  const cropsight::pipeline::grape::Figures& f = ev.figures();
+  EXPECT_EQ(f.clouds, 2u);
+  EXPECT_EQ(f.points, 20u);
+  EXPECT_DOUBLE_EQ(f.ms_per_cloud(), 250.0);
+  ASSERT_EQ(f.per_cloud.size(), 2u);
+  for (int t = 0; t < 3; ++t)
+    for (int p = 0; p < 3; ++p) {
+      EXPECT_EQ(f.per_cloud[0].at(t, p), cloud_a().at(t, p));
+      EXPECT_EQ(f.confusion.at(t, p), 2 * cloud_a().at(t, p));
+    }
+  cropsight::Cloud unlabelled = cloud;
+  unlabelled.labels.clear();
+  EXPECT_THROW(ev.add(pred, unlabelled), cropsight::Error);
+  EXPECT_THROW(ev.add({0}, cloud), cropsight::Error);
+}

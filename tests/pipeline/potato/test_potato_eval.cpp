@@ -86,7 +86,7 @@ TEST(PotatoEval, ScriptedRunCountsSwitchesLossAndErrors) {
   run[1].target.x += 0.05f;
   run.emplace_back();
   run[3].target.state = tracking::TargetState::lost;
-  const pipeline::potato::Evaluation ev = pipeline::potato::evaluate_potato_run(run, truth);
+  const pipeline::potato::Figures ev = pipeline::potato::evaluate_potato_run(run, truth);
   EXPECT_EQ(ev.frames, 4);
   EXPECT_EQ(ev.frames_with_target, 3);
   EXPECT_EQ(ev.frames_on_target, 2);
@@ -119,7 +119,7 @@ TEST(PotatoEval, SimulatedApproachWithGroundTruthBoxes) {
   pipeline::potato::Pipeline pipeline(pipeline::potato::load_config("potato"),
                                       std::make_unique<TruthBoxDetector>(dir / "seq"));
   const pipeline::potato::SequenceEvaluation r = pipeline::potato::evaluate_potato_sequence(pipeline, dir / "seq");
-  const pipeline::potato::Evaluation& ev = r.figures;
+  const pipeline::potato::Figures& ev = r.figures;
   ASSERT_EQ(r.run.size(), 10u);
   EXPECT_EQ(ev.target_switches, 0);
   EXPECT_EQ(ev.frames_with_target, 10);

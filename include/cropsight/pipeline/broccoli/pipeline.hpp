@@ -30,24 +30,10 @@
 #include "cropsight/learning/model.hpp"
 #include "cropsight/pipeline/broccoli/config.hpp"
 #include "cropsight/pipeline/broccoli/detector.hpp"
+#include "cropsight/pipeline/broccoli/frame_result.hpp"
 #include "cropsight/tracking/head_mapper.hpp"
 
 namespace cropsight::pipeline::broccoli {
-
-/// What process() found in one frame.
-struct FrameResult {
-  int frame = 0;
-  /// Heads, best score first. With tracking: size_m (0 = not measured: cut by the border) and
-  /// track_id (the field map's head id) are set.
-  std::vector<Detection> detections;
-  std::vector<tracking::PredictedHead> predicted;  ///< tracking: heads of T this frame missed
-  tracking::FrameAssociation association;          ///< tracking: the filter's update (camera estimate)
-  /// This frame's wall-clock stages: the detector's (denoise, normals, edges, clustering, cloud,
-  /// features, classify, split, completion, cnn: those that ran) and "track" (steps 2-4).
-  StageTimer timer;
-  double detect_ms() const { return timer.total_ms() - timer.ms("track"); }  ///< step 1
-  double track_ms() const { return timer.ms("track"); }                      ///< steps 2-4
-};
 
 class Pipeline {
  public:

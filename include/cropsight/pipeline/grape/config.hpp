@@ -1,11 +1,12 @@
 #pragma once
-// The grape pipeline's configuration (configs/grape-camera.yaml, --set key=value): the ROI and
-// its cloud (roi.*) and the cut point (cut_point.*). The segmenter has its own configuration
-// (segmenter.hpp, configs/grape-best.yaml), set through make_pipeline's segmenter.* keys.
+// The grape pipeline's one configuration (configs/grape-camera.yaml, --set key=value): the ROI
+// and its cloud (roi.*), the segmenter (segmenter.*: which model and how it runs; by default the
+// shipped ensemble of configs/grape-best.yaml, make_pipeline.hpp) and the cut point (cut_point.*).
 #include <string>
 
 #include "cropsight/core/config.hpp"
 #include "cropsight/pipeline/grape/roi.hpp"
+#include "cropsight/pipeline/grape/segmenter.hpp"
 
 namespace cropsight::pipeline::grape {
 
@@ -27,18 +28,22 @@ struct CutPointConfig {
   }
 };
 
-/// The whole pipeline's config (configs/grape-camera.yaml). The segmenter has its own
-/// (SegmenterConfig, configs/grape-best.yaml): it is built once and handed to the pipeline.
+/// The whole pipeline's config. `segmenter` is what the pipeline's Segmenter was built from: a
+/// preset's or --set's segmenter.* keys are laid over the segmenter preset or model the spec names
+/// (make_pipeline), and Pipeline's constructor records the Segmenter it is given.
 struct Config {
   RoiConfig roi;
+  SegmenterConfig segmenter;
   CutPointConfig cut_point;
 
   template <class V>
   void visit(V& v) {
     v("roi", roi, "steps 1-3: ROI from the boxes (Eq. 1), its coloured cloud (Algorithm 1) and normals");
+    v("segmenter", segmenter, "step 4: the per-point segmenter (default: the shipped ensemble, grape-best)");
     v("cut_point", cut_point, "step 5: the cut point on the labelled peduncle");
   }
   /// Throws Error(where, ...) naming the first key out of range (roi.validate's rules included).
+  /// The segmenter's keys are checked when its models load (Segmenter's constructor).
   void validate(const std::string& where) const;
 };
 

@@ -1,10 +1,10 @@
 #pragma once
-// Evaluation of a grape segmentation model on labelled clouds it was not trained on: the
+// Figures of a grape segmentation model on labelled clouds it was not trained on: the
 // paper's OAcc / mAcc / mIoU, per-class accuracy and IoU (labels 0-5), the time per cloud, and
 // mIoU under the named protocols below, so that a figure is compared with the paper's under
 // the protocol it was measured with.
 //
-// Protocols (docs/pipelines/grape-bunches.md, "Evaluation protocols"):
+// Protocols (docs/pipelines/grape-bunches.md, "Figures protocols"):
 // - pooled, all labels: one confusion matrix over every point of every cloud, IoU per label
 //   0-5, mean over the labels (the `miou` this project has always reported);
 // - pooled, named classes: the same matrix, mean over the classes the paper names (grape 1,
@@ -37,7 +37,7 @@ double pooled_miou(const eval::ConfusionMatrix& confusion, const std::vector<int
 /// NaN for no cloud. Ids outside a matrix throw Error.
 double per_cloud_miou(const std::vector<eval::ConfusionMatrix>& clouds, const std::vector<int>& classes);
 
-struct Evaluation {
+struct Figures {
   eval::ConfusionMatrix confusion{6};
   std::vector<eval::ConfusionMatrix> per_cloud;  ///< one matrix per evaluated cloud, in order
   std::size_t clouds = 0;
@@ -49,7 +49,7 @@ struct Evaluation {
   std::vector<int> all_labels() const;
   /// The named classes that exist in this evaluation's label range.
   std::vector<int> named_classes() const;
-  void merge(const Evaluation& o);
+  void merge(const Figures& o);
   /// Human-readable summary (several lines). The CLI's JSON form is apps/cropsight/grape_cli.hpp.
   std::string text() const;
 };
@@ -64,10 +64,24 @@ struct Protocol {
 
 /// The four protocols, in the order above: pooled all labels (= confusion.mean_iou()), pooled
 /// named classes, per cloud named classes, per cloud all labels.
-std::vector<Protocol> grape_protocols(const Evaluation& e);
+std::vector<Protocol> grape_protocols(const Figures& e);
+
+/// Accumulates the confusion matrices of segmented clouds, pooled and per cloud.
+class Evaluator {
+ public:
+  explicit Evaluator(int num_classes = 6);
+  /// One cloud: `predicted` (a label per point) against `truth`'s own labels; `seconds` the time
+  /// its segmentation took. Throws Error when the cloud has no labels, the sizes differ, or a
+  /// label is >= num_classes.
+  void add(const std::vector<int>& predicted, const Cloud& truth, double seconds = 0);
+  const Figures& figures() const { return figures_; }
+
+ private:
+  Figures figures_;
+};
 
 /// Segments each cloud with `model` (timed) and accumulates the confusion matrix against the
 /// clouds' labels, pooled and per cloud. Labels >= num_classes throw Error.
-Evaluation evaluate_grape(const Model& model, const std::vector<Cloud>& clouds, int num_classes = 6);
+Figures evaluate_grape(const Model& model, const std::vector<Cloud>& clouds, int num_classes = 6);
 
 }  // namespace cropsight::pipeline::grape

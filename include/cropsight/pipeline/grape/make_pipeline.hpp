@@ -4,7 +4,7 @@
 //   model     the segmenter: a model file (.pt network, .json GBDT), a shipped model's name
 //             (models/; looked up before presets, whose training recipes share those names) or a
 //             segmenter preset (e.g. grape-best); default kDefaultSegmenter
-//   sets      keys of the pipeline preset, and "segmenter.KEY=V" for the segmenter's keys
+//   sets      keys of the pipeline preset, "segmenter.KEY=V" among them for the segmenter's keys
 //             (segmenter.votes, segmenter.ensemble, ...)
 //   detector  the 2D detector (a shipped model's name or a .onnx / .pt file); "" = none, every
 //             frame then comes with its boxes

@@ -44,7 +44,7 @@ struct FoldPlan {
 };
 
 struct CrossValidation {
-  Evaluation pooled;         ///< held-out evaluations of the folds run, merged
+  Figures pooled;            ///< held-out evaluations of the folds run, merged
   double train_seconds = 0;  ///< training wall time summed over the folds run (evaluation excluded)
 };
 

@@ -1,5 +1,5 @@
 #pragma once
-// Evaluation of a harvest run against the potato simulator's truth: per frame, the
+// Figures of a harvest run against the potato simulator's truth: per frame, the
 // run's target (box, 3D position, size, angle, state; what Pipeline::process returned) is
 // matched to the simulated potato whose visible box overlaps it most (IoU >= min_iou); the figures
 // are position error per camera axis (mean, MAE, std, mm), size and angle errors, target switches
@@ -7,6 +7,7 @@
 // milliseconds per frame per stage. Online figures: each frame is judged on what the pipeline
 // reported at that frame (nothing looks ahead).
 #include <filesystem>
+#include <map>
 #include <vector>
 
 #include "cropsight/pipeline/potato/pipeline.hpp"
@@ -31,7 +32,7 @@ struct FrameScore {
   double angle_error_deg = -1;                         ///< -1: no angle
 };
 
-struct Evaluation {
+struct Figures {
   int frames = 0;
   int frames_with_target = 0;     ///< frames whose message has a box (detected or tracked)
   int frames_matched = 0;         ///< ... that overlap a simulated potato (IoU >= min_iou)
@@ -63,16 +64,36 @@ struct StageTimes {
 /// Smallest difference of two undirected axis angles, radians, in [0, pi/2].
 double axis_angle_error(double a, double b);
 
+/// Joins each frame's harvest message to the truth of that frame and accumulates the figures.
+/// Frames are added in the run's order (target switches follow the target ids over time).
+class Evaluator {
+ public:
+  /// `min_iou`: the overlap a target's box needs with a potato's visible box to be matched to it.
+  explicit Evaluator(double min_iou = 0.3) : min_iou_(min_iou) {}
+  /// One frame: what Pipeline::process returned and the truth of every potato in it (frame_truth).
+  void add(const FrameResult& result, const std::vector<FrameTruth>& truth);
+  Figures figures() const;
+
+ private:
+  struct Errors {  // per matched frame, mm or degrees
+    std::vector<double> ex, ey, ez, el, ew, ea, ea_full, cx, cy, cz;
+  };
+  double min_iou_;
+  Figures figures_;  // counts and rows; the error summaries are made by figures()
+  Errors errors_;
+  std::map<int, int> potato_of_target_;  // target id -> matched potato id
+};
+
 /// Scores `run` (Pipeline::process of each frame) against `truth` (frame_truth of
 /// each frame). Throws Error when the counts differ.
-Evaluation evaluate_potato_run(const std::vector<FrameResult>& run, const std::vector<std::vector<FrameTruth>>& truth,
-                               double min_iou = 0.3);
+Figures evaluate_potato_run(const std::vector<FrameResult>& run, const std::vector<std::vector<FrameTruth>>& truth,
+                            double min_iou = 0.3);
 
 /// Stage times of `run`.
 StageTimes stage_times(const std::vector<FrameResult>& run);
 
 struct SequenceEvaluation {
-  Evaluation figures;
+  Figures figures;
   StageTimes ms;
   std::vector<FrameResult> run;                ///< what the pipeline returned, per frame
   std::vector<std::vector<FrameTruth>> truth;  ///< per frame
