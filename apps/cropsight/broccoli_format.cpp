@@ -30,9 +30,9 @@ nlohmann::json fit_json(const std::string& name, const measure::BiasFit& f) {
 nlohmann::json num_or_null(double v, bool valid) { return valid ? json_number(v) : nlohmann::json(nullptr); }
 }  // namespace
 
-nlohmann::json stages_json(const std::vector<StageTimer::Stage>& stages, long frames) {
+nlohmann::json stages_json(const std::vector<StageMs>& stages) {
   nlohmann::json j = nlohmann::json::object();
-  for (const auto& s : stages) j[s.name] = frames > 0 ? s.total_ms / double(frames) : 0.0;
+  for (const auto& s : stages) j[s.name] = s.ms;
   return j;
 }
 
@@ -67,8 +67,8 @@ nlohmann::json eval_json(const pipeline::broccoli::Figures& r) {
   j["truth_heads_visible_any_depth"] = r.truth_heads_visible_any_depth;
   j["ap50_visible_any_depth"] = json_number(r.ap50_visible_any_depth);
   j["fps"] = json_number(r.fps());
-  j["ms_per_frame"] = r.frames ? r.pipeline_ms / double(r.frames) : 0.0;
-  j["stages_ms"] = stages_json(r.stages, r.frames);
+  j["ms_per_frame"] = r.ms_per_frame();
+  j["stages_ms"] = stages_json(r.stage_ms_per_frame());
   return j;
 }
 
