@@ -4,7 +4,8 @@
     tools/golden-compare.py BEFORE AFTER
 
 JSON outputs must agree on every key they share, numbers to 1e-9 relative, except timings and
-paths (key names with a part ms, fps, seconds, time or stages; the keys out, masks, model, data, map); keys only in
+paths (key names with a part ms, fps, seconds, time, stages or speedup, or with ratio_to_ as the bench
+commands' ratios of two timings; the keys out, masks, model, data, map); keys only in
 AFTER are listed as new, keys only in BEFORE are an error. Other files must be byte-identical
 (the HTML report only in its figures, not compared). A file on one side only, or a command that
 failed on either side ("exit N" in its .err), is a difference too. Exit 1 on any difference."""
@@ -15,12 +16,12 @@ import os
 import re
 import sys
 
-TIMING = ("ms", "fps", "seconds", "time", "stages")  # parts of a key name: "tracking_ms_per_frame"
+TIMING = ("ms", "fps", "seconds", "time", "stages", "speedup")  # parts of a key name: "tracking_ms_per_frame"
 PATHS = ("out", "masks", "model", "data", "map")      # whole key names
 
 
 def skipped(key):
-    return any(s in key.lower().split("_") for s in TIMING) or key in PATHS
+    return any(s in key.lower().split("_") for s in TIMING) or "ratio_to_" in key or key in PATHS
 
 
 def compare(a, b, path, errors, new):

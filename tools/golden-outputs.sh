@@ -41,4 +41,17 @@ if [[ -d "$data/seedlings" ]]; then
   run eval-seedling-paper eval seedling --data "$data/seedlings" --config seedling-paper --no-opencv --quiet --json
 fi
 [[ -d ../shared/data/middlebury ]] && run eval-stereo eval stereo --middlebury ../shared/data/middlebury --json
+# The commands that format library timings, potato detections and grape bunches: their figures
+# (timings left out by golden-compare.py) and output folders.
+run bench-broccoli bench broccoli --data "$P" --model models/broccoli-oes-spain.json --frames 3 --variety spain --pipelines oes,fec,pcl --track --json
+run bench-potato bench potato --frames 3 --repeat 1 --quiet --json
+[[ -d "$data/potato" ]] || "$bin" simulate potato --seed 4712 --frames 3 --out "$data/potato" --quiet >/dev/null
+run detect-potato detect potato --data "$data/potato" --out "$out/detect-potato" --overlay "$out/potato-overlay" --json
+[[ -f "$data/grape-boxes.json" ]] || echo '[{"image_id":0,"category_id":1,"bbox":[250,150,140,120],"score":0.9},{"image_id":0,"category_id":2,"bbox":[300,120,30,40],"score":0.8}]' > "$data/grape-boxes.json"
+run detect-grape detect grape --color "$data/potato/color/000000.png" --depth "$data/potato/depth/000000.png" --camera "$data/potato/camera.yaml" --detections "$data/grape-boxes.json" --segmenter models/grape-gbdt-fast.json --threads 1 --out "$out/detect-grape" --json
+if [[ -d ../shared/data/grape/coco_train ]]; then  # the trained model is not compared: its file holds no figure
+  scratch="$(mktemp -d)"
+  run train-detector train detector --coco ../shared/data/grape/coco_train/annotations.json --images ../shared/data/grape/coco_train/JPEGImages --out "$scratch/det.pt" --epochs 1 --input-size 64x64 --width 8 --threads 1 --json --quiet
+  rm -rf "$scratch"
+fi
 echo "$out"

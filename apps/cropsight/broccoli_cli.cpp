@@ -37,34 +37,4 @@ void add_track_options(CLI::App* cmd, TrackOptions& o, bool detect) {
   }
 }
 
-nlohmann::json pipeline_json(const pipeline::PipelineTiming& t, const pipeline::PipelineTiming* pcl) {
-  nlohmann::json j{{"ms_per_frame", t.ms_per_frame()},
-                   {"fps", t.fps()},
-                   {"cpu_ms_per_frame", t.cpu_ms_per_frame()},
-                   {"cpu_fps", t.cpu_fps()},
-                   {"clusters_per_frame", t.clusters_per_frame()},
-                   {"stages_ms", stages_json(t.stages, t.frames)}};
-  if (pcl) {
-    j["speedup_vs_pcl"] = t.ms_per_frame() > 0 ? pcl->ms_per_frame() / t.ms_per_frame() : 0.0;
-    j["cpu_speedup_vs_pcl"] = t.cpu_ms_per_frame() > 0 ? pcl->cpu_ms_per_frame() / t.cpu_ms_per_frame() : 0.0;
-  }
-  return j;
-}
-
-nlohmann::json tracking_timing_json(const pipeline::PipelineTiming& t, const pipeline::PipelineTiming& oes,
-                                    const tracking::HeadMapperConfig& cfg) {
-  const auto& sz = cfg.sizing;
-  return {{"ms_per_frame", t.ms_per_frame()},
-          {"cpu_ms_per_frame", t.cpu_ms_per_frame()},
-          {"detections_per_frame", t.clusters_per_frame()},
-          {"ratio_to_oes", oes.ms_per_frame() > 0 ? t.ms_per_frame() / oes.ms_per_frame() : 0.0},
-          {"cpu_ratio_to_oes", oes.cpu_ms_per_frame() > 0 ? t.cpu_ms_per_frame() / oes.cpu_ms_per_frame() : 0.0},
-          {"sizing",
-           {{"estimator", sz.estimator},
-            {"compute_hull", sz.compute_hull},
-            {"hull_engine", sz.hull_engine},
-            {"hull_max_points", sz.hull_max_points}}},
-          {"use_poses", cfg.tracking.use_poses}};
-}
-
 }  // namespace cropsight::cli

@@ -14,7 +14,6 @@
 #include "cropsight/pipeline/broccoli/eval.hpp"
 #include "cropsight/pipeline/broccoli/make_pipeline.hpp"
 #include "cropsight/pipeline/broccoli/pipeline.hpp"
-#include "cropsight/pipeline/broccoli/timing.hpp"
 #include "cropsight/pipeline/broccoli/tracking_eval.hpp"
 #include "cropsight/pipeline/broccoli/training.hpp"
 
@@ -36,8 +35,8 @@ struct TrackOptions {
 };
 void add_track_options(CLI::App* cmd, TrackOptions& o, bool detect);
 
-/// Per-stage mean milliseconds per frame as JSON {"cloud": 1.2, ...}.
-nlohmann::json stages_json(const std::vector<StageTimer::Stage>& stages, long frames);
+/// Per-stage milliseconds per frame as JSON {"cloud": 1.2, ...}.
+nlohmann::json stages_json(const std::vector<StageMs>& stages);
 
 /// Table I + II metrics of an evaluation as JSON (NaN → null).
 nlohmann::json eval_json(const pipeline::broccoli::Figures& r);
@@ -53,12 +52,6 @@ nlohmann::json detection_json(const Detection& d, int id);
 /// field}], "predicted" [{track_id, points, centroid}] and "camera_estimate" to a frame's line.
 void add_tracking_json(const pipeline::broccoli::FrameResult& r, const tracking::HeadMapper& mapper,
                        nlohmann::json& line);
-
-/// bench broccoli: one timed pipeline (with its speedup over `pcl` when given) and the tracking
-/// timing against the OES detector of the same run.
-nlohmann::json pipeline_json(const pipeline::PipelineTiming& t, const pipeline::PipelineTiming* pcl);
-nlohmann::json tracking_timing_json(const pipeline::PipelineTiming& t, const pipeline::PipelineTiming& oes,
-                                    const tracking::HeadMapperConfig& cfg);
 
 /// Human-readable lines of the tracking figures.
 void print_tracking_summary(const pipeline::broccoli::TrackingFigures& f);

@@ -1,155 +1,119 @@
-// cropsight bench broccoli: times the OES, ORG and FEC detectors and the PCL reference pipeline
-// (pcl_reference.hpp) on the same frames in the same process, single-threaded, and prints the
-// per-stage milliseconds, fps and each detector's speedup over the PCL reference.
+// cropsight bench broccoli: times the OES, ORG and FEC detectors and the PCL reference pipeline on
+// the same frames in the same process, single-threaded, and prints the per-stage milliseconds, fps
+// and each detector's speedup over the PCL reference; --track also times sizing + the temporal
+// filter on the OES detections (the extra time per frame of `detect broccoli --track`).
 //
-// Frames are read into memory first (I/O excluded) without their label images (as deployed).
-// The model's own pipeline runs with the settings the model records (as `detect` and `eval
-// broccoli --model` run it), then --set; the other pipelines use their presets
-// configs/broccoli-<pipeline>-<variety>.yaml, then --set. Every pipeline scores its clusters with
-// the given model's classifier (for the others, timing only: the model must use VFH features, the
-// only feature PCL computes). Statistical outlier removal is off for FEC and the
-// PCL reference unless --sor, so that both do the same work as the reference
-// (normals + Euclidean clustering + VFH + SVM).
-//
-// The timing itself is the library's (pipeline/broccoli/timing.hpp); this file picks the
-// frames and presets and formats the figures.
-//
-// --track also times sizing + the temporal filter (tracking::HeadMapper with the OES
-// preset's sizing.* / tracking.* keys and --set) on the OES detections of the same frames: per
-// frame add_frame + predict_missed, and finish() once per pass, i.e. everything `detect broccoli
-// --track` adds to the detector. The detector runs untimed in that loop, so the figure is the
-// extra time per frame; `ratio_to_oes` divides it by the OES detector's time of the same run.
+// What runs with which settings, and the timing, are the library's (pipeline/broccoli/bench.hpp);
+// this file reads the frames (into memory, I/O excluded, without their label images: with labels
+// the detector would also copy them, evaluation bookkeeping of ~1 %) and formats the figures.
 #include <oneapi/tbb/global_control.h>
 
 #include <cstdio>
-#include <map>
-#include <optional>
-#include <set>
 
 #include "broccoli_cli.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
-#include "cropsight/core/error.hpp"
 #include "cropsight/io/config_yaml.hpp"
-#include "cropsight/pipeline/broccoli/timing.hpp"
+#include "cropsight/pipeline/broccoli/bench.hpp"
 
 namespace cropsight::cli {
 
 namespace bench_broccoli_cmd {
+namespace pb = pipeline::broccoli;
+
 struct BenchOptions {
   CommonOptions common;
-  std::string data, model, variety = "uk";
+  std::string data, pipelines = "oes,org,fec,pcl";
   int frames = 0;
-  int repeat = 1;
-  bool sor = false;
-  bool track = false;
-  std::string pipelines = "oes,org,fec,pcl";
+  pb::BenchSpec spec;
 };
 
-using pipeline::PipelineTiming;
-
-std::set<std::string> wanted_pipelines(const BenchOptions& o) {
-  std::set<std::string> wanted;
-  for (const auto& p : split_list(o.pipelines, "--pipelines")) {
-    if (p != "oes" && p != "org" && p != "fec" && p != "pcl")
-      throw Error("--pipelines", "unknown pipeline '" + p + "' (oes, org, fec, pcl)");
-    wanted.insert(p);
-  }
-  if (o.track && !wanted.count("oes")) throw Error("--track", "times the OES detections: --pipelines must include oes");
-  return wanted;
+void print_pipeline(const std::string& name, const pb::BenchedPipeline& p) {
+  const pipeline::PipelineTiming& t = p.timing;
+  std::printf("  %-14s %8.2f ms/frame %8.1f fps (CPU %.2f ms, %.1f fps)", name.c_str(), t.ms_per_frame(), t.fps(),
+              t.cpu_ms_per_frame(), t.cpu_fps());
+  if (p.vs_pcl) std::printf("  %6.1fx vs PCL", p.vs_pcl->wall);
+  std::printf("   [");
+  for (const auto& s : t.stage_ms_per_frame()) std::printf(" %s %.2f", s.name.c_str(), s.ms);
+  std::printf(" ]\n");
 }
 
-// The variety's preset of `pipe`, then --set: sizing.* / tracking.* are checked here too, so that a
-// typo is an error; the detector times with VFH and the bench's outlier setting.
-pipeline::broccoli::Config preset_of(const BenchOptions& o, const std::string& pipe) {
-  const std::string name = "broccoli-" + pipe + "-" + o.variety;
-  pipeline::broccoli::Config cfg;
-  apply_config(cfg, io::load_config_map(io::find_preset(name)), name);
-  apply_config(cfg, o.common.config_map(), "--set");
-  cfg.validate(name);
-  cfg.detector.features = "vfh";
-  cfg.detector.outliers.enabled = o.sor;
-  return cfg;
-}
-
-// The model's own pipeline: what the model records, then --set (the bench's outlier setting too).
-pipeline::broccoli::Config model_settings(const BenchOptions& o, const learning::Model& model) {
-  pipeline::broccoli::Config cfg = pipeline::broccoli::config_for_model(model, o.common.config_map(), o.model, "--set");
-  cfg.detector.outliers.enabled = o.sor;
-  return cfg;
-}
-
-void print_text(const std::map<std::string, PipelineTiming>& timings, const PipelineTiming* tracked,
-                const std::vector<RgbdFrame>& frames, int repeat) {
-  const auto pcl = timings.find("pcl_reference");
+void print_text(const pb::BenchResult& r, const std::vector<RgbdFrame>& frames, int repeat) {
   std::printf("%zu frames x %d, %dx%d, single-threaded\n", frames.size(), repeat, frames[0].depth.width,
               frames[0].depth.height);
-  for (const auto& [name, t] : timings) {
-    std::printf("  %-14s %8.2f ms/frame %8.1f fps (CPU %.2f ms, %.1f fps)", name.c_str(), t.ms_per_frame(), t.fps(),
-                t.cpu_ms_per_frame(), t.cpu_fps());
-    if (name != "pcl_reference" && pcl != timings.end())
-      std::printf("  %6.1fx vs PCL", pcl->second.ms_per_frame() / t.ms_per_frame());
-    std::printf("   [");
-    for (const auto& s : t.stages) std::printf(" %s %.2f", s.name.c_str(), s.total_ms / double(t.frames));
-    std::printf(" ]\n");
-  }
-  if (tracked)
+  for (const auto& [name, p] : r.detectors) print_pipeline(name, p);
+  if (r.pcl_reference) print_pipeline("pcl_reference", *r.pcl_reference);
+  if (const auto& t = r.tracking)
     std::printf("  sizing + tracking (OES detections, %.1f per frame): %.3f ms/frame (CPU %.3f ms), %.1f %% of OES\n",
-                tracked->clusters_per_frame(), tracked->ms_per_frame(), tracked->cpu_ms_per_frame(),
-                100.0 * tracked->ms_per_frame() / timings.at("oes").ms_per_frame());
+                t->timing.clusters_per_frame(), t->timing.ms_per_frame(), t->timing.cpu_ms_per_frame(),
+                100.0 * t->vs_oes.wall);
 }
 
-void run(const BenchOptions& o) {
-  if (o.repeat < 1) throw Error("--repeat", "must be at least 1");
-  if (o.variety != "uk" && o.variety != "spain") throw Error("--variety", "must be uk or spain");
-  // Single-threaded: no stage may use TBB's pool (the paper's numbers are single-threaded too).
-  tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
-  const auto model = pipeline::broccoli::load_model(o.model);
-  // The first --frames frames in memory, without their label images: with labels the detector
-  // would also copy them (evaluation bookkeeping, ~1 %).
-  const std::vector<RgbdFrame> frames = read_bench_frames(o.data, o.frames);
-  const std::set<std::string> wanted = wanted_pipelines(o);
-  std::map<std::string, PipelineTiming> timings;
-  std::map<std::string, std::string> settings;  // per pipeline: "model" or the preset it ran with
-  std::optional<PipelineTiming> tracked;
-  tracking::HeadMapperConfig mapping;  // the OES preset's sizing.* / tracking.* keys, then --set
-  for (const auto variant :
-       {pipeline::broccoli::Variant::oes, pipeline::broccoli::Variant::org, pipeline::broccoli::Variant::fec}) {
-    const std::string pipe = config_name(variant);
-    if (!wanted.count(pipe)) continue;
-    const bool own = model->info.pipeline == pipe;
-    const auto cfg = own ? model_settings(o, *model) : preset_of(o, pipe);
-    settings[pipe] = own ? "model" : "preset broccoli-" + pipe + "-" + o.variety;
-    pipeline::broccoli::Detector det(cfg.detector);
-    det.set_model(pipeline::broccoli::model_for_variant(model, variant, o.model), o.model);
-    timings[pipe] = pipeline::broccoli::time_detector(det, frames, o.repeat);
-    if (variant == pipeline::broccoli::Variant::oes && o.track) {
-      mapping = cfg.mapping();
-      tracked = pipeline::broccoli::time_tracking(det, mapping, frames, o.repeat);
-    }
+// One timed pipeline, with its speedup over the PCL reference when that ran.
+nlohmann::json pipeline_timing_json(const pb::BenchedPipeline& p) {
+  const pipeline::PipelineTiming& t = p.timing;
+  nlohmann::json j{{"ms_per_frame", t.ms_per_frame()},
+                   {"fps", t.fps()},
+                   {"cpu_ms_per_frame", t.cpu_ms_per_frame()},
+                   {"cpu_fps", t.cpu_fps()},
+                   {"clusters_per_frame", t.clusters_per_frame()},
+                   {"stages_ms", stages_json(t.stage_ms_per_frame())}};
+  if (p.vs_pcl) {
+    j["speedup_vs_pcl"] = p.vs_pcl->wall;
+    j["cpu_speedup_vs_pcl"] = p.vs_pcl->cpu;
   }
-  if (wanted.count("pcl")) {
-    pipeline::broccoli::PclReferencePipeline pcl(preset_of(o, "fec").detector, model, o.model);
-    timings["pcl_reference"] = pipeline::broccoli::time_pcl_reference(pcl, frames, o.repeat);
-  }
+  return j;
+}
+
+// Sizing + tracking against the OES detector of the same run, with the sizing keys it ran under.
+nlohmann::json tracking_timing_json(const pb::BenchedTracking& t) {
+  const auto& sz = t.mapping.sizing;
+  return {{"ms_per_frame", t.timing.ms_per_frame()},
+          {"cpu_ms_per_frame", t.timing.cpu_ms_per_frame()},
+          {"detections_per_frame", t.timing.clusters_per_frame()},
+          {"ratio_to_oes", t.vs_oes.wall},
+          {"cpu_ratio_to_oes", t.vs_oes.cpu},
+          {"sizing",
+           {{"estimator", sz.estimator},
+            {"compute_hull", sz.compute_hull},
+            {"hull_engine", sz.hull_engine},
+            {"hull_max_points", sz.hull_max_points}}},
+          {"use_poses", t.mapping.tracking.use_poses}};
+}
+
+nlohmann::json result_json(const BenchOptions& o, const pb::BenchResult& r, const std::vector<RgbdFrame>& frames) {
+  nlohmann::json settings = nlohmann::json::object();
+  for (const auto& [name, p] : r.detectors) settings[name] = p.settings;
   nlohmann::json out{{"data", o.data},
-                     {"model", o.model},
+                     {"model", o.spec.model},
                      {"frames", frames.size()},
-                     {"repeat", o.repeat},
-                     {"variety", o.variety},
+                     {"repeat", o.spec.repeat},
+                     {"variety", o.spec.variety},
                      {"threads", 1},
-                     {"sor", o.sor},
+                     {"sor", o.spec.sor},
                      {"settings", settings},
                      {"width", frames[0].depth.width},
                      {"height", frames[0].depth.height}};
-  const auto pcl = timings.find("pcl_reference");
-  for (const auto& [name, t] : timings)
-    out["pipelines"][name] = pipeline_json(t, name != "pcl_reference" && pcl != timings.end() ? &pcl->second : nullptr);
-  if (tracked) out["tracking"] = tracking_timing_json(*tracked, timings.at("oes"), mapping);
+  for (const auto& [name, p] : r.detectors) out["pipelines"][name] = pipeline_timing_json(p);
+  if (r.pcl_reference) out["pipelines"]["pcl_reference"] = pipeline_timing_json(*r.pcl_reference);
+  if (r.tracking) out["tracking"] = tracking_timing_json(*r.tracking);
+  return out;
+}
+
+void run(const BenchOptions& o) {
+  pb::BenchSpec spec = o.spec;
+  spec.pipelines = split_list(o.pipelines, "--pipelines");
+  spec.preset = o.common.config;
+  spec.sets = o.common.sets;
+  spec.validate();  // before the frames are read
+  // Single-threaded: no stage may use TBB's pool (the paper's numbers are single-threaded too).
+  tbb::global_control one_thread(tbb::global_control::max_allowed_parallelism, 1);
+  const std::vector<RgbdFrame> frames = read_bench_frames(o.data, o.frames);
+  const pb::BenchResult r = pb::bench(spec, frames);
   if (o.common.json)
-    print_json(out);
+    print_json(result_json(o, r, frames));
   else
-    print_text(timings, tracked ? &*tracked : nullptr, frames, o.repeat);
+    print_text(r, frames, spec.repeat);
 }
 }  // namespace bench_broccoli_cmd
 
@@ -159,15 +123,15 @@ void add_bench_broccoli(CLI::App& bench) {
   auto* cmd = bench.add_subcommand("broccoli", "Time OES, ORG, FEC and the PCL reference pipeline");
   cmd->add_option("--data", o->data, "Sequence directory")->required();
   cmd->add_option_function<std::string>(
-         "--model", [o](const std::string& v) { o->model = io::find_model(v).string(); },
+         "--model", [o](const std::string& v) { o->spec.model = io::find_model(v).string(); },
          "Model with VFH features: a shipped model's name (e.g. broccoli-oes-uk) or a file (train broccoli)")
       ->required();
   cmd->add_option("--frames", o->frames, "Frames to time, the first N (default 0: all)");
-  cmd->add_option("--repeat", o->repeat, "Passes over the frames (default 1)");
-  cmd->add_option("--variety", o->variety, "Presets to use: uk | spain (default uk)");
-  cmd->add_flag("--sor", o->sor, "Run statistical outlier removal in FEC and the PCL reference");
+  cmd->add_option("--repeat", o->spec.repeat, "Passes over the frames (default 1)");
+  cmd->add_option("--variety", o->spec.variety, "Presets to use: uk | spain (default uk)");
+  cmd->add_flag("--sor", o->spec.sor, "Run statistical outlier removal in FEC and the PCL reference");
   cmd->add_option("--pipelines", o->pipelines, "Comma-separated subset of oes,org,fec,pcl to time (default all)");
-  cmd->add_flag("--track", o->track,
+  cmd->add_flag("--track", o->spec.track,
                 "Also time sizing + the temporal filter on the OES detections (keys sizing.*, tracking.* of the "
                 "OES preset and --set)");
   add_config_options(cmd, o->common);

@@ -57,14 +57,14 @@ std::vector<RgbdFrame> bench_frames(const BenchPotatoOptions& o, std::optional<i
 
 nlohmann::json timing_json(const PipelineTiming& t, const PipelineTiming& baseline) {
   nlohmann::json stages = nlohmann::json::object();
-  for (const auto& s : t.stages) stages[s.name] = json_number(s.total_ms / double(t.frames));
+  for (const auto& s : t.stage_ms_per_frame()) stages[s.name] = json_number(s.ms);
   return {{"ms_per_frame", json_number(t.ms_per_frame())},
           {"fps", json_number(t.fps())},
           {"cpu_ms_per_frame", json_number(t.cpu_ms_per_frame())},
           {"cpu_fps", json_number(t.cpu_fps())},
           {"frames_with_target", t.clusters},
           {"stages_ms", stages},
-          {"ratio_to_baseline", json_number(t.cpu_ms_per_frame() / baseline.cpu_ms_per_frame())}};
+          {"ratio_to_baseline", json_number(pipeline::time_ratio(t, baseline).cpu)}};
 }
 
 void run(const BenchPotatoOptions& o) {
@@ -95,9 +95,8 @@ void run(const BenchPotatoOptions& o) {
     out["presets"][name] = timing_json(t, baseline);
     if (o.common.json) continue;
     std::printf("  %-14s %7.2f ms/frame %6.1f fps (CPU %.2f ms, %.1f fps, %.1fx baseline)  [", name.c_str(),
-                t.ms_per_frame(), t.fps(), t.cpu_ms_per_frame(), t.cpu_fps(),
-                t.cpu_ms_per_frame() / baseline.cpu_ms_per_frame());
-    for (const auto& s : t.stages) std::printf(" %s %.2f", s.name.c_str(), s.total_ms / double(t.frames));
+                t.ms_per_frame(), t.fps(), t.cpu_ms_per_frame(), t.cpu_fps(), pipeline::time_ratio(t, baseline).cpu);
+    for (const auto& s : t.stage_ms_per_frame()) std::printf(" %s %.2f", s.name.c_str(), s.ms);
     std::printf(" ]  target in %ld of %ld frames\n", t.clusters, t.frames);
   }
   if (o.common.json) print_json(out);

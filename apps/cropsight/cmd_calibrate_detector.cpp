@@ -21,6 +21,7 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/nn/center_net.hpp"
+#include "cropsight/nn/detector_eval.hpp"
 #include "detector_cli.hpp"
 
 namespace cropsight::cli {
@@ -77,10 +78,9 @@ void add_calibrate_detector(CLI::App& app) {
     if (o->data.classes.empty())
       for (const auto& c : net.class_names()) o->data.classes += (o->data.classes.empty() ? "" : ",") + c;
     nn::DetectionDataset set = load_dataset(o->data);
-    const Split split = split_indices(set.samples.size(), o->val_split, o->split_seed);
-    std::vector<nn::DetectionSample> train;
-    for (auto i : split.train) train.push_back(std::move(set.samples[i]));
-    const std::vector<float> t = calibrate_masks(net, train);
+    const std::vector<nn::DetectionSample> train =
+        nn::split_detection_set(std::move(set.samples), o->val_split, o->split_seed).train;
+    const std::vector<float> t = nn::calibrate_center_net_masks(net, train);
     const std::string source = o->data.coco.empty() ? o->data.voc : o->data.coco;
     if (t.empty()) throw Error(source, "no training image has masks (COCO polygons): nothing to calibrate");
     net.save(o->out);

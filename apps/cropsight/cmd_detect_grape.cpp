@@ -19,12 +19,12 @@
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/threads.hpp"
-#include "cropsight/core/timer.hpp"
 #include "cropsight/io/cloud_io.hpp"
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/pipeline/grape/make_pipeline.hpp"
 #include "cropsight/pipeline/grape/pipeline.hpp"
+#include "cropsight/pipeline/grape/truth.hpp"
 #include "grape_cli.hpp"
 #include "grape_segmenter_options.hpp"
 
@@ -44,9 +44,6 @@ struct DetectGrapeOptions {
 nlohmann::json vec3(const Eigen::Vector3f& v) { return {v.x(), v.y(), v.z()}; }
 
 nlohmann::json bunch_json(const pipeline::grape::Bunch& b, const std::string& file) {
-  std::vector<long> counts(6, 0);  // the dataset's labels 0-5
-  for (int l : b.cloud.labels)
-    if (l >= 0 && l < 6) ++counts[std::size_t(l)];
   nlohmann::json cut = nullptr;
   if (b.cut_point)
     cut = {{"position_m", vec3(b.cut_point->position)},
@@ -55,7 +52,7 @@ nlohmann::json bunch_json(const pipeline::grape::Bunch& b, const std::string& fi
   return {{"file", file},
           {"roi", {b.roi.x, b.roi.y, b.roi.width, b.roi.height}},
           {"points", b.cloud.size()},
-          {"label_counts", counts},
+          {"label_counts", pipeline::grape::label_counts(b.cloud)},
           {"cut_point", cut}};
 }
 
@@ -75,9 +72,7 @@ void run(const DetectGrapeOptions& o) {
   if (!o.detections.empty()) given = pipeline::grape::read_coco_detections(o.detections, o.image_id);
 
   // Everything is computed before anything is written: no partial output on a failure.
-  const Stopwatch clock;
   const pipeline::grape::FrameResult r = o.detections.empty() ? pipe.process(frame) : pipe.process(frame, given);
-  const double ms = clock.ms();
   const std::string source = o.detections.empty() ? o.detector : o.detections;
   for (const auto& d : r.outside) {
     const Box2D& b = d.box;
@@ -86,12 +81,10 @@ void run(const DetectGrapeOptions& o) {
                  source.c_str(), d.annotation, b.x, b.y, b.width, b.height, frame.depth.width, frame.depth.height);
   }
   nlohmann::json bunches = nlohmann::json::array();
-  std::size_t with_cut = 0;
   for (std::size_t i = 0; i < r.bunches.size(); ++i) {
     char name[32];
     std::snprintf(name, sizeof name, "bunch_%03zu.ply", i);
     bunches.push_back(bunch_json(r.bunches[i], name));
-    with_cut += r.bunches[i].cut_point.has_value();
   }
   nlohmann::json j = {{"color", o.color},
                       {"depth", o.depth},
@@ -108,11 +101,11 @@ void run(const DetectGrapeOptions& o) {
   out.commit("grape bunches");
   if (o.common.json) {
     j["out"] = o.out;
-    j["ms"] = json_number(ms);
+    j["ms"] = json_number(r.timer.total_ms());
     print_json(j);
   } else {
     std::printf("%zu detections -> %zu bunches (%zu with a cut point) in %.0f ms -> %s\n", r.detections.size(),
-                r.bunches.size(), with_cut, ms, o.out.c_str());
+                r.bunches.size(), r.cut_points(), r.timer.total_ms(), o.out.c_str());
   }
 }
 }  // namespace detect_grape_cmd

@@ -72,23 +72,6 @@ class Inputs {
   std::unique_ptr<io::SequenceReader> seq_;
 };
 
-nlohmann::json detections_json(const std::vector<Detection2D>& dets, const std::vector<std::string>& names,
-                               const std::vector<std::optional<double>>& angles) {
-  nlohmann::json boxes = nlohmann::json::array();
-  for (std::size_t i = 0; i < dets.size(); ++i) {
-    const Detection2D& d = dets[i];
-    nlohmann::json b{{"class", names[std::size_t(d.class_id)]},
-                     {"score", d.score},
-                     {"x1", d.x1},
-                     {"y1", d.y1},
-                     {"x2", d.x2},
-                     {"y2", d.y2}};
-    if (i < angles.size()) b["angle"] = angles[i] ? nlohmann::json(*angles[i]) : nlohmann::json(nullptr);
-    boxes.push_back(b);
-  }
-  return boxes;
-}
-
 void run(const Options& o) {
   // The outputs first: a bad --out or --overlay costs no model load and reads no image.
   const io::OutputPolicy policy = output_policy("detect potato", o.force, {o.images, o.data, o.model, o.common.config});
@@ -114,11 +97,7 @@ void run(const Options& o) {
     // The axes are drawn on the overlays and printed in the JSON lines; without either, they are
     // not estimated (the detection files hold boxes only).
     std::vector<std::optional<double>> angles;
-    if (overlay || o.common.json)
-      for (const Detection2D& d : dets) {
-        const auto r = pipeline.orient(in.color, in.depth_m, d);
-        angles.push_back(r.ok ? std::optional<double>(r.angle_rad) : std::nullopt);
-      }
+    if (overlay || o.common.json) angles = pipeline.box_angles(in.color, in.depth_m, dets);
     if (overlay) {
       pipeline::potato::draw_detections(in.color, dets, angles);
       io::write_color(overlay->path() / (in.stem + ".png"), in.color);

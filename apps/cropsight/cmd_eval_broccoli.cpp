@@ -81,7 +81,7 @@ void run(const EvalOptions& o) {
       "  AP50 %.4f  visible %.4f  at any depth (%lld / %lld heads the sensor measured, in or out of the window)\n",
       r.ap50_any_depth, r.ap50_visible_any_depth, static_cast<long long>(r.truth_heads_any_depth),
       static_cast<long long>(r.truth_heads_visible_any_depth));
-  std::printf("  %.1f fps (%.2f ms/frame, pipeline only)\n", r.fps(), r.frames ? r.pipeline_ms / r.frames : 0.0);
+  std::printf("  %.1f fps (%.2f ms/frame, pipeline only)\n", r.fps(), r.ms_per_frame());
   if (figures) print_tracking_summary(*figures);
 }
 }  // namespace eval_broccoli_cmd

@@ -10,7 +10,7 @@
 // value for every class.
 //
 // With --val-split only the held-out images of that split are scored: the same images `train
-// detector` held out with the same fraction and seed (split_indices of detector_cli.hpp).
+// detector` held out with the same fraction and seed (nn::split_detection_set).
 // --classes defaults to the model's class names, so class ids match the model's.
 #include <cmath>
 #include <cstdio>
@@ -44,8 +44,7 @@ void run(EvalDetectorOptions o) {
   std::vector<nn::DetectionSample> scored;
   nlohmann::json names = nlohmann::json::array();
   if (o.val_split > 0) {
-    const Split split = split_indices(set.samples.size(), o.val_split, o.split_seed);
-    for (auto i : split.val) scored.push_back(std::move(set.samples[i]));
+    scored = nn::split_detection_set(std::move(set.samples), o.val_split, o.split_seed).val;
   } else {
     scored = std::move(set.samples);
   }

@@ -18,6 +18,7 @@
 #include "cropsight/core/timer.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/pipeline/grape/segmenter.hpp"
+#include "cropsight/pipeline/grape/truth.hpp"
 #include "grape_segmenter_options.hpp"
 
 namespace cropsight::cli {
@@ -42,12 +43,10 @@ void run(const SegmentGrapeOptions& o) {
   cloud.labels = segmenter.segment(cloud);
   const double ms = clock.ms();
   io::write_grape_text(o.out, cloud);
-  std::vector<long> counts(6, 0);
-  for (int l : cloud.labels)
-    if (l >= 0 && l < 6) ++counts[std::size_t(l)];
   if (o.common.json) {
-    nlohmann::json j = {{"input", o.input},       {"out", o.out},          {"points", cloud.size()},
-                        {"label_counts", counts}, {"ms", json_number(ms)}, {"mode", segmenter.mode()}};
+    nlohmann::json j = {{"input", o.input},       {"out", o.out},
+                        {"points", cloud.size()}, {"label_counts", pipeline::grape::label_counts(cloud)},
+                        {"ms", json_number(ms)},  {"mode", segmenter.mode()}};
     GrapeSegmenterOptions::describe(cfg, j);
     print_json(j);
   } else {

@@ -17,68 +17,36 @@
 #include "cropsight/core/timer.hpp"
 #include "cropsight/nn/center_net.hpp"
 #include "cropsight/nn/detection_augment.hpp"
+#include "cropsight/nn/detector_eval.hpp"
 #include "detector_cli.hpp"
+#include "train_detector_options.hpp"
 
 namespace cropsight::cli {
 namespace train_detector_cmd {
 
-struct TrainDetectorOptions {
-  DatasetOptions data;
-  std::string out, input, checkpoint;
-  int epochs = 0, width = 0, batch = 0, threads = 1;
-  double lr = 0, val_split = 0.2;
-  std::uint64_t seed = 1, split_seed = 1;
-  bool resume = false, no_augment = false, force = false, quiet = false;
-  CommonOptions common;
-};
-
-// The outputs, checked before minutes of training; returns the checkpoint's path. The checkpoint is
-// an output too: started afresh (an existing one replaced) only with --force, resumed with --resume.
-std::string checked_outputs(const TrainDetectorOptions& o) {
-  if (o.out.empty()) throw Error("--out", "give the model file to write");
-  const io::OutputPolicy policy =
-      output_policy("train detector", o.force, {o.data.coco, o.data.voc, o.data.images, o.common.config});
-  io::check_output_file(o.out, policy);
-  const std::string checkpoint = o.checkpoint.empty() ? o.out + ".ckpt" : o.checkpoint;
-  if (o.resume)
-    io::check_not_an_input(checkpoint, policy);
-  else
-    io::check_output_file(checkpoint, policy);
-  return checkpoint;
+// One progress line on stderr (unless --quiet) and one JSON log entry per epoch.
+nlohmann::json log_epoch(const TrainDetectorOptions& o, const nn::DetectorEpochLog& l, int epochs) {
+  if (!o.quiet)
+    std::fprintf(stderr,
+                 "epoch %d/%d  loss %.4f (heatmap %.4f size %.4f offset %.4f mask %.4f)  held-out AP50 %s  %.1f s\n",
+                 l.epoch, epochs, l.loss, l.heatmap_loss, l.size_loss, l.offset_loss, l.mask_loss,
+                 l.val_ap50 < 0 ? "-" : std::to_string(l.val_ap50).substr(0, 5).c_str(), l.seconds);
+  return {{"epoch", l.epoch},
+          {"loss", json_number(l.loss)},
+          {"val_ap50", l.val_ap50 < 0 ? nlohmann::json() : json_number(l.val_ap50)},
+          {"seconds", json_number(l.seconds)}};
 }
 
-// Long on purpose: options to configs, the split, the training with its per-epoch log and the summary.
 void run(const TrainDetectorOptions& o) {
-  const std::string checkpoint = checked_outputs(o);
-  const ConfigMap map = o.common.config_map();
-  const std::string where = o.common.config.empty() ? "--set" : o.common.config;
-  // Every key belongs to one of the two sections: a key without its section (`mask_weight` for
-  // `detector.mask_weight`) would otherwise be ignored without a word.
-  for (const auto& [key, value] : map)
-    if (key.rfind("detector.", 0) != 0 && key.rfind("augment.", 0) != 0)
-      throw Error(where, "unknown key '" + key + "' (keys are detector.* or augment.*)");
-  const nn::DetectionDataset set = load_dataset(o.data);
-  nn::CenterNetConfig cfg;
-  nn::DetectionAugmentConfig aug;
-  apply_config(cfg, map, where, "detector.");
-  apply_config(aug, map, where, "augment.");
-  std::string names;
-  for (const auto& c : set.classes) names += (names.empty() ? "" : ",") + c;
-  cfg.class_names = names;
-  if (!o.input.empty()) std::tie(cfg.input_width, cfg.input_height) = parse_input_size(o.input);
-  if (o.epochs) cfg.epochs = o.epochs;
-  if (o.width) cfg.width = o.width;
-  if (o.batch) cfg.batch_size = o.batch;
-  if (o.lr > 0) cfg.lr = o.lr;
-  cfg.threads = o.threads;
-  cfg.seed = o.seed;
-  cfg.validate("train detector");
-
-  const Split split = split_indices(set.samples.size(), o.val_split, o.split_seed);
-  std::vector<nn::DetectionSample> train, val;
+  const std::string checkpoint = train_detector_checkpoint(o);
+  nn::DetectorTrainingConfig t = train_detector_preset(o);
+  nn::DetectionDataset set = load_dataset(o.data);
+  apply_train_detector_options(o, set.classes, t.detector);
+  const nn::CenterNetConfig& cfg = t.detector;
+  const nn::DetectionSplit split = nn::split_detection_set(std::move(set.samples), o.val_split, o.split_seed);
+  const std::vector<nn::DetectionSample>& train = split.train;
   nlohmann::json val_names = nlohmann::json::array();
-  for (auto i : split.train) train.push_back(set.samples[i]);
-  for (auto i : split.val) val.push_back(set.samples[i]), val_names.push_back(set.samples[i].name);
+  for (const auto& s : split.val) val_names.push_back(s.name);
 
   if (!o.resume) {  // the inputs are read: an earlier checkpoint goes (--force said so, checked_outputs)
     std::error_code ec;
@@ -87,37 +55,24 @@ void run(const TrainDetectorOptions& o) {
   nn::CenterNet net(cfg);
   if (!o.quiet)
     std::fprintf(stderr, "train detector: %zu train / %zu held-out images, %zu classes, %zu parameters, input %dx%d\n",
-                 train.size(), val.size(), set.classes.size(), net.parameter_count(), cfg.input_width,
+                 train.size(), split.val.size(), set.classes.size(), net.parameter_count(), cfg.input_width,
                  cfg.input_height);
   const Stopwatch clock;
   std::function<nn::DetectionSample(const nn::DetectionSample&, std::uint64_t)> augment;
   if (!o.no_augment)
     augment = [&](const nn::DetectionSample& s, std::uint64_t draw) {
-      return nn::augment_detection(s, train, aug, draw);
+      return nn::augment_detection(s, train, t.augment, draw);
     };
   nlohmann::json epochs = nlohmann::json::array();
   const auto logs = net.train(
-      train, val, augment,
-      [&](const nn::DetectorEpochLog& l) {
-        if (!o.quiet)
-          std::fprintf(
-              stderr,
-              "epoch %d/%d  loss %.4f (heatmap %.4f size %.4f offset %.4f mask %.4f)  held-out AP50 %s  %.1f s\n",
-              l.epoch, cfg.epochs, l.loss, l.heatmap_loss, l.size_loss, l.offset_loss, l.mask_loss,
-              l.val_ap50 < 0 ? "-" : std::to_string(l.val_ap50).substr(0, 5).c_str(), l.seconds);
-        epochs.push_back({{"epoch", l.epoch},
-                          {"loss", json_number(l.loss)},
-                          {"val_ap50", l.val_ap50 < 0 ? nlohmann::json() : json_number(l.val_ap50)},
-                          {"seconds", json_number(l.seconds)}});
-      },
+      train, split.val, augment, [&](const nn::DetectorEpochLog& l) { epochs.push_back(log_epoch(o, l, cfg.epochs)); },
       checkpoint);
   // Mask thresholds per class from the training images (never the held-out ones).
-  const std::vector<float> mask_thresholds = calibrate_masks(net, train);
-  if (!mask_thresholds.empty()) {
+  const std::vector<float> mask_thresholds = nn::calibrate_center_net_masks(net, train);
+  if (!mask_thresholds.empty() && !o.quiet) {
     std::string list;
-    for (float t : mask_thresholds) list += (list.empty() ? "" : " ") + std::to_string(t).substr(0, 4);
-    if (!o.quiet)
-      std::fprintf(stderr, "mask thresholds per class (best IoU on the training images): %s\n", list.c_str());
+    for (float v : mask_thresholds) list += (list.empty() ? "" : " ") + std::to_string(v).substr(0, 4);
+    std::fprintf(stderr, "mask thresholds per class (best IoU on the training images): %s\n", list.c_str());
   }
   net.save(o.out);
   const double seconds = clock.seconds();

@@ -1,14 +1,11 @@
 // The detector commands' shared options (detector_cli.hpp).
 #include "detector_cli.hpp"
 
-#include <algorithm>
 #include <cmath>
-#include <numeric>
-#include <random>
+#include <cstdio>
 
 #include "cli_common.hpp"
 #include "cropsight/core/error.hpp"
-#include "cropsight/nn/detector_eval.hpp"
 
 namespace cropsight::cli {
 
@@ -30,22 +27,6 @@ nn::DetectionDataset load_dataset(const DatasetOptions& o) {
   return set;
 }
 
-Split split_indices(std::size_t n, double fraction, std::uint64_t seed) {
-  if (!(fraction >= 0 && fraction < 1)) throw Error("--val-split", "must be in [0, 1)");
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::mt19937_64 rng(seed);
-  std::shuffle(order.begin(), order.end(), rng);
-  std::size_t k = std::size_t(std::lround(fraction * double(n)));
-  if (fraction > 0 && n >= 2) k = std::clamp<std::size_t>(k, 1, n - 1);
-  Split s;
-  s.val.assign(order.begin(), order.begin() + std::ptrdiff_t(k));
-  s.train.assign(order.begin() + std::ptrdiff_t(k), order.end());
-  std::sort(s.val.begin(), s.val.end());
-  std::sort(s.train.begin(), s.train.end());
-  return s;
-}
-
 std::pair<int, int> parse_input_size(const std::string& text) {
   int w = 0, h = 0;
   char x = 0;
@@ -56,13 +37,6 @@ std::pair<int, int> parse_input_size(const std::string& text) {
 
 std::string input_size_text(const nn::CenterNetConfig& cfg) {
   return std::to_string(cfg.input_width) + "x" + std::to_string(cfg.input_height);
-}
-
-std::vector<float> calibrate_masks(nn::CenterNet& net, const std::vector<nn::DetectionSample>& train) {
-  if (std::none_of(train.begin(), train.end(), [](const auto& s) { return !s.masks.empty(); })) return {};
-  const std::vector<float> t = nn::calibrate_mask_thresholds(net, train);
-  net.set_mask_thresholds(t);
-  return t;
 }
 
 std::vector<double> rounded_thresholds(const std::vector<float>& t) {

@@ -39,4 +39,21 @@ nlohmann::json harvest_json(const pipeline::potato::HarvestTarget& t) {
   return j;
 }
 
+nlohmann::json detections_json(const std::vector<Detection2D>& dets, const std::vector<std::string>& names,
+                               const std::vector<std::optional<double>>& angles) {
+  nlohmann::json boxes = nlohmann::json::array();
+  for (std::size_t i = 0; i < dets.size(); ++i) {
+    const Detection2D& d = dets[i];
+    nlohmann::json b{{"class", names[std::size_t(d.class_id)]},
+                     {"score", d.score},
+                     {"x1", d.x1},
+                     {"y1", d.y1},
+                     {"x2", d.x2},
+                     {"y2", d.y2}};
+    if (i < angles.size()) b["angle"] = angles[i] ? nlohmann::json(*angles[i]) : nlohmann::json(nullptr);
+    boxes.push_back(b);
+  }
+  return boxes;
+}
+
 }  // namespace cropsight::cli

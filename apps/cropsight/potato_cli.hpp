@@ -1,7 +1,11 @@
 #pragma once
-// Shared by the potato commands: the detector a preset and --set choose.
+// Shared by the potato commands: the pipeline and detector a preset and --set choose, and the JSON
+// of the library's potato results.
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "cli_common.hpp"
 #include "cropsight/core/detection2d.hpp"
@@ -23,5 +27,10 @@ std::unique_ptr<Detector2D> potato_detector(const CommonOptions& common);
 
 /// One harvest message (paper Table 3.2 and the fields that follow it) as one JSON object.
 nlohmann::json harvest_json(const pipeline::potato::HarvestTarget& t);
+
+/// detect potato's boxes of one image: [{class, score, x1, y1, x2, y2[, angle]}], class from
+/// `names`, angle (rad, null where none) for each box `angles` covers.
+nlohmann::json detections_json(const std::vector<Detection2D>& dets, const std::vector<std::string>& names,
+                               const std::vector<std::optional<double>>& angles);
 
 }  // namespace cropsight::cli

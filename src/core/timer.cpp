@@ -36,4 +36,10 @@ StageTimer StageTimer::since(const std::vector<Stage>& earlier) const {
   return out;
 }
 
+std::vector<StageMs> per_frame_ms(const std::vector<StageTimer::Stage>& stages, long frames) {
+  std::vector<StageMs> out;
+  for (const auto& s : stages) out.push_back({s.name, frames > 0 ? s.total_ms / double(frames) : 0.0});
+  return out;
+}
+
 }  // namespace cropsight

@@ -1,4 +1,5 @@
-// Detector training augmentation (include/cropsight/nn/detection_augment.hpp), on OpenCV.
+// Detector training augmentation and the training preset's sections
+// (include/cropsight/nn/detection_augment.hpp), on OpenCV.
 #include "cropsight/nn/detection_augment.hpp"
 
 #include <algorithm>
@@ -6,6 +7,8 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <random>
+
+#include "cropsight/core/error.hpp"
 
 namespace cropsight::nn {
 
@@ -151,6 +154,16 @@ DetectionSample augment_detection(const DetectionSample& s, const std::vector<De
   out = warp(out, ax, W / 2.0 - ax * cx, z, H / 2.0 - z * cy, W, H, cfg.min_visible);
   colour_jitter(out.image, cfg, rng);
   return out;
+}
+
+DetectorTrainingConfig detector_training_config(const ConfigMap& values, const std::string& where) {
+  for (const auto& [key, value] : values)
+    if (key.rfind("detector.", 0) != 0 && key.rfind("augment.", 0) != 0)
+      throw Error(where, "unknown key '" + key + "' (keys are detector.* or augment.*)");
+  DetectorTrainingConfig cfg;
+  apply_config(cfg.detector, values, where, "detector.");
+  apply_config(cfg.augment, values, where, "augment.");
+  return cfg;
 }
 
 }  // namespace cropsight::nn

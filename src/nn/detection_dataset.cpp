@@ -6,7 +6,9 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numeric>
 #include <opencv2/imgproc.hpp>
+#include <random>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
@@ -170,6 +172,22 @@ DetectionDataset read_voc_detection(const std::filesystem::path& voc_dir, const 
     out.samples.push_back(std::move(s));
   }
   return out;
+}
+
+DetectionSplit split_detection_set(std::vector<DetectionSample> samples, double fraction, std::uint64_t seed) {
+  if (!(fraction >= 0 && fraction < 1)) throw Error("--val-split", "must be in [0, 1)");
+  const std::size_t n = samples.size();
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::mt19937_64 rng(seed);
+  std::shuffle(order.begin(), order.end(), rng);
+  std::size_t k = std::size_t(std::lround(fraction * double(n)));
+  if (fraction > 0 && n >= 2) k = std::clamp<std::size_t>(k, 1, n - 1);
+  std::vector<bool> held_out(n, false);
+  for (std::size_t i = 0; i < k; ++i) held_out[order[i]] = true;
+  DetectionSplit s;
+  for (std::size_t i = 0; i < n; ++i) (held_out[i] ? s.val : s.train).push_back(std::move(samples[i]));
+  return s;
 }
 
 }  // namespace cropsight::nn

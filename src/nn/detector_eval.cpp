@@ -307,4 +307,11 @@ DetectorScore evaluate_detector(Detector2D& detector, const std::vector<Detectio
   return ev.score();
 }
 
+std::vector<float> calibrate_center_net_masks(CenterNet& net, const std::vector<DetectionSample>& samples) {
+  if (std::none_of(samples.begin(), samples.end(), [](const auto& s) { return !s.masks.empty(); })) return {};
+  const std::vector<float> t = calibrate_mask_thresholds(net, samples);
+  net.set_mask_thresholds(t);
+  return t;
+}
+
 }  // namespace cropsight::nn

@@ -1,6 +1,8 @@
 // COCO / VOC detection sets and the training augmentation of the detector.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/nn/detection_augment.hpp"
@@ -135,6 +137,42 @@ TEST(DetectionAugment, IsDeterministicAndKeepsBoxesInTheFrame) {
       EXPECT_GE(d.width(), 2.f);
     }
   }
+}
+
+// The split train / eval / tune-mask-thresholds share: sizes, set order, the same parts for one
+// seed, every sample in exactly one part.
+TEST(DetectionDataset, HeldOutSplitIsDeterministicAndKeepsTheSetsOrder) {
+  std::vector<DetectionSample> samples(10);
+  for (int i = 0; i < 10; ++i) samples[std::size_t(i)].name = std::to_string(i);
+  const auto names = [](const std::vector<DetectionSample>& part) {
+    std::vector<int> out;
+    for (const auto& s : part) out.push_back(std::stoi(s.name));
+    return out;
+  };
+  const DetectionSplit a = split_detection_set(samples, 0.2, 3), b = split_detection_set(samples, 0.2, 3);
+  ASSERT_EQ(a.val.size(), 2u);
+  EXPECT_EQ(a.train.size(), 8u);
+  EXPECT_EQ(names(a.val), names(b.val));
+  std::vector<int> all = names(a.train);
+  EXPECT_TRUE(std::is_sorted(all.begin(), all.end()));
+  for (int v : names(a.val)) all.push_back(v);
+  std::sort(all.begin(), all.end());
+  EXPECT_EQ(all, (std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7, 8, 9}));
+  EXPECT_EQ(split_detection_set(samples, 0.01, 3).val.size(), 1u);  // a fraction > 0 holds out one
+  EXPECT_TRUE(split_detection_set(samples, 0.0, 3).val.empty());
+  EXPECT_EQ(error_message([&] { split_detection_set(samples, 1.0, 3); }).rfind("--val-split", 0), 0u);
+}
+
+// A training preset's key must name its section: `mask_weight` alone would be ignored.
+TEST(DetectionAugment, TrainingConfigReadsBothSectionsAndRefusesOtherKeys) {
+  const DetectorTrainingConfig cfg =
+      detector_training_config({{"detector.epochs", "3"}, {"augment.flip", "0.1"}}, "preset.yaml");
+  EXPECT_EQ(cfg.detector.epochs, 3);
+  EXPECT_DOUBLE_EQ(cfg.augment.flip, 0.1);
+  EXPECT_NE(error_message([] {
+              detector_training_config({{"mask_weight", "2"}}, "preset.yaml");
+            }).find("preset.yaml: unknown key 'mask_weight'"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -63,4 +63,15 @@ class StageTimer {
   std::vector<Stage> stages_;
 };
 
+/// One stage's mean time per frame, ms.
+struct StageMs {
+  std::string name;
+  double ms = 0.0;
+};
+
+/// Each stage's total over `frames` (0 when there are none), in stage order. A stage that ran on
+/// some frames only is averaged over all of them, so that the stages add up to the time per frame
+/// (Stage::mean_ms is per run of the stage).
+std::vector<StageMs> per_frame_ms(const std::vector<StageTimer::Stage>& stages, long frames);
+
 }  // namespace cropsight

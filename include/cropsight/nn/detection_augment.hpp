@@ -13,6 +13,7 @@
 // Boxes follow every geometric step, are clipped to the frame and dropped when less than
 // `min_visible` of their area remains or they become thinner than 2 pixels; masks follow too.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "cropsight/core/config.hpp"
@@ -42,6 +43,19 @@ struct DetectionAugmentConfig {
     v("min_visible", min_visible, "fraction of a box's area that must stay in the frame", Range::within(0, 1));
   }
 };
+
+/// What `train detector` reads from a preset and --set: detector.* (the network) and augment.*
+/// (the augmentation above).
+struct DetectorTrainingConfig {
+  CenterNetConfig detector;
+  DetectionAugmentConfig augment;
+};
+
+/// `values` read into both sections over their defaults. Throws Error(where, ...) on a key of
+/// neither section (a key without its section, `mask_weight` for `detector.mask_weight`, would
+/// otherwise be ignored without a word) or a bad value. Not validated: the caller sets the class
+/// names and its options first.
+DetectorTrainingConfig detector_training_config(const ConfigMap& values, const std::string& where);
 
 /// A new sample from `s` (see above); `pool` supplies the mosaic and copy-paste images (may
 /// hold `s` itself; an empty pool skips both). Deterministic in `draw`.

@@ -11,6 +11,7 @@
 // an image with at least one polygon gets masks, others none. Errors are one line naming the
 // file and the key: Error(ANN.json, "annotations[3]: no 'bbox'"), Error(image, ...) for an image
 // that is missing or does not decode.
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -32,5 +33,14 @@ DetectionDataset read_coco_detection(const std::filesystem::path& annotations, c
 /// `classes` must not be empty.
 DetectionDataset read_voc_detection(const std::filesystem::path& voc_dir, const std::filesystem::path& images_dir,
                                     const std::vector<std::string>& classes);
+
+/// The held-out split that train detector, eval detector and tune-mask-thresholds share, so that
+/// each scores or calibrates on the images the others held out: round(fraction * n) samples (at
+/// least one when fraction > 0 and n >= 2) drawn with `seed` are `val`, the others `train`; each
+/// part in the set's order. Throws Error("--val-split", ...) unless 0 <= fraction < 1.
+struct DetectionSplit {
+  std::vector<DetectionSample> train, val;
+};
+DetectionSplit split_detection_set(std::vector<DetectionSample> samples, double fraction, std::uint64_t seed);
 
 }  // namespace cropsight::nn

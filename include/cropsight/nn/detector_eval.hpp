@@ -91,4 +91,8 @@ class MaskCalibration {
 /// MaskCalibration over `samples` with `detector`'s heads (a CenterNet or CenterNetOnnx).
 std::vector<float> calibrate_mask_thresholds(Detector2D& detector, const std::vector<DetectionSample>& samples);
 
+/// calibrate_mask_thresholds over `samples`, set on `net` (CenterNet::set_mask_thresholds) and
+/// returned; empty, and nothing set, when no sample has masks (boxes alone calibrate nothing).
+std::vector<float> calibrate_center_net_masks(CenterNet& net, const std::vector<DetectionSample>& samples);
+
 }  // namespace cropsight::nn

@@ -22,7 +22,18 @@ struct PipelineTiming {
   double cpu_ms_per_frame() const { return frames ? cpu_ms / double(frames) : 0.0; }
   double cpu_fps() const { return cpu_ms > 0 ? 1000.0 * double(frames) / cpu_ms : 0.0; }
   double clusters_per_frame() const { return frames ? double(clusters) / double(frames) : 0.0; }
+  std::vector<StageMs> stage_ms_per_frame() const { return per_frame_ms(stages, frames); }
 };
+
+/// How many times one pipeline's time per frame is another's: the figure that holds on a shared
+/// machine when both were timed in the same process.
+struct SpeedRatio {
+  double wall = 0.0;  ///< wall clock
+  double cpu = 0.0;   ///< thread CPU time
+};
+
+/// `num`'s time per frame over `den`'s, wall clock and CPU each; 0 where `den` took no time.
+SpeedRatio time_ratio(const PipelineTiming& num, const PipelineTiming& den);
 
 /// CPU time of the calling thread, ms: on a shared machine it counts only the cycles the pipeline
 /// itself used (single-threaded), so it is robust against other processes.

@@ -102,6 +102,16 @@ measure::OrientationResult Pipeline::orient(const ColorImage& color, const Image
   return r;
 }
 
+std::vector<std::optional<double>> Pipeline::box_angles(const ColorImage& color, const Image<float>& depth_m,
+                                                        const std::vector<Detection2D>& boxes) const {
+  std::vector<std::optional<double>> angles;
+  for (const Detection2D& box : boxes) {
+    const measure::OrientationResult r = orient(color, depth_m, box);
+    angles.push_back(r.ok ? std::optional<double>(r.angle_rad) : std::nullopt);
+  }
+  return angles;
+}
+
 void Pipeline::orient_target(const RgbdFrame& frame, const Image<float>& depth_m, FrameResult& r) {
   HarvestTarget& t = r.target;
   const measure::OrientationResult o = orient(frame.color, depth_m, t.box);

@@ -34,7 +34,9 @@ struct Figures {
   std::int64_t truth_heads_any_depth = 0, truth_heads_visible_any_depth = 0;
   double pipeline_ms = 0.0;  ///< total wall-clock time in Detector::process (I/O excluded)
   double fps() const { return pipeline_ms > 0 ? 1000.0 * double(frames) / pipeline_ms : 0.0; }
+  double ms_per_frame() const { return frames ? pipeline_ms / double(frames) : 0.0; }
   std::vector<StageTimer::Stage> stages;  ///< per-stage totals
+  std::vector<StageMs> stage_ms_per_frame() const { return per_frame_ms(stages, frames); }
 };
 
 /// Runs a pipeline over frames with labels and accumulates Table I and II metrics of its detector.

@@ -6,6 +6,7 @@
 // Pixels: x = column, y = row, origin top-left. Points: camera frame (x right, y down, z forward),
 // metres.
 #include <Eigen/Core>
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
@@ -44,6 +45,10 @@ struct FrameResult {
   std::vector<Detection> outside;     ///< bunch / peduncle boxes wholly outside the image
   std::vector<Bunch> bunches;         ///< one per ROI with at least 3 points, in ROI order
   StageTimer timer;  ///< this frame's wall-clock stages: detect (with a detector), roi, segment, cut_point
+  /// Bunches with a cut point.
+  std::size_t cut_points() const {
+    return std::size_t(std::count_if(bunches.begin(), bunches.end(), [](const Bunch& b) { return b.cut_point; }));
+  }
 };
 
 /// Step 5 alone: the cut point of a labelled cloud (m). The points labelled

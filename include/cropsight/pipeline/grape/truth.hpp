@@ -16,6 +16,10 @@ inline const std::vector<int>& grape_named_classes() {
   return classes;
 }
 
+/// Points per label 0-5 of `cloud` (a label outside them is not counted): the dataset's six labels
+/// in id order, as a segmenter or the truth gives them.
+std::vector<long> label_counts(const Cloud& cloud);
+
 /// Loads every labelled cloud (io::read_grape_text) of `files`; throws Error(file, ...).
 std::vector<Cloud> load_grape_clouds(const std::vector<std::filesystem::path>& files);
 

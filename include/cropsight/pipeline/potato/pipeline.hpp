@@ -13,6 +13,7 @@
 // Not thread-safe: one pipeline per camera.
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,10 @@ class Pipeline {
   /// Step 5 alone on one box: the colourised depth when orientation.input = depth and `depth_m`
   /// (metres) is not empty, else the colour image (detect potato's overlays).
   measure::OrientationResult orient(const ColorImage& color, const Image<float>& depth_m, const Detection2D& box) const;
+  /// orient() on every box: its length axis (rad, counter-clockwise from the image x axis), none
+  /// where the step found no potato in the box (detect potato's overlays and JSON lines).
+  std::vector<std::optional<double>> box_angles(const ColorImage& color, const Image<float>& depth_m,
+                                                const std::vector<Detection2D>& boxes) const;
   /// Starts a new approach: drops the target.
   void reset();
   const Config& config() const { return cfg_; }

@@ -1,4 +1,5 @@
-// Formatting of the broccoli library results for the CLI (text and JSON); nothing is computed here.
+// The broccoli tracking figures (map, sizes, temporal AP) as JSON and text for `eval broccoli
+// --track`; nothing is computed here.
 #include <cmath>
 #include <cstdio>
 
@@ -27,50 +28,7 @@ nlohmann::json fit_json(const std::string& name, const measure::BiasFit& f) {
                       "_offset_mm=" + std::to_string(f.offset_mm)}};
 }
 
-nlohmann::json num_or_null(double v, bool valid) { return valid ? json_number(v) : nlohmann::json(nullptr); }
 }  // namespace
-
-nlohmann::json stages_json(const std::vector<StageTimer::Stage>& stages, long frames) {
-  nlohmann::json j = nlohmann::json::object();
-  for (const auto& s : stages) j[s.name] = frames > 0 ? s.total_ms / double(frames) : 0.0;
-  return j;
-}
-
-nlohmann::json eval_json(const pipeline::broccoli::Figures& r) {
-  const auto& c = r.confusion;
-  nlohmann::json j;
-  j["frames"] = r.frames;
-  j["clusters"] = r.clusters;
-  j["truth_heads"] = r.truth_heads;
-  j["detections"] = r.detections;
-  j["tp"] = c.tp;
-  j["fp"] = c.fp;
-  j["tn"] = c.tn;
-  j["fn"] = c.fn;
-  j["accuracy"] = json_number(c.accuracy());
-  j["precision"] = json_number(c.precision());
-  j["recall"] = json_number(c.recall());
-  j["specificity"] = json_number(c.specificity());
-  j["npv"] = json_number(c.npv());
-  j["f1"] = json_number(c.f1());
-  j["kappa"] = json_number(c.kappa());
-  j["ap50"] = json_number(r.ap50);
-  j["map50_95"] = json_number(r.map50_95);
-  j["truth_heads_in_view"] = r.truth_heads_in_view;
-  j["ap50_in_view"] = json_number(r.ap50_in_view);
-  j["map50_95_in_view"] = json_number(r.map50_95_in_view);
-  j["truth_heads_visible"] = r.truth_heads_visible;
-  j["ap50_visible"] = json_number(r.ap50_visible);
-  j["map50_95_visible"] = json_number(r.map50_95_visible);
-  j["truth_heads_any_depth"] = r.truth_heads_any_depth;
-  j["ap50_any_depth"] = json_number(r.ap50_any_depth);
-  j["truth_heads_visible_any_depth"] = r.truth_heads_visible_any_depth;
-  j["ap50_visible_any_depth"] = json_number(r.ap50_visible_any_depth);
-  j["fps"] = json_number(r.fps());
-  j["ms_per_frame"] = r.frames ? r.pipeline_ms / double(r.frames) : 0.0;
-  j["stages_ms"] = stages_json(r.stages, r.frames);
-  return j;
-}
 
 nlohmann::json tracking_json(const pipeline::broccoli::TrackingFigures& f) {
   nlohmann::json j;
@@ -122,43 +80,6 @@ nlohmann::json tracking_json(const pipeline::broccoli::TrackingFigures& f) {
     j["size_bias_fit"] = fit;
   }
   return j;
-}
-
-nlohmann::json detection_json(const Detection& d, int id) {
-  return {{"id", id},
-          {"score", d.score},
-          {"centroid", {d.centroid.x(), d.centroid.y(), d.centroid.z()}},
-          {"box", {d.box.x, d.box.y, d.box.width, d.box.height}},
-          {"points", d.indices.size()}};
-}
-
-// --track: each head's size and track id, the heads the frame missed (tracking.predict_missed:
-// where the filter expects them; their tracks may still fail to reach the map, compare track_id
-// with --map) and the camera estimate.
-void add_tracking_json(const pipeline::broccoli::FrameResult& r, const tracking::HeadMapper& mapper,
-                       nlohmann::json& line) {
-  nlohmann::json heads = nlohmann::json::array();
-  const auto& measured = mapper.detections();
-  const std::size_t first = measured.size() - r.detections.size();
-  for (std::size_t k = 0; k < r.detections.size(); ++k) {
-    const auto& m = measured[first + k];
-    heads.push_back({{"id", int(k) + 1},
-                     {"track_id", m.track_id},
-                     {"diameter_mm", num_or_null(m.size.diameter_mm, m.size.valid)},
-                     {"bbox_mm", num_or_null(m.size.bbox_mm, m.size.valid)},
-                     {"hull_mm", num_or_null(m.size.hull_mm, m.size.valid)},
-                     {"harvestable", m.size.harvestable},
-                     {"field", {m.field_position.x(), m.field_position.y(), m.field_position.z()}}});
-  }
-  line["heads"] = std::move(heads);
-  nlohmann::json predicted = nlohmann::json::array();
-  for (const auto& p : r.predicted)
-    predicted.push_back({{"track_id", p.track_id},
-                         {"points", p.indices.size()},
-                         {"centroid", {p.centroid.x(), p.centroid.y(), p.centroid.z()}}});
-  line["predicted"] = std::move(predicted);
-  const auto& c = r.association.camera_position;
-  line["camera_estimate"] = {c.x(), c.y(), c.z()};
 }
 
 void print_tracking_summary(const pipeline::broccoli::TrackingFigures& f) {
