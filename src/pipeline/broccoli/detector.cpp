@@ -16,8 +16,8 @@
 #include "cropsight/geometry/integral_normals.hpp"
 #include "cropsight/geometry/organized_edges.hpp"
 #include "cropsight/geometry/statistical_outlier.hpp"
+#include "cropsight/nn/center_decode.hpp"
 #include "cropsight/nn/center_onnx.hpp"
-#include "cropsight/nn/detector_eval.hpp"  // boxes_from_heads, masks_from_heads
 #include "cropsight/pipeline/broccoli/depth_encoding.hpp"
 #include "cropsight/segmentation/euclidean_clustering.hpp"
 #include "cropsight/segmentation/organized_clustering.hpp"
