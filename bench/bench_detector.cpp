@@ -30,9 +30,9 @@
 
 #include "cropsight/core/install_paths.hpp"
 #include "cropsight/io/image_io.hpp"
+#include "cropsight/nn/center_decode.hpp"
 #include "cropsight/nn/center_net.hpp"
 #include "cropsight/nn/center_onnx.hpp"
-#include "cropsight/nn/detector_eval.hpp"
 #include "nn/center_codec.hpp"
 #include "nn/onnx_decode.hpp"
 

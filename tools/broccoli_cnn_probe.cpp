@@ -19,8 +19,8 @@
 #include "broccoli_probe_args.hpp"
 #include "cropsight/eval/detection_ap.hpp"
 #include "cropsight/io/sequence.hpp"
+#include "cropsight/nn/center_decode.hpp"
 #include "cropsight/nn/center_onnx.hpp"
-#include "cropsight/nn/detector_eval.hpp"
 #include "cropsight/pipeline/broccoli/depth_encoding.hpp"
 #include "cropsight/pipeline/broccoli/truth.hpp"
 

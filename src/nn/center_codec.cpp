@@ -1,4 +1,5 @@
-// nn::CenterNet's encoding and decoding (center_codec.hpp): OpenCV only for the letterbox resize.
+// nn::CenterNet's encoding and decoding (center_codec.hpp, center_decode.hpp): OpenCV only for the
+// letterbox resize.
 #include "nn/center_codec.hpp"
 
 #include <algorithm>
@@ -6,6 +7,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/nn/center_decode.hpp"
+#include "nn/mask_upsampling.hpp"
 
 namespace cropsight::nn {
 
@@ -162,6 +165,32 @@ std::vector<Detection2D> decode_heads(const CenterNetHeads& h, const Letterbox& 
     if (d.area() <= 0) continue;
     d.class_id = p.c, d.score = p.score;
     out.push_back(d);
+  }
+  return out;
+}
+
+std::vector<Detection2D> boxes_from_heads(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w,
+                                          int image_h) {
+  const Letterbox lb = Letterbox::fit(image_w, image_h, cfg.input_width, cfg.input_height, OnnxResize::letterbox);
+  return decode_heads(heads, lb, float(cfg.score_threshold), cfg.top_k);
+}
+
+std::vector<GrayImage> masks_from_heads(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w,
+                                        int image_h, float threshold) {
+  MaskScores scores(heads, cfg, image_w, image_h);
+  const std::vector<float> per_class = threshold < 0
+                                           ? cfg.mask_threshold_values()
+                                           : std::vector<float>(std::size_t(std::max(heads.classes, 0)), threshold);
+  std::vector<GrayImage> out;
+  for (int c = 0; c < heads.classes; ++c) {
+    const float t = std::size_t(c) < per_class.size() ? per_class[std::size_t(c)] : 0.5f;
+    GrayImage m(image_w, image_h, 0);
+    for (int v = 0; v < image_h; ++v) {
+      auto* row = m.row(v);
+      const float* score = scores.row(c, v);
+      for (int u = 0; u < image_w; ++u) row[u] = score[u] >= t ? 255 : 0;
+    }
+    out.push_back(std::move(m));
   }
   return out;
 }

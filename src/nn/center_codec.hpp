@@ -2,7 +2,8 @@
 // The libtorch-free half of nn::CenterNet (include/cropsight/nn/center_net.hpp): the letterboxed
 // input blob, the training targets (CenterNet's Gaussian centre heatmap, sizes, offsets, masks) and
 // the decoding of the heads into boxes. Plain arrays, so that tests can check encoding and decoding
-// on hand-made tensors and the OpenCV DNN path can decode the same heads.
+// on hand-made tensors and the OpenCV DNN path can decode the same heads. The public face of the
+// decoding, boxes and masks in image pixels, is cropsight/nn/center_decode.hpp.
 #include <cstdint>
 #include <vector>
 

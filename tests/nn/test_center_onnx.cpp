@@ -5,9 +5,9 @@
 #include <fstream>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/nn/center_decode.hpp"
 #include "cropsight/nn/center_net.hpp"
 #include "cropsight/nn/center_onnx.hpp"
-#include "cropsight/nn/detector_eval.hpp"
 #include "testing/testing.hpp"
 
 #ifdef CROPSIGHT_HAVE_ONNX
@@ -174,7 +174,7 @@ TEST(CenterNetOnnx, ForeignFilesAreNamed) {
 }  // namespace
 
 namespace {
-// boxes_from_heads (detector_eval.hpp), which the broccoli detector uses to get boxes and masks
+// boxes_from_heads (center_decode.hpp), which the broccoli detector uses to get boxes and masks
 // from one network run, decodes the heads exactly as detect() does: the shipped grape model (flip
 // test on) on a synthetic image of another size than its input.
 TEST(CenterNetOnnx, BoxesFromHeadsAreTheBoxesOfDetect) {

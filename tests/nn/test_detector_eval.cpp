@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/nn/center_decode.hpp"
 #include "cropsight/nn/detector_eval.hpp"
 
 namespace {

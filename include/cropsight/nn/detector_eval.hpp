@@ -4,14 +4,13 @@
 // matching and 101-point interpolation) and the grape paper's Table 2 2D segmentation metrics of
 // the mask head, per class over the whole image set.
 //
-// Masks: the mask head (sigmoid, stride 4 of the letterboxed input) is mapped back to every image
-// pixel (the pixel centre through the letterbox, the nearest output cell) and thresholded at
-// mask_threshold. Per class c, pixels are counted over all images that carry truth masks
-// (DetectionSample::masks, COCO polygons filled): TP = in the truth and predicted, FN = in the
-// truth only, FP = predicted only. IoU = TP / (TP + FP + FN); pixel accuracy = TP / (TP + FN)
-// (the class's pixels labelled right, eval::ConfusionMatrix::class_accuracy). A pixel may belong
-// to two classes (the masks are per class, not exclusive). Images without truth masks count for
-// the box APs only.
+// Masks: the mask head mapped back to every image pixel and thresholded at mask_threshold
+// (masks_from_heads, center_decode.hpp; the boxes are boxes_from_heads). Per class c, pixels are
+// counted over all images that carry truth masks (DetectionSample::masks, COCO polygons filled):
+// TP = in the truth and predicted, FN = in the truth only, FP = predicted only. IoU = TP / (TP +
+// FP + FN); pixel accuracy = TP / (TP + FN) (the class's pixels labelled right,
+// eval::ConfusionMatrix::class_accuracy). A pixel may belong to two classes (the masks are per
+// class, not exclusive). Images without truth masks count for the box APs only.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -53,17 +52,6 @@ class DetectorEvaluator {
   std::vector<std::int64_t> tp_, fp_, fn_;
   int masked_ = 0;
 };
-
-/// The mask head mapped back to a w x h image (see above): per class, 255 where the score >=
-/// threshold; a negative threshold uses the model's per-class cfg.mask_threshold_values().
-std::vector<GrayImage> masks_from_heads(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w,
-                                        int image_h, float threshold = -1.0f);
-
-/// The boxes of `heads` (decoded as CenterNet::detect does: cfg's score threshold and top K) in
-/// the pixels of the w x h image the heads were computed on, highest score first: boxes and
-/// masks from one network run.
-std::vector<Detection2D> boxes_from_heads(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w,
-                                          int image_h);
 
 /// Runs `detector` (a CenterNet or CenterNetOnnx, as load_center_detector returns) on every
 /// sample and scores it; masks at `mask_threshold` for every class, or (negative, the default)

@@ -108,7 +108,7 @@ TEST(BroccoliDetector, ReusedWorkspacesGiveIdenticalResults) {
 }
 
 TEST(BroccoliDetector, CloudMatchesTheScalarDeprojection) {
-  // make_cloud deprojects and filters in one vectorised pass; the reference is the scalar loop
+  // The cloud step deprojects and filters in one vectorised pass; the reference is the scalar loop
   // (ray slopes in double rounded to float, z = d·scale, NaN for 0 or outside the depth range),
   // compared bit for bit (NaN included). Depth values are spread over and outside the range.
   auto cfg = preset("broccoli-oes-uk");
