@@ -17,9 +17,10 @@
 #include <cstdlib>
 #include <memory>
 
-#include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/sequence.hpp"
+#include "cropsight/pipeline/broccoli/bench.hpp"
 #include "cropsight/pipeline/broccoli/pcl_reference.hpp"
+#include "cropsight/pipeline/broccoli/timing.hpp"
 #include "cropsight/pipeline/broccoli/training.hpp"
 #include "cropsight/sim/broccoli/broccoli_sim.hpp"
 
@@ -48,37 +49,25 @@ struct Fixture {
       return;
     }
     sim::BroccoliSimulator train(sim::BroccoliSimConfig{}, 5, 6);
-    auto cfg = config("fec");
+    auto cfg = config(pipeline::broccoli::Variant::fec);
     pipeline::broccoli::DatasetBuilder builder(cfg, {});
     for (int i = 0; i < train.frames(); ++i) builder.add_frame(train.render(i));
     model = std::make_shared<learning::Model>(pipeline::broccoli::train_model(builder.dataset(), cfg, {}, {}));
   }
 
  public:
-  static pipeline::broccoli::DetectorConfig config(const std::string& pipe) {
-    pipeline::broccoli::DetectorConfig cfg;
-    apply_config(cfg, io::load_config_map(io::find_preset("broccoli-" + pipe + "-uk")), "preset");
-    cfg.outliers.enabled = false;  // same work as the PCL reference
-    return cfg;
-  }
-  // The model under another pipeline tag (same classifier), for timing only.
-  std::shared_ptr<const learning::Model> as(const std::string& pipe) const {
-    auto m = std::make_shared<learning::Model>();
-    m->info = model->info;
-    m->info.pipeline = pipe;
-    m->standardizer = model->standardizer;
-    m->params = model->params;
-    m->classifier = learning::deserialize_classifier(model->params, model->info.feature_dim,
-                                                     model->classifier->serialize(), "bench");
-    return m;
+  // The settings `cropsight bench broccoli` times a variant with (uk presets, no outlier removal:
+  // the same work as the PCL reference).
+  static pipeline::broccoli::DetectorConfig config(pipeline::broccoli::Variant variant) {
+    return pipeline::broccoli::variant_config({}, variant).detector;
   }
 };
 
-void run_detector(benchmark::State& state, const std::string& pipe) {
+void run_detector(benchmark::State& state, pipeline::broccoli::Variant variant) {
   tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
   const Fixture& f = Fixture::get();
-  pipeline::broccoli::Detector det(Fixture::config(pipe));
-  det.set_model(f.as(pipe));
+  pipeline::broccoli::Detector det(Fixture::config(variant));
+  det.set_model(pipeline::broccoli::model_for_variant(f.model, variant, "bench"));
   det.process(f.frames.front());  // warm-up: buffers sized
   det.timer().clear();
   std::size_t i = 0, clusters = 0;
@@ -90,13 +79,13 @@ void run_detector(benchmark::State& state, const std::string& pipe) {
   for (const auto& s : det.timer().stages()) state.counters[s.name] = s.total_ms / double(state.iterations());
 }
 
-void BM_Oes(benchmark::State& s) { run_detector(s, "oes"); }
-void BM_Org(benchmark::State& s) { run_detector(s, "org"); }
-void BM_Fec(benchmark::State& s) { run_detector(s, "fec"); }
+void BM_Oes(benchmark::State& s) { run_detector(s, pipeline::broccoli::Variant::oes); }
+void BM_Org(benchmark::State& s) { run_detector(s, pipeline::broccoli::Variant::org); }
+void BM_Fec(benchmark::State& s) { run_detector(s, pipeline::broccoli::Variant::fec); }
 
 void BM_PclReference(benchmark::State& state) {
   const Fixture& f = Fixture::get();
-  pipeline::broccoli::PclReferencePipeline pcl(Fixture::config("fec"), f.model);
+  pipeline::broccoli::PclReferencePipeline pcl(Fixture::config(pipeline::broccoli::Variant::fec), f.model);
   std::size_t i = 0;
   for (auto _ : state) benchmark::DoNotOptimize(pcl.process(f.frames[i++ % f.frames.size()]));
   state.counters["fps"] = benchmark::Counter(double(state.iterations()), benchmark::Counter::kIsRate);

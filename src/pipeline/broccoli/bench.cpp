@@ -41,6 +41,10 @@ Config model_config(const BenchSpec& spec, const learning::Model& model, const s
 }
 }  // namespace
 
+Config variant_config(const BenchSpec& spec, Variant variant) {
+  return preset_config(spec, config_name(variant), io::load_preset_with_overrides(spec.preset, spec.sets));
+}
+
 void BenchSpec::validate() const {
   if (repeat < 1) throw Error("--repeat", "must be at least 1");
   if (variety != "uk" && variety != "spain") throw Error("--variety", "must be uk or spain");

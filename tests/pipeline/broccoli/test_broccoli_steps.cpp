@@ -18,7 +18,7 @@
 using namespace cropsight;
 using namespace cropsight::pipeline::broccoli;
 
-namespace {
+namespace broccoli_steps_test {
 std::shared_ptr<const learning::Model> general_model() {
   return load_model(cropsight::testing::source_dir() / "models" / "broccoli-oes-general.json");
 }
@@ -80,7 +80,9 @@ struct ByHand {
   std::vector<std::vector<int>> unsplit;  // the candidates' pixels before the crease split
   int split_changed = 0;                  // candidates the split replaced or added, all frames
 };
-}  // namespace
+}  // namespace broccoli_steps_test
+
+using namespace broccoli_steps_test;
 
 // Every step of the general model (denoise, soil window, lazy normals, debris pass, crease split,
 // completion) gives, composed by hand, the detector's candidates.
@@ -92,7 +94,7 @@ TEST(BroccoliSteps, ComposedByHandTheyGiveTheDetectorsCandidates) {
   Detector detector(cfg);
   detector.set_model(model);
   ByHand steps(cfg, model);
-  for (const RgbdFrame& frame : frames()) {
+  for (const RgbdFrame& frame : broccoli_steps_test::frames()) {
     const auto expected = detector.process(frame);
     steps.process(frame);
     const auto got = steps.s.candidates.active();
@@ -116,7 +118,7 @@ TEST(BroccoliSteps, ComposedByHandTheyGiveTheDetectorsCandidates) {
 TEST(BroccoliSteps, OwnerImageFollowsTheCandidates) {
   const auto model = general_model();
   ByHand steps(config_for_model(*model, {}, "general").detector, model);
-  for (const RgbdFrame& frame : frames()) {
+  for (const RgbdFrame& frame : broccoli_steps_test::frames()) {
     steps.process(frame);
     std::vector<int> owner(steps.s.cloud.size(), -1);
     const auto candidates = steps.s.candidates.active();

@@ -8,6 +8,7 @@
 
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/pipeline/potato/eval.hpp"
+#include "cropsight/sim/potato/potato_sim.hpp"
 #include "testing/testing.hpp"
 
 using namespace cropsight;

@@ -1,10 +1,10 @@
-// Pins the seedling pipeline's held-out figure (docs/experiments/2026-11-30-seedling-census-preset.md): the default preset (then named seedling-fast) on simulated seed 4711, which was
-// simulated after every choice of the preset and scored once with it (the top-view join
-// leaves its scores unchanged). The docs' headline is over 30 pairs (100 % / 90.8 % /
-// 99.9 %); rendering a pair costs ~0.6 s of CPU, so this test scores the first 8 of them, whose
-// figure the docs state beside it: recognition 100 %, sensitivity 91.6 %, envelope volume ratio
-// 99.8 % (`eval seedling` on pair_000..007 of `simulate seedling --seed 4711`).
-// examples/seedling_recognise.cpp reproduces the 30-pair figure (run it without arguments).
+// Pins the seedling pipeline's held-out figure (docs/experiments/2026-11-30-seedling-census-preset.md): the default
+// preset (then named seedling-fast) on simulated seed 4711, which was simulated after every choice of the preset and
+// scored once with it (the top-view join leaves its scores unchanged). The docs' headline is over 30 pairs (100 %
+// / 90.8 % / 99.9 %); rendering a pair costs ~0.6 s of CPU, so this test scores the first 8 of them, whose figure the
+// docs state beside it: recognition 100 %, sensitivity 91.6 %, envelope volume ratio 99.8 % (`eval seedling` on
+// pair_000..007 of `simulate seedling --seed 4711`). examples/seedling_recognise.cpp reproduces the 30-pair figure (run
+// it without arguments).
 //
 // Tolerance: the docs print one decimal of a percent (±0.05 point); the pairs are rendered here in
 // memory, where the true disparity is exact instead of the 1/256 px of disparity.png (in-memory

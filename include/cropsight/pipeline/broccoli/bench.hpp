@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "cropsight/core/rgbd_frame.hpp"
+#include "cropsight/pipeline/broccoli/config.hpp"
 #include "cropsight/pipeline/broccoli/detector_config.hpp"
 #include "cropsight/pipeline/pipeline_timing.hpp"
 #include "cropsight/tracking/head_mapper.hpp"
@@ -63,6 +64,11 @@ struct BenchResult {
   std::optional<BenchedPipeline> pcl_reference;      ///< settings: the FEC preset's
   std::optional<BenchedTracking> tracking;           ///< with BenchSpec::track
 };
+
+/// The settings `bench` times `variant` with when it is not the model's own pipeline: the
+/// variety's preset (configs/broccoli-<variant>-<variety>.yaml), then spec.preset and spec.sets,
+/// VFH features, outlier removal as spec.sor. Throws Error naming the preset or the --set key.
+Config variant_config(const BenchSpec& spec, Variant variant);
 
 /// Times what `spec` asks for on `frames` (in memory, without label images). Throws Error naming
 /// the model file, the preset or the --set key, or the option validate() names; Error("bench", ...)
