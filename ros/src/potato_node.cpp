@@ -12,7 +12,7 @@ namespace cropsight::ros_io {
 namespace {
 constexpr std::uint8_t kRipe[3] = {40, 220, 40}, kUnripe[3] = {240, 200, 40}, kTarget[3] = {255, 40, 40};
 
-cropsight_msgs::HarvestTarget to_message(const bridge::PotatoHarvest& t, const std_msgs::Header& header) {
+cropsight_msgs::HarvestTarget to_message(const pipeline::potato::HarvestTarget& t, const std_msgs::Header& header) {
   cropsight_msgs::HarvestTarget m;
   m.header = header;
   m.detection = t.detection;
@@ -104,21 +104,24 @@ void PotatoNode::on_frame(const sensor_msgs::ImageConstPtr& color, const sensor_
     return;
   f.index = frame_;
   f.timestamp = color->header.stamp.toSec();
-  bridge::PotatoFrameOut out;
+  pipeline::potato::FrameResult out;
   if (!run_pipeline(*health_, color_sub_.getTopic(), [&] { out = runner_->process(f); })) return;
   ++frame_;
 
   vision_msgs::Detection2DArray arr;
   arr.header = color->header;
-  for (const bridge::PotatoBox& b : out.detections) {
+  for (std::size_t k = 0; k < out.detections.size(); ++k) {
+    const Detection2D& b = out.detections[k];
     vision_msgs::Detection2D d;
     d.header = color->header;
     vision_msgs::ObjectHypothesisWithPose hyp;
     hyp.id = b.class_id;
     hyp.score = b.score;
-    hyp.pose.pose.position.x = b.x;  // m, camera frame (0 when the depth was not usable)
-    hyp.pose.pose.position.y = b.y;
-    hyp.pose.pose.position.z = b.z;
+    // m, camera frame (0 when the depth was not usable)
+    const measure::Position3D p = k < out.positions.size() ? out.positions[k] : measure::Position3D{};
+    hyp.pose.pose.position.x = p.xyz.x();
+    hyp.pose.pose.position.y = p.xyz.y();
+    hyp.pose.pose.position.z = p.xyz.z();
     hyp.pose.pose.orientation.w = 1;
     d.results.push_back(hyp);
     d.bbox.center.x = 0.5 * (b.x1 + b.x2);
@@ -158,7 +161,10 @@ void PotatoNode::on_frame(const sensor_msgs::ImageConstPtr& color, const sensor_
   if (debug_pub_.getNumSubscribers() > 0) {
     sensor_msgs::Image im = image_from_rgb(f.rgb, f.camera.width, f.camera.height);
     im.header = color->header;
-    for (const bridge::PotatoBox& b : out.detections) draw_box(im, b.x1, b.y1, b.x2, b.y2, b.ripe ? kRipe : kUnripe);
+    for (std::size_t k = 0; k < out.detections.size(); ++k) {
+      const Detection2D& b = out.detections[k];
+      draw_box(im, b.x1, b.y1, b.x2, b.y2, k < out.ripe.size() && out.ripe[k] ? kRipe : kUnripe);
+    }
     if (out.target.detection)
       draw_box(im, out.target.box.x1 - 3, out.target.box.y1 - 3, out.target.box.x2 + 3, out.target.box.y2 + 3, kTarget);
     debug_pub_.publish(im);

@@ -31,12 +31,10 @@
 #include "cropsight/core/config.hpp"
 #include "cropsight/core/detection2d.hpp"
 #include "cropsight/core/image.hpp"
+#include "cropsight/tracking/target_state.hpp"
 #include "cropsight/tracking/visual_tracker.hpp"
 
 namespace cropsight::tracking {
-
-enum class TargetState { selecting, detected, tracked, lost };
-constexpr std::array<const char*, 4> config_names(TargetState) { return {"selecting", "detected", "tracked", "lost"}; }
 
 enum class TargetAssociation { nearest, closest };
 constexpr std::array<const char*, 2> config_names(TargetAssociation) { return {"nearest", "closest"}; }
