@@ -87,7 +87,7 @@ void SeedlingNode::on_pair(const sensor_msgs::ImageConstPtr& left, const sensor_
     health_->skipped(topic, e.problem());
     return;
   }
-  bridge::SeedlingOut out;
+  pipeline::seedling::FrameResult out;
   // The pipeline's own stage timer would leave out the copies; run_pipeline times the whole call.
   if (!run_pipeline(*health_, left_sub_.getTopic(), [&] { out = runner_->process(l, r, g, left_sub_.getTopic()); }))
     return;
@@ -99,22 +99,26 @@ void SeedlingNode::on_pair(const sensor_msgs::ImageConstPtr& left, const sensor_
     vision_msgs::ObjectHypothesisWithPose hyp;
     hyp.id = 1;  // the seedling class
     hyp.score = 1;
-    hyp.pose.pose.position.x = out.cx;
-    hyp.pose.pose.position.y = out.cy;
-    hyp.pose.pose.position.z = out.cz;
+    const Eigen::Vector3d c = out.centroid();
+    hyp.pose.pose.position.x = c.x();
+    hyp.pose.pose.position.y = c.y();
+    hyp.pose.pose.position.z = c.z();
     hyp.pose.pose.orientation.w = 1;
     d.results.push_back(hyp);
     d.bbox.center = hyp.pose.pose;
     // The envelope box (length, width along the soil plane; height above it), m. Its axes are
     // those of the soil plane, not of the camera frame, so the orientation is left identity.
-    d.bbox.size.x = out.length;
-    d.bbox.size.y = out.width;
-    d.bbox.size.z = out.height;
+    d.bbox.size.x = out.envelope.length;
+    d.bbox.size.y = out.envelope.width;
+    d.bbox.size.z = out.envelope.height;
     arr.detections.push_back(d);
   }
   det_pub_.publish(arr);
   if (points_pub_.getNumSubscribers() > 0) {
-    sensor_msgs::PointCloud2 pc = make_cloud(out.points);
+    std::vector<float> xyz;
+    xyz.reserve(3 * out.points.size());
+    for (const Eigen::Vector3f& p : out.points) xyz.insert(xyz.end(), {p.x(), p.y(), p.z()});
+    sensor_msgs::PointCloud2 pc = make_cloud(xyz);
     pc.header = left->header;
     points_pub_.publish(pc);
   }

@@ -31,8 +31,8 @@ SeedlingRunner::SeedlingRunner(const std::string& preset, const std::vector<std:
     : impl_(std::make_unique<Impl>(Impl{std::move(*pipeline::seedling::make_pipeline({preset, sets}))})) {}
 SeedlingRunner::~SeedlingRunner() = default;
 
-SeedlingOut SeedlingRunner::process(const RgbImage& left, const RgbImage& right, const StereoGeometry& g,
-                                    const std::string& where) const {
+pipeline::seedling::FrameResult SeedlingRunner::process(const RgbImage& left, const RgbImage& right,
+                                                        const StereoGeometry& g, const std::string& where) const {
   stereo::RectifiedGeometry geo;
   geo.width = g.width;
   geo.height = g.height;
@@ -42,27 +42,7 @@ SeedlingOut SeedlingRunner::process(const RgbImage& left, const RgbImage& right,
   geo.cx_right = g.cx_right;
   geo.baseline = g.baseline;
   if (!(g.f > 0) || !(g.baseline > 0)) throw Error(where, "stereo geometry needs a focal length and a baseline > 0");
-  const pipeline::seedling::FrameResult d =
-      impl_->pipe.process(to_color(left, where), to_color(right, where), geo, where);
-  SeedlingOut out;
-  out.found = d.found;
-  out.length = d.envelope.length;
-  out.width = d.envelope.width;
-  out.height = d.envelope.height;
-  out.ms_total = d.timer.total_ms();
-  out.points.reserve(3 * d.points.size());
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  for (const auto& p : d.points) {
-    out.points.insert(out.points.end(), {p.x(), p.y(), p.z()});
-    sum += p.cast<double>();
-  }
-  if (!d.points.empty()) {
-    sum /= double(d.points.size());
-    out.cx = sum.x();
-    out.cy = sum.y();
-    out.cz = sum.z();
-  }
-  return out;
+  return impl_->pipe.process(to_color(left, where), to_color(right, where), geo, where);
 }
 
 RectifiedPairBuffers read_rectified_pair(const std::string& calib_yaml, const std::string& left_png,

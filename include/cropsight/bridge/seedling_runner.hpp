@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "cropsight/pipeline/seedling/frame_result.hpp"
+
 namespace cropsight::bridge {
 
 struct RgbImage {
@@ -24,14 +26,6 @@ struct StereoGeometry {
   double baseline = 0;    ///< m
 };
 
-struct SeedlingOut {
-  bool found = false;
-  double length = 0, width = 0, height = 0;  ///< m, the envelope box ([Li et al.]'s measure)
-  double cx = 0, cy = 0, cz = 0;             ///< m, centroid of the seedling points, rectified left camera frame
-  std::vector<float> points;                 ///< x y z per seedling point, m, rectified left camera frame
-  double ms_total = 0;                       ///< the pipeline's own time (its stage timer)
-};
-
 class SeedlingRunner {
  public:
   /// preset: a name under configs/ (default "seedling") or a YAML path; sets: "key=value".
@@ -40,8 +34,8 @@ class SeedlingRunner {
   SeedlingRunner(const SeedlingRunner&) = delete;
   SeedlingRunner& operator=(const SeedlingRunner&) = delete;
   /// Throws Error(where, ...) when a size differs from the geometry.
-  SeedlingOut process(const RgbImage& left, const RgbImage& right, const StereoGeometry& g,
-                      const std::string& where = "stereo pair") const;
+  pipeline::seedling::FrameResult process(const RgbImage& left, const RgbImage& right, const StereoGeometry& g,
+                                          const std::string& where = "stereo pair") const;
 
  private:
   struct Impl;

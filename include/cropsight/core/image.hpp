@@ -1,6 +1,7 @@
 #pragma once
 // A minimal owned, row-major image. Kept free of OpenCV so that the public headers stay light;
-// io/ converts to and from cv::Mat inside its .cpp files.
+// io/ converts to and from cv::Mat inside its .cpp files. C++17, so that results holding images
+// (masks) reach the ROS nodes (built as C++17) as they are.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -9,7 +10,8 @@ namespace cropsight {
 
 struct Rgb8 {
   std::uint8_t r = 0, g = 0, b = 0;
-  friend bool operator==(const Rgb8&, const Rgb8&) = default;
+  friend bool operator==(const Rgb8& a, const Rgb8& b) { return a.r == b.r && a.g == b.g && a.b == b.b; }
+  friend bool operator!=(const Rgb8& a, const Rgb8& b) { return !(a == b); }
 };
 
 template <typename T>
@@ -27,7 +29,10 @@ struct Image {
   const T& at(int u, int v) const { return data[std::size_t(v) * std::size_t(width) + std::size_t(u)]; }
   T* row(int v) { return data.data() + std::size_t(v) * std::size_t(width); }
   const T* row(int v) const { return data.data() + std::size_t(v) * std::size_t(width); }
-  friend bool operator==(const Image&, const Image&) = default;
+  friend bool operator==(const Image& a, const Image& b) {
+    return a.width == b.width && a.height == b.height && a.data == b.data;
+  }
+  friend bool operator!=(const Image& a, const Image& b) { return !(a == b); }
 };
 
 using DepthImage = Image<std::uint16_t>;  ///< raw sensor units; metres = value * depth_scale; 0 = no return

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cropsight/core/config.hpp"
+#include "cropsight/segmentation/gmm_result.hpp"
 
 namespace cropsight::segmentation {
 
@@ -37,21 +38,6 @@ struct GmmConfig {
     v("min_variance", min_variance, "m^2; ridge added to each covariance diagonal", Range::within(0, 1));
     v("seed", seed, "random seed of the k-means++ initialisation");
   }
-};
-
-struct GmmModel {
-  std::vector<double> weights;               ///< mixing weights, sum 1
-  std::vector<Eigen::Vector3d> means;        ///< same frame and units as the points
-  std::vector<Eigen::Matrix3d> covariances;  ///< full, symmetric positive definite
-  int size() const { return int(weights.size()); }
-};
-
-struct GmmResult {
-  GmmModel model;
-  std::vector<int> labels;    ///< most responsible component per point
-  double log_likelihood = 0;  ///< mean log-density per point under the final model
-  int iterations = 0;         ///< EM iterations run
-  bool converged = false;     ///< tolerance reached before max_iterations
 };
 
 /// Fits a K-component full-covariance GMM. Throws Error(where, ...) when there are fewer points

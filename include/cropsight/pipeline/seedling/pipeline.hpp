@@ -43,27 +43,12 @@
 #include "cropsight/core/timer.hpp"
 #include "cropsight/measure/envelope.hpp"
 #include "cropsight/pipeline/seedling/config.hpp"
+#include "cropsight/pipeline/seedling/frame_result.hpp"
 #include "cropsight/pipeline/seedling/top_view.hpp"
 #include "cropsight/segmentation/gmm.hpp"
 #include "cropsight/stereo/rectification.hpp"
 
 namespace cropsight::pipeline::seedling {
-
-struct FrameResult {
-  bool found = false;
-  std::vector<Eigen::Vector3f> points;  ///< dense seedling points, rectified left camera frame
-  std::vector<int> pixels;              ///< their left-image indices
-  GrayImage image_mask;                 ///< left image, 255 = seedling
-  TopViewMask top_view;
-  measure::EnvelopeBox envelope;
-  Eigen::Vector3d plane_normal = Eigen::Vector3d::UnitZ();  ///< soil: n . x + d = 0, n towards the camera
-  double plane_d = 0;
-  int points_total = 0, points_candidates = 0, points_sampled = 0, points_seedling_sampled = 0;
-  segmentation::GmmResult gmm;
-  std::vector<Eigen::Vector3f> sampled;  ///< the down-sampled candidates the GMM saw
-  std::vector<int> chosen_components;
-  StageTimer timer;  ///< stages: disparity, reconstruct, plane, sample, gmm, recognise, outlier, output
-};
 
 /// The broccoli-seedling recogniser. Construct once from a config (validated here: Error naming
 /// the key), then process() each rectified pair. process() is const and keeps no state between
