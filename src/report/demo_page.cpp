@@ -5,26 +5,24 @@
 namespace cropsight::report {
 
 void add_demo_chapters(HtmlPage& page, const DemoFolders& f) {
-  // Each summary is read whole before its chapter opens: a missing file is an error before the
-  // page has half a chapter.
-  if (!f.seedling.empty()) {
-    const SystemSummary s = seedling_summary(f.seedling);
-    page.chapter("Broccoli seedlings from stereo", "seedling");
-    add_system_summary(page, s);
-  }
-  if (!f.potato.empty()) {
-    const SystemSummary s = potato_summary(f.potato);
-    page.chapter("Potato harvest loop", "potato");
-    add_system_summary(page, s);
-  }
-  if (!f.grape.empty()) {
-    const SystemSummary s = grape_summary(f.grape);
-    page.chapter("Grape bunches: labelled cloud and cut point", "grape");
-    add_system_summary(page, s);
-  }
-  if (!f.detector.empty()) {
-    const SystemSummary s = detector_summary(f.detector);
-    page.chapter("2D detector (CenterNet, ONNX)", "detector");
+  struct Chapter {
+    const std::filesystem::path& folder;
+    SystemSummary (*summary)(const std::filesystem::path&);
+    const char* title;
+    const char* id;
+  };
+  const Chapter chapters[] = {
+      {f.seedling, seedling_summary, "Broccoli seedlings from stereo", "seedling"},
+      {f.potato, potato_summary, "Potato harvest loop", "potato"},
+      {f.grape, grape_summary, "Grape bunches: labelled cloud and cut point", "grape"},
+      {f.detector, detector_summary, "2D detector (CenterNet, ONNX)", "detector"},
+  };
+  for (const Chapter& c : chapters) {
+    if (c.folder.empty()) continue;
+    // The summary is read whole before its chapter opens: a missing file is an error before the
+    // page has half a chapter.
+    const SystemSummary s = c.summary(c.folder);
+    page.chapter(c.title, c.id);
     add_system_summary(page, s);
   }
 }
