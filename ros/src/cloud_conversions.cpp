@@ -1,5 +1,6 @@
 #include "cloud_conversions.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -51,6 +52,19 @@ struct LineFit {
 };
 
 }  // namespace
+
+void append_cloud(const Cloud& cloud, FlatCloud& out) {
+  out.xyz.reserve(out.xyz.size() + 3 * cloud.size());
+  for (const auto& p : cloud.points) out.xyz.insert(out.xyz.end(), {p.x(), p.y(), p.z()});
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+      out.rgb.push_back(cloud.has_colors() ? std::uint8_t(std::lround(std::clamp(cloud.colors[i][k], 0.f, 1.f) * 255.f))
+                                           : std::uint8_t(0));
+  if (cloud.has_labels())
+    out.labels.insert(out.labels.end(), cloud.labels.begin(), cloud.labels.end());
+  else
+    out.labels.resize(out.labels.size() + cloud.size(), 0);
+}
 
 sensor_msgs::PointCloud2 make_cloud(const std::vector<float>& xyz, const std::vector<std::uint8_t>* rgb,
                                     const std::vector<int>* labels) {

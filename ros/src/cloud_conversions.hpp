@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cropsight/bridge/frame_buffers.hpp"
+#include "cropsight/core/cloud.hpp"
 
 namespace cropsight::ros_io {
 
@@ -16,6 +17,16 @@ namespace cropsight::ros_io {
 /// `labels` is given (1 per point). `xyz` holds 3 floats per point.
 sensor_msgs::PointCloud2 make_cloud(const std::vector<float>& xyz, const std::vector<std::uint8_t>* rgb = nullptr,
                                     const std::vector<int>* labels = nullptr);
+
+/// A library Cloud (m; colours r, g, b in [0, 1]) flattened for make_cloud, appended to what `out`
+/// holds: colours as round(clamp(c, 0, 1) x 255), black for a cloud without colours; label 0 for a
+/// cloud without labels.
+struct FlatCloud {
+  std::vector<float> xyz;         ///< 3 per point, m
+  std::vector<std::uint8_t> rgb;  ///< 3 per point
+  std::vector<int> labels;        ///< 1 per point
+};
+void append_cloud(const Cloud& cloud, FlatCloud& out);
 
 /// The organised cloud of a depth frame, as depth_image_proc/point_cloud_xyz(rgb) makes it: one
 /// point per pixel, x = (u - cx) z / fx, y = (v - cy) z / fy, z = depth x depth_scale (float32, m;

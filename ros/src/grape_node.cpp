@@ -135,7 +135,7 @@ void GrapeNode::on_frame_boxes(const sensor_msgs::ImageConstPtr& color, const se
   }
   f.index = frame_;
   f.timestamp = color->header.stamp.toSec();
-  bridge::GrapeFrameOut out;
+  pipeline::grape::FrameResult out;
   if (!run_pipeline(*health_, color_sub_.getTopic(),
                     [&] { out = boxes ? runner_->process(f, given) : runner_->process(f); }))
     return;
@@ -145,43 +145,37 @@ void GrapeNode::on_frame_boxes(const sensor_msgs::ImageConstPtr& color, const se
 
 // Long on purpose: the node's four outputs (bunches, labelled cloud, cut-point markers, debug image) from one result.
 void GrapeNode::publish(const std_msgs::Header& header, const bridge::FrameBuffers& f,
-                        const bridge::GrapeFrameOut& out) {
+                        const pipeline::grape::FrameResult& out) {
   cropsight_msgs::GrapeBunchArray arr;
   arr.header = header;
-  for (const bridge::GrapeBunchOut& b : out.bunches) {
+  for (const pipeline::grape::Bunch& b : out.bunches) {
     cropsight_msgs::GrapeBunch m;
     m.roi_x = b.roi.x;
     m.roi_y = b.roi.y;
     m.roi_width = b.roi.width;
     m.roi_height = b.roi.height;
-    m.cloud = make_cloud(b.xyz, b.rgb.empty() ? nullptr : &b.rgb, &b.labels);
+    FlatCloud flat;
+    append_cloud(b.cloud, flat);
+    m.cloud = make_cloud(flat.xyz, b.cloud.has_colors() ? &flat.rgb : nullptr, &flat.labels);
     m.cloud.header = header;
-    m.has_cut_point = b.has_cut_point;
-    m.cut_position.x = b.cut_position[0];
-    m.cut_position.y = b.cut_position[1];
-    m.cut_position.z = b.cut_position[2];
-    m.cut_direction.x = b.cut_direction[0];
-    m.cut_direction.y = b.cut_direction[1];
-    m.cut_direction.z = b.cut_direction[2];
-    m.cut_confidence = b.cut_confidence;
+    m.has_cut_point = b.cut_point.has_value();
+    const pipeline::grape::CutPoint cut = b.cut_point.value_or(pipeline::grape::CutPoint{});
+    m.cut_position.x = cut.position.x();
+    m.cut_position.y = cut.position.y();
+    m.cut_position.z = cut.position.z();
+    m.cut_direction.x = cut.direction.x();
+    m.cut_direction.y = cut.direction.y();
+    m.cut_direction.z = cut.direction.z();
+    m.cut_confidence = cut.confidence;
     arr.bunches.push_back(std::move(m));
   }
   bunches_pub_.publish(arr);
 
   if (points_pub_.getNumSubscribers() > 0) {
     // Every bunch in one cloud; the label field is the segmenter's label (bunches: see `bunches`).
-    std::vector<float> xyz;
-    std::vector<std::uint8_t> rgb;
-    std::vector<int> labels;
-    for (const bridge::GrapeBunchOut& b : out.bunches) {
-      xyz.insert(xyz.end(), b.xyz.begin(), b.xyz.end());
-      if (b.rgb.empty())
-        rgb.resize(rgb.size() + b.xyz.size(), 0);
-      else
-        rgb.insert(rgb.end(), b.rgb.begin(), b.rgb.end());
-      labels.insert(labels.end(), b.labels.begin(), b.labels.end());
-    }
-    sensor_msgs::PointCloud2 pc = make_cloud(xyz, &rgb, &labels);
+    FlatCloud all;
+    for (const pipeline::grape::Bunch& b : out.bunches) append_cloud(b.cloud, all);
+    sensor_msgs::PointCloud2 pc = make_cloud(all.xyz, &all.rgb, &all.labels);
     pc.header = header;
     points_pub_.publish(pc);
   }
@@ -194,8 +188,8 @@ void GrapeNode::publish(const std_msgs::Header& header, const bridge::FrameBuffe
     clear.action = visualization_msgs::Marker::DELETEALL;
     markers.markers.push_back(clear);
     for (std::size_t k = 0; k < out.bunches.size(); ++k) {
-      const bridge::GrapeBunchOut& b = out.bunches[k];
-      if (!b.has_cut_point) continue;
+      if (!out.bunches[k].cut_point) continue;
+      const pipeline::grape::CutPoint& cut = *out.bunches[k].cut_point;
       visualization_msgs::Marker m;
       m.header = header;
       m.ns = "grape_cut_points";
@@ -203,9 +197,9 @@ void GrapeNode::publish(const std_msgs::Header& header, const bridge::FrameBuffe
       m.type = visualization_msgs::Marker::ARROW;
       m.action = visualization_msgs::Marker::ADD;
       geometry_msgs::Point p0, p1;
-      p0.x = b.cut_position[0], p0.y = b.cut_position[1], p0.z = b.cut_position[2];
-      p1.x = p0.x + 0.05 * b.cut_direction[0], p1.y = p0.y + 0.05 * b.cut_direction[1];
-      p1.z = p0.z + 0.05 * b.cut_direction[2];
+      p0.x = cut.position.x(), p0.y = cut.position.y(), p0.z = cut.position.z();
+      p1.x = p0.x + 0.05 * cut.direction.x(), p1.y = p0.y + 0.05 * cut.direction.y();
+      p1.z = p0.z + 0.05 * cut.direction.z();
       m.points = {p0, p1};
       m.pose.orientation.w = 1;
       m.scale.x = 0.005, m.scale.y = 0.01, m.scale.z = 0.01;
@@ -217,10 +211,10 @@ void GrapeNode::publish(const std_msgs::Header& header, const bridge::FrameBuffe
   if (debug_pub_.getNumSubscribers() > 0) {
     sensor_msgs::Image im = image_from_rgb(f.rgb, f.camera.width, f.camera.height);
     im.header = header;
-    for (const bridge::GrapeBox& d : out.detections)
-      draw_box(im, float(d.x), float(d.y), float(d.x + d.width - 1), float(d.y + d.height - 1),
+    for (const pipeline::grape::Detection& d : out.detections)
+      draw_box(im, float(d.box.x), float(d.box.y), float(d.box.x + d.box.width - 1), float(d.box.y + d.box.height - 1),
                d.category == 2 ? kPeduncleColour : kBunchColour);
-    for (const bridge::GrapeBunchOut& b : out.bunches)
+    for (const pipeline::grape::Bunch& b : out.bunches)
       draw_box(im, float(b.roi.x - 2), float(b.roi.y - 2), float(b.roi.x + b.roi.width + 1),
                float(b.roi.y + b.roi.height + 1), kRoiColour);
     debug_pub_.publish(im);

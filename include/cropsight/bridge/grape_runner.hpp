@@ -2,8 +2,9 @@
 // The grape pipeline from the camera (pipeline::grape::Pipeline, Luo et al.) behind a C++17 header,
 // for the ROS node: bunch and peduncle boxes (the project's detector, or boxes given per frame)
 // → ROI (Eq. 1, overlapping bunches merged) → coloured ROI cloud → normals → the grape segmenter
-// → per bunch a labelled cloud and a cut point on its peduncle. One runner per camera; not
-// thread-safe. Errors: cropsight::Error naming the file or input.
+// → per bunch a labelled cloud and a cut point on its peduncle: the library's own FrameResult
+// (pipeline/grape/frame_result.hpp, C++17). One runner per camera; not thread-safe. Errors: cropsight::Error naming the
+// file or input.
 //
 // Pixels: x = column, y = row, origin top-left. Points: camera frame (x right, y down, z forward),
 // metres.
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "cropsight/bridge/frame_buffers.hpp"
+#include "cropsight/pipeline/grape/frame_result.hpp"
 
 namespace cropsight::bridge {
 
@@ -31,29 +33,6 @@ struct GrapeInputBox {
   float score = 1;
 };
 
-/// A bunch (category 1) or peduncle (category 2) box, the dataset's COCO categories.
-struct GrapeBox {
-  int x = 0, y = 0, width = 0, height = 0;  ///< pixels
-  int category = 1;
-  float score = 1;
-};
-
-struct GrapeBunchOut {
-  GrapeBox roi;                         ///< the bunch's ROI (Eq. 1, merged, clipped); category 1
-  std::vector<float> xyz;               ///< 3 per point, m, camera frame
-  std::vector<std::uint8_t> rgb;        ///< 3 per point
-  std::vector<int> labels;              ///< segmenter label per point (the dataset's 0-5)
-  bool has_cut_point = false;           ///< false: no peduncle cluster of cut_point.min_points
-  float cut_position[3] = {0, 0, 0};    ///< m, centroid of the peduncle cluster
-  float cut_direction[3] = {0, -1, 0};  ///< unit principal axis, pointing up in the image
-  int cut_confidence = 0;               ///< points of the peduncle cluster
-};
-
-struct GrapeFrameOut {
-  std::vector<GrapeBox> detections;    ///< the boxes used
-  std::vector<GrapeBunchOut> bunches;  ///< one per ROI with at least 3 points, in ROI order
-};
-
 class GrapeRunner {
  public:
   /// Loads and validates the presets and the models. Throws Error(file or "--set", ...).
@@ -64,9 +43,9 @@ class GrapeRunner {
 
   /// One frame (colour required, registered to depth), boxes from the detector. Throws Error
   /// when the runner has no detector or the frame is malformed.
-  GrapeFrameOut process(const FrameBuffers& frame);
+  pipeline::grape::FrameResult process(const FrameBuffers& frame);
   /// One frame on the boxes given (a detector of the user's).
-  GrapeFrameOut process(const FrameBuffers& frame, const std::vector<GrapeInputBox>& boxes);
+  pipeline::grape::FrameResult process(const FrameBuffers& frame, const std::vector<GrapeInputBox>& boxes);
   bool has_detector() const;
   /// The segmenter's model file, for logs.
   std::string segmenter_model() const;

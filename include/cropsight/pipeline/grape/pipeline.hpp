@@ -19,37 +19,11 @@
 #include "cropsight/core/rgbd_frame.hpp"
 #include "cropsight/core/timer.hpp"
 #include "cropsight/pipeline/grape/config.hpp"
+#include "cropsight/pipeline/grape/frame_result.hpp"
 #include "cropsight/pipeline/grape/roi.hpp"
 #include "cropsight/pipeline/grape/segmenter.hpp"
 
 namespace cropsight::pipeline::grape {
-
-/// A cut point on a bunch's peduncle, camera frame.
-struct CutPoint {
-  Eigen::Vector3f position = Eigen::Vector3f::Zero();    ///< m: centroid of the peduncle cluster
-  Eigen::Vector3f direction = Eigen::Vector3f::UnitY();  ///< unit principal axis, pointing up in
-                                                         ///< the image (y <= 0)
-  int confidence = 0;  ///< points of the peduncle cluster: the more, the better supported
-};
-
-/// One bunch's result.
-struct Bunch {
-  Box2D roi;                          ///< pixels (Eq. 1, merged, clipped to the image)
-  Cloud cloud;                        ///< m, camera frame; colours, normals, segmenter labels
-  std::optional<CutPoint> cut_point;  ///< none: no peduncle cluster of min_points points
-};
-
-/// One frame's result.
-struct FrameResult {
-  std::vector<Detection> detections;  ///< the boxes used (detector's, or as given)
-  std::vector<Detection> outside;     ///< bunch / peduncle boxes wholly outside the image
-  std::vector<Bunch> bunches;         ///< one per ROI with at least 3 points, in ROI order
-  StageTimer timer;  ///< this frame's wall-clock stages: detect (with a detector), roi, segment, cut_point
-  /// Bunches with a cut point.
-  std::size_t cut_points() const {
-    return std::size_t(std::count_if(bunches.begin(), bunches.end(), [](const Bunch& b) { return b.cut_point; }));
-  }
-};
 
 /// Step 5 alone: the cut point of a labelled cloud (m). The points labelled
 /// cfg.peduncle_label are clustered (Euclidean, cfg.cluster_tolerance); the largest cluster

@@ -12,16 +12,9 @@
 #include "cropsight/core/config.hpp"
 #include "cropsight/core/geometry_types.hpp"
 #include "cropsight/core/image.hpp"
+#include "cropsight/pipeline/grape/frame_result.hpp"
 
 namespace cropsight::pipeline::grape {
-
-/// One 2D detection as read from a COCO-style file.
-struct Detection {
-  Box2D box;
-  int category = 0;  ///< 1 = grape bunch, 2 = peduncle (the dataset's COCO categories)
-  float score = 1.f;
-  long annotation = -1;  ///< index in the file's array (read_coco_detections), for messages
-};
 
 struct RoiConfig {
   int bunch_category = 1;     ///< COCO category id of bunches (dataset: 1)
