@@ -58,7 +58,8 @@ class GrapeNode {
                 const sensor_msgs::CameraInfoConstPtr& info);
   void on_frame_boxes(const sensor_msgs::ImageConstPtr& color, const sensor_msgs::ImageConstPtr& depth,
                       const sensor_msgs::CameraInfoConstPtr& info, const vision_msgs::Detection2DArrayConstPtr& boxes);
-  void publish(const std_msgs::Header& header, const bridge::FrameBuffers& frame, const pipeline::grape::FrameResult& out);
+  void publish(const std_msgs::Header& header, const bridge::FrameBuffers& frame,
+               const pipeline::grape::FrameResult& out);
 
   ros::NodeHandle nh_, pnh_;
   std::unique_ptr<bridge::GrapeRunner> runner_;
