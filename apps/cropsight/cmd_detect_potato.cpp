@@ -10,7 +10,6 @@
 
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
-#include "cropsight/core/timer.hpp"
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/file_names.hpp"
 #include "cropsight/io/files.hpp"
@@ -90,14 +89,13 @@ void run(const Options& o) {
   nlohmann::json images = nlohmann::json::array();  // --json: one object at the end
   for (int i = 0; i < inputs.size(); ++i) {
     Input in = inputs.read(i);
-    Stopwatch sw;
-    const std::vector<Detection2D> dets = pipeline.detect(in.color, &in.depth_m);
-    const double ms = sw.ms();
-    io::write_detection_text(out.path() / (in.stem + ".txt"), dets, names);
     // The axes are drawn on the overlays and printed in the JSON lines; without either, they are
     // not estimated (the detection files hold boxes only).
-    std::vector<std::optional<double>> angles;
-    if (overlay || o.common.json) angles = pipeline.box_angles(in.color, in.depth_m, dets);
+    const pipeline::potato::ImageResult r = pipeline.detect_image(in.color, in.depth_m, overlay || o.common.json);
+    const std::vector<Detection2D>& dets = r.detections;
+    const std::vector<std::optional<double>>& angles = r.angles;
+    const double ms = r.timer.ms("detect");
+    io::write_detection_text(out.path() / (in.stem + ".txt"), dets, names);
     if (overlay) {
       pipeline::potato::draw_detections(in.color, dets, angles);
       io::write_color(overlay->path() / (in.stem + ".png"), in.color);

@@ -56,8 +56,19 @@ Pipeline::~Pipeline() = default;
 
 void Pipeline::reset() { tracker_.reset(); }
 
-std::vector<Detection2D> Pipeline::detect(const ColorImage& image, const Image<float>* depth_m) {
-  return detector_->detect(DetectorInput{&image, depth_m && !depth_m->empty() ? depth_m : nullptr});
+ImageResult Pipeline::detect_image(const ColorImage& image, const Image<float>& depth_m, bool orient_boxes) {
+  ImageResult r;
+  {
+    const auto scope = r.timer.scope("detect");
+    r.detections = detector_->detect(DetectorInput{&image, depth_m.empty() ? nullptr : &depth_m});
+  }
+  if (!orient_boxes) return r;
+  const auto scope = r.timer.scope("orient");
+  for (const Detection2D& box : r.detections) {
+    const measure::OrientationResult o = orient(image, depth_m, box);
+    r.angles.push_back(o.ok ? std::optional<double>(o.angle_rad) : std::nullopt);
+  }
+  return r;
 }
 
 std::vector<std::string> Pipeline::detector_class_names() const { return detector_->class_names(); }
@@ -102,16 +113,6 @@ measure::OrientationResult Pipeline::orient(const ColorImage& color, const Image
   return r;
 }
 
-std::vector<std::optional<double>> Pipeline::box_angles(const ColorImage& color, const Image<float>& depth_m,
-                                                        const std::vector<Detection2D>& boxes) const {
-  std::vector<std::optional<double>> angles;
-  for (const Detection2D& box : boxes) {
-    const measure::OrientationResult r = orient(color, depth_m, box);
-    angles.push_back(r.ok ? std::optional<double>(r.angle_rad) : std::nullopt);
-  }
-  return angles;
-}
-
 void Pipeline::orient_target(const RgbdFrame& frame, const Image<float>& depth_m, FrameResult& r) {
   HarvestTarget& t = r.target;
   const measure::OrientationResult o = orient(frame.color, depth_m, t.box);
@@ -131,7 +132,7 @@ FrameResult Pipeline::process(const RgbdFrame& frame) {
   const Image<float> depth_m =
       frame.depth.empty() ? Image<float>{} : measure::depth_in_metres(frame.depth, frame.camera.depth_scale);
   // 1. detect
-  r.detections = detect(frame.color, &depth_m);
+  r.detections = detector_->detect(DetectorInput{&frame.color, depth_m.empty() ? nullptr : &depth_m});
   r.timer.add("detect", lap());
   // Without depth a box has no position (depth_ok false).
   const auto locate = [&](const Detection2D& box) {

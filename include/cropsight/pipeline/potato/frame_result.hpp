@@ -2,6 +2,7 @@
 // What the potato pipeline returns for one frame (Pipeline::process, pipeline.hpp): the harvest
 // message and what led to it. Plain C++17 data, so that the ROS node (built as C++17) uses it as it
 // is. Units: metres and radians, camera frame (x right, y down, z forward); boxes in pixels.
+#include <optional>
 #include <vector>
 
 #include "cropsight/core/box2d.hpp"
@@ -36,6 +37,15 @@ struct FrameResult {
   std::vector<bool> ripe;                      ///< one per detection
   HarvestTarget target;
   StageTimer timer;  ///< this frame's wall-clock stages: detect, locate (with ripeness), track, orient
+};
+
+/// What steps 1 and 5 found on one single image (Pipeline::detect_image; `detect potato`).
+struct ImageResult {
+  std::vector<Detection2D> detections;
+  /// When asked for: one per detection, its length axis (rad, counter-clockwise from the image x
+  /// axis), none where step 5 found no potato in the box. Empty when not asked for.
+  std::vector<std::optional<double>> angles;
+  StageTimer timer;  ///< wall-clock stages: detect, orient (when asked for)
 };
 
 }  // namespace cropsight::pipeline::potato

@@ -44,17 +44,14 @@ class Pipeline {
 
   /// One frame: colour (required) registered to depth (optional; metres = value * depth_scale).
   FrameResult process(const RgbdFrame& frame);
-  /// Step 1 alone, for single images (detect potato). `depth_m` may be null or empty.
-  std::vector<Detection2D> detect(const ColorImage& image, const Image<float>* depth_m = nullptr);
+  /// Steps 1 and (with `orient_boxes`) 5 on a single image, not a sequence: no tracking, no
+  /// target (detect potato). `depth_m` (metres) may be empty.
+  ImageResult detect_image(const ColorImage& image, const Image<float>& depth_m, bool orient_boxes);
   /// The detector's class names (Detection2D::class_id indexes them).
   std::vector<std::string> detector_class_names() const;
   /// Step 5 alone on one box: the colourised depth when orientation.input = depth and `depth_m`
   /// (metres) is not empty, else the colour image (detect potato's overlays).
   measure::OrientationResult orient(const ColorImage& color, const Image<float>& depth_m, const Detection2D& box) const;
-  /// orient() on every box: its length axis (rad, counter-clockwise from the image x axis), none
-  /// where the step found no potato in the box (detect potato's overlays and JSON lines).
-  std::vector<std::optional<double>> box_angles(const ColorImage& color, const Image<float>& depth_m,
-                                                const std::vector<Detection2D>& boxes) const;
   /// Starts a new approach: drops the target.
   void reset();
   const Config& config() const { return cfg_; }
