@@ -40,6 +40,10 @@ nlohmann::json stages_json(const std::vector<StageMs>& stages);
 
 /// Table I + II metrics of an evaluation as JSON (NaN → null).
 nlohmann::json eval_json(const pipeline::broccoli::Figures& r);
+/// The evaluation as text: the operating point first (precision, recall, F1, kappa at the model's
+/// own threshold; "no detection at all" said in the summary line when the model accepted nothing),
+/// then AP, named for what it is: a ranking of every candidate cluster, rejected ones included.
+void print_eval_summary(const std::string& model, const std::string& data, const pipeline::broccoli::Figures& r);
 
 /// The tracking figures as the keys of `eval broccoli --track --json` (NaN → null).
 /// ap50_temporal / map50_95_temporal are the offline figures under their earlier names.

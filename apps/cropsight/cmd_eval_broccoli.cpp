@@ -64,24 +64,7 @@ void run(const EvalOptions& o) {
     print_json(j);
     return;
   }
-  const auto& c = r.confusion;
-  std::printf("%s on %s: %ld frames, %ld clusters (%lld heads by the majority rule)\n", o.model.c_str(), o.data.c_str(),
-              r.frames, r.clusters, static_cast<long long>(c.positives()));
-  std::printf("  TP %lld  FP %lld  TN %lld  FN %lld\n", static_cast<long long>(c.tp), static_cast<long long>(c.fp),
-              static_cast<long long>(c.tn), static_cast<long long>(c.fn));
-  std::printf("  accuracy %.4f  precision %.4f  recall %.4f  specificity %.4f  npv %.4f  kappa %.4f\n", c.accuracy(),
-              c.precision(), c.recall(), c.specificity(), c.npv(), c.kappa());
-  std::printf("  AP50 %.4f  mAP50:95 %.4f  (%lld labelled heads)\n", r.ap50, r.map50_95,
-              static_cast<long long>(r.truth_heads));
-  std::printf("  AP50 %.4f  mAP50:95 %.4f  in view (%lld heads not cut by the border)\n", r.ap50_in_view,
-              r.map50_95_in_view, static_cast<long long>(r.truth_heads_in_view));
-  std::printf("  AP50 %.4f  mAP50:95 %.4f  visible (%lld heads with >= detection.visible_truth_points points)\n",
-              r.ap50_visible, r.map50_95_visible, static_cast<long long>(r.truth_heads_visible));
-  std::printf(
-      "  AP50 %.4f  visible %.4f  at any depth (%lld / %lld heads the sensor measured, in or out of the window)\n",
-      r.ap50_any_depth, r.ap50_visible_any_depth, static_cast<long long>(r.truth_heads_any_depth),
-      static_cast<long long>(r.truth_heads_visible_any_depth));
-  std::printf("  %.1f fps (%.2f ms/frame, pipeline only)\n", r.fps(), r.ms_per_frame());
+  print_eval_summary(o.model, o.data, r);
   if (figures) print_tracking_summary(*figures);
 }
 }  // namespace eval_broccoli_cmd

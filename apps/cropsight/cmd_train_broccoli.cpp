@@ -1,85 +1,18 @@
 // cropsight train broccoli: clusters every frame of labelled sequences with the chosen pipeline,
 // labels clusters by the majority rule (pipeline/broccoli_truth.hpp), trains the classifier
-// (optionally after a cross-validated grid search) and writes one model file.
+// (optionally after a cross-validated grid search), optionally fits its size correction and writes
+// one model file.
 #include <cstdio>
 #include <optional>
 
 #include "broccoli_cli.hpp"
-#include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
-#include "cropsight/io/sequence.hpp"
-#include "cropsight/learning/grid_search.hpp"
-#include "cropsight/pipeline/broccoli/training.hpp"
+#include "train_broccoli_options.hpp"
 
 namespace cropsight::cli {
 
 namespace train_broccoli_cmd {
-struct TrainOptions {
-  CommonOptions common;
-  std::string data, pipeline, features, classifier, out;
-  bool grid_search = false;
-  bool quiet = false, force = false;
-};
-
-// defaults ← preset ← --set ← explicit flags; keys "grid.*" configure the grid search. The whole
-// preset is one pipeline::broccoli::Config: sizing.* / tracking.* configure detect/eval --track, not
-// training, and are checked all the same.
-std::pair<pipeline::broccoli::Config, learning::GridSearchConfig> train_configs(const TrainOptions& o) {
-  ConfigMap all = o.common.config_map();
-  ConfigMap grid_keys, pipeline_keys;
-  for (const auto& [k, v] : all) (k.rfind("grid.", 0) == 0 ? grid_keys : pipeline_keys)[k] = v;
-  pipeline::broccoli::Config full;
-  apply_config(full, pipeline_keys, o.common.config.empty() ? "--set" : o.common.config);
-  learning::GridSearchConfig grid;
-  apply_config(grid, grid_keys, "--set", "grid.");
-  if (!o.pipeline.empty()) detail::parse_value("--pipeline", "pipeline", o.pipeline, full.detector.pipeline);
-  if (!o.features.empty()) full.detector.features = o.features;
-  if (!o.classifier.empty()) full.detector.classifier.type = o.classifier;
-  full.validate("--pipeline/--features/--classifier");
-  return {full, grid};
-}
-
-// Adds every frame of the --data sequences to `builder`; returns the provenance the model file
-// records (data, seeds, varieties, frames).
-std::map<std::string, std::string> add_sequences(const TrainOptions& o, pipeline::broccoli::DatasetBuilder& builder) {
-  std::string seeds, varieties;
-  for (const auto& dir : split_list(o.data, "--data")) {
-    io::SequenceReader reader(dir);
-    if (!reader.info().has_labels) throw Error(dir, "sequence has no labels/ (training needs ground truth)");
-    const auto& attrs = reader.groundtruth().attributes;
-    auto attr = [&](const char* k) { return attrs.count(k) ? attrs.at(k) : std::string("?"); };
-    seeds += (seeds.empty() ? "" : ",") + attr("seed");
-    varieties += (varieties.empty() ? "" : ",") + attr("variety");
-    Progress progress("train broccoli: " + dir, reader.size(), o.quiet || o.common.json);
-    for (int i = 0; i < reader.size(); ++i) {
-      builder.add_frame(reader.read(i));
-      progress.update(i + 1);
-    }
-    progress.finish();
-  }
-  return {{"data", o.data}, {"seeds", seeds}, {"varieties", varieties}, {"frames", std::to_string(builder.frames())}};
-}
-
-// The cross-validated grid search: sets cfg.classifier to the best point, returns its figures.
-nlohmann::json grid_search(const TrainOptions& o, const learning::Dataset& data, const learning::GridSearchConfig& grid,
-                           pipeline::broccoli::DetectorConfig& cfg) {
-  // One line per grid point at most once a second: a full grid is ~100 × folds SVM trainings.
-  std::optional<Progress> progress;
-  const auto r =
-      learning::grid_search(data, cfg.classifier, grid, "grid search", [&](std::size_t done, std::size_t total) {
-        if (!progress)
-          progress.emplace("grid search (" + std::to_string(grid.folds) + "-fold CV per point)", long(total),
-                           o.quiet || o.common.json);
-        progress->update(long(done));
-        if (done == total) progress->finish();
-      });
-  cfg.classifier = r.params;
-  return {{"best_c", r.best.c},       {"best_gamma", r.best.gamma}, {"cv_accuracy", r.best.accuracy},
-          {"cv_kappa", r.best.kappa}, {"points", r.points.size()},  {"folds", grid.folds},
-          {"metric", grid.metric}};
-}
-
 void run(const TrainOptions& o) {
   std::vector<std::string> inputs = split_list(o.data, "--data");
   inputs.push_back(o.common.config);
@@ -98,8 +31,10 @@ void run(const TrainOptions& o) {
     grid_json = grid_search(o, data, grid, cfg);
     provenance["grid_search"] = grid_json.dump();
   }
-  const learning::Model model = pipeline::broccoli::train_model(data, cfg, full.truth, provenance);
-  learning::save_model(o.out, model);
+  auto model = std::make_shared<learning::Model>(pipeline::broccoli::train_model(data, cfg, full.truth, provenance));
+  nlohmann::json fit_json;
+  if (o.fit_size_bias) fit_json = fit_sizes(o, full, model);
+  learning::save_model(o.out, *model);
   const double secs = clock.seconds();
 
   nlohmann::json j{{"model", o.out},
@@ -110,15 +45,16 @@ void run(const TrainOptions& o) {
                    {"frames", builder.frames()},
                    {"samples", data.size()},
                    {"positives", data.positives()},
-                   {"model_size", model.classifier->model_size()},
+                   {"model_size", model->classifier->model_size()},
                    {"seconds", json_number(secs)}};
   if (o.grid_search) j["grid_search"] = grid_json;
+  if (o.fit_size_bias) j["size_correction"] = fit_json;
   if (o.common.json) {
     print_json(j);
   } else {
     std::printf("trained %s (%s, %s, %s) on %ld frames: %zu clusters, %zu heads; %zu %s; wrote %s (%.1f s)\n",
                 cfg.classifier.type.c_str(), config_name(cfg.pipeline).c_str(), cfg.features.c_str(), o.data.c_str(),
-                builder.frames(), data.size(), data.positives(), model.classifier->model_size(),
+                builder.frames(), data.size(), data.positives(), model->classifier->model_size(),
                 cfg.classifier.type == "knn" ? "samples" : "support vectors", o.out.c_str(), secs);
   }
 }
@@ -136,6 +72,8 @@ void add_train_broccoli(CLI::App& train) {
   add_force_flag(cmd, o->force);
   cmd->add_flag("--grid-search", o->grid_search,
                 "5-fold stratified CV grid search over C (and gamma); keys grid.* via --set");
+  cmd->add_flag("--fit-size-bias", o->fit_size_bias,
+                "Fit the size correction on the training passes (tracking on) and record it in the model");
   cmd->add_flag("--quiet", o->quiet, "No progress lines");
   add_config_options(cmd, o->common);
   add_json_flag(cmd, o->common);

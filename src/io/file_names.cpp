@@ -15,23 +15,24 @@ std::string lower_extension(const fs::path& path) {
   return ext;
 }
 
-namespace {
-bool is_image_name(const fs::path& p) {
-  const std::string ext = lower_extension(p);
-  return ext == ".png" || ext == ".jpg" || ext == ".jpeg";
-}
-}  // namespace
-
-std::vector<fs::path> list_images(const fs::path& dir) {
+std::vector<fs::path> list_files_with(const fs::path& dir, const std::vector<std::string>& extensions,
+                                      const std::string& what) {
+  const auto wanted = [&](const fs::path& p) {
+    return std::find(extensions.begin(), extensions.end(), lower_extension(p)) != extensions.end();
+  };
   std::error_code ec;
-  if (fs::is_regular_file(dir, ec) && is_image_name(dir)) return {dir};
-  if (!fs::is_directory(dir, ec)) throw Error(dir.string(), "no such image or folder of images");
+  if (fs::is_regular_file(dir, ec) && wanted(dir)) return {dir};
+  if (!fs::is_directory(dir, ec)) throw Error(dir.string(), "no such " + what + " or folder of them");
   std::vector<fs::path> out;
   for (const auto& e : fs::directory_iterator(dir))
-    if (e.is_regular_file() && is_image_name(e.path())) out.push_back(e.path());
-  if (out.empty()) throw Error(dir.string(), "holds no .jpg or .png image");
+    if (e.is_regular_file() && wanted(e.path())) out.push_back(e.path());
+  if (out.empty()) throw Error(dir.string(), "holds no " + what);
   std::sort(out.begin(), out.end());
   return out;
+}
+
+std::vector<fs::path> list_images(const fs::path& dir) {
+  return list_files_with(dir, {".png", ".jpg", ".jpeg"}, ".jpg or .png image");
 }
 
 }  // namespace cropsight::io

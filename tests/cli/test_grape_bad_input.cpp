@@ -287,11 +287,14 @@ TEST_F(GrapeBadInput, LabelAndColourOutOfRange) {
   EXPECT_FALSE(fs::exists(t / "x.json"));
 }
 
-// Bug: --input DIR said "no points"; the help promised an optional label column.
+// Bug: --input DIR said "no points"; the help promised an optional label column. A folder of
+// clouds is an input now; one that holds none is named.
 TEST_F(GrapeBadInput, SegmentInputDirectoryAndHelp) {
-  expect_one_line_error(run_cli("segment grape --model " + gbdt_model() + " --clouds " + shell_quoted(t / "data") +
-                                " --out " + shell_quoted(t / "o.txt")),
-                        {(t / "data").string(), "is a directory"}, "dir");
+  fs::create_directories(t / "empty");
+  expect_one_line_error(run_cli("segment grape --model " + gbdt_model() + " --clouds " + shell_quoted(t / "empty") +
+                                " --out " + shell_quoted(t / "o")),
+                        {(t / "empty").string(), "holds no .txt, .ply or .pcd cloud"}, "dir");
+  EXPECT_FALSE(fs::exists(t / "o"));
   const auto r = run_cli("segment grape --help");
   EXPECT_EQ(r.out.find("[label]"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("10 numbers"), std::string::npos) << r.out;

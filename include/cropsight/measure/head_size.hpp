@@ -46,7 +46,7 @@ SizeEstimator parse_size_estimator(const std::string& text, const std::string& w
 const char* to_string(SizeEstimator e);
 
 struct HeadSizeConfig {
-  std::string estimator = "bbox";         ///< which estimator gives `diameter_mm` (bbox | hull)
+  std::string estimator = "hull";         ///< which estimator gives `diameter_mm` (bbox | hull)
   bool compute_hull = true;               ///< false skips the hull (hull_mm stays 0) when only bbox is used
   std::string hull_engine = "quickhull";  ///< quickhull | qhull (see HullEngine)
   int min_points = 20;                    ///< heads with fewer valid points are not measured
@@ -59,7 +59,9 @@ struct HeadSizeConfig {
 
   template <class V>
   void visit(V& v) {
-    v("estimator", estimator, "bbox | hull; estimator behind diameter_mm and harvestable (paper: both, §4.4)");
+    v("estimator", estimator,
+      "bbox | hull; estimator behind diameter_mm and harvestable (paper: both, §4.4; default hull: the smaller error "
+      "once bias-corrected, docs/pipelines/broccoli-sizing-tracking.md)");
     v("compute_hull", compute_hull, "bool; also run the convex-hull estimator for every head");
     v("hull_engine", hull_engine,
       "quickhull | qhull; our Quickhull (tested against qhull, 4x faster) or qhull via PCL (paper's library)");

@@ -111,6 +111,20 @@ Cloud roi_cloud(const DepthImage& depth, const ColorImage& color, const CameraIn
   return c;
 }
 
+RoiCloud segmenter_input(Cloud cloud, const RoiConfig& cfg) {
+  RoiCloud r;
+  r.cloud = std::move(cloud);
+  if (!r.cloud.has_normals()) {
+    geometry::KnnNormalsConfig ncfg;
+    ncfg.k = std::min(cfg.normal_k, int(r.cloud.size()));  // no more neighbours than points
+    ncfg.viewpoint = Eigen::Vector3f::Zero();              // the camera centre, in the camera frame
+    r.cloud.normals = geometry::knn_normals(r.cloud.points, ncfg);
+  }
+  std::tie(r.centroid, r.scale) = geometry::normalize_unit_sphere(r.cloud.points);
+  r.cloud.labels.assign(r.cloud.size(), 0);
+  return r;
+}
+
 RoiFrame grape_roi_clouds(const DepthImage& depth, const ColorImage& color, const CameraIntrinsics& cam,
                           const std::vector<Detection>& detections, const RoiConfig& cfg) {
   cfg.validate("grape roi config");
@@ -124,16 +138,10 @@ RoiFrame grape_roi_clouds(const DepthImage& depth, const ColorImage& color, cons
       frame.outside.push_back(d);
   }
   for (const auto& box : grape_rois(detections, depth.width, depth.height, cfg)) {
-    RoiCloud r;
+    Cloud cloud = roi_cloud(depth, color, cam, box, cfg);
+    if (cloud.size() < 3) continue;  // nothing measurable in this ROI
+    RoiCloud r = segmenter_input(std::move(cloud), cfg);
     r.box = box;
-    r.cloud = roi_cloud(depth, color, cam, box, cfg);
-    if (r.cloud.size() < 3) continue;  // nothing measurable in this ROI
-    geometry::KnnNormalsConfig ncfg;
-    ncfg.k = std::min(cfg.normal_k, int(r.cloud.size()));  // no more neighbours than points
-    ncfg.viewpoint = Eigen::Vector3f::Zero();              // the camera centre, in the camera frame
-    r.cloud.normals = geometry::knn_normals(r.cloud.points, ncfg);
-    std::tie(r.centroid, r.scale) = geometry::normalize_unit_sphere(r.cloud.points);
-    r.cloud.labels.assign(r.cloud.size(), 0);
     frame.rois.push_back(std::move(r));
   }
   return frame;

@@ -74,6 +74,11 @@ struct RoiCloud {
   float scale = 1.f;                                   ///< m per unit
 };
 
+/// A metric cloud (m, camera frame) made ready for a grape segmentation model as stage 3 makes
+/// every ROI cloud: KNN-PCA normals oriented to the camera centre (cfg.normal_k neighbours, at
+/// most the cloud size) unless it has normals, then the unit-sphere normalisation; labels 0.
+RoiCloud segmenter_input(Cloud cloud, const RoiConfig& cfg = {});
+
 /// Stages 1-3 of one RGB-D frame.
 struct RoiFrame {
   std::vector<RoiCloud> rois;      ///< in grape_rois() order; ROIs with fewer than 3 points dropped

@@ -1,0 +1,57 @@
+#include "cropsight/pipeline/broccoli/size_calibration.hpp"
+
+#include <cstdio>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/io/sequence.hpp"
+#include "cropsight/pipeline/broccoli/tracking_eval.hpp"
+
+namespace cropsight::pipeline::broccoli {
+
+namespace {
+
+// Shortest decimal that reads back to the same double, so that a model file's value is the fit.
+std::string exact(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+}  // namespace
+
+SizeCorrection fit_size_correction(std::shared_ptr<const learning::Model> model, Config cfg,
+                                   const std::vector<std::string>& sequences,
+                                   const std::function<void(const std::string&, int, int)>& progress) {
+  cfg.track = true;
+  cfg.sizing.hull_scale = cfg.sizing.bbox_scale = 1.0;
+  cfg.sizing.hull_offset_mm = cfg.sizing.bbox_offset_mm = 0.0;
+  Pipeline pipe(cfg, std::move(model));
+  TrackingEvaluator tracker(TrackingEvalOptions{.fit_size_bias = true});
+  for (const std::string& dir : sequences) {
+    const io::SequenceReader reader(dir);
+    if (!reader.info().has_labels) throw Error(dir, "sequence has no labels/ (the size fit needs ground truth)");
+    if (!reader.info().has_groundtruth) throw Error(dir, "sequence has no groundtruth.json (the true head sizes)");
+    pipe.reset();
+    tracker.begin_pass(reader.groundtruth(), !reader.poses().empty(), dir);
+    for (int i = 0; i < reader.size(); ++i) {
+      const RgbdFrame frame = reader.read(i);
+      pipe.process(frame);
+      tracker.add_frame(frame, pipe);
+      if (progress) progress(dir, i + 1, reader.size());
+    }
+    tracker.end_pass(pipe);
+  }
+  const TrackingFigures f = tracker.figures();
+  if (!f.hull_fit || !f.bbox_fit) throw Error("size calibration", "no size was fitted");
+  return {*f.hull_fit, *f.bbox_fit, cfg.sizing.hull_max_points};
+}
+
+ConfigMap size_correction_values(const SizeCorrection& fit) {
+  return {{"sizing.hull_scale", exact(fit.hull.scale)},
+          {"sizing.hull_offset_mm", exact(fit.hull.offset_mm)},
+          {"sizing.bbox_scale", exact(fit.bbox.scale)},
+          {"sizing.bbox_offset_mm", exact(fit.bbox.offset_mm)},
+          {"sizing.hull_max_points", std::to_string(fit.hull_max_points)}};
+}
+
+}  // namespace cropsight::pipeline::broccoli
