@@ -1,7 +1,8 @@
 // cropsight report --data SEQ --out page.html: one self-contained HTML page (embedded PNGs,
 // inline CSS/SVG) with the sequence summary and renders of a few evenly spaced frames.
-// With --model, the broccoli pipeline runs over the (labelled) sequence and its tracking
-// evaluation adds the detection, precision-recall, field-map, size and timing sections.
+// With --model, the broccoli pipeline runs over the sequence: detection, field-map, size and timing
+// sections, and where the sequence has ground truth its tracking evaluation (precision-recall,
+// size errors, key metrics).
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -27,11 +28,15 @@ struct ReportOptions {
   bool force = false, quiet = false;
 };
 
-// The broccoli sections; returns the tracking figures as `eval broccoli --track --json` has them.
+// The broccoli sections; returns the tracking figures as `eval broccoli --track --json` has them,
+// or (no ground truth) the counts the page shows.
 nlohmann::json add_broccoli(report::HtmlPage& page, const ReportOptions& o) {
   const BroccoliReportPass pass = broccoli_report_pass(o.data, o.model, o.common, o.frames, o.quiet);
   report::add_broccoli_sections(page, pass.data);
-  return tracking_json(pass.figures);
+  if (pass.figures) return tracking_json(*pass.figures);
+  nlohmann::json counts{{"ground_truth", false}};
+  for (const auto& [key, value] : pass.data.metrics) counts[key] = value;
+  return counts;
 }
 
 void run(const ReportOptions& o) {

@@ -32,7 +32,7 @@ struct ReportDemoOptions {
 void add_broccoli_chapter(report::HtmlPage& page, const ReportDemoOptions& o, nlohmann::json& j) {
   const fs::path seq = fs::path(o.broccoli) / "seq";
   BroccoliReportPass pass = broccoli_report_pass(seq.string(), o.model, o.common, o.frames, o.quiet);
-  const report::SystemSummary s = report::broccoli_summary(pass.figures, pass.data, o.broccoli);
+  const report::SystemSummary s = report::broccoli_summary(*pass.figures, pass.data, o.broccoli);
   page.chapter("Broccoli heads and field map", "broccoli");
   report::add_system_summary(page, s);
   report::add_broccoli_sections(page, pass.data);
@@ -41,7 +41,7 @@ void add_broccoli_chapter(report::HtmlPage& page, const ReportDemoOptions& o, nl
   report::SequencePageOptions po;
   po.frames_shown = o.frames;
   report::add_sequence_sections(page, reader, report::summarize_sequence(reader), po);
-  j["broccoli"] = tracking_json(pass.figures);
+  j["broccoli"] = tracking_json(*pass.figures);
 }
 
 void run(const ReportDemoOptions& o) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <numeric>
 #include <unordered_map>
 
@@ -178,7 +179,7 @@ void field_map_section(HtmlPage& page, const BroccoliReportData& d) {
     truth.y.push_back(h.y);
     truth.r.push_back(h.diameter_mm / 2000.0);
   }
-  ScatterSeries hit{"mapped (matched)", {}, {}, {}, "#2a7", false};
+  ScatterSeries hit{d.has_truth ? "mapped (matched)" : "mapped heads", {}, {}, {}, "#2a7", false};
   ScatterSeries miss{"mapped (no true head within 5 cm)", {}, {}, {}, "#d33", false};
   for (const auto& h : d.map_heads) {
     auto& s = h.matched ? hit : miss;
@@ -199,8 +200,12 @@ void field_map_section(HtmlPage& page, const BroccoliReportData& d) {
   o.equal_aspect = true;
   o.width = 900;
   o.height = 420;
-  page.svg(svg_scatter_plot({truth, cam, hit, miss}, o),
-           "True heads (grey outlines, visible in at least one frame) and the map of the temporal filter");
+  // Without ground truth every mapped head is drawn alike, and no empty series fills the legend.
+  const std::vector<ScatterSeries> series =
+      d.has_truth ? std::vector<ScatterSeries>{truth, cam, hit, miss} : std::vector<ScatterSeries>{cam, hit};
+  page.svg(svg_scatter_plot(series, o),
+           d.has_truth ? "True heads (grey outlines, visible in at least one frame) and the map of the temporal filter"
+                       : "The map of the temporal filter and the camera's path (no ground truth)");
 }
 
 // Estimated against true diameters, and the raw estimators' errors against distance from the axis.
@@ -231,6 +236,42 @@ void size_section(HtmlPage& page, const BroccoliReportData& d) {
   q.x_label = "distance of the head centroid from the optical axis (m)";
   q.y_label = "raw estimate − truth (mm)";
   page.svg(svg_scatter_plot({b, h}, q), "Raw estimators, before bias correction");
+}
+
+// Without ground truth: how the mapped heads' diameters are distributed, 10 mm bins.
+void size_distribution_section(HtmlPage& page, const BroccoliReportData& d) {
+  page.section("Size");
+  std::map<int, int> bins;
+  for (const auto& h : d.map_heads)
+    if (h.diameter_mm > 0) ++bins[int(h.diameter_mm / 10.0)];
+  std::vector<Bar> bars;
+  for (const auto& [bin, count] : bins)
+    bars.push_back({std::to_string(bin * 10) + "–" + std::to_string(bin * 10 + 10), double(count)});
+  if (bars.empty()) {
+    page.paragraph("No mapped head was sized.");
+    return;
+  }
+  page.svg(svg_bar_chart(bars, "mapped heads per diameter (mm)", "heads"),
+           "Diameters of the field map's heads (" + d.estimator + " estimator, the model's size correction)");
+}
+
+// Accepted heads in each frame: where the model sees many, few or none.
+void detections_plot(HtmlPage& page, const BroccoliReportData& d) {
+  if (d.detections_per_frame.empty()) return;
+  Series s;
+  s.name = "heads accepted";
+  s.color = "#2a7";
+  for (std::size_t i = 0; i < d.detections_per_frame.size(); ++i) {
+    s.x.push_back(double(i));
+    s.y.push_back(double(d.detections_per_frame[i]));
+  }
+  PlotOptions o;
+  o.title = "detections per frame";
+  o.x_label = "frame";
+  o.y_label = "heads";
+  o.height = 220;
+  o.y_from_zero = true;
+  page.svg(svg_line_plot({s}, o), "Heads the classifier accepted in each frame (before the temporal filter)");
 }
 
 // Mean time per frame of each detector stage and of sizing + tracking.
@@ -265,20 +306,27 @@ void add_broccoli_sections(HtmlPage& page, const BroccoliReportData& d) {
   // sequence's own summary (sequence_page.hpp) is the page's data part and follows all of this.
   page.section("Broccoli heads: detections over frames");
   page.paragraph("Sequence " + d.sequence + ", model " + d.model + ", " + std::to_string(d.frames) +
-                 " frames. Size estimator: " + d.estimator + ".");
+                 " frames. Size estimator: " + d.estimator + "." +
+                 (d.has_truth ? "" : " The sequence has no ground truth: what the pipeline found, no metric."));
   if (!d.overlays.empty()) {
     page.paragraph(
-        "Depth with detections: green = head confirmed by the temporal filter, red = not confirmed, magenta = "
-        "a confirmed head this frame missed, predicted by the filter (tracking.predict_missed); white outlines = "
-        "ground-truth heads.");
+        std::string("Depth with detections: green = head confirmed by the temporal filter, red = not confirmed, "
+                    "magenta = a confirmed head this frame missed, predicted by the filter "
+                    "(tracking.predict_missed)") +
+        (d.has_truth ? "; white outlines = ground-truth heads." : "."));
     page.figures(d.overlays);
   }
+  detections_plot(page, d);
   field_map_section(page, d);
-  size_section(page, d);
+  if (d.has_truth)
+    size_section(page, d);
+  else
+    size_distribution_section(page, d);
   timing_section(page, d);
   page.section("Key figures");
-  page.key_values(d.metrics, "Map and size metrics per head; ap50 per frame and point set");
-  pr_section(page, d);
+  page.key_values(d.metrics, d.has_truth ? "Map and size metrics per head; ap50 per frame and point set"
+                                         : "Counts over the pass (no ground truth, so no metric)");
+  if (d.has_truth) pr_section(page, d);
 }
 
 }  // namespace cropsight::report

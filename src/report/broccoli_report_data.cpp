@@ -38,6 +38,11 @@ std::vector<std::pair<std::string, std::string>> key_figures(const pipeline::bro
 }
 
 Figure overlay_figure(const pipeline::broccoli::PassMaterial::Overlay& o) {
+  return make_figure(broccoli_overlay(o), "frame " + std::to_string(o.frame));
+}
+}  // namespace
+
+ColorImage broccoli_overlay(const pipeline::broccoli::PassMaterial::Overlay& o) {
   ColorImage img = depth_colormap(o.depth, o.depth_scale);
   for (const auto& [pixels, mapped] : o.detections)
     for (int i : pixels) {
@@ -51,9 +56,8 @@ Figure overlay_figure(const pipeline::broccoli::PassMaterial::Overlay& o) {
       p = Rgb8{uint8_t(200 + p.r / 5), uint8_t(p.g / 4), uint8_t(200 + p.b / 5)};  // magenta: not in the depth colours
     }
   if (!o.labels.data.empty()) draw_label_outlines(img, o.labels);
-  return make_figure(upscale(img, 1), "frame " + std::to_string(o.frame));
+  return img;
 }
-}  // namespace
 
 BroccoliReportData broccoli_report_data(const pipeline::broccoli::TrackingFigures& figures,
                                         const pipeline::broccoli::PassMaterial& material) {

@@ -160,3 +160,62 @@ TEST_F(TrackingCli, BadInputIsOneLineAndNoOutput) {
   EXPECT_FALSE(fs::exists(html));
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
 }
+
+// A user's own recording has no labels: the report shows what the pipeline found (the same map as
+// `detect --track --map` on it) and no metric.
+TEST_F(TrackingCli, ReportOnASequenceWithoutGroundTruth) {
+  const fs::path own = dir() / "own";
+  fs::copy(seq(), own, fs::copy_options::recursive);
+  fs::remove_all(own / "labels");
+  fs::remove(own / "groundtruth.json");
+  const fs::path html = dir() / "own.html", map = dir() / "own-map.csv";
+  auto r = run_cli("report --data " + shell_quoted(own) + " --model " + shell_quoted(model()) + " --frames 2 --out " +
+                   shell_quoted(html) + " --json --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out)["broccoli"];
+  EXPECT_EQ(j["ground_truth"], false);
+  r = run_cli("detect broccoli --data " + shell_quoted(own) + " --model " + shell_quoted(model()) + " --out " +
+              shell_quoted(dir() / "own.jsonl") + " --track --map " + shell_quoted(map) + " --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto heads = tracking::read_field_map(map);
+  ASSERT_GT(heads.size(), 0u);
+  EXPECT_EQ(j["map_heads"], std::to_string(heads.size()));
+  const std::string page = io::read_file(html);
+  EXPECT_NE(page.find("no ground truth"), std::string::npos);
+  EXPECT_NE(page.find("detections per frame"), std::string::npos);
+  EXPECT_NE(page.find("mapped heads per diameter"), std::string::npos);
+  EXPECT_EQ(page.find("Precision–recall"), std::string::npos);  // no metric without truth
+  EXPECT_NE(page.find("data:image/png;base64"), std::string::npos);
+}
+
+// The size correction is fitted on the training passes and travels in the model: the values
+// recorded equal what `eval --track --fit-size-bias` fits on the same passes with the same model,
+// and a command that loads the model sizes with them.
+TEST_F(TrackingCli, TrainRecordsTheSizeCorrectionInTheModel) {
+  const fs::path fitted = dir() / "fitted.json";
+  auto r = run_cli("train broccoli --data " + shell_quoted(seq()) + " --config " +
+                   shell_quoted(cropsight::testing::source_dir() / "configs" / "broccoli-oes-uk.yaml") +
+                   " --fit-size-bias --out " + shell_quoted(fitted) + " --quiet --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto trained = nlohmann::json::parse(r.out)["size_correction"];
+  const auto config = nlohmann::json::parse(io::read_file(fitted))["config"];
+  EXPECT_EQ(std::stod(config["sizing.hull_scale"].get<std::string>()), trained["sizing.hull_scale"].get<double>());
+  EXPECT_EQ(config["sizing.hull_max_points"], "500");
+  r = run_cli("eval broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model()) +
+              " --track --fit-size-bias --json --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto fit = nlohmann::json::parse(r.out)["size_bias_fit"];
+  EXPECT_NEAR(trained["sizing.hull_scale"].get<double>(), fit["hull"]["scale"].get<double>(), 1e-9);
+  EXPECT_NEAR(trained["sizing.hull_offset_mm"].get<double>(), fit["hull"]["offset_mm"].get<double>(), 1e-9);
+  EXPECT_NEAR(trained["sizing.bbox_scale"].get<double>(), fit["bbox"]["scale"].get<double>(), 1e-9);
+  // Sizes with the recorded correction differ from the uncorrected model's (scale ≠ 1 or offset ≠ 0).
+  r = run_cli("eval broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(fitted) +
+              " --track --json --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto corrected = nlohmann::json::parse(r.out);
+  r = run_cli("eval broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model()) +
+              " --track --json --quiet");
+  const auto raw = nlohmann::json::parse(r.out);
+  EXPECT_EQ(corrected["size_estimator"], "hull");
+  EXPECT_NE(corrected["size_mede_mm"], raw["size_mede_mm"]);
+}

@@ -15,6 +15,7 @@
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/report/broccoli_report.hpp"
+#include "cropsight/report/broccoli_run_data.hpp"
 #include "cropsight/report/sequence_page.hpp"
 #include "cropsight/report/sequence_summary.hpp"
 #include "cropsight/report/svg_charts.hpp"
@@ -208,4 +209,62 @@ TEST(BroccoliReport, PageRendersInHeadlessChromium) {
   for (const auto& p : shot.data)
     if (std::abs(int(p.r) - int(p.g)) > 40 || std::abs(int(p.g) - int(p.b)) > 40) ++coloured;
   EXPECT_GT(coloured, 2000) << "the screenshot shows almost no coloured plot marks";
+}
+
+// A pass without ground truth (a user's recording): the recorder keeps the chosen frames, colours
+// a detection by whether its head reached the map, counts what was found; the page shows no
+// metric section and renders in Chromium.
+TEST(BroccoliReport, APassWithoutGroundTruthShowsWhatWasFound) {
+  BroccoliRunRecorder recorder({1});
+  for (int f = 0; f < 3; ++f) {
+    RgbdFrame frame;
+    frame.depth = DepthImage(64, 48, std::uint16_t(800));
+    frame.camera.depth_scale = 0.001;
+    pipeline::broccoli::FrameResult r;
+    Detection kept, dropped;
+    kept.indices = {64 * 10 + 10, 64 * 10 + 11};
+    kept.track_id = 1;
+    dropped.indices = {64 * 30 + 40};
+    dropped.track_id = 2;
+    r.detections = {kept, dropped};
+    r.association.camera_position = Eigen::Vector3d(0.1 * f, 0.0, 0.0);
+    recorder.add_frame(frame, r);
+  }
+  tracking::TrackedHead head;
+  head.id = 1;
+  head.position = Eigen::Vector3d(0.2, 0.3, 0.0);
+  head.diameter_mm = 120.0;
+  head.harvestable = true;
+  const BroccoliReportData d = recorder.finish({head}, {{"normals", 3.0, 3}}, "own", "general", "hull");
+  EXPECT_FALSE(d.has_truth);
+  EXPECT_EQ(d.frames, 3);
+  EXPECT_EQ(d.detections_per_frame, (std::vector<int>{2, 2, 2}));
+  ASSERT_EQ(d.overlays.size(), 1u);  // frame 1 only
+  ASSERT_EQ(d.map_heads.size(), 1u);
+  EXPECT_EQ(d.map_heads[0].diameter_mm, 120.0);
+  const auto metric = [&](const std::string& k) {
+    for (const auto& [key, value] : d.metrics)
+      if (key == k) return value;
+    return std::string("missing");
+  };
+  EXPECT_EQ(metric("detections"), "6");
+  EXPECT_EQ(metric("map_heads"), "1");
+  EXPECT_EQ(metric("harvestable_heads"), "1");
+  EXPECT_EQ(metric("median_diameter_mm"), "120.0");
+
+  HtmlPage page("own recording");
+  add_broccoli_sections(page, d);
+  const std::string html = page.html();
+  EXPECT_EQ(html.find("Precision–recall"), std::string::npos);
+  EXPECT_EQ(html.find("true heads"), std::string::npos);
+  EXPECT_EQ(count_of(html, "<svg"), 4);  // detections per frame, field map, size distribution, timing
+  cropsight::testing::TempDir dir;
+  page.write(dir / "own.html");
+  if (!std::filesystem::exists(kChromium)) GTEST_SKIP() << "chromium not installed at " << kChromium;
+  const std::string dom =
+      run(chromium(dir / "profile-dom") + "--dump-dom file://" + (dir / "own.html").string() + " 2>/dev/null");
+  ASSERT_FALSE(dom.empty()) << "chromium produced no DOM";
+  EXPECT_EQ(count_of(dom, "<svg"), 4);
+  for (const char* section : {"detections over frames", "Field map", "Size", "Timing", "Key figures"})
+    EXPECT_NE(dom.find(section), std::string::npos) << section;
 }

@@ -37,6 +37,10 @@ std::vector<double> coco_thresholds();
 struct BroccoliReportData {
   std::string sequence, model, estimator;
   long frames = 0;
+  /// false: a sequence without ground truth (broccoli_run_data.hpp): no true heads, no PR curves,
+  /// no size errors; the map heads are all drawn alike and sizes as a distribution.
+  bool has_truth = true;
+  std::vector<int> detections_per_frame;                     ///< accepted heads per frame (may be empty)
   std::vector<std::pair<std::string, std::string>> metrics;  ///< key figures, in order
   std::vector<PrCurve> pr_single, pr_tracked;                ///< without / with the temporal filter
   struct MapPoint {

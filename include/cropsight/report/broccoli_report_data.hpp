@@ -6,6 +6,11 @@
 
 namespace cropsight::report {
 
+/// One frame's picture: depth colours (render.hpp's map, chosen so that heads stand out from the
+/// soil), heads that reached the map green, the others red, predicted points of mapped heads
+/// magenta, the ground-truth outlines on top when the overlay has labels.
+ColorImage broccoli_overlay(const pipeline::broccoli::PassMaterial::Overlay& overlay);
+
 /// Everything but `model` and `stages`, which the caller knows. Overlays: depth colours, heads
 /// that reached the map green, the others red, predicted points of mapped heads magenta, the
 /// ground-truth outlines on top.
