@@ -3,7 +3,8 @@
 // whose pixels hold the 1-based detection number (0 = none). With --track, every line also carries
 // the heads' sizes and track ids and the predicted heads, and --map writes the field map. Outputs
 // appear atomically: the JSONL and the map are written to temporary names and renamed; masks go
-// to a temporary sibling directory that replaces --masks at the end.
+// to a temporary sibling directory that replaces --masks at the end; --overlay writes one picture
+// per frame the same way (report/frame_overlays.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +20,7 @@
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/sequence.hpp"
+#include "cropsight/report/frame_overlays.hpp"
 #include "cropsight/tracking/field_map_io.hpp"
 
 namespace cropsight::cli {
@@ -28,7 +30,7 @@ namespace fs = std::filesystem;
 namespace detect_broccoli_cmd {
 struct DetectOptions {
   CommonOptions common;
-  std::string data, model, out, masks;
+  std::string data, model, out, masks, overlay;
   BagTopicOptions topics;
   bool quiet = false, force = false;
   TrackOptions track;  // --track, --map
@@ -54,6 +56,9 @@ void run(const DetectOptions& o) {
   }
   std::optional<io::OutputFolder> masks_out;
   if (!o.masks.empty()) masks_out.emplace(o.masks, policy);
+  if (!o.masks.empty()) policy.inputs.emplace_back(o.masks);
+  std::optional<io::OutputFolder> overlay_out;
+  if (!o.overlay.empty()) overlay_out.emplace(o.overlay, policy);
   const auto built = make_broccoli(o.model, o.common, o.track.track);
   pipeline::broccoli::Pipeline& pipe = *built;
   const Recording recording(o.data, o.topics);
@@ -75,6 +80,8 @@ void run(const DetectOptions& o) {
     lines += line.dump() + "\n";
     total += long(r.detections.size());
     if (masks_out) write_mask(masks_out->path(), frame, r.detections);
+    if (overlay_out)
+      io::write_color(overlay_out->path() / io::frame_file_name(frame.index), report::broccoli_frame_overlay(frame, r));
     progress.update(i + 1);
   }
   progress.finish();
@@ -100,6 +107,10 @@ void run(const DetectOptions& o) {
     masks_out->commit("masks");
     summary["masks"] = o.masks;
   }
+  if (overlay_out) {
+    overlay_out->commit("overlay folder");
+    summary["overlay"] = o.overlay;
+  }
   if (o.common.json) {
     print_json(summary);
   } else {
@@ -117,6 +128,8 @@ void add_detect_broccoli(CLI::App& detect) {
   add_broccoli_model_option(cmd, o->model);
   cmd->add_option("--out", o->out, "Detections, one JSON line per frame")->required();
   cmd->add_option("--masks", o->masks, "New folder for 16-bit detection-number PNGs (optional)");
+  cmd->add_option("--overlay", o->overlay,
+                  "New folder for pictures: heads tinted green on colour (or a depth colour map), predicted magenta");
   add_force_flag(cmd, o->force);
   cmd->add_flag("--quiet", o->quiet, "No progress lines");
   add_track_options(cmd, o->track, /*detect=*/true);

@@ -9,11 +9,12 @@
 //
 // DIR gets bunch_NNN.ply (points in metres with colour, normal and label) and cut_points.json
 // (per bunch: its file, ROI, label counts and cut point, null when the bunch shows no peduncle
-// cluster of cut_point.min_points points). DIR is replaced whole (a temporary sibling renamed),
-// so it never mixes two runs' files; an existing DIR must be empty or a previous run's output.
+// cluster of cut_point.min_points points); --overlay a picture of it all. DIR is replaced whole (a temporary sibling
+// renamed), so it never mixes two runs' files; an existing DIR must be empty or a previous run's output.
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -22,9 +23,11 @@
 #include "cropsight/io/cloud_io.hpp"
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/files.hpp"
+#include "cropsight/io/image_io.hpp"
 #include "cropsight/pipeline/grape/make_pipeline.hpp"
 #include "cropsight/pipeline/grape/pipeline.hpp"
 #include "cropsight/pipeline/grape/truth.hpp"
+#include "cropsight/report/frame_overlays.hpp"
 #include "grape_cli.hpp"
 #include "grape_segmenter_options.hpp"
 
@@ -34,34 +37,23 @@ namespace fs = std::filesystem;
 
 struct DetectGrapeOptions {
   CommonOptions common;
-  std::string color, depth, camera, detector, detections, out;
+  std::string color, depth, camera, detector, detections, out, overlay;
   long image_id = -1;
   int threads = 2;
   bool force = false;
   GrapeSegmenterOptions segmenter;
 };
 
-nlohmann::json vec3(const Eigen::Vector3f& v) { return {v.x(), v.y(), v.z()}; }
-
-nlohmann::json bunch_json(const pipeline::grape::Bunch& b, const std::string& file) {
-  nlohmann::json cut = nullptr;
-  if (b.cut_point)
-    cut = {{"position_m", vec3(b.cut_point->position)},
-           {"direction", vec3(b.cut_point->direction)},
-           {"confidence", b.cut_point->confidence}};
-  return {{"file", file},
-          {"roi", {b.roi.x, b.roi.y, b.roi.width, b.roi.height}},
-          {"points", b.cloud.size()},
-          {"label_counts", pipeline::grape::label_counts(b.cloud)},
-          {"cut_point", cut}};
-}
-
 void run(const DetectGrapeOptions& o) {
   check_thread_count(o.threads, "--threads");
   // Before any model loads: a bad --out costs nothing and names the folder.
-  io::OutputFolder out(o.out, output_policy("detect grape", o.force,
-                                            {o.color, o.depth, o.camera, o.detector, o.detections,
-                                             o.segmenter.config().model, o.common.config}));
+  io::OutputPolicy policy = output_policy(
+      "detect grape", o.force,
+      {o.color, o.depth, o.camera, o.detector, o.detections, o.segmenter.config().model, o.common.config});
+  io::OutputFolder out(o.out, policy);
+  policy.inputs.emplace_back(o.out);  // the two outputs must not overlap
+  std::optional<io::OutputFolder> overlay;
+  if (!o.overlay.empty()) overlay.emplace(o.overlay, policy);
   pipeline::PipelineSpec spec{o.common.config, o.common.sets, "", o.detector, o.threads};
   o.segmenter.add_to_spec(spec);
   const auto built = pipeline::grape::make_pipeline(spec);
@@ -98,7 +90,11 @@ void run(const DetectGrapeOptions& o) {
   for (std::size_t i = 0; i < r.bunches.size(); ++i)
     io::write_cloud(out.path() / bunches[i]["file"].get<std::string>(), r.bunches[i].cloud);
   io::write_file_atomic(out.path() / "cut_points.json", j.dump(2) + "\n");
+  if (overlay)
+    io::write_color(overlay->path() / (fs::path(o.color).stem().string() + ".png"),
+                    report::grape_frame_overlay(frame.color, frame.camera, r));
   out.commit("grape bunches");
+  if (overlay) overlay->commit("overlay folder");
   if (o.common.json) {
     j["out"] = o.out;
     j["ms"] = json_number(r.timer.total_ms());
@@ -129,6 +125,8 @@ void add_detect_grape(CLI::App& detect) {
   cmd->add_option("--image-id", o->image_id, "With --detections: keep only this COCO image_id's boxes")->needs(dets);
   cmd->add_option("--out", o->out, "New output folder: bunch_NNN.ply (labelled, metres, camera frame), cut_points.json")
       ->required();
+  cmd->add_option("--overlay", o->overlay,
+                  "New folder for a picture: bunch points by label, boxes, ROIs, cut points (<colour stem>.png)");
   add_force_flag(cmd, o->force);
   cmd->add_option("--threads", o->threads,
                   "Threads of the segmenter and the .pt detector, 1.." + std::to_string(kMaxThreads) + " (default 2)");

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -17,6 +18,7 @@
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/voc.hpp"
 #include "cropsight/nn/center_onnx.hpp"
+#include "cropsight/report/frame_overlays.hpp"
 
 namespace cropsight::cli {
 
@@ -27,7 +29,7 @@ using io::list_images;
 void add_detect_objects(CLI::App& detect) {
   using namespace detect_objects_cmd;
   struct Options {
-    std::string model, images, out;
+    std::string model, images, out, overlay;
     int threads = 1;
     bool force = false;
     CommonOptions common;
@@ -37,12 +39,17 @@ void add_detect_objects(CLI::App& detect) {
   cmd->add_option("--model", o->model, "Detector: .pt (libtorch) or .onnx (OpenCV DNN)")->required();
   cmd->add_option("--images", o->images, "Folder of images")->required();
   cmd->add_option("--out", o->out, "New output folder (per-image .txt and detections.json)")->required();
+  cmd->add_option("--overlay", o->overlay, "New folder for pictures with the boxes, classes and scores (<stem>.png)");
   add_force_flag(cmd, o->force);
   cmd->add_option("--threads", o->threads, "libtorch threads (.pt)")->check(CLI::Range(1, 256));
   add_json_flag(cmd, o->common);
   cmd->callback([o] {
     // Written whole or not at all: a bad image half-way leaves no folder of partial results.
-    io::OutputFolder out(o->out, output_policy("detect objects", o->force, {o->images, o->model}));
+    io::OutputPolicy policy = output_policy("detect objects", o->force, {o->images, o->model});
+    io::OutputFolder out(o->out, policy);
+    policy.inputs.emplace_back(o->out);
+    std::optional<io::OutputFolder> overlay;
+    if (!o->overlay.empty()) overlay.emplace(o->overlay, policy);
     const auto files = list_images(o->images);
     auto det = nn::load_center_detector(io::find_model(o->model).string(), o->threads);
     const auto names = det->class_names();
@@ -53,6 +60,8 @@ void add_detect_objects(CLI::App& detect) {
       const ColorImage im = io::read_color(files[i]);
       const auto d = det->detect({&im, nullptr});
       io::write_detection_text(out.path() / (files[i].stem().string() + ".txt"), d, names);
+      if (overlay)
+        io::write_color(overlay->path() / (files[i].stem().string() + ".png"), report::detection_overlay(im, d, names));
       for (const auto& b : d)
         results.push_back({{"file_name", files[i].filename().string()},
                            {"image_id", i},
@@ -65,6 +74,7 @@ void add_detect_objects(CLI::App& detect) {
     io::write_atomic_with(out.path() / "detections.json",
                           [&](const std::filesystem::path& tmp) { std::ofstream(tmp) << results.dump() << "\n"; });
     out.commit("detections");
+    if (overlay) overlay->commit("overlay folder");
     if (o->common.json)
       print_json({{"images", files.size()},
                   {"boxes", boxes},

@@ -7,6 +7,8 @@
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/timer.hpp"
+#include "cropsight/io/image_io.hpp"
+#include "cropsight/report/render.hpp"
 #include "cropsight/stereo/calibration.hpp"
 #include "cropsight/stereo/disparity.hpp"
 #include "cropsight/stereo/rectification.hpp"
@@ -19,7 +21,7 @@ namespace stereo_disparity_cmd {
 
 struct DisparityOptions {
   CommonOptions common;
-  std::string left, right, calib, out, method = "sgm";
+  std::string left, right, calib, out, preview, method = "sgm";
   int max_disp = 128, window = 55;
   bool force = false;
 };
@@ -36,7 +38,10 @@ void run_disparity(const DisparityOptions& o) {
                 "must be odd, 1.." + std::to_string(stereo::kMaxBlockWindow) + ", got " + std::to_string(o.window));
   // The PNG stores disparity x 256 in 16 bits: an 8-bit or lossy format (JPEG) would not hold it.
   stereo::check_image_output(o.out, "--out", true);
-  io::check_output_file(o.out, output_policy("stereo disparity", o.force, {o.left, o.right, o.calib, o.common.config}));
+  io::OutputPolicy policy = output_policy("stereo disparity", o.force, {o.left, o.right, o.calib, o.common.config});
+  io::check_output_file(o.out, policy);
+  policy.inputs.emplace_back(o.out);
+  if (!o.preview.empty()) io::check_output_file(o.preview, policy);
   stereo::DisparityConfig cfg;
   cfg.num_disparities = o.max_disp;
   apply_checked_config(cfg, o.common, "", [](const stereo::DisparityConfig& c, const std::string& where) {
@@ -70,6 +75,7 @@ void run_disparity(const DisparityOptions& o) {
   }
   const double ms = timer.total_ms();
   stereo::write_disparity_png(o.out, d, 256.0);
+  if (!o.preview.empty()) io::write_color(o.preview, report::disparity_colormap(stereo::scaled_disparity(d, 256.0)));
   const double valid_pct = stereo::valid_percent(d);
   if (o.common.json) {
     print_json({{"out", o.out},
@@ -98,6 +104,8 @@ void add_stereo_disparity(CLI::App& parent) {
   dis->add_option("--method", dopt->method, "sgm (ours) | opencv-sgbm | sad | ssd")->capture_default_str();
   dis->add_option("--window", dopt->window, "SAD/SSD window side, odd, 1..255 (paper: 55)")->capture_default_str();
   dis->add_option("--out", dopt->out, "16-bit image (.png, .tif, .tiff, .pgm), disparity x 256, 0 = none")->required();
+  dis->add_option("--preview", dopt->preview,
+                  "Colour picture of the disparity to look at (.png: near red, far blue, none black)");
   add_force_flag(dis, dopt->force);
   add_json_flag(dis, dopt->common);
   add_config_options(dis, dopt->common);

@@ -39,4 +39,21 @@ RgbdFrame read_grape_frame(const std::string& color, const std::string& depth, c
   return f;
 }
 
+namespace {
+nlohmann::json vec3(const Eigen::Vector3f& v) { return {v.x(), v.y(), v.z()}; }
+}  // namespace
+
+nlohmann::json bunch_json(const pipeline::grape::Bunch& b, const std::string& file) {
+  nlohmann::json cut = nullptr;
+  if (b.cut_point)
+    cut = {{"position_m", vec3(b.cut_point->position)},
+           {"direction", vec3(b.cut_point->direction)},
+           {"confidence", b.cut_point->confidence}};
+  return {{"file", file},
+          {"roi", {b.roi.x, b.roi.y, b.roi.width, b.roi.height}},
+          {"points", b.cloud.size()},
+          {"label_counts", pipeline::grape::label_counts(b.cloud)},
+          {"cut_point", cut}};
+}
+
 }  // namespace cropsight::cli

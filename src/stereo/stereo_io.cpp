@@ -195,14 +195,18 @@ void check_image_output(const fs::path& path, const std::string& option, bool si
   if (!cv::haveImageWriter(where)) throw Error(where, "this OpenCV build cannot write " + ext + " files");
 }
 
+DepthImage scaled_disparity(const DisparityImage& d, double scale) {
+  DepthImage out(d.width, d.height, 0);
+  for (std::size_t i = 0; i < d.data.size(); ++i) {
+    const float v = d.data[i];
+    out.data[i] = std::isnan(v) || v <= 0 ? 0 : std::uint16_t(std::min(65535.0, std::round(double(v) * scale)));
+  }
+  return out;
+}
+
 void write_disparity_png(const fs::path& path, const DisparityImage& d, double scale) {
-  cv::Mat m(d.height, d.width, CV_16U);
-  for (int y = 0; y < d.height; ++y)
-    for (int x = 0; x < d.width; ++x) {
-      const float v = d.at(x, y);
-      m.at<std::uint16_t>(y, x) =
-          std::isnan(v) || v <= 0 ? 0 : std::uint16_t(std::min(65535.0, std::round(double(v) * scale)));
-    }
+  const DepthImage scaled = scaled_disparity(d, scale);
+  const cv::Mat m(d.height, d.width, CV_16U, const_cast<std::uint16_t*>(scaled.data.data()));
   io::write_atomic_with(path, [&](const fs::path& tmp) {
     if (!cv::imwrite(tmp.string(), m)) throw Error(path.string(), "cannot write image");
   });

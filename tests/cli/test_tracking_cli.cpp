@@ -219,3 +219,22 @@ TEST_F(TrackingCli, TrainRecordsTheSizeCorrectionInTheModel) {
   EXPECT_EQ(corrected["size_estimator"], "hull");
   EXPECT_NE(corrected["size_mede_mm"], raw["size_mede_mm"]);
 }
+
+// --overlay: one viewable picture per frame, written whole; it may not be the --masks folder.
+TEST_F(TrackingCli, DetectWritesAnOverlayPerFrame) {
+  const fs::path overlay = dir() / "overlay", masks = dir() / "masks-o";
+  auto r = run_cli("detect broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model()) + " --out " +
+                   shell_quoted(dir() / "o.jsonl") + " --track --masks " + shell_quoted(masks) + " --overlay " +
+                   shell_quoted(overlay) + " --quiet --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["overlay"], overlay.string());
+  int pictures = 0;
+  for (const auto& e : fs::directory_iterator(overlay)) pictures += e.path().extension() == ".png";
+  EXPECT_EQ(pictures, io::SequenceReader(seq()).size());
+  r = run_cli("detect broccoli --data " + shell_quoted(seq()) + " --model " + shell_quoted(model()) + " --out " +
+              shell_quoted(dir() / "o2.jsonl") + " --masks " + shell_quoted(dir() / "same") + " --overlay " +
+              shell_quoted(dir() / "same") + " --quiet");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_FALSE(fs::exists(dir() / "same"));
+  EXPECT_FALSE(fs::exists(dir() / "o2.jsonl"));
+}

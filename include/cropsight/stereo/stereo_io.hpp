@@ -41,6 +41,9 @@ void write_pfm(const std::filesystem::path& path, const Image<float>& values);
 /// .tif, .tiff, .pgm, plus .bmp when !sixteen_bit); `option` (e.g. "--out") goes into the message.
 /// Throws Error(path, ...).
 void check_image_output(const std::filesystem::path& path, const std::string& option, bool sixteen_bit);
+/// Disparity (px) as 16-bit values round(disparity x scale), 0 where there is none (NaN or <= 0);
+/// what write_disparity_png stores.
+DepthImage scaled_disparity(const DisparityImage& disparity, double scale = 256.0);
 /// 16-bit PNG with value = round(disparity * scale), 0 = no estimate (atomic write).
 void write_disparity_png(const std::filesystem::path& path, const DisparityImage& disparity, double scale = 256.0);
 /// 8-bit RGB PNG (atomic write).
