@@ -51,19 +51,37 @@ int class_of(const std::vector<std::string>& classes, const std::string& name) {
   return it == classes.end() ? -1 : int(it - classes.begin());
 }
 
+json parse_json_file(const std::filesystem::path& path) {
+  const std::string text = io::read_file(path);  // names a missing file or a folder
+  try {
+    return json::parse(text);
+  } catch (const json::exception& e) {
+    throw Error(path.string(), std::string("not JSON: ") + e.what());
+  }
+}
+
 }  // namespace
+
+std::map<std::string, long> coco_image_ids(const std::filesystem::path& annotations) {
+  const std::string file = annotations.string();
+  const json root = parse_json_file(annotations);
+  const json& images = member(root, "images", json::value_t::array, file, "root");
+  std::map<std::string, long> ids;
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    const std::string where = "images[" + std::to_string(i) + "]";
+    const long id = member(images[i], "id", json::value_t::number_integer, file, where).get<long>();
+    const std::string name = member(images[i], "file_name", json::value_t::string, file, where).get<std::string>();
+    if (!ids.emplace(std::filesystem::path(name).filename().string(), id).second)
+      throw Error(file, where + ": a second image named '" + std::filesystem::path(name).filename().string() + "'");
+  }
+  return ids;
+}
 
 // Long on purpose: COCO images, categories and annotations read and checked in one pass over the file.
 DetectionDataset read_coco_detection(const std::filesystem::path& annotations, const std::filesystem::path& images_dir,
                                      const std::vector<std::string>& classes) {
   const std::string file = annotations.string();
-  const std::string text = io::read_file(annotations);  // names a missing file or a folder
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::exception& e) {
-    throw Error(file, std::string("not JSON: ") + e.what());
-  }
+  const json root = parse_json_file(annotations);
   DetectionDataset out;
   out.classes = classes;
   // Categories: id → class index.

@@ -2,11 +2,14 @@
 // JSON with the held-out images), eval detector scores the same held-out images, and bad sets are one line naming the
 // file, exit 2.
 #include <gtest/gtest.h>
+
 #include <algorithm>
+#include <map>
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "cropsight/io/files.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "testing/testing.hpp"
 
@@ -59,6 +62,24 @@ TEST(DetectorCli, TrainsOnAVocSetWithAHeldOutSplit) {
     EXPECT_TRUE(fs::exists(t / (std::string(m) + ".out") / "detections.json"));
     EXPECT_TRUE(fs::exists(t / (std::string(m) + ".out") / "im0.txt"));
   }
+  // --coco: detections.json carries the annotations' image ids; --overlay: a picture per image.
+  write_text(t / "ids.json", R"({"images": [{"id": 17, "file_name": "img/im0.png"}, {"id": 3, "file_name": "im1.png"},
+      {"id": 42, "file_name": "im2.png"}, {"id": 8, "file_name": "im3.png"}]})");
+  auto d = run_cli("detect objects --model " + shell_quoted(t / "det.onnx") + " --images " + shell_quoted(t / "img") +
+                   " --out " + shell_quoted(t / "ids.out") + " --coco " + shell_quoted(t / "ids.json") + " --overlay " +
+                   shell_quoted(t / "pictures"));
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  const std::map<std::string, long> want = {{"im0.png", 17}, {"im1.png", 3}, {"im2.png", 42}, {"im3.png", 8}};
+  for (const auto& det : nlohmann::json::parse(cropsight::io::read_file(t / "ids.out" / "detections.json")))
+    EXPECT_EQ(det["image_id"].get<long>(), want.at(det["file_name"].get<std::string>())) << det.dump();
+  for (const char* stem : {"im0", "im1", "im2", "im3"})
+    EXPECT_TRUE(fs::exists(t / "pictures" / (std::string(stem) + ".png")));
+  write_text(t / "short.json", R"({"images": [{"id": 1, "file_name": "im0.png"}]})");
+  d = run_cli("detect objects --model " + shell_quoted(t / "det.onnx") + " --images " + shell_quoted(t / "img") +
+              " --out " + shell_quoted(t / "short.out") + " --coco " + shell_quoted(t / "short.json"));
+  EXPECT_EQ(d.exit_code, 2);
+  EXPECT_NE(d.err.find("im1.png: is not among the images of"), std::string::npos) << d.err;
+  EXPECT_FALSE(fs::exists(t / "short.out"));
   // eval detector scores the images train detector held out (same fraction and seed), both models.
   for (const char* m : {"det.pt", "det.onnx"}) {
     const auto ev = run_cli("eval detector --voc " + shell_quoted(t / "ann") + " --images " + shell_quoted(t / "img") +

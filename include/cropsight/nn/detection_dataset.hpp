@@ -13,6 +13,7 @@
 // that is missing or does not decode.
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,10 @@ struct DetectionDataset {
 /// images[].file_name is looked up under `images_dir` (as written, then its file name alone).
 DetectionDataset read_coco_detection(const std::filesystem::path& annotations, const std::filesystem::path& images_dir,
                                      const std::vector<std::string>& classes = {});
+
+/// The COCO ids of a COCO file's images by file name (the name alone, without folders), so that
+/// results on those images carry the annotations' ids. Throws Error(file, "images[3]: ...").
+std::map<std::string, long> coco_image_ids(const std::filesystem::path& annotations);
 
 /// Every *.xml of `voc_dir` (sorted), its <filename> under `images_dir` (else <stem>.jpg/.png).
 /// `classes` must not be empty.
