@@ -72,7 +72,7 @@ BagImportResult import_bag(const std::string& bag, const std::string& out, const
   o.topics = topics_of(topics);
   o.overwrite = overwrite;
   const auto s = ros_io::import_bag_sequence(o);
-  return {s.frames, s.color, s.unmatched_color};
+  return {s.frames, s.color, s.unmatched_color, s.skipped_without_color};
 }
 #else
 namespace {

@@ -64,6 +64,7 @@ struct BagImportResult {
   int frames = 0;
   bool color = false;
   int unmatched_color = 0;
+  int skipped_without_color = 0;
 };
 BagImportResult import_bag(const std::string& bag, const std::string& out, const BagTopicOptions& topics,
                            bool overwrite);

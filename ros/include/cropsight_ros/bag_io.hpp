@@ -56,11 +56,16 @@ struct BagImportOptions {
 struct BagImportSummary {
   int frames = 0;
   bool color = false;
-  int unmatched_color = 0;  ///< colour images with no depth frame within max_skew_s
+  int unmatched_color = 0;        ///< colour images with no depth frame within max_skew_s
+  int skipped_without_color = 0;  ///< depth frames left out because their colour image is missing
 };
 
-/// Reads depth, camera info and colour from `o.bag` into a sequence folder. Throws Error naming
-/// the bag (a missing topic, inconsistent camera info, a wrong encoding, a truncated file).
+/// Reads depth, camera info and colour from `o.bag` into a sequence folder, as a stream: a first
+/// pass collects stamps, camera info and poses, a second writes each frame as soon as its depth
+/// and colour have been read, so memory does not grow with the bag's length. When the bag has
+/// colour, depth frames without a colour image within max_skew_s are skipped and counted. Throws
+/// Error naming the bag (a missing topic, inconsistent camera info, a wrong encoding, a truncated
+/// file).
 BagImportSummary import_bag_sequence(const BagImportOptions& o);
 
 }  // namespace cropsight::ros_io
