@@ -11,6 +11,7 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #include "number_text.hpp"
+#include "yaml_key.hpp"
 
 namespace cropsight::io {
 
@@ -67,8 +68,16 @@ DepthToColor read_extrinsics_yaml(const fs::path& path) {
     throw Error(where,
                 "expected one mapping 'depth_to_color' or 'color_to_depth' with rotation (9 numbers, "
                 "row-major) and translation (3 numbers, metres)");
-  const YAML::Node m = root[forward ? "depth_to_color" : "color_to_depth"];
-  if (!m.IsMap()) throw Error(where, "expected rotation and translation under the extrinsics' key");
+  const std::string name = forward ? "depth_to_color" : "color_to_depth";
+  const YAML::Node m = root[name];
+  if (!m.IsMap()) throw Error(where, "expected rotation and translation under '" + name + "'");
+  // A typo (a 'rotaton' beside the rotation) must not pass unnoticed.
+  for (const auto& kv : root)
+    if (detail::yaml_key(kv.first, where) != name) throw Error(where, "unknown key '" + kv.first.Scalar() + "'");
+  for (const auto& kv : m) {
+    const std::string key = detail::yaml_key(kv.first, where);
+    if (key != "rotation" && key != "translation") throw Error(where, "unknown key '" + name + "." + key + "'");
+  }
   const std::vector<double> r = extrinsic_numbers(m, "rotation", 9, where);
   const std::vector<double> t = extrinsic_numbers(m, "translation", 3, where);
   DepthToColor e;
@@ -95,8 +104,10 @@ ColorImage register_color(const DepthImage& depth, const CameraIntrinsics& dc, c
   const int cw = color.width, ch = color.height;
   std::vector<float> zbuffer(std::size_t(cw) * std::size_t(ch), std::numeric_limits<float>::infinity());
   std::vector<Eigen::Vector3f> at(depth.data.size(), Eigen::Vector3f(-1, -1, 0));  // colour u, v, z per depth pixel
-  // A depth pixel's footprint in colour pixels, half-width; 0 when colour is the sparser image.
-  const int reach = int(std::ceil(0.5 * std::max(cc.fx / dc.fx, cc.fy / dc.fy) - 0.5));
+  // A depth pixel covers about fx_colour / fx_depth colour pixels across; it marks the colour
+  // pixels within half of that (none beside its own until colour is twice as fine), since a wider
+  // mark would hide the far side of every depth edge.
+  const int reach = int(std::floor(0.5 * std::max(cc.fx / dc.fx, cc.fy / dc.fy)));
   for (int v = 0; v < depth.height; ++v)
     for (int u = 0; u < depth.width; ++u) {
       const std::uint16_t raw = depth.at(u, v);
