@@ -152,7 +152,9 @@ ImportSummary import_recording(const ImportOptions& o) {
     RgbdFrame f;
     f.index = int(i);
     f.camera = camera;
-    f.timestamp = clock[i] - (stamps ? clock[0] : 0.0);
+    // From the first frame in the names' own milliseconds: 1596203844400.5 - 1596203844000.5 is
+    // exact, their quotients by 1000 are not.
+    f.timestamp = stamps ? (frames[i].value - frames[0].value) / 1000.0 : clock[i];
     if (pcd) {
       read_pcd_frame(frames[i].path, camera, !colors.files.empty(), f);
     } else {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cli/recorder_layouts.hpp"
@@ -158,6 +159,35 @@ TEST_F(ImportLayouts, BadInputsAreOneLineAndWriteNothing) {
   write_text(dir() / "intrinsics.yaml", "focal: 365\n");
   expect_refused(replace(without_out, good.depth_info, dir() / "intrinsics.yaml"), dir() / "intrinsics.yaml",
                  "ROS camera_info YAML");
+}
+
+// The frames' times reach every output that carries time: harvest potato's lines, and a bag
+// exported from the imported sequence (which lasts as long as the recording).
+TEST_F(ImportLayouts, TimestampsReachHarvestAndBag) {
+  ASSERT_TRUE(ok_) << "simulation failed";
+  const io::SequenceReader truth(sim());
+  const RecorderLayout l = write_recorder_layout(truth, dir() / "timed", Recorder::RealSense);
+  std::string args = import_args(l, dir() / "timed-seq");
+  args.replace(args.find(" --poses "), std::string(" --poses " + shell_quoted(l.poses)).size(), "");
+  ASSERT_EQ(run_cli(args).exit_code, 0);
+  EXPECT_TRUE(fs::exists(dir() / "timed-seq" / "timestamps.csv"));  // no poses: the times' own file
+  CommandResult r = run_cli("harvest potato --data " + shell_quoted(dir() / "timed-seq") + " --out " +
+                            shell_quoted(dir() / "h.jsonl"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream lines(dir() / "h.jsonl");
+  int frame = 0;
+  for (std::string line; std::getline(lines, line); ++frame)
+    EXPECT_NEAR(nlohmann::json::parse(line)["timestamp"].get<double>(), truth.read(frame).timestamp, 1e-6);
+  EXPECT_EQ(frame, truth.size());
+#if CROPSIGHT_HAS_ROS
+  r = run_cli("export --data " + shell_quoted(dir() / "timed-seq") + " --out " + shell_quoted(dir() / "t.bag"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_cli("import --data " + shell_quoted(dir() / "t.bag") + " --out " + shell_quoted(dir() / "from-bag"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const io::SequenceReader back(dir() / "from-bag");
+  ASSERT_EQ(back.size(), truth.size());
+  for (int i = 0; i < truth.size(); ++i) EXPECT_NEAR(back.read(i).timestamp, truth.read(i).timestamp, 1e-6);
+#endif
 }
 
 // import --pcd keeps the PCDs' label field as labels/.
