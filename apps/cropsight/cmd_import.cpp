@@ -21,10 +21,10 @@ struct ImportCliOptions {
 // A ROS bag: depth, camera_info and colour topics.
 void run_bag(const ImportCliOptions& o) {
   if (!o.io.depth_dir.empty() || !o.io.pcd_dir.empty() || !o.io.camera_yaml.empty() || !o.io.color_camera.empty() ||
-      !o.io.poses.empty())
+      !o.io.poses.empty() || !o.io.timestamps.empty())
     throw Error("--data",
                 "reads depth and camera info from the bag: leave out --depth, --pcd, --camera, "
-                "--color-camera and --poses");
+                "--color-camera, --poses and --timestamps");
   const BagImportResult r = import_bag(o.bag, o.io.out.string(), o.topics, o.io.overwrite);
   if (o.json) {
     print_json({{"out", o.io.out.string()},
@@ -53,11 +53,13 @@ void run_import(const ImportCliOptions& o) {
                 {"color_registered", s.color_registered},
                 {"labels", s.labels},
                 {"timestamps_from_names", s.timestamps_from_names},
+                {"timestamps", s.time_source},
                 {"poses", s.poses_format}});
   } else {
     std::cout << "wrote " << o.io.out.string() << ": " << s.frames << " frames"
               << (s.color ? (s.color_registered ? " with colour registered to depth" : " with colour") : "")
               << (s.labels ? ", labels" : "") << (s.timestamps_from_names ? ", timestamps from the file names" : "")
+              << (s.time_source == "csv" ? ", timestamps from " + o.io.timestamps.string() : "")
               << (s.poses_format.empty() ? "" : ", poses (" + s.poses_format + ")") << "\n";
   }
 }
@@ -83,6 +85,7 @@ void add_import(CLI::App& app) {
   add_deprecated_option(cmd, "--bag", o->bag, "--data");
   add_bag_topic_options(cmd, o->topics);
   cmd->add_option("--out", o->io.out, "New sequence folder to write")->required();
+  cmd->add_option("--timestamps", o->io.timestamps, "CSV of frame (the names' number), timestamp (s)");
   cmd->add_option("--fps", o->io.fps, "Frame rate for frame-numbered files (timestamps = index / fps; default 0)");
   add_force_flag(cmd, o->io.overwrite);
   cmd->add_flag("--json", o->json, "Print a JSON summary");

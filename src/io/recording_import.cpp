@@ -11,6 +11,7 @@
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/pose_track.hpp"
 #include "cropsight/io/sequence.hpp"
+#include "frame_times_csv.hpp"
 
 namespace cropsight::io {
 
@@ -98,12 +99,13 @@ ColorSource color_source(const ImportOptions& o, const std::vector<RecordingFile
   return s;
 }
 
-// Each frame's time on the recording's own clock (what --poses are joined to): file-name
-// timestamps in seconds, else index / fps, else nothing.
-std::vector<double> clock_times(const std::vector<RecordingFile>& frames, bool stamps, double fps) {
+// Each frame's time on the recording's own clock (what --poses are joined to): a --timestamps
+// CSV's, else file-name timestamps in seconds, else index / fps, else nothing.
+std::vector<double> clock_times(const ImportOptions& o, const std::vector<RecordingFile>& frames, bool stamps) {
+  if (!o.timestamps.empty()) return detail::frame_times_from_csv(o.timestamps, frames);
   std::vector<double> t;
   for (std::size_t i = 0; i < frames.size(); ++i)
-    t.push_back(stamps ? frames[i].value / 1000.0 : (fps > 0 ? double(i) / fps : 0.0));
+    t.push_back(stamps ? frames[i].value / 1000.0 : (o.fps > 0 ? double(i) / o.fps : 0.0));
   return t;
 }
 
@@ -123,6 +125,7 @@ std::vector<Eigen::Vector3d> joined_poses(const ImportOptions& o, const std::vec
 void check_options(const ImportOptions& o) {
   if (o.depth_dir.empty() == o.pcd_dir.empty()) throw Error("import", "give exactly one of --depth and --pcd");
   if (!(o.fps >= 0)) throw Error("--fps", "must be >= 0");
+  if (o.fps > 0 && !o.timestamps.empty()) throw Error("--fps", "give --fps or --timestamps, not both");
   if (!(o.depth_scale >= 0) || !std::isfinite(o.depth_scale)) throw Error("--depth-scale", "must be > 0 metres");
 }
 
@@ -142,11 +145,13 @@ ImportSummary import_recording(const ImportOptions& o) {
   const bool pcd = !o.pcd_dir.empty();
   const auto frames = list_recording(pcd ? o.pcd_dir : o.depth_dir, {pcd ? ".pcd" : ".png"});
   const ColorSource colors = color_source(o, frames);
+  const bool csv = !o.timestamps.empty();
   const bool stamps =
-      std::all_of(frames.begin(), frames.end(), [](const RecordingFile& f) { return is_timestamp(f.key); });
-  const std::vector<double> clock = clock_times(frames, stamps, o.fps);
+      !csv && std::all_of(frames.begin(), frames.end(), [](const RecordingFile& f) { return is_timestamp(f.key); });
+  const std::vector<double> clock = clock_times(o, frames, stamps);
   ImportSummary s;
-  const std::vector<Eigen::Vector3d> positions = joined_poses(o, clock, stamps || o.fps > 0, s.poses_format);
+  s.time_source = csv ? "csv" : stamps ? "names" : o.fps > 0 ? "fps" : "none";
+  const std::vector<Eigen::Vector3d> positions = joined_poses(o, clock, csv || stamps || o.fps > 0, s.poses_format);
   SequenceWriter writer(o.out, camera, policy);  // temporary folder, renamed by finish()
   for (std::size_t i = 0; i < frames.size(); ++i) {
     RgbdFrame f;
@@ -154,7 +159,7 @@ ImportSummary import_recording(const ImportOptions& o) {
     f.camera = camera;
     // From the first frame in the names' own milliseconds: 1596203844400.5 - 1596203844000.5 is
     // exact, their quotients by 1000 are not.
-    f.timestamp = stamps ? (frames[i].value - frames[0].value) / 1000.0 : clock[i];
+    f.timestamp = stamps ? (frames[i].value - frames[0].value) / 1000.0 : clock[i] - (csv ? clock[0] : 0.0);
     if (pcd) {
       read_pcd_frame(frames[i].path, camera, !colors.files.empty(), f);
     } else {

@@ -133,9 +133,13 @@ using namespace recorder_layout_impl;
 RecorderLayout write_recorder_layout(const io::SequenceReader& seq, const fs::path& dir, Recorder recorder) {
   const bool rs = recorder == Recorder::RealSense;
   const ColorRig rig = rig_of(recorder);
-  RecorderLayout l{dir / "depth",           dir / "color",           dir / "depth_info.yaml",
-                   dir / "color_info.yaml", dir / "extrinsics.yaml", dir / (rs ? "poses.csv" : "trajectory.txt"),
-                   rs ? "" : "--fps 7.5"};
+  RecorderLayout l{dir / "depth",
+                   dir / "color",
+                   dir / "depth_info.yaml",
+                   dir / "color_info.yaml",
+                   dir / "extrinsics.yaml",
+                   dir / (rs ? "poses.csv" : "trajectory.txt"),
+                   rs ? "" : "--timestamps " + shell_quoted(dir / "timestamps.csv")};
   fs::create_directories(l.depth_dir);
   fs::create_directories(l.color_dir);
   write_text(l.depth_info, rs ? echo_yaml(seq.info().camera) : calibration_yaml(seq.info().camera));
@@ -143,11 +147,15 @@ RecorderLayout write_recorder_layout(const io::SequenceReader& seq, const fs::pa
   write_text(l.extrinsics, extrinsics_yaml(rig, !rs));
   write_text(l.depth_dir / "README.txt", "depth in millimetres\n");
   std::string poses = rs ? "timestamp,x,y,z,qx,qy,qz,qw\n" : "# timestamp tx ty tz qx qy qz qw\n";
-  const double t0 = 1596203844.0;  // RealSense names carry Unix milliseconds
+  const double t0 = 1596203844.0;  // RealSense names carry Unix milliseconds; the Kinect's CSV seconds
+  std::string times = "frame,timestamp\n";
   for (int i = 0; i < seq.size(); ++i) {
     const RgbdFrame f = seq.read(i);
-    const double t = rs ? t0 + f.timestamp : i / 7.5;
+    const double t = t0 + f.timestamp;
     const std::string key = rs ? stamp_name(t * 1000.0) : std::to_string(1000 + i).substr(1);
+    char time_row[64];
+    std::snprintf(time_row, sizeof time_row, "%d,%.6f\n", i, t);
+    times += time_row;
     fs::copy_file(seq.depth_path(i), l.depth_dir / (rs ? "_Depth_" + key + ".png" : key + "_depth.png"));
     const std::string color_name = rs ? "_Color_" + stamp_name(t * 1000.0 + 3.217) + ".jpg" : key + "_color.jpg";
     cv::imwrite((l.color_dir / color_name).string(), render_color(f, rig), {cv::IMWRITE_JPEG_QUALITY, 95});
@@ -159,13 +167,14 @@ RecorderLayout write_recorder_layout(const io::SequenceReader& seq, const fs::pa
     if (i + 1 < seq.size()) {  // a pose between two frames too, as an odometry log has
       const RgbdFrame g = seq.read(i + 1);
       const Eigen::Vector3d m = 0.5 * (p + *g.camera_position);
-      const double tm = 0.5 * (t + (rs ? t0 + g.timestamp : (i + 1) / 7.5));
+      const double tm = 0.5 * (t + t0 + g.timestamp);
       std::snprintf(row, sizeof row, rs ? "%.6f,%.17g,%.17g,%.17g,0,0,0,1\n" : "%.17g %.17g %.17g %.17g 0 0 0 1\n", tm,
                     m.x(), m.y(), m.z());
       poses += row;
     }
   }
   write_text(l.poses, poses);
+  if (!rs) write_text(dir / "timestamps.csv", times);
   return l;
 }
 

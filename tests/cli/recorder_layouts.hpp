@@ -16,7 +16,7 @@ enum class Recorder { RealSense, Kinect };
 
 struct RecorderLayout {
   std::filesystem::path depth_dir, color_dir, depth_info, color_info, extrinsics, poses;
-  std::string extra_args;  ///< e.g. "--fps 7.5" for frame-numbered names
+  std::string extra_args;  ///< e.g. "--timestamps FILE" for frame-numbered names
 };
 
 /// Writes `seq`'s frames under `dir` in the layout of `recorder`:
@@ -24,7 +24,8 @@ struct RecorderLayout {
 ///     camera_info as `rostopic echo` prints it, colour as camera_calibration writes it,
 ///     depth_to_color extrinsics, a poses CSV (absolute seconds, poses between the frames too);
 ///   Kinect (kinect2_bridge saver): 0000_depth.png, 0000_color.jpg 960x540, the camera files the
-///     other way round, color_to_depth extrinsics, a TUM trajectory, frame numbers (--fps 7.5).
+///     other way round, color_to_depth extrinsics, a TUM trajectory, frame numbers with their Unix
+///     times in a timestamps CSV (--timestamps).
 /// A README.txt beside the depth images is no frame.
 RecorderLayout write_recorder_layout(const io::SequenceReader& seq, const std::filesystem::path& dir,
                                      Recorder recorder);

@@ -15,9 +15,10 @@
 // colour when --color-camera and --extrinsics are given) is registered to depth
 // (color_registration.hpp). Timestamps: keys with a fractional part or of 10+ digits are
 // milliseconds (RealSense) and become seconds from the first frame; others are frame numbers,
-// timestamped index / fps. The sequence keeps them (poses.csv or timestamps.csv).
+// timestamped index / fps, or by a --timestamps CSV (seconds from its first frame). The sequence
+// keeps them (poses.csv or timestamps.csv).
 // Poses (--poses, pose_track.hpp) are joined to the frames by time: to the file-name timestamps
-// in seconds (ms / 1000, not shifted to the first frame) or to index / fps.
+// in seconds (ms / 1000, not shifted to the first frame), the --timestamps CSV's, or index / fps.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -32,6 +33,7 @@ struct ImportOptions {
   std::filesystem::path color_camera;  ///< colour intrinsics (same formats); with `extrinsics`, registers colour
   std::filesystem::path extrinsics;    ///< depth-to-colour transform (color_registration.hpp)
   std::filesystem::path poses;         ///< optional pose file (pose_track.hpp)
+  std::filesystem::path timestamps;    ///< optional CSV of `frame` (the names' number), `timestamp` (s)
   std::filesystem::path out;
   bool overwrite = false;
   double fps = 0.0;                ///< frames per second for frame-number keys (0: timestamps 0)
@@ -45,6 +47,7 @@ struct ImportSummary {
   bool color_registered = false;  ///< colour came from another camera and was registered to depth
   bool labels = false;            ///< the PCDs' label field became labels/
   bool timestamps_from_names = false;
+  std::string time_source;   ///< "names", "csv" (--timestamps), "fps" or "none"
   std::string poses_format;  ///< "" without --poses
 };
 
