@@ -64,7 +64,7 @@ void check_size(const fs::path& path, int w, int h, const CameraIntrinsics& cam)
 const char* const kKnownEntries[] = {"camera.yaml",      "depth",      "color", "labels", "poses.csv", "timestamps.csv",
                                      "groundtruth.json", "depth_color"};
 
-// Levenshtein distance, capped: only "is it within 2" matters.
+// Levenshtein distance: the fewest insertions, deletions and substitutions from a to b.
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);
   for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
