@@ -171,8 +171,11 @@ TEST_F(ImportLayouts, TimestampsReachHarvestAndBag) {
   args.replace(args.find(" --poses "), std::string(" --poses " + shell_quoted(l.poses)).size(), "");
   ASSERT_EQ(run_cli(args).exit_code, 0);
   EXPECT_TRUE(fs::exists(dir() / "timed-seq" / "timestamps.csv"));  // no poses: the times' own file
-  CommandResult r = run_cli("harvest potato --data " + shell_quoted(dir() / "timed-seq") + " --out " +
-                            shell_quoted(dir() / "h.jsonl"));
+  CommandResult r = run_cli("info --json --data " + shell_quoted(dir() / "timed-seq"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NEAR(nlohmann::json::parse(r.out)["duration_s"].get<double>(), truth.read(truth.size() - 1).timestamp, 1e-6);
+  r = run_cli("harvest potato --data " + shell_quoted(dir() / "timed-seq") + " --out " +
+              shell_quoted(dir() / "h.jsonl"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::ifstream lines(dir() / "h.jsonl");
   int frame = 0;
