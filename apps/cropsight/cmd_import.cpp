@@ -21,24 +21,26 @@ struct ImportCliOptions {
 // A ROS bag: depth, camera_info and colour topics.
 void run_bag(const ImportCliOptions& o) {
   if (!o.io.depth_dir.empty() || !o.io.pcd_dir.empty() || !o.io.camera_yaml.empty() || !o.io.color_camera.empty() ||
-      !o.io.poses.empty() || !o.io.timestamps.empty())
+      !o.io.timestamps.empty())
     throw Error("--data",
                 "reads depth and camera info from the bag: leave out --depth, --pcd, --camera, "
-                "--color-camera, --poses and --timestamps");
-  const BagImportResult r = import_bag(o.bag, o.io.out.string(), o.topics, o.io.overwrite);
+                "--color-camera and --timestamps");
+  const BagImportResult r =
+      import_bag(o.bag, o.io.out.string(), o.topics, o.io.overwrite, o.io.poses.string(), o.io.pose_tolerance_s);
   if (o.json) {
     print_json({{"out", o.io.out.string()},
                 {"frames", r.frames},
                 {"color", r.color},
                 {"unmatched_color", r.unmatched_color},
-                {"skipped_without_color", r.skipped_without_color}});
+                {"skipped_without_color", r.skipped_without_color},
+                {"poses", r.poses_format}});
   } else {
     std::cout << "wrote " << o.io.out.string() << ": " << r.frames << " frames" << (r.color ? " with colour" : "")
               << (r.unmatched_color ? ", " + std::to_string(r.unmatched_color) + " colour images without depth" : "")
               << (r.skipped_without_color
                       ? ", " + std::to_string(r.skipped_without_color) + " depth frames without colour skipped"
                       : "")
-              << "\n";
+              << (r.poses_format.empty() ? "" : ", poses (" + r.poses_format + ")") << "\n";
   }
 }
 

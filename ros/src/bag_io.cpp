@@ -14,6 +14,7 @@
 #include "cropsight/bridge/sequence_io.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/output.hpp"
+#include "cropsight/io/pose_track.hpp"
 #include "ros_conversions.hpp"
 
 namespace fs = std::filesystem;
@@ -179,8 +180,13 @@ BagIndex index_bag(rosbag::View& view, const BagImportOptions& o) {
 class FrameStream {
  public:
   FrameStream(const BagImportOptions& o, const BagIndex& x, const bridge::CameraModel& cam,
-              std::vector<ros::Time> frames)
-      : o_(o), x_(x), cam_(cam), frames_(std::move(frames)), sink_(o.out, cam, o.overwrite) {
+              std::vector<ros::Time> frames, std::vector<Eigen::Vector3d> positions)
+      : o_(o),
+        x_(x),
+        cam_(cam),
+        frames_(std::move(frames)),
+        positions_(std::move(positions)),
+        sink_(o.out, cam, o.overwrite) {
     for (std::size_t i = 0; i < frames_.size(); ++i) index_of_[frames_[i]] = int(i);
   }
 
@@ -232,7 +238,10 @@ class FrameStream {
     f.camera = cam_;
     f.depth = depth_from_image(*p.depth, cam_, o_.bag + " " + o_.topics.depth);
     if (p.color) f.rgb = rgb_from_image(*p.color, cam_, o_.bag + " " + o_.topics.color);
-    if (!x_.poses.empty()) {
+    if (!positions_.empty()) {
+      f.has_camera_position = true;
+      for (int c = 0; c < 3; ++c) f.camera_position[c] = positions_[std::size_t(next_)][c];
+    } else if (!x_.poses.empty()) {
       auto pose = x_.poses.find(t);
       if (pose == x_.poses.end())
         throw Error(o_.bag, o_.topics.tf + " has camera poses, but none at the stamp of depth frame " +
@@ -249,6 +258,7 @@ class FrameStream {
   const BagIndex& x_;
   bridge::CameraModel cam_;
   std::vector<ros::Time> frames_;
+  std::vector<Eigen::Vector3d> positions_;  // from --poses, one per frame; empty: /tf's
   std::map<ros::Time, int> index_of_;
   std::map<int, Pending> pending_;
   int next_ = 0;
@@ -258,7 +268,7 @@ class FrameStream {
 }  // namespace
 
 BagImportSummary import_bag_sequence(const BagImportOptions& o) {
-  io::check_output_folder(o.out, io::OutputPolicy{"import --bag", o.overwrite, {o.bag}});
+  io::check_output_folder(o.out, io::OutputPolicy{"import --bag", o.overwrite, {o.bag, o.poses}});
   if (!fs::exists(o.bag)) throw Error(o.bag, "no such file");
   if (fs::is_directory(o.bag)) throw Error(o.bag, "is a directory, not a bag file");
   detail::check_bag_file(o.bag);  // rosbag trusts the lengths a bag declares
@@ -279,7 +289,16 @@ BagImportSummary import_bag_sequence(const BagImportOptions& o) {
     for (const ros::Time& t : x.depth_stamps)
       if (x.color_of_depth.empty() || x.color_of_depth.count(t)) frames.push_back(t);
     s.skipped_without_color = int(x.depth_stamps.size() - frames.size());
-    FrameStream stream(o, x, cam, std::move(frames));
+    std::vector<Eigen::Vector3d> positions;
+    if (!o.poses.empty()) {  // joined to the header stamps, the clock a robot's odometry shares
+      if (!(o.pose_tolerance_s > 0)) throw Error("--pose-tolerance", "must be > 0 seconds");
+      const io::PoseTrack track = io::read_pose_track(o.poses);
+      std::vector<double> times;
+      for (const ros::Time& t : frames) times.push_back(t.toSec());
+      positions = io::join_poses(track, times, o.pose_tolerance_s, o.poses);
+      s.poses_format = track.format;
+    }
+    FrameStream stream(o, x, cam, std::move(frames), std::move(positions));
     rosbag::View images(bag, rosbag::TopicQuery(std::vector<std::string>{o.topics.depth, o.topics.color}));
     for (const rosbag::MessageInstance& m : images) stream.add(m);
     s.frames = stream.finish();

@@ -6,6 +6,7 @@
 #include <sensor_msgs/Image.h>
 
 #include <filesystem>
+#include <fstream>
 #include <set>
 #include <string>
 #include <vector>
@@ -69,6 +70,48 @@ TEST(BagStream, DroppedColourFramesAreSkippedAndCounted) {
     ASSERT_TRUE(b.has_camera_position);
     for (int c = 0; c < 3; ++c) EXPECT_EQ(b.camera_position[c], a.camera_position[c]);
   }
+}
+
+// --poses on a bag: a pose file joined to the header stamps replaces the bag's /tf poses.
+TEST(BagStream, PoseFileJoinedToTheStamps) {
+  const fs::path d = ros_test::scratch_dir("bag_poses");
+  ASSERT_EQ(ros_test::run(ros_test::cli() + " simulate broccoli --frames 3 --out " + (d / "sim").string() +
+                          " > /dev/null 2>&1"),
+            0);
+  BagExportOptions e;
+  e.sequence = (d / "sim").string();
+  e.bag = (d / "s.bag").string();
+  export_sequence_bag(e);
+  bridge::SequenceSource sim(e.sequence);
+  std::ofstream tum(d / "odometry.tum");
+  tum.precision(17);
+  for (int i = 0; i < sim.size(); ++i) {  // the bag's stamps are e.start_s + timestamp
+    const auto f = sim.read(i);
+    tum << e.start_s + f.timestamp << " " << f.camera_position[0] + 10 << " " << f.camera_position[1] << " "
+        << f.camera_position[2] << " 0 0 0 1\n";
+  }
+  tum.close();
+  BagImportOptions o;
+  o.bag = e.bag;
+  o.out = (d / "back").string();
+  o.poses = (d / "odometry.tum").string();
+  const BagImportSummary s = import_bag_sequence(o);
+  EXPECT_EQ(s.poses_format, "tum");
+  bridge::SequenceSource back(o.out);
+  ASSERT_EQ(back.size(), sim.size());
+  for (int i = 0; i < sim.size(); ++i) {
+    const auto a = sim.read(i), b = back.read(i);
+    ASSERT_TRUE(b.has_camera_position);
+    EXPECT_NEAR(b.camera_position[0], a.camera_position[0] + 10, 1e-9) << "frame " << i;
+    EXPECT_NEAR(b.camera_position[2], a.camera_position[2], 1e-9) << "frame " << i;
+  }
+  // A pose file that does not cover the frames: one Error naming it, and no sequence.
+  std::ofstream(d / "short.tum") << "1.0 0 0 1 0 0 0 1\n";
+  o.out = (d / "none").string();
+  o.poses = (d / "short.tum").string();
+  const std::string error = ros_test::error_of([&] { import_bag_sequence(o); });
+  EXPECT_NE(error.find("short.tum: no pose within 0.05 s of frame 1"), std::string::npos) << error;
+  EXPECT_FALSE(fs::exists(d / "none"));
 }
 
 }  // namespace

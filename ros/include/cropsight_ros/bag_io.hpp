@@ -51,6 +51,10 @@ struct BagImportOptions {
   double start_s = 1.0;  ///< subtracted from the stamps to give the frames' timestamps
   bool overwrite = false;
   double max_skew_s = 0.005;  ///< colour is matched to the depth frame whose stamp is within this
+  /// A pose file (CSV or TUM, cropsight/io/pose_track.hpp) joined to the depth stamps, in place of
+  /// the /tf poses; empty: the bag's /tf.
+  std::string poses;
+  double pose_tolerance_s = 0.05;  ///< a frame's pose must lie within this of its stamp
 };
 
 struct BagImportSummary {
@@ -58,6 +62,7 @@ struct BagImportSummary {
   bool color = false;
   int unmatched_color = 0;        ///< colour images with no depth frame within max_skew_s
   int skipped_without_color = 0;  ///< depth frames left out because their colour image is missing
+  std::string poses_format;       ///< the --poses file's format ("csv", "tum"); "" without
 };
 
 /// Reads depth, camera info and colour from `o.bag` into a sequence folder, as a stream: a first
