@@ -62,6 +62,20 @@ void sequence_seeds(const fs::path& root) {
     w.finish();
   }
   fs::copy_file(dir / "camera.yaml", seed(root, "camera_yaml", "camera.yaml"), fs::copy_options::overwrite_existing);
+  // camera_yaml also reads ROS camera_info YAMLs, in both spellings.
+  write_text(seed(root, "camera_yaml", "camera_info.yaml"),
+             "image_width: 8\nimage_height: 6\ncamera_name: ir\ncamera_matrix:\n  rows: 3\n  cols: 3\n  data: [7, 0, "
+             "3.5, 0, 7, 2.5, 0, 0, 1]\ndistortion_model: plumb_bob\ndistortion_coefficients:\n  rows: 1\n  cols: 5\n"
+             "  data: [0.1, -0.2, 0, 0, 0.05]\n");
+  write_text(seed(root, "camera_yaml", "camera_info_echo.yaml"),
+             "height: 6\nwidth: 8\ndistortion_model: \"plumb_bob\"\nD: [0.0, 0.0, 0.0, 0.0, 0.0]\nK: [7.0, 0.0, 3.5, "
+             "0.0, 7.0, 2.5, 0.0, 0.0, 1.0]\n---\n");
+  write_text(seed(root, "pose_track", "odometry.csv"),
+             "t,x,y,z,qx,qy,qz,qw,speed\n10.0,0,0,1,0,0,0,1,0.2\n10.1,0.02,0,1,0,0,0,1,0.2\n");
+  write_text(seed(root, "pose_track", "trajectory.tum"),
+             "# t x y z qx qy qz qw\n10.0 0 0 1 0 0 0 1\n10.2 0.04 0 1 0 0 0.0998 0.995\n");
+  write_text(seed(root, "extrinsics_yaml", "extrinsics.yaml"),
+             "depth_to_color:\n  rotation: [1, 0, 0, 0, 1, 0, 0, 0, 1]\n  translation: [0.052, 0, 0.001]\n");
   // poses_csv: the first byte is the frame count the rows must match.
   write_text(seed(root, "poses_csv", "poses.csv"), std::string(1, '\x02') + io::read_file(dir / "poses.csv"));
   fs::copy_file(dir / "groundtruth.json", seed(root, "groundtruth_json", "groundtruth.json"),

@@ -22,6 +22,8 @@ PACKAGES=(
   libopenblas0-pthread
   # tests and benchmarks (python3-onnx: the tiny ONNX graphs of tests/nn/test_onnx_detector.cpp)
   libgtest-dev libgmock-dev libbenchmark-dev python3-onnx
+  # cv::rgbd::registerDepth, the reference the colour-registration test compares with
+  libopencv-contrib-dev
   clang-14 libclang-rt-14-dev llvm-14
   # report rendering test (headless browser)
   chromium

@@ -65,14 +65,16 @@ BagExportResult export_bag(const std::string& seq, const std::string& bag, const
 }
 
 BagImportResult import_bag(const std::string& bag, const std::string& out, const BagTopicOptions& topics,
-                           bool overwrite) {
+                           bool overwrite, const std::string& poses, double pose_tolerance_s) {
   ros_io::BagImportOptions o;
   o.bag = bag;
   o.out = out;
   o.topics = topics_of(topics);
   o.overwrite = overwrite;
+  o.poses = poses;
+  o.pose_tolerance_s = pose_tolerance_s;
   const auto s = ros_io::import_bag_sequence(o);
-  return {s.frames, s.color, s.unmatched_color};
+  return {s.frames, s.color, s.unmatched_color, s.skipped_without_color, s.poses_format};
 }
 #else
 namespace {
@@ -84,7 +86,10 @@ BagSequence::BagSequence(const std::string& bag, const BagTopicOptions&) { no_ro
 BagExportResult export_bag(const std::string&, const std::string& bag, const BagTopicOptions&, double, bool) {
   no_ros(bag);
 }
-BagImportResult import_bag(const std::string& bag, const std::string&, const BagTopicOptions&, bool) { no_ros(bag); }
+BagImportResult import_bag(const std::string& bag, const std::string&, const BagTopicOptions&, bool, const std::string&,
+                           double) {
+  no_ros(bag);
+}
 #endif
 
 bool is_bag_file(const std::string& path) { return fs::path(path).extension() == ".bag"; }

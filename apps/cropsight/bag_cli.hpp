@@ -64,8 +64,11 @@ struct BagImportResult {
   int frames = 0;
   bool color = false;
   int unmatched_color = 0;
+  int skipped_without_color = 0;
+  std::string poses_format;  ///< "" without a pose file
 };
+/// `poses` (may be empty): a pose file joined to the depth stamps within `pose_tolerance_s`.
 BagImportResult import_bag(const std::string& bag, const std::string& out, const BagTopicOptions& topics,
-                           bool overwrite);
+                           bool overwrite, const std::string& poses = "", double pose_tolerance_s = 0.05);
 
 }  // namespace cropsight::cli

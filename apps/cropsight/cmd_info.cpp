@@ -34,6 +34,8 @@ void run(const InfoOptions& o) {
     j["has_color"] = s.info.has_color;
     j["has_labels"] = s.info.has_labels;
     j["has_poses"] = s.info.has_poses;
+    j["has_timestamps"] = !reader.timestamps().empty();
+    j["duration_s"] = reader.timestamps().empty() ? 0.0 : reader.timestamps().back() - reader.timestamps().front();
     j["has_groundtruth"] = s.info.has_groundtruth;
     if (s.info.has_labels) j["labelled_fraction"] = s.labelled_fraction;
     j["camera"] = {{"fx", c.fx},
@@ -53,6 +55,9 @@ void run(const InfoOptions& o) {
   std::printf("valid depth  %.4f (mean fraction of pixels with a return)\n", s.valid_depth_fraction);
   std::printf("depth range  %.3f .. %.3f m\n", s.depth_min_m, s.depth_max_m);
   std::printf("instances    %d (ground truth)\n", s.instances);
+  if (!reader.timestamps().empty())
+    std::printf("time         %.3f s (from %s)\n", reader.timestamps().back() - reader.timestamps().front(),
+                s.info.has_poses ? "poses.csv" : "timestamps.csv");
   std::printf("channels     depth%s%s%s%s\n", s.info.has_color ? ", colour" : "", s.info.has_labels ? ", labels" : "",
               s.info.has_poses ? ", poses" : "", s.info.has_groundtruth ? ", groundtruth" : "");
   std::printf("camera       fx %.3f fy %.3f cx %.3f cy %.3f depth_scale %g m/unit%s%s\n", c.fx, c.fy, c.cx, c.cy,

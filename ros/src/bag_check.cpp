@@ -27,8 +27,54 @@ std::uint64_t read_le(const char* p, std::size_t n) {
   return v;
 }
 
+// The bytes walked: a string in memory (the fuzz harness), or the bag file itself, read a record
+// header at a time so that checking a bag of any length takes a few kilobytes, never the bag.
+class ByteSource {
+ public:
+  virtual ~ByteSource() = default;
+  virtual std::size_t size() const = 0;
+  /// The n bytes at `offset` (the caller has checked they lie inside).
+  virtual std::string read(std::size_t offset, std::size_t n) const = 0;
+};
+
+class StringSource : public ByteSource {
+ public:
+  explicit StringSource(const std::string& bytes) : b_(bytes) {}
+  std::size_t size() const override { return b_.size(); }
+  std::string read(std::size_t offset, std::size_t n) const override { return b_.substr(offset, n); }
+
+ private:
+  const std::string& b_;
+};
+
+class FileSource : public ByteSource {
+ public:
+  explicit FileSource(const std::string& path) : in_(path, std::ios::binary), path_(path) {
+    if (!in_) throw Error(path, "cannot open for reading");
+    in_.seekg(0, std::ios::end);
+    size_ = std::size_t(in_.tellg());
+  }
+  std::size_t size() const override { return size_; }
+  std::string read(std::size_t offset, std::size_t n) const override {
+    std::string out(n, '\0');
+    in_.seekg(std::streamoff(offset));
+    in_.read(out.data(), std::streamsize(n));
+    if (!in_) throw Error(path_, "read error at byte " + std::to_string(offset));
+    return out;
+  }
+
+ private:
+  mutable std::ifstream in_;
+  std::string path_;
+  std::size_t size_ = 0;
+};
+
+// A record header or connection header larger than this is damage: rosbag's are a few hundred
+// bytes (a connection's message definition a few kilobytes), and the walk reads each into memory.
+constexpr std::size_t kMaxHeaderSize = std::size_t(64) << 20;
+
 struct Record {
-  std::size_t offset = 0;  // of its header length, from the start of the buffer walked
+  std::size_t offset = 0;  // of its header length, from the start of the bytes walked
   std::map<std::string, std::string> fields;
   unsigned char op = 0;
   std::size_t data = 0, data_size = 0;  // offset and size of its data
@@ -36,173 +82,205 @@ struct Record {
 
 class Walker {
  public:
-  Walker(const std::string& bytes, const std::string& where) : b_(bytes), where_(where) {}
+  Walker(const ByteSource& bytes, const std::string& where) : b_(bytes), where_(where) {}
 
   [[noreturn]] void fail(std::size_t offset, const std::string& problem) const {
     throw Error(where_, "damaged ROS bag at byte " + std::to_string(offset) + ": " + problem);
   }
 
-  // The records of [begin, end) of the buffer; `base` is added to offsets in messages.
-  std::vector<Record> records(std::size_t begin, std::size_t end, std::size_t base, const char* inside) const {
-    std::vector<Record> out;
+  // Calls visit(record) for each record of [begin, end), in order, keeping none.
+  template <class Visit>
+  void each_record(std::size_t begin, std::size_t end, const char* inside, Visit&& visit) const {
     std::size_t p = begin;
     while (p < end) {
       Record r;
       r.offset = p;
-      const std::size_t header_size = length_at(p, end, "record header", inside, base);
+      const std::size_t header_size = length_at(p, end, "record header", inside);
       const std::size_t h = p + 4;
-      r.fields = fields(h, header_size, base, "its record header");
+      r.fields = fields(h, header_size, "its record header");
       const auto op = r.fields.find("op");
-      if (op == r.fields.end() || op->second.size() != 1) fail(base + p, "record without a one-byte op field");
+      if (op == r.fields.end() || op->second.size() != 1) fail(p, "record without a one-byte op field");
       r.op = static_cast<unsigned char>(op->second[0]);
       const std::size_t d = h + header_size;
-      r.data_size = length_at(d, end, "record data", inside, base);
+      r.data_size = length_at(d, end, "record data", inside);
       r.data = d + 4;
       // A connection record's data is a header too (the topic's connection header: type,
       // md5sum, message_definition), parsed by roscpp's ros::Header, which checks a field's
       // length against 1 MB but not against the bytes left (a read past the buffer, fuzz_bag).
-      if (r.op == kConnection) fields(r.data, r.data_size, base, "its connection header");
-      out.push_back(r);
+      if (r.op == kConnection) fields(r.data, r.data_size, "its connection header");
       p = r.data + r.data_size;
+      visit(r);
     }
-    return out;
   }
 
   // The name=value fields, each with a 4-byte length, filling [h, h + size) exactly.
-  std::map<std::string, std::string> fields(std::size_t h, std::size_t size, std::size_t base,
-                                            const char* inside) const {
+  std::map<std::string, std::string> fields(std::size_t h, std::size_t size, const char* inside) const {
+    if (size > kMaxHeaderSize) fail(h, std::string("a header of ") + std::to_string(size) + " bytes in " + inside);
+    const std::string bytes = b_.read(h, size);
     std::map<std::string, std::string> out;
-    std::size_t q = h;
-    while (q < h + size) {
-      const std::size_t field_size = length_at(q, h + size, "header field", inside, base);
-      const std::string field = b_.substr(q + 4, field_size);
+    std::size_t q = 0;
+    while (q < size) {
+      if (size - q < 4) fail(h + q, std::string("truncated header field length in ") + inside);
+      const std::uint64_t field_size = read_le(bytes.data() + q, 4);
+      if (field_size > size - q - 4)
+        fail(h + q, "header field of " + std::to_string(field_size) + " bytes runs past the end of " + inside);
+      const std::string field = bytes.substr(q + 4, std::size_t(field_size));
       const std::size_t eq = field.find('=');
-      if (eq == std::string::npos) fail(base + q, "header field without '='");
+      if (eq == std::string::npos) fail(h + q, "header field without '='");
       out[field.substr(0, eq)] = field.substr(eq + 1);
-      q += 4 + field_size;
+      q += 4 + std::size_t(field_size);
     }
     return out;
   }
 
-  std::uint64_t integer(const Record& r, const char* name, std::size_t size, std::size_t base = 0) const {
+  std::uint64_t integer(const Record& r, const char* name, std::size_t size) const {
     const auto f = r.fields.find(name);
-    if (f == r.fields.end()) fail(base + r.offset, std::string("record without its '") + name + "' field");
+    if (f == r.fields.end()) fail(r.offset, std::string("record without its '") + name + "' field");
     if (f->second.size() != size)
-      fail(base + r.offset, std::string("field '") + name + "' holds " + std::to_string(f->second.size()) +
-                                " bytes, not " + std::to_string(size));
+      fail(r.offset, std::string("field '") + name + "' holds " + std::to_string(f->second.size()) + " bytes, not " +
+                         std::to_string(size));
     return read_le(f->second.data(), size);
   }
 
+  std::uint64_t le_at(std::size_t p, std::size_t n) const { return read_le(b_.read(p, n).data(), n); }
+
  private:
   // A 4-byte length at p followed by that many bytes, all before `end`.
-  std::size_t length_at(std::size_t p, std::size_t end, const char* what, const char* inside, std::size_t base) const {
-    if (end - p < 4) fail(base + p, std::string("truncated ") + what + " length");
-    const std::uint64_t n = read_le(b_.data() + p, 4);
+  std::size_t length_at(std::size_t p, std::size_t end, const char* what, const char* inside) const {
+    if (end - p < 4) fail(p, std::string("truncated ") + what + " length");
+    const std::uint64_t n = le_at(p, 4);
     if (n > end - p - 4)
-      fail(base + p, std::string(what) + " of " + std::to_string(n) + " bytes runs past the end of " + inside);
+      fail(p, std::string(what) + " of " + std::to_string(n) + " bytes runs past the end of " + inside);
     return std::size_t(n);
   }
 
-  const std::string& b_;
+  const ByteSource& b_;
   const std::string& where_;
 };
+
+// What the walk over the top-level records keeps: an op per record offset (what index_pos and the
+// chunk infos must point at), the record starts of the last uncompressed chunk (what its index
+// records, which follow it, must point at), and the index section's counts.
+struct TopLevel {
+  std::map<std::size_t, unsigned char> op_at;
+  std::optional<std::set<std::size_t>> last_chunk_starts;  // nullopt: the last chunk is compressed
+  bool any_chunk = false;
+  std::vector<std::pair<std::size_t, unsigned char>> after_index;  // records from index_pos on
+};
+
+void check_chunk(const Walker& w, const Record& r, TopLevel& t) {
+  t.any_chunk = true;
+  t.last_chunk_starts.reset();
+  const auto c = r.fields.find("compression");
+  if (c == r.fields.end()) w.fail(r.offset, "chunk without its 'compression' field");
+  const std::uint64_t size = w.integer(r, "size", 4);
+  if (c->second == "none") {
+    if (size != r.data_size)
+      w.fail(r.offset,
+             "uncompressed chunk declares " + std::to_string(size) + " bytes but holds " + std::to_string(r.data_size));
+    std::set<std::size_t> starts;
+    w.each_record(r.data, r.data + r.data_size, "its chunk", [&](const Record& inner) {
+      if (inner.op != kMessage && inner.op != kConnection)
+        w.fail(inner.offset, "a chunk holds a record that is neither a message nor a connection");
+      starts.insert(inner.offset - r.data);
+    });
+    t.last_chunk_starts = std::move(starts);
+  } else if (c->second == "bz2" || c->second == "lz4") {
+    if (size > kMaxChunkSize)
+      w.fail(r.offset, "chunk declares " + std::to_string(size) + " bytes uncompressed, more than 1 GiB");
+  } else {
+    w.fail(r.offset, "unknown chunk compression '" + c->second + "'");
+  }
+}
+
+void check_index(const Walker& w, const Record& r, const TopLevel& t) {
+  if (w.integer(r, "ver", 4) != 1) w.fail(r.offset, "index record of a version other than 1");
+  const std::uint64_t count = w.integer(r, "count", 4);
+  w.integer(r, "conn", 4);
+  if (count * 12 != r.data_size)
+    w.fail(r.offset,
+           "index record of " + std::to_string(count) + " entries holds " + std::to_string(r.data_size) + " bytes");
+  if (!t.any_chunk) w.fail(r.offset, "index record before any chunk");
+  if (!t.last_chunk_starts) return;  // a compressed chunk: rosbag checks
+  for (std::uint64_t e = 0; e < count; ++e) {
+    const std::uint64_t off = w.le_at(r.data + std::size_t(e) * 12 + 8, 4);
+    if (!t.last_chunk_starts->count(std::size_t(off)))
+      w.fail(r.offset, "index entry points at offset " + std::to_string(off) + " of its chunk, where no record starts");
+  }
+}
+
+void check_chunk_info(const Walker& w, const Record& r) {
+  if (w.integer(r, "ver", 4) != 1) w.fail(r.offset, "chunk info record of a version other than 1");
+  w.integer(r, "chunk_pos", 8);
+  w.integer(r, "start_time", 8);
+  w.integer(r, "end_time", 8);
+  const std::uint64_t count = w.integer(r, "count", 4);
+  if (count * 8 != r.data_size)
+    w.fail(r.offset,
+           "chunk info of " + std::to_string(count) + " connections holds " + std::to_string(r.data_size) + " bytes");
+}
 
 }  // namespace
 
 // Long on purpose: the bag records walked in file order, each length checked before it is trusted.
-void check_bag(const std::string& bytes, const std::string& where) {
-  if (bytes.compare(0, kMagicSize, kMagic) != 0)
+static void check_bag_source(const ByteSource& bytes, const std::string& where) {
+  if (bytes.size() < kMagicSize || bytes.read(0, kMagicSize) != kMagic)
     throw Error(where, "not a readable ROS bag: it does not start with '#ROSBAG V2.0' (bag format 2.0)");
   const Walker w(bytes, where);
-  const std::vector<Record> top = w.records(kMagicSize, bytes.size(), 0, "the file");
-  if (top.empty() || top.front().op != kBagHeader) w.fail(kMagicSize, "the first record is not the bag header");
-  std::map<std::size_t, std::size_t> at;  // record offset -> index in `top`
-  for (std::size_t i = 0; i < top.size(); ++i) at[top[i].offset] = i;
-
-  // Records of each uncompressed chunk, by the chunk's index in `top` (offsets from its data).
-  std::map<std::size_t, std::set<std::size_t>> chunk_records;
-  std::optional<std::size_t> last_chunk;
-  for (std::size_t i = 0; i < top.size(); ++i) {
-    const Record& r = top[i];
+  TopLevel t;
+  std::optional<Record> header;
+  std::uint64_t index_pos = 0;
+  std::vector<std::pair<std::size_t, std::uint64_t>> chunk_infos;  // record offset, chunk_pos
+  w.each_record(kMagicSize, bytes.size(), "the file", [&](const Record& r) {
+    if (!header) {
+      if (r.op != kBagHeader) w.fail(kMagicSize, "the first record is not the bag header");
+      header = r;
+      index_pos = w.integer(r, "index_pos", 8);
+    }
+    t.op_at[r.offset] = r.op;
+    if (r.offset >= index_pos && index_pos > 0) t.after_index.emplace_back(r.offset, r.op);
     if (r.op == kChunk) {
-      last_chunk = i;
-      const auto c = r.fields.find("compression");
-      if (c == r.fields.end()) w.fail(r.offset, "chunk without its 'compression' field");
-      const std::uint64_t size = w.integer(r, "size", 4);
-      if (c->second == "none") {
-        if (size != r.data_size)
-          w.fail(r.offset, "uncompressed chunk declares " + std::to_string(size) + " bytes but holds " +
-                               std::to_string(r.data_size));
-        std::set<std::size_t>& starts = chunk_records[i];
-        for (const Record& inner : w.records(r.data, r.data + r.data_size, 0, "its chunk")) {
-          if (inner.op != kMessage && inner.op != kConnection)
-            w.fail(inner.offset, "a chunk holds a record that is neither a message nor a connection");
-          starts.insert(inner.offset - r.data);
-        }
-      } else if (c->second == "bz2" || c->second == "lz4") {
-        if (size > kMaxChunkSize)
-          w.fail(r.offset, "chunk declares " + std::to_string(size) + " bytes uncompressed, more than 1 GiB");
-      } else {
-        w.fail(r.offset, "unknown chunk compression '" + c->second + "'");
-      }
+      check_chunk(w, r, t);
     } else if (r.op == kIndex) {
-      if (w.integer(r, "ver", 4) != 1) w.fail(r.offset, "index record of a version other than 1");
-      const std::uint64_t count = w.integer(r, "count", 4);
-      w.integer(r, "conn", 4);
-      if (count * 12 != r.data_size)
-        w.fail(r.offset,
-               "index record of " + std::to_string(count) + " entries holds " + std::to_string(r.data_size) + " bytes");
-      if (!last_chunk) w.fail(r.offset, "index record before any chunk");
-      const auto starts = chunk_records.find(*last_chunk);
-      if (starts == chunk_records.end()) continue;  // a compressed chunk: rosbag checks
-      for (std::uint64_t e = 0; e < count; ++e) {
-        const std::uint64_t off = read_le(bytes.data() + r.data + e * 12 + 8, 4);
-        if (!starts->second.count(std::size_t(off)))
-          w.fail(r.offset,
-                 "index entry points at offset " + std::to_string(off) + " of its chunk, where no record starts");
-      }
+      check_index(w, r, t);
     } else if (r.op == kChunkInfo) {
-      if (w.integer(r, "ver", 4) != 1) w.fail(r.offset, "chunk info record of a version other than 1");
-      const std::uint64_t pos = w.integer(r, "chunk_pos", 8);
-      w.integer(r, "start_time", 8);
-      w.integer(r, "end_time", 8);
-      const std::uint64_t count = w.integer(r, "count", 4);
-      if (count * 8 != r.data_size)
-        w.fail(r.offset, "chunk info of " + std::to_string(count) + " connections holds " +
-                             std::to_string(r.data_size) + " bytes");
-      const auto c = at.find(std::size_t(pos));
-      if (pos > bytes.size() || c == at.end() || top[c->second].op != kChunk)
-        w.fail(r.offset, "chunk info points at byte " + std::to_string(pos) + ", where no chunk starts");
+      check_chunk_info(w, r);
+      chunk_infos.emplace_back(r.offset, w.integer(r, "chunk_pos", 8));
     } else if (r.op == kConnection) {
       w.integer(r, "conn", 4);
       if (!r.fields.count("topic")) w.fail(r.offset, "connection record without its 'topic' field");
     }
+  });
+  if (!header) w.fail(kMagicSize, "the first record is not the bag header");
+  for (const auto& [offset, pos] : chunk_infos) {
+    const auto c = t.op_at.find(std::size_t(pos));
+    if (pos > bytes.size() || c == t.op_at.end() || c->second != kChunk)
+      w.fail(offset, "chunk info points at byte " + std::to_string(pos) + ", where no chunk starts");
   }
 
   // The index section rosbag seeks to: conn_count connections, then chunk_count chunk infos.
-  const Record& header = top.front();
-  const std::uint64_t index_pos = w.integer(header, "index_pos", 8);
-  const std::uint64_t conn_count = w.integer(header, "conn_count", 4);
-  const std::uint64_t chunk_count = w.integer(header, "chunk_count", 4);
-  const auto first = at.find(std::size_t(index_pos));
-  if (index_pos > bytes.size() || first == at.end())
-    w.fail(header.offset,
+  const std::uint64_t conn_count = w.integer(*header, "conn_count", 4);
+  const std::uint64_t chunk_count = w.integer(*header, "chunk_count", 4);
+  if (index_pos > bytes.size() || !t.op_at.count(std::size_t(index_pos)))
+    w.fail(header->offset,
            "index_pos " + std::to_string(index_pos) +
                " is not the start of a record (an unindexed or damaged bag: `rosbag reindex` may repair it)");
-  std::uint64_t connections = 0, chunk_infos = 0;
-  for (std::size_t i = first->second; i < top.size(); ++i) {
-    if (top[i].op == kConnection && chunk_infos == 0)
+  std::uint64_t connections = 0, infos = 0;
+  for (const auto& [offset, op] : t.after_index) {
+    if (op == kConnection && infos == 0)
       ++connections;
-    else if (top[i].op == kChunkInfo)
-      ++chunk_infos;
+    else if (op == kChunkInfo)
+      ++infos;
     else
-      w.fail(top[i].offset, "the index section holds a record that is neither a connection nor a chunk info");
+      w.fail(offset, "the index section holds a record that is neither a connection nor a chunk info");
   }
-  if (connections != conn_count || chunk_infos != chunk_count)
-    w.fail(header.offset, "the bag header counts " + std::to_string(conn_count) + " connections and " +
-                              std::to_string(chunk_count) + " chunks; its index holds " + std::to_string(connections) +
-                              " and " + std::to_string(chunk_infos));
+  if (connections != conn_count || infos != chunk_count)
+    w.fail(header->offset, "the bag header counts " + std::to_string(conn_count) + " connections and " +
+                               std::to_string(chunk_count) + " chunks; its index holds " + std::to_string(connections) +
+                               " and " + std::to_string(infos));
 }
+
+void check_bag(const std::string& bytes, const std::string& where) { check_bag_source(StringSource(bytes), where); }
 
 namespace {
 
@@ -267,12 +345,6 @@ void check_message(const std::string& type, const unsigned char* data, std::size
   }
 }
 
-void check_bag_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path, "cannot open for reading");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw Error(path, "read error");
-  check_bag(bytes, path);
-}
+void check_bag_file(const std::string& path) { check_bag_source(FileSource(path), path); }
 
 }  // namespace cropsight::ros_io::detail

@@ -4,6 +4,7 @@
 #include <rosbag/view.h>
 #include <tf2_msgs/TFMessage.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -13,6 +14,7 @@
 #include "cropsight/bridge/sequence_io.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/output.hpp"
+#include "cropsight/io/pose_track.hpp"
 #include "ros_conversions.hpp"
 
 namespace fs = std::filesystem;
@@ -120,80 +122,188 @@ BagExportSummary export_sequence_bag(const BagExportOptions& o) {
   return s;
 }
 
+namespace {
+
+// What the first pass over a bag learns: the camera, every depth stamp, the colour stamp matched
+// to each depth stamp, and the poses. No image is kept, so memory does not grow with the images.
+struct BagIndex {
+  std::optional<sensor_msgs::CameraInfo> info;
+  std::map<ros::Time, ros::Time> color_of_depth;  // depth stamp -> the colour stamp matched to it
+  std::vector<ros::Time> depth_stamps;            // sorted, unique
+  std::map<ros::Time, geometry_msgs::Vector3> poses;
+  int unmatched_color = 0;
+};
+
+void index_message(const rosbag::MessageInstance& m, const BagImportOptions& o, BagIndex& x,
+                   std::vector<ros::Time>& color_stamps) {
+  if (m.getTopic() == o.topics.tf) {
+    auto tf = instantiate_checked<tf2_msgs::TFMessage>(m, o.bag);
+    if (!tf) throw Error(o.bag, o.topics.tf + " is not tf2_msgs/TFMessage");
+    for (const auto& t : tf->transforms)
+      if (t.header.frame_id == o.topics.field_frame) x.poses[t.header.stamp] = t.transform.translation;
+  } else if (m.getTopic() == o.topics.camera_info) {
+    auto ci = instantiate_checked<sensor_msgs::CameraInfo>(m, o.bag);
+    if (!ci) throw Error(o.bag, o.topics.camera_info + " is not sensor_msgs/CameraInfo");
+    const auto& info = x.info;
+    if (info && (info->width != ci->width || info->height != ci->height || info->K != ci->K || info->D != ci->D))
+      throw Error(o.bag, o.topics.camera_info + " changes within the bag (a sequence has one camera)");
+    if (!info) x.info = *ci;
+  } else {
+    // The image is decoded for its header stamp and dropped at once.
+    auto im = instantiate_checked<sensor_msgs::Image>(m, o.bag);
+    if (!im) throw Error(o.bag, m.getTopic() + " is not sensor_msgs/Image");
+    (m.getTopic() == o.topics.depth ? x.depth_stamps : color_stamps).push_back(im->header.stamp);
+  }
+}
+
+BagIndex index_bag(rosbag::View& view, const BagImportOptions& o) {
+  BagIndex x;
+  std::vector<ros::Time> color;
+  for (const rosbag::MessageInstance& m : view) index_message(m, o, x, color);
+  std::sort(x.depth_stamps.begin(), x.depth_stamps.end());
+  x.depth_stamps.erase(std::unique(x.depth_stamps.begin(), x.depth_stamps.end()), x.depth_stamps.end());
+  if (x.depth_stamps.empty()) throw Error(o.bag, "has no message on the depth topic " + o.topics.depth);
+  if (!x.info) throw Error(o.bag, "has no message on the camera info topic " + o.topics.camera_info);
+  for (const ros::Time& t : color) {
+    const auto& d = x.depth_stamps;
+    auto it = std::lower_bound(d.begin(), d.end(), t - ros::Duration(o.max_skew_s));
+    if (it != d.end() && std::abs((*it - t).toSec()) <= o.max_skew_s)
+      x.color_of_depth[*it] = t;
+    else
+      ++x.unmatched_color;
+  }
+  return x;
+}
+
+// The second pass: frames complete (depth, and colour when the sequence has it) are written in
+// stamp order as soon as they are; what waits is only what a bag's interleaving holds back.
+class FrameStream {
+ public:
+  FrameStream(const BagImportOptions& o, const BagIndex& x, const bridge::CameraModel& cam,
+              std::vector<ros::Time> frames, std::vector<Eigen::Vector3d> positions)
+      : o_(o),
+        x_(x),
+        cam_(cam),
+        frames_(std::move(frames)),
+        positions_(std::move(positions)),
+        sink_(o.out, cam, o.overwrite) {
+    for (std::size_t i = 0; i < frames_.size(); ++i) index_of_[frames_[i]] = int(i);
+  }
+
+  void add(const rosbag::MessageInstance& m) {
+    auto im = instantiate_checked<sensor_msgs::Image>(m, o_.bag);
+    const bool depth = m.getTopic() == o_.topics.depth;
+    ros::Time key = im->header.stamp;
+    if (!depth) {  // a colour image belongs to the depth frame it was matched to, if any
+      const ros::Duration skew(o_.max_skew_s);
+      auto it = x_.color_of_depth.lower_bound(key - skew);
+      while (it != x_.color_of_depth.end() && it->first <= key + skew && it->second != key) ++it;
+      if (it == x_.color_of_depth.end() || it->second != key) return;
+      key = it->first;
+    }
+    const auto index = index_of_.find(key);
+    if (index == index_of_.end() || index->second < next_) return;  // skipped, or a repeated stamp
+    Pending& p = pending_[index->second];
+    (depth ? p.depth : p.color) = im;
+    flush();
+  }
+
+  int finish() {
+    if (next_ != int(frames_.size()))
+      throw Error(o_.bag, "frame " + std::to_string(next_) + " went missing between two reads of the bag");
+    sink_.finish();
+    return next_;
+  }
+
+ private:
+  struct Pending {
+    sensor_msgs::ImageConstPtr depth, color;
+  };
+
+  void flush() {
+    const bool with_color = !x_.color_of_depth.empty();
+    for (auto it = pending_.find(next_); it != pending_.end() && it->second.depth && (!with_color || it->second.color);
+         it = pending_.find(next_)) {
+      write(it->second);
+      pending_.erase(it);
+      ++next_;
+    }
+  }
+
+  void write(const Pending& p) {
+    const ros::Time t = frames_[std::size_t(next_)];
+    bridge::FrameBuffers f;
+    f.index = next_;
+    f.timestamp = t.toSec() - o_.start_s;
+    f.camera = cam_;
+    f.depth = depth_from_image(*p.depth, cam_, o_.bag + " " + o_.topics.depth);
+    if (p.color) f.rgb = rgb_from_image(*p.color, cam_, o_.bag + " " + o_.topics.color);
+    if (!positions_.empty()) {
+      f.has_camera_position = true;
+      for (int c = 0; c < 3; ++c) f.camera_position[c] = positions_[std::size_t(next_)][c];
+    } else if (!x_.poses.empty()) {
+      auto pose = x_.poses.find(t);
+      if (pose == x_.poses.end())
+        throw Error(o_.bag, o_.topics.tf + " has camera poses, but none at the stamp of depth frame " +
+                                std::to_string(next_) + " (a sequence has a pose on every frame or none)");
+      f.has_camera_position = true;
+      f.camera_position[0] = pose->second.x;
+      f.camera_position[1] = pose->second.y;
+      f.camera_position[2] = pose->second.z;
+    }
+    sink_.write(f);
+  }
+
+  const BagImportOptions& o_;
+  const BagIndex& x_;
+  bridge::CameraModel cam_;
+  std::vector<ros::Time> frames_;
+  std::vector<Eigen::Vector3d> positions_;  // from --poses, one per frame; empty: /tf's
+  std::map<ros::Time, int> index_of_;
+  std::map<int, Pending> pending_;
+  int next_ = 0;
+  bridge::SequenceSink sink_;
+};
+
+}  // namespace
+
 BagImportSummary import_bag_sequence(const BagImportOptions& o) {
-  io::check_output_folder(o.out, io::OutputPolicy{"import --bag", o.overwrite, {o.bag}});
+  io::check_output_folder(o.out, io::OutputPolicy{"import --bag", o.overwrite, {o.bag, o.poses}});
   if (!fs::exists(o.bag)) throw Error(o.bag, "no such file");
   if (fs::is_directory(o.bag)) throw Error(o.bag, "is a directory, not a bag file");
   detail::check_bag_file(o.bag);  // rosbag trusts the lengths a bag declares
   return with_bag_errors(o.bag, "not a readable ROS bag", [&] {
     rosbag::Bag bag;
     bag.open(o.bag, rosbag::bagmode::Read);
-    // Pass 1: camera info and the depth frames' stamps; colour matched to depth by stamp.
-    std::optional<sensor_msgs::CameraInfo> info;
-    std::map<ros::Time, sensor_msgs::ImageConstPtr> depth, color;
-    std::map<ros::Time, geometry_msgs::Vector3> poses;
-    rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{o.topics.depth, o.topics.camera_info,
-                                                                       o.topics.color, o.topics.tf}));
-    for (const rosbag::MessageInstance& m : view) {
-      if (m.getTopic() == o.topics.tf) {
-        auto tf = instantiate_checked<tf2_msgs::TFMessage>(m, o.bag);
-        if (!tf) throw Error(o.bag, o.topics.tf + " is not tf2_msgs/TFMessage");
-        for (const auto& x : tf->transforms)
-          if (x.header.frame_id == o.topics.field_frame) poses[x.header.stamp] = x.transform.translation;
-      } else if (m.getTopic() == o.topics.camera_info) {
-        auto ci = instantiate_checked<sensor_msgs::CameraInfo>(m, o.bag);
-        if (!ci) throw Error(o.bag, o.topics.camera_info + " is not sensor_msgs/CameraInfo");
-        if (info && (info->width != ci->width || info->height != ci->height || info->K != ci->K || info->D != ci->D))
-          throw Error(o.bag, o.topics.camera_info + " changes within the bag (a sequence has one camera)");
-        if (!info) info = *ci;
-      } else {
-        auto im = instantiate_checked<sensor_msgs::Image>(m, o.bag);
-        if (!im) throw Error(o.bag, m.getTopic() + " is not sensor_msgs/Image");
-        (m.getTopic() == o.topics.depth ? depth : color)[im->header.stamp] = im;
-      }
-    }
-    if (depth.empty()) throw Error(o.bag, "has no message on the depth topic " + o.topics.depth);
-    if (!info) throw Error(o.bag, "has no message on the camera info topic " + o.topics.camera_info);
-    const bridge::CameraModel cam = camera_from_info(*info, 0.001, o.bag + " " + o.topics.camera_info);
     BagImportSummary s;
-    bridge::SequenceSink sink(o.out, cam, o.overwrite);
-    std::map<ros::Time, sensor_msgs::ImageConstPtr> matched;
-    for (const auto& [t, c] : color) {
-      auto it = depth.lower_bound(t - ros::Duration(o.max_skew_s));
-      if (it != depth.end() && std::abs((it->first - t).toSec()) <= o.max_skew_s)
-        matched[it->first] = c;
-      else
-        ++s.unmatched_color;
+    BagIndex x;
+    {
+      rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{o.topics.depth, o.topics.camera_info,
+                                                                         o.topics.color, o.topics.tf}));
+      x = index_bag(view, o);
     }
-    if (!matched.empty() && matched.size() != depth.size())
-      throw Error(o.bag, std::to_string(depth.size() - matched.size()) + " of " + std::to_string(depth.size()) +
-                             " depth frames have no colour image within " + std::to_string(o.max_skew_s) +
-                             " s (a sequence has colour on every frame or none)");
-    int index = 0;
-    for (const auto& [t, d] : depth) {
-      bridge::FrameBuffers f;
-      f.index = index;
-      f.timestamp = t.toSec() - o.start_s;
-      f.camera = cam;
-      f.depth = depth_from_image(*d, cam, o.bag + " " + o.topics.depth);
-      if (auto c = matched.find(t); c != matched.end())
-        f.rgb = rgb_from_image(*c->second, cam, o.bag + " " + o.topics.color);
-      if (!poses.empty()) {
-        auto p = poses.find(t);
-        if (p == poses.end())
-          throw Error(o.bag, o.topics.tf + " has camera poses, but none at the stamp of depth frame " +
-                                 std::to_string(index) + " (a sequence has a pose on every frame or none)");
-        f.has_camera_position = true;
-        f.camera_position[0] = p->second.x;
-        f.camera_position[1] = p->second.y;
-        f.camera_position[2] = p->second.z;
-      }
-      sink.write(f);
-      ++index;
+    const bridge::CameraModel cam = camera_from_info(*x.info, 0.001, o.bag + " " + o.topics.camera_info);
+    // A sequence has colour on every frame or on none: with colour in the bag, a depth frame whose
+    // colour image was dropped is skipped and counted, never the reason the import fails.
+    std::vector<ros::Time> frames;
+    for (const ros::Time& t : x.depth_stamps)
+      if (x.color_of_depth.empty() || x.color_of_depth.count(t)) frames.push_back(t);
+    s.skipped_without_color = int(x.depth_stamps.size() - frames.size());
+    std::vector<Eigen::Vector3d> positions;
+    if (!o.poses.empty()) {  // joined to the header stamps, the clock a robot's odometry shares
+      if (!(o.pose_tolerance_s > 0)) throw Error("--pose-tolerance", "must be > 0 seconds");
+      const io::PoseTrack track = io::read_pose_track(o.poses);
+      std::vector<double> times;
+      for (const ros::Time& t : frames) times.push_back(t.toSec());
+      positions = io::join_poses(track, times, o.pose_tolerance_s, o.poses);
+      s.poses_format = track.format;
     }
-    sink.finish();
-    s.frames = index;
-    s.color = !matched.empty();
+    FrameStream stream(o, x, cam, std::move(frames), std::move(positions));
+    rosbag::View images(bag, rosbag::TopicQuery(std::vector<std::string>{o.topics.depth, o.topics.color}));
+    for (const rosbag::MessageInstance& m : images) stream.add(m);
+    s.frames = stream.finish();
+    s.color = !x.color_of_depth.empty();
+    s.unmatched_color = x.unmatched_color;
     return s;
   });
 }

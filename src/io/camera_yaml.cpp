@@ -3,6 +3,7 @@
 
 #include <set>
 
+#include "camera_info_yaml.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/sequence.hpp"
@@ -62,7 +63,11 @@ CameraIntrinsics read_camera_yaml(const fs::path& path) {
   } catch (const YAML::Exception& e) {
     throw Error(where, "malformed YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
   }
-  if (!root.IsMap()) throw Error(where, "expected a YAML mapping with width, height, fx, fy, cx, cy, depth_scale");
+  if (root.IsMap())
+    for (const auto& kv : root) detail::yaml_key(kv.first, where);  // a list or mapping as a key is an error
+  const detail::CameraFileKind kind = detail::camera_file_kind(root);
+  if (kind == detail::CameraFileKind::Unknown) throw Error(where, detail::accepted_camera_files());
+  if (kind != detail::CameraFileKind::Cropsight) return detail::camera_from_ros_yaml(root, kind, where);
   static const std::set<std::string> known = {"width", "height",      "fx",         "fy",    "cx",
                                               "cy",    "depth_scale", "distortion", "sensor"};
   std::set<std::string> seen;

@@ -92,6 +92,20 @@ void check_size(const std::string& where, int w, int h, std::size_t n) {
 
 }  // namespace
 
+namespace {
+// libjpeg decodes a JPEG cut short without a word through OpenCV, filling the missing rows with
+// grey: a frame damaged in copying would pass as a picture. A whole JPEG ends with the EOI marker
+// FF D9; some writers pad after it, so the last 32 bytes are searched.
+bool jpeg_complete(const std::string& b) {
+  const bool jpeg =
+      b.size() >= 3 && std::uint8_t(b[0]) == 0xFF && std::uint8_t(b[1]) == 0xD8 && std::uint8_t(b[2]) == 0xFF;
+  if (!jpeg) return true;
+  for (std::size_t i = b.size() - 1; i >= 1 && i + 32 >= b.size(); --i)
+    if (std::uint8_t(b[i - 1]) == 0xFF && std::uint8_t(b[i]) == 0xD9) return true;
+  return false;
+}
+}  // namespace
+
 std::string read_image_file(const fs::path& path) {
   // The error-code overloads: a name the system refuses (too long, a symlink loop) is an Error
   // naming it, not a std::filesystem_error (fuzzing finding 21).
@@ -104,6 +118,7 @@ std::string read_image_file(const fs::path& path) {
   std::string bytes = read_file(path);
   if (bytes.empty()) throw Error(path.string(), "empty file, not an image");
   if (!png_complete(bytes)) throw Error(path.string(), "truncated PNG (its chunks end before IEND)");
+  if (!jpeg_complete(bytes)) throw Error(path.string(), "truncated JPEG (no end-of-image marker)");
   return bytes;
 }
 

@@ -3,6 +3,7 @@
 // image contents (bit depth, channels, size) when each frame is read.
 #include <algorithm>
 #include <cstdio>
+#include <iostream>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/image_io.hpp"
@@ -59,6 +60,54 @@ void check_size(const fs::path& path, int w, int h, const CameraIntrinsics& cam)
                                    std::to_string(cam.width) + "x" + std::to_string(cam.height));
 }
 
+// The entries a sequence may hold at its top level (docs/formats.md).
+const char* const kKnownEntries[] = {"camera.yaml",      "depth",      "color", "labels", "poses.csv", "timestamps.csv",
+                                     "groundtruth.json", "depth_color"};
+
+// Levenshtein distance: the fewest insertions, deletions and substitutions from a to b.
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// Visible top-level entries that are no part of the format. A recorder's README or a user's notes
+// beside the frames are harmless; a name one or two edits from a known one (groundtruth.jsn,
+// pose.csv) is almost surely a misspelling whose content would otherwise be silently unused.
+std::vector<fs::path> unknown_entries(const fs::path& dir) {
+  std::vector<fs::path> unknown;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (name.empty() || name[0] == '.') continue;
+    if (std::find(std::begin(kKnownEntries), std::end(kKnownEntries), name) != std::end(kKnownEntries)) continue;
+    for (const char* known : kKnownEntries)
+      if (edit_distance(name, known) <= 2)
+        throw Error(entry.path().string(), std::string("unexpected entry in sequence: did you mean ") + known +
+                                               "? (known: camera.yaml, depth/, color/, labels/, poses.csv, "
+                                               "timestamps.csv, groundtruth.json, depth_color/)");
+    unknown.push_back(entry.path());
+  }
+  std::sort(unknown.begin(), unknown.end());
+  return unknown;
+}
+
+std::string ignored_notice(const std::vector<fs::path>& ignored) {
+  std::string names;
+  for (const auto& p : ignored) names += (names.empty() ? "" : ", ") + p.filename().string();
+  return "cropsight: notice: " + ignored.front().parent_path().string() + ": ignored " +
+         std::to_string(ignored.size()) + " entr" + (ignored.size() == 1 ? "y" : "ies") +
+         " that are no part of a sequence (" + names + ")";
+}
+
 }  // namespace
 
 SequenceReader::SequenceReader(fs::path dir) {
@@ -87,21 +136,23 @@ SequenceReader::SequenceReader(fs::path dir) {
 
   info_.has_poses = fs::exists(d / "poses.csv");
   if (info_.has_poses) poses_ = detail::read_poses_csv(d / "poses.csv", info_.frames);
+  for (const auto& p : poses_) timestamps_.push_back(p.timestamp);
+  info_.has_timestamps = fs::exists(d / "timestamps.csv");
+  if (info_.has_timestamps) check_timestamps(d / "timestamps.csv");
   info_.has_groundtruth = fs::exists(d / "groundtruth.json");
   if (info_.has_groundtruth) groundtruth_ = detail::read_groundtruth_json(d / "groundtruth.json");
+  info_.ignored = unknown_entries(d);
+  if (!info_.ignored.empty()) std::cerr << ignored_notice(info_.ignored) << "\n";
+}
 
-  // Anything else at the top level is tolerated only when hidden (editor/OS files); a stray
-  // visible entry usually means a misspelt file name, which would otherwise be silently ignored.
-  static const char* kKnown[] = {"camera.yaml",      "depth",      "color", "labels", "poses.csv",
-                                 "groundtruth.json", "depth_color"};
-  for (const auto& entry : fs::directory_iterator(d)) {
-    const std::string name = entry.path().filename().string();
-    if (name.empty() || name[0] == '.') continue;
-    if (std::find(std::begin(kKnown), std::end(kKnown), name) == std::end(kKnown))
-      throw Error(entry.path().string(),
-                  "unexpected entry in sequence (known: camera.yaml, depth/, color/, labels/, poses.csv, "
-                  "groundtruth.json, depth_color/)");
-  }
+void SequenceReader::check_timestamps(const fs::path& file) {
+  const std::vector<double> t = detail::read_timestamps_csv(file, info_.frames);
+  // Two files with one quantity must agree, or a reader would have to guess which one is right.
+  for (std::size_t i = 0; i < timestamps_.size(); ++i)
+    if (timestamps_[i] != t[i])
+      throw Error(file.string(), "frame " + std::to_string(i) + " has timestamp " + std::to_string(t[i]) +
+                                     " but poses.csv says " + std::to_string(timestamps_[i]));
+  timestamps_ = t;
 }
 
 fs::path SequenceReader::depth_path(int index) const { return info_.dir / "depth" / frame_file_name(index); }
@@ -128,11 +179,8 @@ RgbdFrame SequenceReader::read(int index) const {
     f.labels = read_u16(lp);
     check_size(lp, f.labels.width, f.labels.height, info_.camera);
   }
-  if (info_.has_poses) {
-    const CameraPose& p = poses_[std::size_t(index)];
-    f.timestamp = p.timestamp;
-    f.camera_position = p.position;
-  }
+  if (!timestamps_.empty()) f.timestamp = timestamps_[std::size_t(index)];
+  if (info_.has_poses) f.camera_position = poses_[std::size_t(index)].position;
   return f;
 }
 

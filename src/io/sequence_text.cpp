@@ -18,6 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 constexpr const char* kPosesHeader = "frame,timestamp,x,y,z";
+constexpr const char* kTimestampsHeader = "frame,timestamp";
 
 std::vector<std::string_view> split(std::string_view line, char sep) {
   std::vector<std::string_view> out;
@@ -32,56 +33,64 @@ std::vector<std::string_view> split(std::string_view line, char sep) {
 }
 }  // namespace
 
-std::vector<CameraPose> read_poses_csv(const fs::path& path, int frames) {
+namespace {
+// The rows of a per-frame CSV of the sequence format (poses.csv, timestamps.csv): the header
+// exactly `header`, then one row per depth frame in order 0, 1, 2, ..., each a frame number and
+// `values` finite numbers, the first of which is the timestamp.
+std::vector<std::vector<double>> read_frame_rows(const fs::path& path, const std::string& header, int frames) {
   const std::string where = path.string();
   const std::string text = read_file(path);
-  std::vector<CameraPose> poses;
+  const std::size_t columns = split(header, ',').size();
+  std::vector<std::vector<double>> rows;
   std::istringstream in(text);
   std::string line;
   int line_no = 0;
-  bool header = false;
+  bool seen_header = false;
   while (std::getline(in, line)) {
     ++line_no;
     const std::string_view l = trim(line);
     if (l.empty()) continue;
-    if (!header) {
-      if (l != kPosesHeader)
-        throw Error(where, "line " + std::to_string(line_no) + ": expected the header '" + kPosesHeader + "'");
-      header = true;
+    if (!seen_header) {
+      if (l != header) throw Error(where, "line " + std::to_string(line_no) + ": expected the header '" + header + "'");
+      seen_header = true;
       continue;
     }
     const auto fields = split(l, ',');
     const std::string at = "line " + std::to_string(line_no) + ": ";
-    if (fields.size() != 5)
-      throw Error(where, at + "expected 5 comma-separated values, got " + std::to_string(fields.size()));
+    if (fields.size() != columns)
+      throw Error(where, at + "expected " + std::to_string(columns) + " comma-separated values, got " +
+                             std::to_string(fields.size()));
     const auto frame = parse_int(fields[0]);
     if (!frame) throw Error(where, at + "frame must be an integer, got '" + std::string(fields[0]) + "'");
-    if (*frame != long(poses.size()))
-      throw Error(where, at + "expected frame " + std::to_string(poses.size()) + ", got " + std::to_string(*frame) +
+    if (*frame != long(rows.size()))
+      throw Error(where, at + "expected frame " + std::to_string(rows.size()) + ", got " + std::to_string(*frame) +
                              " (rows must list frames 0, 1, 2, ... in order)");
-    CameraPose p;
-    p.frame = int(*frame);
-    double v[4];
-    for (int k = 0; k < 4; ++k) {
-      const auto d = parse_double(fields[std::size_t(k) + 1]);
-      if (!d)
-        throw Error(where, at + "expected a finite number, got '" + std::string(fields[std::size_t(k) + 1]) + "'");
-      v[k] = *d;
+    std::vector<double> v;
+    for (std::size_t k = 1; k < fields.size(); ++k) {
+      const auto d = parse_double(fields[k]);
+      if (!d) throw Error(where, at + "expected a finite number, got '" + std::string(fields[k]) + "'");
+      v.push_back(*d);
     }
-    p.timestamp = v[0];
-    p.position = {v[1], v[2], v[3]};
     // Timestamps are seconds since the recording started; the temporal filter and the map assume
     // frames in time order.
-    if (p.timestamp < 0.0) throw Error(where, at + "timestamp must be >= 0 (seconds), got " + std::string(fields[1]));
-    if (!poses.empty() && p.timestamp < poses.back().timestamp)
+    if (v[0] < 0.0) throw Error(where, at + "timestamp must be >= 0 (seconds), got " + std::string(fields[1]));
+    if (!rows.empty() && v[0] < rows.back()[0])
       throw Error(where, at + "timestamp " + std::string(fields[1]) + " goes back in time (previous row " +
-                             format_double(poses.back().timestamp) + ")");
-    poses.push_back(p);
+                             format_double(rows.back()[0]) + ")");
+    rows.push_back(std::move(v));
   }
-  if (!header) throw Error(where, "empty file (expected the header '" + std::string(kPosesHeader) + "')");
-  if (int(poses.size()) != frames)
-    throw Error(where, "has " + std::to_string(poses.size()) + " rows but the sequence has " + std::to_string(frames) +
+  if (!seen_header) throw Error(where, "empty file (expected the header '" + header + "')");
+  if (int(rows.size()) != frames)
+    throw Error(where, "has " + std::to_string(rows.size()) + " rows but the sequence has " + std::to_string(frames) +
                            " depth frames");
+  return rows;
+}
+}  // namespace
+
+std::vector<CameraPose> read_poses_csv(const fs::path& path, int frames) {
+  std::vector<CameraPose> poses;
+  for (const auto& v : read_frame_rows(path, kPosesHeader, frames))
+    poses.push_back(CameraPose{int(poses.size()), v[0], {v[1], v[2], v[3]}});
   return poses;
 }
 
@@ -91,6 +100,19 @@ std::string format_poses_csv(const std::vector<CameraPose>& poses) {
     out += std::to_string(p.frame) + "," + format_double(p.timestamp) + "," + format_double(p.position.x()) + "," +
            format_double(p.position.y()) + "," + format_double(p.position.z()) + "\n";
   }
+  return out;
+}
+
+std::vector<double> read_timestamps_csv(const fs::path& path, int frames) {
+  std::vector<double> out;
+  for (const auto& v : read_frame_rows(path, kTimestampsHeader, frames)) out.push_back(v[0]);
+  return out;
+}
+
+std::string format_timestamps_csv(const std::vector<double>& timestamps) {
+  std::string out = std::string(kTimestampsHeader) + "\n";
+  for (std::size_t i = 0; i < timestamps.size(); ++i)
+    out += std::to_string(i) + "," + format_double(timestamps[i]) + "\n";
   return out;
 }
 

@@ -3,6 +3,8 @@
 // either is complete or does not exist (a crashed or abandoned writer leaves no half sequence
 // behind), and a folder cropsight did not write is never replaced.
 
+#include <algorithm>
+
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/image_io.hpp"
@@ -61,6 +63,7 @@ void SequenceWriter::write(const RgbdFrame& frame) {
   if (has_color) write_color(tmp_ / "color" / name, frame.color);
   if (has_labels) write_u16(tmp_ / "labels" / name, frame.labels);
   if (has_pose) poses_.push_back(CameraPose{next_, frame.timestamp, *frame.camera_position});
+  timestamps_.push_back(frame.timestamp);
   ++next_;
 }
 
@@ -70,6 +73,10 @@ void SequenceWriter::finish() {
   if (finished_) return;
   if (next_ == 0) throw Error(dir_.string(), "no frames written (a sequence needs at least one frame)");
   if (!poses_.empty()) write_file_atomic(tmp_ / "poses.csv", detail::format_poses_csv(poses_));
+  // Without poses the frames' times would be lost (poses.csv carries them otherwise); a sequence
+  // whose frames all say 0 has no time to keep.
+  const bool timed = std::any_of(timestamps_.begin(), timestamps_.end(), [](double t) { return t != 0.0; });
+  if (poses_.empty() && timed) write_file_atomic(tmp_ / "timestamps.csv", detail::format_timestamps_csv(timestamps_));
   if (truth_) write_file_atomic(tmp_ / "groundtruth.json", detail::format_groundtruth_json(*truth_, dir_.string()));
 
   out_->commit("sequence");  // a previous sequence is swapped out in one step

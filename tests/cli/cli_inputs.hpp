@@ -16,6 +16,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli/recorder_layouts.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "pipeline/grape/grape_test_clouds.hpp"
 #include "testing/testing.hpp"
@@ -35,6 +36,8 @@ inline bool make_cli_inputs(const std::filesystem::path& b) {
   fs::copy_file(src / "models/grape-gbdt-fast.json", b / "grape.json");
   fs::copy_file(src / "models/detector-grape.onnx", b / "det.onnx");
   fs::copy_file(src / "models/detector-grape.pt", b / "det.pt");
+  // The pass as a RealSense recorder writes it: import's camera_info, extrinsics and poses inputs.
+  if (ok) write_recorder_layout(io::SequenceReader(b / "seq"), b / "rec", Recorder::RealSense);
 #if CROPSIGHT_HAS_ROS
   ok = ok && run_cli("export --data " + shell_quoted(b / "seq") + " --out " + shell_quoted(b / "s.bag")).exit_code == 0;
 #endif

@@ -318,6 +318,17 @@ const Input kVoc{"voc/a.xml", Kind::Xml, "xmin", "1000", {Bad::Missing, Bad::Dir
 const Input kOut{"out", Kind::Output, "", ""};
 // A ROS bag of the sequence (cropsight export --bag), in builds with ROS.
 const Input kBag{"s.bag", Kind::Binary, "", ""};
+// import's recorder inputs (cli/recorder_layouts.hpp, RealSense layout). A ROS camera_info carries
+// keys cropsight does not use (R, P, roi, binning), so an unknown key is no bad input of it.
+const Input kDepthInfo{"rec/depth_info.yaml", Kind::Yaml, "width", "-640", {Bad::UnknownKey}};
+const Input kColorInfo{"rec/color_info.yaml", Kind::Yaml, "image_width", "-640", {Bad::UnknownKey}};
+const Input kExtrinsics{"rec/extrinsics.yaml", Kind::Yaml, "depth_to_color.translation", "[0, 0]"};
+// Out of range: the pose between frames 0 and 1 dated before frame 0's (time going back).
+const Input kPoseCsv{"rec/poses.csv", Kind::Csv, "2,0", "1"};
+// One colour image fewer (or a folder in its place) is a count mismatch named by its folder
+// (test_import_layouts_cli.cpp); a JPEG holds 8 bits only.
+const Input kRecColor{
+    "rec/color/_Color_1596203844003.217.jpg", Kind::Png, "", "", {Bad::Missing, Bad::Directory, Bad::WrongDepth}};
 Input set(const std::string& key, const std::string& range) { return {key, Kind::Set, key, range}; }
 
 // A table, one row per command: long because the command list is.
@@ -346,6 +357,10 @@ const std::vector<Row>& rows() {
     {"import",
      "import --depth {c}/seq/depth --color {c}/seq/color --camera {c}/seq/camera.yaml --out {c}/out/imp",
      {kCamera, kDepth, kColor, kOut}},
+    {"import_recorder",
+     "import --depth {c}/rec/depth --color {c}/rec/color --camera {c}/rec/depth_info.yaml --color-camera "
+     "{c}/rec/color_info.yaml --extrinsics {c}/rec/extrinsics.yaml --poses {c}/rec/poses.csv --out {c}/out/imp",
+     {kDepthInfo, kColorInfo, kExtrinsics, kPoseCsv, kRecColor, kOut}},
     {"simulate_broccoli", "simulate broccoli --frames 1 --out {c}/out/s", {set("camera.height_m", "-1"), kOut}},
     {"simulate_potato", "simulate potato --frames 1 --out {c}/out/s", {kOut}},
     {"simulate_seedling", "simulate seedling --pairs 1 --calib-pairs 0 --quiet --out {c}/out/s", {kOut}},

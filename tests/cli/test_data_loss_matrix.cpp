@@ -84,6 +84,10 @@ const std::vector<Row>& rows() {
     {"stereo_calibrate", "stereo calibrate --images {c}/sd --out {out}", "sd", Out::File, ".yaml"},
     {"import", "import --depth {c}/seq/depth --color {c}/seq/color --camera {c}/seq/camera.yaml --out {out}",
      "seq/depth", Out::Folder, ""},
+    {"import_recorder",
+     "import --depth {c}/rec/depth --color {c}/rec/color --camera {c}/rec/depth_info.yaml --color-camera "
+     "{c}/rec/color_info.yaml --extrinsics {c}/rec/extrinsics.yaml --poses {c}/rec/poses.csv --out {out}",
+     "rec/color", Out::Folder, ""},
     {"export", "export --data {c}/seq --frame 0 --out {out}", "seq", Out::File, ".pcd"},
     {"render", "render --data {c}/seq --frame 0 --out {out}", "seq", Out::File, ".png"},
     {"report", "report --data {c}/seq --out {out} --frames 1", "seq", Out::File, ".html"},

@@ -6,6 +6,7 @@
 //   SEQ/color/000000.png     8-bit colour registered to depth (optional)
 //   SEQ/labels/000000.png    16-bit instance id per pixel, 0 = other (optional; needs depth)
 //   SEQ/poses.csv            frame,timestamp,x,y,z camera position in the field frame (optional)
+//   SEQ/timestamps.csv       frame,timestamp: frame times of a sequence without poses (optional)
 //   SEQ/groundtruth.json     {"instances": [{"id", "position": [x,y,z], "diameter_mm", ...}], ...}
 //
 // Readers validate everything and throw cropsight::Error naming the offending file.
@@ -56,10 +57,17 @@ struct SequenceInfo {
   bool has_color = false;
   bool has_labels = false;
   bool has_poses = false;
+  bool has_timestamps = false;  ///< timestamps.csv (poses.csv carries the times when present)
   bool has_groundtruth = false;
+  /// Visible top-level entries that are no part of the format (a README, notes): ignored, and
+  /// named in one notice line on stderr when the reader opens the sequence.
+  std::vector<std::filesystem::path> ignored;
 };
 
-/// Reads camera.yaml. Throws Error(path, ...) for a missing file, bad YAML or bad values.
+/// Reads camera.yaml, or a ROS camera_info YAML in its place (camera_calibration's file or a
+/// CameraInfo message as `rostopic echo` prints it; depth_scale is then REP 118's 0.001). Throws
+/// Error(path, ...) for a missing file, bad YAML or bad values, and names the accepted formats
+/// for any other YAML.
 CameraIntrinsics read_camera_yaml(const std::filesystem::path& path);
 /// Writes camera.yaml atomically.
 void write_camera_yaml(const std::filesystem::path& path, const CameraIntrinsics& camera);
@@ -67,7 +75,9 @@ void write_camera_yaml(const std::filesystem::path& path, const CameraIntrinsics
 class SequenceReader {
  public:
   /// Opens and validates the layout of `dir`: camera.yaml, frames numbered from 0 without gaps,
-  /// colour/labels frame sets equal to the depth set, poses/groundtruth parse. Image contents are
+  /// colour/labels frame sets equal to the depth set, poses/timestamps/groundtruth parse. A visible
+  /// entry whose name is one edit or two from a known one (groundtruth.jsn) is an error, as it is
+  /// most likely a misspelling; other unknown entries are ignored with one notice line on stderr. Image contents are
   /// checked (bit depth, size) when each frame is read.
   explicit SequenceReader(std::filesystem::path dir);
 
@@ -77,6 +87,8 @@ class SequenceReader {
   /// channel count or size.
   RgbdFrame read(int index) const;
   const std::vector<CameraPose>& poses() const { return poses_; }  ///< empty when no poses.csv
+  /// Seconds per frame (poses.csv's or timestamps.csv's); empty when the sequence has neither.
+  const std::vector<double>& timestamps() const { return timestamps_; }
   const GroundTruth& groundtruth() const { return groundtruth_; }  ///< empty when absent
 
   std::filesystem::path depth_path(int index) const;
@@ -84,8 +96,11 @@ class SequenceReader {
   std::filesystem::path labels_path(int index) const;
 
  private:
+  void check_timestamps(const std::filesystem::path& file);
+
   SequenceInfo info_;
   std::vector<CameraPose> poses_;
+  std::vector<double> timestamps_;
   GroundTruth groundtruth_;
 };
 
@@ -117,6 +132,7 @@ class SequenceWriter {
   int next_ = 0;
   bool color_ = false, labels_ = false, finished_ = false;
   std::vector<CameraPose> poses_;
+  std::vector<double> timestamps_;
   std::optional<GroundTruth> truth_;
 };
 

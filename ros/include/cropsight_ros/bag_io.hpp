@@ -51,16 +51,26 @@ struct BagImportOptions {
   double start_s = 1.0;  ///< subtracted from the stamps to give the frames' timestamps
   bool overwrite = false;
   double max_skew_s = 0.005;  ///< colour is matched to the depth frame whose stamp is within this
+  /// A pose file (CSV or TUM, cropsight/io/pose_track.hpp) joined to the depth stamps, in place of
+  /// the /tf poses; empty: the bag's /tf.
+  std::string poses;
+  double pose_tolerance_s = 0.05;  ///< a frame's pose must lie within this of its stamp
 };
 
 struct BagImportSummary {
   int frames = 0;
   bool color = false;
-  int unmatched_color = 0;  ///< colour images with no depth frame within max_skew_s
+  int unmatched_color = 0;        ///< colour images with no depth frame within max_skew_s
+  int skipped_without_color = 0;  ///< depth frames left out because their colour image is missing
+  std::string poses_format;       ///< the --poses file's format ("csv", "tum"); "" without
 };
 
-/// Reads depth, camera info and colour from `o.bag` into a sequence folder. Throws Error naming
-/// the bag (a missing topic, inconsistent camera info, a wrong encoding, a truncated file).
+/// Reads depth, camera info and colour from `o.bag` into a sequence folder, as a stream: a first
+/// pass collects stamps, camera info and poses, a second writes each frame as soon as its depth
+/// and colour have been read, so memory does not grow with the bag's length. When the bag has
+/// colour, depth frames without a colour image within max_skew_s are skipped and counted. Throws
+/// Error naming the bag (a missing topic, inconsistent camera info, a wrong encoding, a truncated
+/// file).
 BagImportSummary import_bag_sequence(const BagImportOptions& o);
 
 }  // namespace cropsight::ros_io
