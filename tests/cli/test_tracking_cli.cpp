@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "chromium_check.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/sim/broccoli/broccoli_sim.hpp"
@@ -186,6 +187,15 @@ TEST_F(TrackingCli, ReportOnASequenceWithoutGroundTruth) {
   EXPECT_NE(page.find("mapped heads per diameter"), std::string::npos);
   EXPECT_EQ(page.find("Precision–recall"), std::string::npos);  // no metric without truth
   EXPECT_NE(page.find("data:image/png;base64"), std::string::npos);
+  // Opened in Chromium: the overlays decode and every chart is laid out.
+  const std::string chromium = cropsight::testing::chromium_path();
+  if (chromium.empty()) GTEST_SKIP() << "chromium not installed (command -v chromium): the page was not opened";
+  fs::create_directories(dir() / "own-render");
+  const auto shown = cropsight::testing::render_check(chromium, html, dir() / "own-render");
+  ASSERT_TRUE(shown.is_object()) << "chromium gave no render check";
+  EXPECT_EQ(shown["bad"], nlohmann::json::array()) << shown.dump();
+  EXPECT_GE(shown["imgs"].get<int>(), 2) << shown.dump();  // the two overlay frames
+  EXPECT_GE(shown["svgs"].get<int>(), 4) << shown.dump();  // detections, map, sizes, timing
 }
 
 // The size correction is fitted on the training passes and travels in the model: the values
