@@ -1,0 +1,22 @@
+"""cropsight: 3D crop perception (broccoli heads, potatoes, grape bunches, broccoli seedlings).
+
+A thin front-end over the C++ library: every pipeline is built by the library's make_pipeline from a
+model, a preset and sets, exactly as the CLI builds it, so that the same data gives the same
+results. numpy arrays in and out; the GIL is released while a pipeline runs. docs/python.md.
+
+    import cropsight as cs
+    seq = cs.read_sequence("SEQ")
+    pipe = cs.broccoli.Pipeline(model="broccoli-oes-general", sets={"tracking.use_poses": True})
+    for frame in seq:
+        result = pipe.process(frame)
+    heads = pipe.field_map()
+"""
+from . import _plugin_paths
+
+_plugin_paths.point_library_at_prefix()
+
+from ._cropsight import Camera, Detection, Error, Frame, Sequence, read_sequence  # noqa: E402
+from . import broccoli, simulate  # noqa: E402
+
+__all__ = ["Camera", "Detection", "Error", "Frame", "Sequence", "read_sequence",
+           "broccoli", "simulate"]
