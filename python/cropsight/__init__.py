@@ -16,7 +16,7 @@ from . import _plugin_paths
 _plugin_paths.point_library_at_prefix()
 
 from ._cropsight import Camera, Detection, Error, Frame, Sequence, read_sequence  # noqa: E402
-from . import broccoli, simulate  # noqa: E402
+from . import broccoli, grape, potato, seedling, simulate  # noqa: E402
 
 __all__ = ["Camera", "Detection", "Error", "Frame", "Sequence", "read_sequence",
-           "broccoli", "simulate"]
+           "broccoli", "grape", "potato", "seedling", "simulate"]

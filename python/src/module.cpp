@@ -9,14 +9,12 @@ PYBIND11_MODULE(_cropsight, m) {
   bind_detection(m);
   auto broccoli = m.def_submodule("broccoli", "Broccoli heads from depth frames (Montes 2020, Kusumam 2017)");
   bind_broccoli(broccoli);
-  // The other crops follow.
-  /*auto potato = m.def_submodule("potato", "Potatoes on an aeroponic rig: the harvest target per RGB-D frame");
+  auto potato = m.def_submodule("potato", "Potatoes on an aeroponic rig: the harvest target per RGB-D frame");
   bind_potato(potato);
   auto seedling = m.def_submodule("seedling", "Broccoli seedlings from rectified stereo pairs");
   bind_seedling(seedling);
   auto grape = m.def_submodule("grape", "Grape bunches: ROI clouds, point segmentation, cut points");
   bind_grape(grape);
   auto simulate = m.def_submodule("simulate", "The simulators that make the examples' and tests' data");
-*/  auto simulate = m.def_submodule("simulate", "");
   bind_simulate(simulate);
 }

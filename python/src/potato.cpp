@@ -1,0 +1,107 @@
+// cropsight.potato: the potato pipeline (pipeline/potato/) built with make_pipeline; a frame in,
+// the harvest target message (HarvestTarget) and the boxes that led to it out.
+#include <pybind11/stl.h>
+
+#include "arrays.hpp"
+#include "bindings.hpp"
+#include "config.hpp"
+#include "cropsight/pipeline/potato/make_pipeline.hpp"
+#include "frames.hpp"
+
+namespace cropsight::python {
+
+namespace {
+
+namespace potato = pipeline::potato;
+
+py::tuple corners(const Detection2D& d) { return py::make_tuple(d.x1, d.y1, d.x2, d.y2); }
+
+void bind_values(py::module_& m) {
+  py::class_<Detection2D>(m, "Box", "A 2D detection: corners (x1, y1, x2, y2) in pixels, class_id, score in [0, 1].")
+      .def_property_readonly("corners", &corners)
+      .def_readonly("class_id", &Detection2D::class_id)
+      .def_readonly("score", &Detection2D::score)
+      .def("__repr__", [](const Detection2D& d) {
+        return "Box(corners=" + std::string(py::repr(corners(d))) + ", score=" + std::string(py::repr(py::float_(d.score))) + ")";
+      });
+  py::class_<potato::HarvestTarget>(
+      m, "HarvestTarget",
+      "The harvest message of one frame (paper Table 3.2): detection, depth_ok, x, y, z (m, camera frame), "
+      "height, width (m), angle (rad, counter-clockwise from the image x axis), angle_ok, cut, target_id (0 = "
+      "none), state (selecting | detected | tracked | lost), score, box (pixels) and frame, timestamp (s). A "
+      "plain value.")
+      .def_readonly("frame", &potato::HarvestTarget::frame)
+      .def_readonly("timestamp", &potato::HarvestTarget::timestamp)
+      .def_readonly("detection", &potato::HarvestTarget::detection)
+      .def_readonly("depth_ok", &potato::HarvestTarget::depth_ok)
+      .def_readonly("x", &potato::HarvestTarget::x)
+      .def_readonly("y", &potato::HarvestTarget::y)
+      .def_readonly("z", &potato::HarvestTarget::z)
+      .def_readonly("height", &potato::HarvestTarget::height)
+      .def_readonly("width", &potato::HarvestTarget::width)
+      .def_readonly("angle", &potato::HarvestTarget::angle)
+      .def_readonly("angle_ok", &potato::HarvestTarget::angle_ok)
+      .def_readonly("cut", &potato::HarvestTarget::cut)
+      .def_readonly("target_id", &potato::HarvestTarget::target_id)
+      .def_property_readonly("state", [](const potato::HarvestTarget& t) { return config_name(t.state); })
+      .def_readonly("score", &potato::HarvestTarget::score)
+      .def_property_readonly("box", [](const potato::HarvestTarget& t) -> py::object {
+        return t.detection ? py::object(corners(t.box)) : py::object(py::none());
+      })
+      .def("__repr__", [](const potato::HarvestTarget& t) {
+        return "HarvestTarget(frame=" + std::to_string(t.frame) + ", detection=" + (t.detection ? "True" : "False") +
+               ", state=" + config_name(t.state) + ", xyz=(" + std::string(py::repr(py::float_(t.x))) + ", " +
+               std::string(py::repr(py::float_(t.y))) + ", " + std::string(py::repr(py::float_(t.z))) + "))";
+      });
+  py::class_<potato::FrameResult>(m, "FrameResult",
+                                  "One frame's result: target (the HarvestTarget), detections (Box list), "
+                                  "positions (per box: (x, y, z) m, camera frame), ripe (per box), stage_ms.")
+      .def_readonly("target", &potato::FrameResult::target)
+      .def_readonly("detections", &potato::FrameResult::detections)
+      .def_property_readonly("positions", [](const potato::FrameResult& r) {
+        py::list out;
+        for (const auto& p : r.positions) out.append(vector_array(p.xyz));
+        return out;
+      })
+      .def_property_readonly("ripe", [](const potato::FrameResult& r) { return std::vector<bool>(r.ripe.begin(), r.ripe.end()); })
+      .def_property_readonly("stage_ms", [](const potato::FrameResult& r) {
+        py::dict d;
+        for (const auto& s : r.timer.stages()) d[py::str(s.name)] = s.total_ms;
+        return d;
+      });
+}
+
+}  // namespace
+
+void bind_potato(py::module_& m) {
+  bind_config_class<potato::Config>(m, "potato", "The potato pipeline's configuration (pipeline/potato/config.hpp).");
+  bind_values(m);
+  py::class_<potato::Pipeline>(
+      m, "Pipeline",
+      "The potato pipeline of make_pipeline: config = a preset name or YAML file (default potato), sets = "
+      "{key: value} (help(cropsight.potato.Config)), model = a detector model where the preset runs one.\n\n"
+      "Thread-safety: not thread-safe (it tracks its target across frames); one Pipeline per thread. "
+      "process() releases the GIL.")
+      .def(py::init([](const std::string& config, const py::object& sets, const std::string& model) {
+             pipeline::PipelineSpec spec{config, sets_from(sets), model};
+             py::gil_scoped_release free;
+             return potato::make_pipeline(spec);
+           }),
+           py::kw_only(), py::arg("config") = "", py::arg("sets") = py::none(), py::arg("model") = "")
+      .def("process", [](potato::Pipeline& p, const py::object& frame, const py::object& depth, const py::object& color,
+                         const py::object& camera) {
+             RgbdFrame storage;
+             const RgbdFrame& f = frame_argument(frame, depth, color, camera, storage);
+             if (f.color.empty()) throw py::value_error("color: the potato pipeline needs a colour image");
+             py::gil_scoped_release free;
+             return p.process(f);
+           },
+           py::arg("frame") = py::none(), py::kw_only(), py::arg("depth") = py::none(), py::arg("color") = py::none(),
+           py::arg("camera") = py::none(),
+           "One frame: process(frame) or process(color=H×W×3 uint8, depth=H×W uint16 or None, camera=...). "
+           "Returns the FrameResult; .target is the harvest message.")
+      .def("reset", &potato::Pipeline::reset, "Starts a new approach: drops the target.")
+      .def_property_readonly("config", [](const potato::Pipeline& p) { return config_values(p.config()); });
+}
+
+}  // namespace cropsight::python
