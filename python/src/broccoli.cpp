@@ -93,7 +93,8 @@ void bind_pipeline(py::module_& m) {
       "reset() starts the next.")
       .def(py::init([](const std::string& model, const std::string& config, const py::object& sets) {
              pipeline::PipelineSpec spec{config, sets_from(sets), model.empty() ? broccoli::kDefaultModel : model};
-             py::gil_scoped_release free;
+             // Built with the GIL held: loading a model is not thread-safe (libsvm's svm_load_model
+             // parses with strtok), so Python threads build their pipelines one at a time.
              return broccoli::make_pipeline(spec);
            }),
            py::kw_only(), py::arg("model") = broccoli::kDefaultModel, py::arg("config") = "",

@@ -8,6 +8,8 @@
 #include "config.hpp"
 #include "cropsight/io/grape_text.hpp"
 #include "cropsight/pipeline/grape/make_pipeline.hpp"
+#include "cropsight/pipeline/grape/truth.hpp"
+#include "frames.hpp"
 
 namespace cropsight::python {
 
@@ -44,6 +46,56 @@ py::array_t<float> array_from(const Cloud& c) {
   return out;
 }
 
+// boxes: (category, x, y, width, height[, score]) each; category 1 = bunch, 2 = peduncle.
+std::vector<grape::Detection> boxes_from(const py::object& boxes) {
+  std::vector<grape::Detection> out;
+  long k = 0;
+  for (const py::handle& item : boxes) {
+    const auto t = py::reinterpret_borrow<py::sequence>(item);
+    if (!py::isinstance<py::sequence>(item) || (t.size() != 5 && t.size() != 6))
+      throw py::value_error("boxes[" + std::to_string(k) + "]: expected (category, x, y, width, height[, score]), got " +
+                            std::string(py::repr(item)));
+    grape::Detection d;
+    d.category = t[0].cast<int>();
+    d.box = {t[1].cast<int>(), t[2].cast<int>(), t[3].cast<int>(), t[4].cast<int>()};
+    if (t.size() == 6) d.score = t[5].cast<float>();
+    d.annotation = k++;
+    out.push_back(d);
+  }
+  return out;
+}
+
+py::dict bunch_dict(const grape::Bunch& b) {
+  py::dict d;
+  d["roi"] = py::make_tuple(b.roi.x, b.roi.y, b.roi.width, b.roi.height);
+  d["points"] = array_from(b.cloud);
+  d["labels"] = py::array_t<int>(py::ssize_t(b.cloud.labels.size()), b.cloud.labels.data());
+  d["label_counts"] = grape::label_counts(b.cloud);
+  if (b.cut_point) {
+    py::dict c;
+    c["position_m"] = vector_array(b.cut_point->position);
+    c["direction"] = vector_array(b.cut_point->direction);
+    c["confidence"] = b.cut_point->confidence;
+    d["cut_point"] = c;
+  } else {
+    d["cut_point"] = py::none();
+  }
+  return d;
+}
+
+py::dict result_dict(const grape::FrameResult& r) {
+  py::dict d;
+  py::list bunches;
+  for (const auto& b : r.bunches) bunches.append(bunch_dict(b));
+  d["bunches"] = bunches;
+  d["detections"] = r.detections.size();
+  d["outside_image"] = r.outside.size();
+  py::dict stages;
+  for (const auto& s : r.timer.stages()) stages[py::str(s.name)] = s.total_ms;
+  d["stage_ms"] = stages;
+  return d;
+}
+
 }  // namespace
 
 void bind_grape(py::module_& m) {
@@ -55,13 +107,35 @@ void bind_grape(py::module_& m) {
       "{key: value} (segmenter.* keys set the segmenter), threads = the segmenter's worker threads (0 = the "
       "preset's).\n\nThread-safety: segment() is const and may run from several threads at once; it releases "
       "the GIL (the segmenter's own threads run meanwhile).")
-      .def(py::init([](const std::string& model, const std::string& config, const py::object& sets, int threads) {
-             pipeline::PipelineSpec spec{config, sets_from(sets), model};
-             spec.threads = threads;
-             py::gil_scoped_release free;
+      .def(py::init([](const std::string& model, const std::string& config, const py::object& sets, int threads,
+                       const std::string& detector) {
+             pipeline::PipelineSpec spec{config, sets_from(sets), model, detector, threads};
+             // Built with the GIL held: loading a model is not thread-safe (libsvm's svm_load_model
+             // parses with strtok), so Python threads build their pipelines one at a time.
              return grape::make_pipeline(spec);
            }),
-           py::kw_only(), py::arg("model") = "", py::arg("config") = "", py::arg("sets") = py::none(), py::arg("threads") = 0)
+           py::kw_only(), py::arg("model") = "", py::arg("config") = "", py::arg("sets") = py::none(), py::arg("threads") = 0,
+           py::arg("detector") = "")
+      .def("process", [](grape::Pipeline& p, const py::object& frame, const py::object& boxes) {
+             if (!py::isinstance<RgbdFrame>(frame)) throw py::type_error("frame: expected a cropsight.Frame");
+             const RgbdFrame& f = frame.cast<const RgbdFrame&>();
+             grape::FrameResult r;
+             if (boxes.is_none()) {
+               py::gil_scoped_release free;
+               r = p.process(f);
+             } else {
+               const auto given = boxes_from(boxes);
+               py::gil_scoped_release free;
+               r = p.process(f, given);
+             }
+             return result_dict(r);
+           },
+           py::arg("frame"), py::arg("boxes") = py::none(),
+           "Every step on one frame (colour registered to depth): boxes = [(category, x, y, width, height[, "
+           "score]), ...] (category 1 = bunch, 2 = peduncle; pixels) or None for the pipeline's detector "
+           "(detector=...). Returns a dict: bunches (each: roi, points N×9 in metres, camera frame, labels, "
+           "label_counts, cut_point None or {position_m, direction, confidence}), detections, outside_image, "
+           "stage_ms. Not thread-safe with a detector; without one process() is const.")
       .def("segment", [](const grape::Pipeline& p, const py::object& points) {
              const Cloud cloud = cloud_from(points);
              std::vector<int> labels;

@@ -84,7 +84,8 @@ void bind_potato(py::module_& m) {
       "process() releases the GIL.")
       .def(py::init([](const std::string& config, const py::object& sets, const std::string& model) {
              pipeline::PipelineSpec spec{config, sets_from(sets), model};
-             py::gil_scoped_release free;
+             // Built with the GIL held: loading a model is not thread-safe (libsvm's svm_load_model
+             // parses with strtok), so Python threads build their pipelines one at a time.
              return potato::make_pipeline(spec);
            }),
            py::kw_only(), py::arg("config") = "", py::arg("sets") = py::none(), py::arg("model") = "")

@@ -75,7 +75,8 @@ void bind_seedling(py::module_& m) {
       "(it releases the GIL).")
       .def(py::init([](const std::string& config, const py::object& sets) {
              pipeline::PipelineSpec spec{config, sets_from(sets)};
-             py::gil_scoped_release free;
+             // Built with the GIL held: loading a model is not thread-safe (libsvm's svm_load_model
+             // parses with strtok), so Python threads build their pipelines one at a time.
              return seedling::make_pipeline(spec);
            }),
            py::kw_only(), py::arg("config") = "", py::arg("sets") = py::none())

@@ -1,5 +1,6 @@
 """cropsight.grape against `segment grape` on a real cloud of the grape dataset (../shared/data,
 unpacked by scripts/unpack-grape.sh): the same label for every point."""
+import json
 import os
 import subprocess
 
@@ -7,7 +8,7 @@ import numpy as np
 import pytest
 
 import cropsight as cs
-from conftest import run_cli, shared_data
+from conftest import run_cli, run_cli_json, shared_data
 
 MODEL = "grape-gbdt-fast"
 
@@ -46,3 +47,25 @@ def test_segment_bad_input():
     with pytest.raises(cs.Error) as e:
         pipe.segment(bad)
     assert str(e.value).startswith("points: ") and "\n" not in str(e.value)
+
+
+def test_process_with_boxes_equals_detect_grape(broccoli_pass, tmp_path):
+    # Any registered colour + depth frame serves: a simulated broccoli frame, boxes given by hand.
+    boxes = [(1, 300, 100, 120, 140), (2, 340, 60, 40, 50), (1, 80, 200, 100, 120)]
+    coco = tmp_path / "boxes.json"
+    coco.write_text(json.dumps([{"bbox": list(b[1:]), "category_id": b[0]} for b in boxes]))
+    want = run_cli_json("detect", "grape", "--color", os.path.join(broccoli_pass, "color", "000000.png"),
+                        "--depth", os.path.join(broccoli_pass, "depth", "000000.png"),
+                        "--camera", os.path.join(broccoli_pass, "camera.yaml"), "--detections", coco,
+                        "--model", MODEL, "--threads", 1, "--out", tmp_path / "out")
+    got = cs.grape.Pipeline(model=MODEL, threads=1).process(cs.read_sequence(broccoli_pass)[0], boxes)
+    assert got["detections"] == want["detections"] == 3 and got["outside_image"] == want["outside_image"]
+    assert len(got["bunches"]) == len(want["bunches"]) > 0
+    for bunch, line in zip(got["bunches"], want["bunches"]):
+        assert list(bunch["roi"]) == line["roi"]
+        assert len(bunch["points"]) == len(bunch["labels"]) == line["points"]
+        assert bunch["label_counts"] == line["label_counts"]
+        assert bunch["cut_point"] == line["cut_point"]  # None on broccoli: no peduncle points
+    with pytest.raises(ValueError) as e:
+        cs.grape.Pipeline(model=MODEL, threads=1).process(cs.read_sequence(broccoli_pass)[0], [(1, 2, 3)])
+    assert str(e.value) == "boxes[0]: expected (category, x, y, width, height[, score]), got (1, 2, 3)"
