@@ -63,7 +63,8 @@ ColorImage color_from_array(const py::handle& value, const std::string& name) {
 std::vector<float> points_from_array(const py::handle& value, const std::string& name, int columns, int& rows) {
   const std::string wanted = "float32 or float64 array of shape (N, " + std::to_string(columns) + ")";
   const py::array a = as_array(value, name, wanted);
-  if (a.ndim() != 2 || a.shape(1) != columns) throw py::value_error(name + ": expected a " + wanted + ", got " + describe(a));
+  if (a.ndim() != 2 || a.shape(1) != columns)
+    throw py::value_error(name + ": expected a " + wanted + ", got " + describe(a));
   if (!a.dtype().is(py::dtype::of<float>()) && !a.dtype().is(py::dtype::of<double>()))
     throw py::type_error(name + ": expected a " + wanted + ", got " + describe(a));
   const auto c = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(a);

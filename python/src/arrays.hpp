@@ -47,7 +47,9 @@ inline py::array_t<double> vector_array(const Eigen::Vector3d& v) {
   for (int i = 0; i < 3; ++i) out.mutable_at(i) = v[i];
   return out;
 }
-inline py::array_t<double> vector_array(const Eigen::Vector3f& v) { return vector_array(Eigen::Vector3d(v.cast<double>())); }
+inline py::array_t<double> vector_array(const Eigen::Vector3f& v) {
+  return vector_array(Eigen::Vector3d(v.cast<double>()));
+}
 /// Depth, colour and label images as arrays viewing `image` (owned by `owner`).
 py::array image_view(const DepthImage& image, py::handle owner);
 py::object color_view(const ColorImage& image, py::handle owner);  ///< None when empty

@@ -28,15 +28,18 @@ py::dict stage_ms(const StageTimer& timer) {
 }
 
 void bind_result(py::module_& m) {
-  py::class_<tracking::PredictedHead>(m, "PredictedHead",
-                                      "A tracked head this frame missed, where the filter expects it (camera frame, m).")
+  py::class_<tracking::PredictedHead>(
+      m, "PredictedHead", "A tracked head this frame missed, where the filter expects it (camera frame, m).")
       .def_readonly("track_id", &tracking::PredictedHead::track_id)
       .def_property_readonly("centroid", [](const tracking::PredictedHead& p) { return vector_array(p.centroid); })
-      .def_property_readonly("pixels", [](py::object self) {
-        const auto& p = self.cast<const tracking::PredictedHead&>();
-        return view(p.indices.data(), {py::ssize_t(p.indices.size())}, self);
-      })
-      .def("__repr__", [](const tracking::PredictedHead& p) { return "PredictedHead(track_id=" + std::to_string(p.track_id) + ")"; });
+      .def_property_readonly("pixels",
+                             [](py::object self) {
+                               const auto& p = self.cast<const tracking::PredictedHead&>();
+                               return view(p.indices.data(), {py::ssize_t(p.indices.size())}, self);
+                             })
+      .def("__repr__", [](const tracking::PredictedHead& p) {
+        return "PredictedHead(track_id=" + std::to_string(p.track_id) + ")";
+      });
   py::class_<BroccoliResult>(m, "FrameResult",
                              "One frame's result: detections (best score first), predicted (tracking: heads this "
                              "frame missed), camera_estimate (tracking: the filter's camera position, field frame, "
@@ -44,25 +47,31 @@ void bind_result(py::module_& m) {
       .def_property_readonly("frame", [](const BroccoliResult& b) { return b.r.frame; })
       .def_property_readonly("detections", [](const BroccoliResult& b) { return b.r.detections; })
       .def_property_readonly("predicted", [](const BroccoliResult& b) { return b.r.predicted; })
-      .def_property_readonly("camera_estimate", [](const BroccoliResult& b) { return vector_array(b.r.association.camera_position); })
+      .def_property_readonly("camera_estimate",
+                             [](const BroccoliResult& b) { return vector_array(b.r.association.camera_position); })
       .def_property_readonly("stage_ms", [](const BroccoliResult& b) { return stage_ms(b.r.timer); })
       .def_property_readonly("detect_ms", [](const BroccoliResult& b) { return b.r.detect_ms(); })
       .def_property_readonly("track_ms", [](const BroccoliResult& b) { return b.r.track_ms(); })
-      .def("label_image", [](const BroccoliResult& b) {
-        py::array_t<std::uint16_t> out({b.height, b.width});
-        auto* p = out.mutable_data();
-        std::fill(p, p + out.size(), std::uint16_t(0));
-        for (std::size_t k = 0; k < b.r.detections.size(); ++k)
-          for (int i : b.r.detections[k].indices) p[i] = std::uint16_t(k + 1);
-        return out;
-      }, "H×W uint16: each pixel's 1-based detection number, 0 = none (what detect broccoli --masks writes).")
+      .def(
+          "label_image",
+          [](const BroccoliResult& b) {
+            py::array_t<std::uint16_t> out({b.height, b.width});
+            auto* p = out.mutable_data();
+            std::fill(p, p + out.size(), std::uint16_t(0));
+            for (std::size_t k = 0; k < b.r.detections.size(); ++k)
+              for (int i : b.r.detections[k].indices) p[i] = std::uint16_t(k + 1);
+            return out;
+          },
+          "H×W uint16: each pixel's 1-based detection number, 0 = none (what detect broccoli --masks writes).")
       .def("__repr__", [](const BroccoliResult& b) {
-        return "broccoli.FrameResult(frame=" + std::to_string(b.r.frame) + ", " + std::to_string(b.r.detections.size()) + " detections)";
+        return "broccoli.FrameResult(frame=" + std::to_string(b.r.frame) + ", " +
+               std::to_string(b.r.detections.size()) + " detections)";
       });
-  py::class_<tracking::TrackedHead>(m, "FieldHead",
-                                    "One head of the field map: position (field frame, m, running average), "
-                                    "diameter_mm (corrected, chosen estimator), bbox_mm, hull_mm, harvestable, frames_seen, "
-                                    "partial_frames, first_frame, last_frame, score, mean_detection_score, size_samples.")
+  py::class_<tracking::TrackedHead>(
+      m, "FieldHead",
+      "One head of the field map: position (field frame, m, running average), "
+      "diameter_mm (corrected, chosen estimator), bbox_mm, hull_mm, harvestable, frames_seen, "
+      "partial_frames, first_frame, last_frame, score, mean_detection_score, size_samples.")
       .def_readonly("id", &tracking::TrackedHead::id)
       .def_property_readonly("position", [](const tracking::TrackedHead& h) { return vector_array(h.position); })
       .def_readonly("score", &tracking::TrackedHead::score)
@@ -77,7 +86,8 @@ void bind_result(py::module_& m) {
       .def_readonly("diameter_mm", &tracking::TrackedHead::diameter_mm)
       .def_readonly("harvestable", &tracking::TrackedHead::harvestable)
       .def("__repr__", [](const tracking::TrackedHead& h) {
-        return "FieldHead(id=" + std::to_string(h.id) + ", diameter_mm=" + std::string(py::repr(py::float_(h.diameter_mm))) +
+        return "FieldHead(id=" + std::to_string(h.id) +
+               ", diameter_mm=" + std::string(py::repr(py::float_(h.diameter_mm))) +
                ", harvestable=" + (h.harvestable ? "True" : "False") + ")";
       });
 }
@@ -99,28 +109,33 @@ void bind_pipeline(py::module_& m) {
            }),
            py::kw_only(), py::arg("model") = broccoli::kDefaultModel, py::arg("config") = "",
            py::arg("sets") = py::none())
-      .def("process", [](broccoli::Pipeline& p, const py::object& frame, const py::object& depth, const py::object& color,
-                         const py::object& camera) {
-             RgbdFrame storage;
-             const RgbdFrame& f = frame_argument(frame, depth, color, camera, storage);
-             BroccoliResult out{{}, f.depth.width, f.depth.height};
-             if (f.depth.empty()) throw py::value_error("depth: the broccoli pipeline needs a depth image");
-             py::gil_scoped_release free;
-             out.r = p.process(f);
-             return out;
-           },
-           py::arg("frame") = py::none(), py::kw_only(), py::arg("depth") = py::none(), py::arg("color") = py::none(),
-           py::arg("camera") = py::none(),
-           "Runs the pipeline on the next frame of the pass: process(frame) with a cropsight.Frame, or "
-           "process(depth=H×W uint16, color=H×W×3 uint8 or None, camera=cropsight.Camera).")
-      .def("field_map", [](broccoli::Pipeline& p) {
-             py::gil_scoped_release free;
-             return p.finish();
-           },
-           "Ends the pass and returns its field map (list of FieldHead; empty without tracking).")
+      .def(
+          "process",
+          [](broccoli::Pipeline& p, const py::object& frame, const py::object& depth, const py::object& color,
+             const py::object& camera) {
+            RgbdFrame storage;
+            const RgbdFrame& f = frame_argument(frame, depth, color, camera, storage);
+            BroccoliResult out{{}, f.depth.width, f.depth.height};
+            if (f.depth.empty()) throw py::value_error("depth: the broccoli pipeline needs a depth image");
+            py::gil_scoped_release free;
+            out.r = p.process(f);
+            return out;
+          },
+          py::arg("frame") = py::none(), py::kw_only(), py::arg("depth") = py::none(), py::arg("color") = py::none(),
+          py::arg("camera") = py::none(),
+          "Runs the pipeline on the next frame of the pass: process(frame) with a cropsight.Frame, or "
+          "process(depth=H×W uint16, color=H×W×3 uint8 or None, camera=cropsight.Camera).")
+      .def(
+          "field_map",
+          [](broccoli::Pipeline& p) {
+            py::gil_scoped_release free;
+            return p.finish();
+          },
+          "Ends the pass and returns its field map (list of FieldHead; empty without tracking).")
       .def("reset", &broccoli::Pipeline::reset, "Starts a new pass (a fresh temporal filter).")
-      .def_property_readonly("config", [](const broccoli::Pipeline& p) { return config_values(p.config()); },
-                             "The values this pipeline runs with (cropsight.broccoli.Config).");
+      .def_property_readonly(
+          "config", [](const broccoli::Pipeline& p) { return config_values(p.config()); },
+          "The values this pipeline runs with (cropsight.broccoli.Config).");
 }
 
 py::dict figures_dict(const broccoli::Figures& r) {
@@ -150,10 +165,13 @@ void bind_evaluator(py::module_& m) {
       "prints). add_frame(frame) runs the pipeline on a frame with labels; figures() returns a dict. Not "
       "thread-safe; uses its pipeline, which must not run elsewhere meanwhile.")
       .def(py::init<broccoli::Pipeline&>(), py::arg("pipeline"), py::keep_alive<1, 2>())
-      .def("add_frame", [](broccoli::Evaluator& e, const RgbdFrame& frame) {
-        py::gil_scoped_release free;
-        e.add_frame(frame);
-      }, py::arg("frame"))
+      .def(
+          "add_frame",
+          [](broccoli::Evaluator& e, const RgbdFrame& frame) {
+            py::gil_scoped_release free;
+            e.add_frame(frame);
+          },
+          py::arg("frame"))
       .def("figures", [](const broccoli::Evaluator& e) { return figures_dict(e.figures()); });
 }
 

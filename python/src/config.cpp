@@ -57,13 +57,14 @@ std::vector<std::string> sets_from(const py::object& sets) {
   if (sets.is_none()) return out;
   if (py::isinstance<py::dict>(sets)) {
     for (const auto& [key, value] : sets.cast<py::dict>()) {
-      const std::string text = py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "true" : "false")
-                                                                 : std::string(py::str(value));
+      const std::string text =
+          py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "true" : "false") : std::string(py::str(value));
       out.push_back(std::string(py::str(key)) + "=" + text);
     }
     return out;
   }
-  if (py::isinstance<py::str>(sets)) throw py::type_error("sets: expected a dict {key: value} or a list of 'key=value', got a str");
+  if (py::isinstance<py::str>(sets))
+    throw py::type_error("sets: expected a dict {key: value} or a list of 'key=value', got a str");
   try {
     return sets.cast<std::vector<std::string>>();
   } catch (const py::cast_error&) {
@@ -71,6 +72,5 @@ std::vector<std::string> sets_from(const py::object& sets) {
                          std::string(py::str(sets.get_type().attr("__name__"))) + " object");
   }
 }
-
 
 }  // namespace cropsight::python

@@ -27,11 +27,12 @@ void bind_camera(py::module_& m) {
                                "freely, share between threads read-only.")
       .def(py::init([](int width, int height, double fx, double fy, double cx, double cy, double depth_scale) {
              CameraIntrinsics c;
-             c.width = width, c.height = height, c.fx = fx, c.fy = fy, c.cx = cx, c.cy = cy, c.depth_scale = depth_scale;
+             c.width = width, c.height = height, c.fx = fx, c.fy = fy, c.cx = cx, c.cy = cy,
+             c.depth_scale = depth_scale;
              return c;
            }),
-           py::kw_only(), py::arg("width"), py::arg("height"), py::arg("fx"), py::arg("fy"), py::arg("cx"), py::arg("cy"),
-           py::arg("depth_scale") = 0.001,
+           py::kw_only(), py::arg("width"), py::arg("height"), py::arg("fx"), py::arg("fy"), py::arg("cx"),
+           py::arg("cy"), py::arg("depth_scale") = 0.001,
            "Sizes in pixels, focal lengths and principal point in pixels, depth_scale in metres per raw depth unit.")
       .def_readwrite("width", &CameraIntrinsics::width, "pixels")
       .def_readwrite("height", &CameraIntrinsics::height, "pixels")
@@ -42,8 +43,9 @@ void bind_camera(py::module_& m) {
       .def_readwrite("depth_scale", &CameraIntrinsics::depth_scale, "metres per raw depth unit")
       .def_readwrite("distortion", &CameraIntrinsics::distortion, "OpenCV-order coefficients (k1 k2 p1 p2 [k3...])")
       .def_readwrite("sensor", &CameraIntrinsics::sensor, "free text, e.g. 'kinect-v2'")
-      .def("validate", [](const CameraIntrinsics& c) { c.validate("camera"); },
-           "Raises cropsight.Error when a value is out of range (NaN, non-positive focal length, ...).")
+      .def(
+          "validate", [](const CameraIntrinsics& c) { c.validate("camera"); },
+          "Raises cropsight.Error when a value is out of range (NaN, non-positive focal length, ...).")
       .def("__repr__", &camera_repr);
 }
 
@@ -62,25 +64,32 @@ void bind_frame(py::module_& m) {
            py::arg("index") = 0, py::arg("timestamp") = 0.0, py::arg("pose") = py::none(),
            "Copies the arrays once into the library's images. TypeError for a wrong dtype, ValueError for a "
            "wrong shape, cropsight.Error for a camera out of range.")
-      .def_property_readonly("depth", [](py::object self) -> py::object {
-        const auto& f = self.cast<const RgbdFrame&>();
-        return f.depth.empty() ? py::object(py::none()) : py::object(image_view(f.depth, self));
-      })
-      .def_property_readonly("color", [](py::object self) { return color_view(self.cast<const RgbdFrame&>().color, self); })
-      .def_property_readonly("labels", [](py::object self) -> py::object {
-        const auto& f = self.cast<const RgbdFrame&>();
-        return f.labels.empty() ? py::object(py::none()) : py::object(image_view(f.labels, self));
-      }, "H×W uint16 ground-truth instance ids (0 = none), or None")
+      .def_property_readonly("depth",
+                             [](py::object self) -> py::object {
+                               const auto& f = self.cast<const RgbdFrame&>();
+                               return f.depth.empty() ? py::object(py::none()) : py::object(image_view(f.depth, self));
+                             })
+      .def_property_readonly("color",
+                             [](py::object self) { return color_view(self.cast<const RgbdFrame&>().color, self); })
+      .def_property_readonly(
+          "labels",
+          [](py::object self) -> py::object {
+            const auto& f = self.cast<const RgbdFrame&>();
+            return f.labels.empty() ? py::object(py::none()) : py::object(image_view(f.labels, self));
+          },
+          "H×W uint16 ground-truth instance ids (0 = none), or None")
       .def_property_readonly("camera", [](const RgbdFrame& f) { return f.camera; })
       .def_property_readonly("index", [](const RgbdFrame& f) { return f.index; })
       .def_property_readonly("timestamp", [](const RgbdFrame& f) { return f.timestamp; })
-      .def_property_readonly("pose", [](const RgbdFrame& f) -> py::object {
-        return f.camera_position ? py::object(vector_array(*f.camera_position)) : py::object(py::none());
-      })
+      .def_property_readonly("pose",
+                             [](const RgbdFrame& f) -> py::object {
+                               return f.camera_position ? py::object(vector_array(*f.camera_position))
+                                                        : py::object(py::none());
+                             })
       .def("__repr__", [](const RgbdFrame& f) {
         return "Frame(index=" + std::to_string(f.index) + ", " + std::to_string(f.camera.width) + "x" +
-               std::to_string(f.camera.height) + (f.color.empty() ? "" : ", color") + (f.labels.empty() ? "" : ", labels") +
-               (f.camera_position ? ", pose" : "") + ")";
+               std::to_string(f.camera.height) + (f.color.empty() ? "" : ", color") +
+               (f.labels.empty() ? "" : ", labels") + (f.camera_position ? ", pose" : "") + ")";
       });
 }
 
@@ -91,13 +100,15 @@ void bind_sequence(py::module_& m) {
       "(negative i counts from the end), iteration. Each frame is read from disk when asked for, with the GIL "
       "released. Not thread-safe: one Sequence per thread.")
       .def("__len__", &io::SequenceReader::size)
-      .def("__getitem__", [](const io::SequenceReader& r, int i) {
-        const int n = r.size();
-        if (i < -n || i >= n) throw py::index_error("frame " + std::to_string(i) + " of a sequence of " + std::to_string(n));
-        const int index = i < 0 ? i + n : i;
-        py::gil_scoped_release free;
-        return std::make_shared<RgbdFrame>(r.read(index));
-      })
+      .def("__getitem__",
+           [](const io::SequenceReader& r, int i) {
+             const int n = r.size();
+             if (i < -n || i >= n)
+               throw py::index_error("frame " + std::to_string(i) + " of a sequence of " + std::to_string(n));
+             const int index = i < 0 ? i + n : i;
+             py::gil_scoped_release free;
+             return std::make_shared<RgbdFrame>(r.read(index));
+           })
       .def_property_readonly("camera", [](const io::SequenceReader& r) { return r.info().camera; })
       .def_property_readonly("path", [](const io::SequenceReader& r) { return r.info().dir; })
       .def_property_readonly("has_color", [](const io::SequenceReader& r) { return r.info().has_color; })
@@ -106,9 +117,10 @@ void bind_sequence(py::module_& m) {
       .def("__repr__", [](const io::SequenceReader& r) {
         return "Sequence('" + r.info().dir.string() + "', " + std::to_string(r.size()) + " frames)";
       });
-  m.def("read_sequence", [](const std::filesystem::path& dir) { return io::SequenceReader(dir); }, py::arg("path"),
-        "Opens a sequence folder and checks its layout (frames are read when indexed). Raises cropsight.Error "
-        "naming the file for a missing or broken one.");
+  m.def(
+      "read_sequence", [](const std::filesystem::path& dir) { return io::SequenceReader(dir); }, py::arg("path"),
+      "Opens a sequence folder and checks its layout (frames are read when indexed). Raises cropsight.Error "
+      "naming the file for a missing or broken one.");
 }
 
 }  // namespace

@@ -13,8 +13,8 @@ void check_size(const std::string& name, int width, int height, const CameraIntr
 }
 }  // namespace
 
-RgbdFrame frame_from_arrays(const py::object& depth, const py::object& color, const CameraIntrinsics& camera,
-                            int index, double timestamp, const py::object& pose) {
+RgbdFrame frame_from_arrays(const py::object& depth, const py::object& color, const CameraIntrinsics& camera, int index,
+                            double timestamp, const py::object& pose) {
   camera.validate("camera");
   RgbdFrame f;
   f.index = index;
@@ -42,7 +42,8 @@ const RgbdFrame& frame_argument(const py::object& frame, const py::object& depth
       throw py::type_error("frame: expected a cropsight.Frame, got " + describe(frame));
     return frame.cast<const RgbdFrame&>();
   }
-  if (camera.is_none()) throw py::type_error("camera: process(depth=..., color=...) needs camera=cropsight.Camera(...)");
+  if (camera.is_none())
+    throw py::type_error("camera: process(depth=..., color=...) needs camera=cropsight.Camera(...)");
   if (!py::isinstance<CameraIntrinsics>(camera))
     throw py::type_error("camera: expected a cropsight.Camera, got " + describe(camera));
   storage = frame_from_arrays(depth, color, camera.cast<const CameraIntrinsics&>(), 0, 0.0, py::none());

@@ -12,8 +12,8 @@ namespace py = pybind11;
 /// the size), colour H×W×3 uint8 or None, the camera (validated: cropsight.Error naming "camera"
 /// for NaN or non-positive values), pose 3 numbers or None. The arrays' sizes must equal the
 /// camera's (ValueError naming the argument).
-RgbdFrame frame_from_arrays(const py::object& depth, const py::object& color, const CameraIntrinsics& camera,
-                            int index, double timestamp, const py::object& pose);
+RgbdFrame frame_from_arrays(const py::object& depth, const py::object& color, const CameraIntrinsics& camera, int index,
+                            double timestamp, const py::object& pose);
 
 /// The frame a process() call means: `frame` (a cropsight.Frame, used without a copy) or, when it
 /// is None, the frame of the keyword arrays. A frame and arrays together are a TypeError.

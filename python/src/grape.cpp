@@ -53,8 +53,8 @@ std::vector<grape::Detection> boxes_from(const py::object& boxes) {
   for (const py::handle& item : boxes) {
     const auto t = py::reinterpret_borrow<py::sequence>(item);
     if (!py::isinstance<py::sequence>(item) || (t.size() != 5 && t.size() != 6))
-      throw py::value_error("boxes[" + std::to_string(k) + "]: expected (category, x, y, width, height[, score]), got " +
-                            std::string(py::repr(item)));
+      throw py::value_error("boxes[" + std::to_string(k) +
+                            "]: expected (category, x, y, width, height[, score]), got " + std::string(py::repr(item)));
     grape::Detection d;
     d.category = t[0].cast<int>();
     d.box = {t[1].cast<int>(), t[2].cast<int>(), t[3].cast<int>(), t[4].cast<int>()};
@@ -114,51 +114,59 @@ void bind_grape(py::module_& m) {
              // parses with strtok), so Python threads build their pipelines one at a time.
              return grape::make_pipeline(spec);
            }),
-           py::kw_only(), py::arg("model") = "", py::arg("config") = "", py::arg("sets") = py::none(), py::arg("threads") = 0,
-           py::arg("detector") = "")
-      .def("process", [](grape::Pipeline& p, const py::object& frame, const py::object& boxes) {
-             if (!py::isinstance<RgbdFrame>(frame)) throw py::type_error("frame: expected a cropsight.Frame");
-             const RgbdFrame& f = frame.cast<const RgbdFrame&>();
-             grape::FrameResult r;
-             if (boxes.is_none()) {
-               py::gil_scoped_release free;
-               r = p.process(f);
-             } else {
-               const auto given = boxes_from(boxes);
-               py::gil_scoped_release free;
-               r = p.process(f, given);
-             }
-             return result_dict(r);
-           },
-           py::arg("frame"), py::arg("boxes") = py::none(),
-           "Every step on one frame (colour registered to depth): boxes = [(category, x, y, width, height[, "
-           "score]), ...] (category 1 = bunch, 2 = peduncle; pixels) or None for the pipeline's detector "
-           "(detector=...). Returns a dict: bunches (each: roi, points N×9 in metres, camera frame, labels, "
-           "label_counts, cut_point None or {position_m, direction, confidence}), detections, outside_image, "
-           "stage_ms. Not thread-safe with a detector; without one process() is const.")
-      .def("segment", [](const grape::Pipeline& p, const py::object& points) {
-             const Cloud cloud = cloud_from(points);
-             std::vector<int> labels;
-             {
-               py::gil_scoped_release free;
-               labels = p.segmenter().segment(cloud);
-             }
-             return py::array_t<int>(py::ssize_t(labels.size()), labels.data());
-           },
-           py::arg("points"),
-           "Labels every point of a cloud: points N×9 float32/float64, columns x y z nx ny nz r g b (the "
-           "dataset's unit-sphere normalised clouds, colours in [0, 1]). Returns N int32 labels.")
-      .def_property_readonly("segmenter_mode", [](const grape::Pipeline& p) { return std::string(p.segmenter().mode()); })
+           py::kw_only(), py::arg("model") = "", py::arg("config") = "", py::arg("sets") = py::none(),
+           py::arg("threads") = 0, py::arg("detector") = "")
+      .def(
+          "process",
+          [](grape::Pipeline& p, const py::object& frame, const py::object& boxes) {
+            if (!py::isinstance<RgbdFrame>(frame)) throw py::type_error("frame: expected a cropsight.Frame");
+            const RgbdFrame& f = frame.cast<const RgbdFrame&>();
+            grape::FrameResult r;
+            if (boxes.is_none()) {
+              py::gil_scoped_release free;
+              r = p.process(f);
+            } else {
+              const auto given = boxes_from(boxes);
+              py::gil_scoped_release free;
+              r = p.process(f, given);
+            }
+            return result_dict(r);
+          },
+          py::arg("frame"), py::arg("boxes") = py::none(),
+          "Every step on one frame (colour registered to depth): boxes = [(category, x, y, width, height[, "
+          "score]), ...] (category 1 = bunch, 2 = peduncle; pixels) or None for the pipeline's detector "
+          "(detector=...). Returns a dict: bunches (each: roi, points N×9 in metres, camera frame, labels, "
+          "label_counts, cut_point None or {position_m, direction, confidence}), detections, outside_image, "
+          "stage_ms. Not thread-safe with a detector; without one process() is const.")
+      .def(
+          "segment",
+          [](const grape::Pipeline& p, const py::object& points) {
+            const Cloud cloud = cloud_from(points);
+            std::vector<int> labels;
+            {
+              py::gil_scoped_release free;
+              labels = p.segmenter().segment(cloud);
+            }
+            return py::array_t<int>(py::ssize_t(labels.size()), labels.data());
+          },
+          py::arg("points"),
+          "Labels every point of a cloud: points N×9 float32/float64, columns x y z nx ny nz r g b (the "
+          "dataset's unit-sphere normalised clouds, colours in [0, 1]). Returns N int32 labels.")
+      .def_property_readonly("segmenter_mode",
+                             [](const grape::Pipeline& p) { return std::string(p.segmenter().mode()); })
       .def_property_readonly("config", [](const grape::Pipeline& p) { return config_values(p.config()); });
-  m.def("read_cloud", [](const std::filesystem::path& path) {
-    const Cloud c = [&] {
-      py::gil_scoped_release free;
-      return io::read_grape_text(path);
-    }();
-    return py::make_tuple(array_from(c), py::array_t<int>(py::ssize_t(c.labels.size()), c.labels.data()));
-  }, py::arg("path"),
-  "Reads a cloud of the grape dataset's text format: (points N×9 float32: x y z nx ny nz r g b, labels N int32). "
-  "cropsight.Error naming the file and line for a malformed one.");
+  m.def(
+      "read_cloud",
+      [](const std::filesystem::path& path) {
+        const Cloud c = [&] {
+          py::gil_scoped_release free;
+          return io::read_grape_text(path);
+        }();
+        return py::make_tuple(array_from(c), py::array_t<int>(py::ssize_t(c.labels.size()), c.labels.data()));
+      },
+      py::arg("path"),
+      "Reads a cloud of the grape dataset's text format: (points N×9 float32: x y z nx ny nz r g b, labels N int32). "
+      "cropsight.Error naming the file and line for a malformed one.");
 }
 
 }  // namespace cropsight::python

@@ -22,7 +22,8 @@ void bind_values(py::module_& m) {
       .def_readonly("class_id", &Detection2D::class_id)
       .def_readonly("score", &Detection2D::score)
       .def("__repr__", [](const Detection2D& d) {
-        return "Box(corners=" + std::string(py::repr(corners(d))) + ", score=" + std::string(py::repr(py::float_(d.score))) + ")";
+        return "Box(corners=" + std::string(py::repr(corners(d))) +
+               ", score=" + std::string(py::repr(py::float_(d.score))) + ")";
       });
   py::class_<potato::HarvestTarget>(
       m, "HarvestTarget",
@@ -45,9 +46,10 @@ void bind_values(py::module_& m) {
       .def_readonly("target_id", &potato::HarvestTarget::target_id)
       .def_property_readonly("state", [](const potato::HarvestTarget& t) { return config_name(t.state); })
       .def_readonly("score", &potato::HarvestTarget::score)
-      .def_property_readonly("box", [](const potato::HarvestTarget& t) -> py::object {
-        return t.detection ? py::object(corners(t.box)) : py::object(py::none());
-      })
+      .def_property_readonly("box",
+                             [](const potato::HarvestTarget& t) -> py::object {
+                               return t.detection ? py::object(corners(t.box)) : py::object(py::none());
+                             })
       .def("__repr__", [](const potato::HarvestTarget& t) {
         return "HarvestTarget(frame=" + std::to_string(t.frame) + ", detection=" + (t.detection ? "True" : "False") +
                ", state=" + config_name(t.state) + ", xyz=(" + std::string(py::repr(py::float_(t.x))) + ", " +
@@ -58,12 +60,14 @@ void bind_values(py::module_& m) {
                                   "positions (per box: (x, y, z) m, camera frame), ripe (per box), stage_ms.")
       .def_readonly("target", &potato::FrameResult::target)
       .def_readonly("detections", &potato::FrameResult::detections)
-      .def_property_readonly("positions", [](const potato::FrameResult& r) {
-        py::list out;
-        for (const auto& p : r.positions) out.append(vector_array(p.xyz));
-        return out;
-      })
-      .def_property_readonly("ripe", [](const potato::FrameResult& r) { return std::vector<bool>(r.ripe.begin(), r.ripe.end()); })
+      .def_property_readonly("positions",
+                             [](const potato::FrameResult& r) {
+                               py::list out;
+                               for (const auto& p : r.positions) out.append(vector_array(p.xyz));
+                               return out;
+                             })
+      .def_property_readonly(
+          "ripe", [](const potato::FrameResult& r) { return std::vector<bool>(r.ripe.begin(), r.ripe.end()); })
       .def_property_readonly("stage_ms", [](const potato::FrameResult& r) {
         py::dict d;
         for (const auto& s : r.timer.stages()) d[py::str(s.name)] = s.total_ms;
@@ -89,18 +93,20 @@ void bind_potato(py::module_& m) {
              return potato::make_pipeline(spec);
            }),
            py::kw_only(), py::arg("config") = "", py::arg("sets") = py::none(), py::arg("model") = "")
-      .def("process", [](potato::Pipeline& p, const py::object& frame, const py::object& depth, const py::object& color,
-                         const py::object& camera) {
-             RgbdFrame storage;
-             const RgbdFrame& f = frame_argument(frame, depth, color, camera, storage);
-             if (f.color.empty()) throw py::value_error("color: the potato pipeline needs a colour image");
-             py::gil_scoped_release free;
-             return p.process(f);
-           },
-           py::arg("frame") = py::none(), py::kw_only(), py::arg("depth") = py::none(), py::arg("color") = py::none(),
-           py::arg("camera") = py::none(),
-           "One frame: process(frame) or process(color=H×W×3 uint8, depth=H×W uint16 or None, camera=...). "
-           "Returns the FrameResult; .target is the harvest message.")
+      .def(
+          "process",
+          [](potato::Pipeline& p, const py::object& frame, const py::object& depth, const py::object& color,
+             const py::object& camera) {
+            RgbdFrame storage;
+            const RgbdFrame& f = frame_argument(frame, depth, color, camera, storage);
+            if (f.color.empty()) throw py::value_error("color: the potato pipeline needs a colour image");
+            py::gil_scoped_release free;
+            return p.process(f);
+          },
+          py::arg("frame") = py::none(), py::kw_only(), py::arg("depth") = py::none(), py::arg("color") = py::none(),
+          py::arg("camera") = py::none(),
+          "One frame: process(frame) or process(color=H×W×3 uint8, depth=H×W uint16 or None, camera=...). "
+          "Returns the FrameResult; .target is the harvest message.")
       .def("reset", &potato::Pipeline::reset, "Starts a new approach: drops the target.")
       .def_property_readonly("config", [](const potato::Pipeline& p) { return config_values(p.config()); });
 }

@@ -27,34 +27,43 @@ void bind_result(py::module_& m) {
       "(length_m, width_m, height_m, volume_m3); top_view_area_m2; plane_normal, plane_d (the soil: n·x + d = "
       "0); centroid; points_total, points_candidates, points_sampled, points_seedling_sampled; stage_ms.")
       .def_readonly("found", &seedling::FrameResult::found)
-      .def_property_readonly("points", [](py::object self) {
-        const auto& r = self.cast<const seedling::FrameResult&>();
-        return view(r.points.empty() ? nullptr : r.points[0].data(), {py::ssize_t(r.points.size()), 3}, self);
-      })
-      .def_property_readonly("pixels", [](py::object self) {
-        const auto& r = self.cast<const seedling::FrameResult&>();
-        return view(r.pixels.data(), {py::ssize_t(r.pixels.size())}, self);
-      })
-      .def_property_readonly("image_mask", [](py::object self) { return gray_view(self.cast<const seedling::FrameResult&>().image_mask, self); })
-      .def_property_readonly("envelope", [](const seedling::FrameResult& r) {
-        py::dict d;
-        d["length_m"] = r.envelope.length, d["width_m"] = r.envelope.width, d["height_m"] = r.envelope.height;
-        d["volume_m3"] = r.envelope.volume();
-        return d;
-      })
+      .def_property_readonly(
+          "points",
+          [](py::object self) {
+            const auto& r = self.cast<const seedling::FrameResult&>();
+            return view(r.points.empty() ? nullptr : r.points[0].data(), {py::ssize_t(r.points.size()), 3}, self);
+          })
+      .def_property_readonly("pixels",
+                             [](py::object self) {
+                               const auto& r = self.cast<const seedling::FrameResult&>();
+                               return view(r.pixels.data(), {py::ssize_t(r.pixels.size())}, self);
+                             })
+      .def_property_readonly(
+          "image_mask",
+          [](py::object self) { return gray_view(self.cast<const seedling::FrameResult&>().image_mask, self); })
+      .def_property_readonly("envelope",
+                             [](const seedling::FrameResult& r) {
+                               py::dict d;
+                               d["length_m"] = r.envelope.length, d["width_m"] = r.envelope.width,
+                               d["height_m"] = r.envelope.height;
+                               d["volume_m3"] = r.envelope.volume();
+                               return d;
+                             })
       .def_property_readonly("top_view_area_m2", [](const seedling::FrameResult& r) { return r.top_view.area(); })
-      .def_property_readonly("plane_normal", [](const seedling::FrameResult& r) { return vector_array(r.plane_normal); })
+      .def_property_readonly("plane_normal",
+                             [](const seedling::FrameResult& r) { return vector_array(r.plane_normal); })
       .def_readonly("plane_d", &seedling::FrameResult::plane_d)
       .def_property_readonly("centroid", [](const seedling::FrameResult& r) { return vector_array(r.centroid()); })
       .def_readonly("points_total", &seedling::FrameResult::points_total)
       .def_readonly("points_candidates", &seedling::FrameResult::points_candidates)
       .def_readonly("points_sampled", &seedling::FrameResult::points_sampled)
       .def_readonly("points_seedling_sampled", &seedling::FrameResult::points_seedling_sampled)
-      .def_property_readonly("stage_ms", [](const seedling::FrameResult& r) {
-        py::dict d;
-        for (const auto& s : r.timer.stages()) d[py::str(s.name)] = s.total_ms;
-        return d;
-      })
+      .def_property_readonly("stage_ms",
+                             [](const seedling::FrameResult& r) {
+                               py::dict d;
+                               for (const auto& s : r.timer.stages()) d[py::str(s.name)] = s.total_ms;
+                               return d;
+                             })
       .def("__repr__", [](const seedling::FrameResult& r) {
         return std::string("seedling.FrameResult(found=") + (r.found ? "True" : "False") + ", " +
                std::to_string(r.points.size()) + " points)";
@@ -65,7 +74,8 @@ void bind_result(py::module_& m) {
 
 void bind_seedling(py::module_& m) {
   static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float));  // points are viewed as N×3
-  bind_config_class<seedling::Config>(m, "seedling", "The seedling pipeline's configuration (pipeline/seedling/config.hpp).");
+  bind_config_class<seedling::Config>(m, "seedling",
+                                      "The seedling pipeline's configuration (pipeline/seedling/config.hpp).");
   bind_result(m);
   py::class_<seedling::Pipeline>(
       m, "Pipeline",
@@ -80,30 +90,36 @@ void bind_seedling(py::module_& m) {
              return seedling::make_pipeline(spec);
            }),
            py::kw_only(), py::arg("config") = "", py::arg("sets") = py::none())
-      .def("process", [](const seedling::Pipeline& p, const py::object& left, const py::object& right,
-                         const std::filesystem::path& calibration) {
-             ColorImage l = color_from_array(left, "left"), r = color_from_array(right, "right");
-             py::gil_scoped_release free;
-             const auto calib = stereo::load_calibration(calibration);
-             const auto pair = stereo::rectify_pair(calib, std::move(l), std::move(r), "left");
-             return p.process(pair.left, pair.right, pair.geometry, "left");
-           },
-           py::arg("left"), py::arg("right"), py::arg("calibration"),
-           "Detects the seedling in a stereo pair: left, right H×W×3 uint8 RGB as the camera took them, "
-           "calibration the stereo calibration file (YAML, docs/formats.md); the library rectifies the pair.")
+      .def(
+          "process",
+          [](const seedling::Pipeline& p, const py::object& left, const py::object& right,
+             const std::filesystem::path& calibration) {
+            ColorImage l = color_from_array(left, "left"), r = color_from_array(right, "right");
+            py::gil_scoped_release free;
+            const auto calib = stereo::load_calibration(calibration);
+            const auto pair = stereo::rectify_pair(calib, std::move(l), std::move(r), "left");
+            return p.process(pair.left, pair.right, pair.geometry, "left");
+          },
+          py::arg("left"), py::arg("right"), py::arg("calibration"),
+          "Detects the seedling in a stereo pair: left, right H×W×3 uint8 RGB as the camera took them, "
+          "calibration the stereo calibration file (YAML, docs/formats.md); the library rectifies the pair.")
       .def_property_readonly("config", [](const seedling::Pipeline& p) { return config_values(p.config()); });
-  m.def("read_pair", [](const std::filesystem::path& left, const std::filesystem::path& right) {
-    auto pair = [&] {
-      py::gil_scoped_release free;
-      return stereo::read_color_pair(left, right);
-    }();
-    py::array_t<std::uint8_t> l({pair.first.height, pair.first.width, 3}), r({pair.second.height, pair.second.width, 3});
-    std::memcpy(l.mutable_data(), static_cast<const void*>(pair.first.data.data()), std::size_t(l.size()));
-    std::memcpy(r.mutable_data(), static_cast<const void*>(pair.second.data.data()), std::size_t(r.size()));
-    return py::make_tuple(l, r);
-  }, py::arg("left"), py::arg("right"),
-  "Reads a stereo pair's image files as two H×W×3 uint8 RGB arrays (grey images become RGB); "
-  "cropsight.Error naming the file for a missing, unreadable or mismatched one.");
+  m.def(
+      "read_pair",
+      [](const std::filesystem::path& left, const std::filesystem::path& right) {
+        auto pair = [&] {
+          py::gil_scoped_release free;
+          return stereo::read_color_pair(left, right);
+        }();
+        py::array_t<std::uint8_t> l({pair.first.height, pair.first.width, 3}),
+            r({pair.second.height, pair.second.width, 3});
+        std::memcpy(l.mutable_data(), static_cast<const void*>(pair.first.data.data()), std::size_t(l.size()));
+        std::memcpy(r.mutable_data(), static_cast<const void*>(pair.second.data.data()), std::size_t(r.size()));
+        return py::make_tuple(l, r);
+      },
+      py::arg("left"), py::arg("right"),
+      "Reads a stereo pair's image files as two H×W×3 uint8 RGB arrays (grey images become RGB); "
+      "cropsight.Error naming the file for a missing, unreadable or mismatched one.");
 }
 
 }  // namespace cropsight::python

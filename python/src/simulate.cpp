@@ -17,10 +17,12 @@ void bind_simulate(py::module_& m) {
         if (frames < 1) throw py::value_error("frames: must be at least 1, got " + std::to_string(frames));
         const std::string preset = "sim-broccoli-" + variety;
         sim::BroccoliSimConfig cfg;
-        apply_config(cfg, io::load_preset_with_overrides(preset, sets_from(sets)), "configs/" + preset + ".yaml (with sets)");
+        apply_config(cfg, io::load_preset_with_overrides(preset, sets_from(sets)),
+                     "configs/" + preset + ".yaml (with sets)");
         cfg.validate("configs/" + preset + ".yaml (with sets)");
         py::gil_scoped_release free;
-        const auto s = sim::simulate_broccoli_sequence(cfg, seed, frames, out, io::OutputPolicy{"simulate broccoli", force, {}});
+        const auto s =
+            sim::simulate_broccoli_sequence(cfg, seed, frames, out, io::OutputPolicy{"simulate broccoli", force, {}});
         py::gil_scoped_acquire gil;
         py::dict d;
         d["out"] = out.string(), d["frames"] = s.frames, d["instances"] = s.instances, d["plants"] = s.plants;
