@@ -18,5 +18,14 @@ _plugin_paths.point_library_at_prefix()
 from ._cropsight import Camera, Detection, Error, Frame, Sequence, read_sequence  # noqa: E402
 from . import broccoli, grape, potato, seedling, simulate  # noqa: E402
 
+
+def _frames(self):
+    """The frames in order, each read when reached (Python's index protocol, stated for editors)."""
+    for i in range(len(self)):
+        yield self[i]
+
+
+Sequence.__iter__ = _frames
+
 __all__ = ["Camera", "Detection", "Error", "Frame", "Sequence", "read_sequence",
            "broccoli", "grape", "potato", "seedling", "simulate"]

@@ -16,6 +16,9 @@ void bind_errors(py::module_& m) {
       "argument, e.problem says what is wrong.",
       PyExc_RuntimeError, nullptr));
   if (!error_type) throw py::error_already_set();
+  // Class-level defaults, so that an Error raised from Python code (no parts) has them too.
+  error_type.attr("where") = py::str("");
+  error_type.attr("problem") = py::str("");
   m.attr("Error") = error_type;
   // A translator is a plain function: it finds the class through the module that owns it.
   py::register_exception_translator([](std::exception_ptr p) {
