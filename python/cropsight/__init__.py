@@ -15,7 +15,8 @@ from . import _plugin_paths
 
 _plugin_paths.point_library_at_prefix()
 
-from ._cropsight import Camera, Detection, Error, Frame, Sequence, read_sequence  # noqa: E402
+from ._cropsight import (Box, Camera, Detection, Detector, Error, Frame, Sequence, read_image,  # noqa: E402
+                         read_sequence)
 from . import broccoli, grape, potato, seedling, simulate  # noqa: E402
 
 
@@ -27,5 +28,5 @@ def _frames(self):
 
 Sequence.__iter__ = _frames
 
-__all__ = ["Camera", "Detection", "Error", "Frame", "Sequence", "read_sequence",
+__all__ = ["Box", "Camera", "Detection", "Detector", "Error", "Frame", "Sequence", "read_image", "read_sequence",
            "broccoli", "grape", "potato", "seedling", "simulate"]

@@ -3,16 +3,10 @@ from typing import Any, Optional, Sequence, Union
 import numpy as np
 import numpy.typing as npt
 
-from . import Camera, Frame
+from . import Box as Box, Camera, Frame
 from ._config import ConfigMapping
 
 class Config(ConfigMapping): ...
-
-class Box:
-    class_id: int
-    score: float
-    @property
-    def corners(self) -> tuple[float, float, float, float]: ...
 
 class HarvestTarget:
     frame: int

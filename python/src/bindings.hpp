@@ -12,6 +12,7 @@ namespace py = pybind11;
 void bind_errors(py::module_& m);     // cropsight.Error
 void bind_core(py::module_& m);       // Camera, Frame, Sequence, read_sequence
 void bind_detection(py::module_& m);  // Detection
+void bind_detector(py::module_& m);   // Box, Detector
 void bind_broccoli(py::module_& m);   // cropsight.broccoli
 void bind_potato(py::module_& m);     // cropsight.potato
 void bind_seedling(py::module_& m);   // cropsight.seedling

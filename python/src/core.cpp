@@ -2,10 +2,12 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <cstring>
 #include <memory>
 
 #include "arrays.hpp"
 #include "bindings.hpp"
+#include "cropsight/io/image_io.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "frames.hpp"
 
@@ -123,12 +125,30 @@ void bind_sequence(py::module_& m) {
       "naming the file for a missing or broken one.");
 }
 
+void bind_image_reader(py::module_& m) {
+  m.def(
+      "read_image",
+      [](const std::filesystem::path& path) {
+        const ColorImage im = [&] {
+          py::gil_scoped_release free;
+          return io::read_color(path);
+        }();
+        py::array_t<std::uint8_t> out({im.height, im.width, 3});
+        std::memcpy(out.mutable_data(), static_cast<const void*>(im.data.data()), std::size_t(out.size()));
+        return out;
+      },
+      py::arg("path"),
+      "An 8-bit image file (PNG, JPEG) as an H×W×3 uint8 RGB array (grey images become RGB); cropsight.Error "
+      "naming the file for a missing or unreadable one.");
+}
+
 }  // namespace
 
 void bind_core(py::module_& m) {
   bind_camera(m);
   bind_frame(m);
   bind_sequence(m);
+  bind_image_reader(m);
 }
 
 }  // namespace cropsight::python

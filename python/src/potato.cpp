@@ -14,17 +14,9 @@ namespace {
 
 namespace potato = pipeline::potato;
 
-py::tuple corners(const Detection2D& d) { return py::make_tuple(d.x1, d.y1, d.x2, d.y2); }
+py::tuple corners(const Detection2D& d) { return py::make_tuple(d.x1, d.y1, d.x2, d.y2); }  // as cropsight.Box
 
 void bind_values(py::module_& m) {
-  py::class_<Detection2D>(m, "Box", "A 2D detection: corners (x1, y1, x2, y2) in pixels, class_id, score in [0, 1].")
-      .def_property_readonly("corners", &corners)
-      .def_readonly("class_id", &Detection2D::class_id)
-      .def_readonly("score", &Detection2D::score)
-      .def("__repr__", [](const Detection2D& d) {
-        return "Box(corners=" + std::string(py::repr(corners(d))) +
-               ", score=" + std::string(py::repr(py::float_(d.score))) + ")";
-      });
   py::class_<potato::HarvestTarget>(
       m, "HarvestTarget",
       "The harvest message of one frame (paper Table 3.2): detection, depth_ok, x, y, z (m, camera frame), "
@@ -55,9 +47,10 @@ void bind_values(py::module_& m) {
                ", state=" + config_name(t.state) + ", xyz=(" + std::string(py::repr(py::float_(t.x))) + ", " +
                std::string(py::repr(py::float_(t.y))) + ", " + std::string(py::repr(py::float_(t.z))) + "))";
       });
-  py::class_<potato::FrameResult>(m, "FrameResult",
-                                  "One frame's result: target (the HarvestTarget), detections (Box list), "
-                                  "positions (per box: (x, y, z) m, camera frame), ripe (per box), stage_ms.")
+  py::class_<potato::FrameResult>(
+      m, "FrameResult",
+      "One frame's result: target (the HarvestTarget), detections (Box list), "
+      "positions (per box: (x, y, z) m, camera frame), ripe (per box), stage_ms. Boxes are cropsight.Box.")
       .def_readonly("target", &potato::FrameResult::target)
       .def_readonly("detections", &potato::FrameResult::detections)
       .def_property_readonly("positions",
