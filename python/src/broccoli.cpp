@@ -27,7 +27,7 @@ py::dict stage_ms(const StageTimer& timer) {
   return d;
 }
 
-void bind_result(py::module_& m) {
+void bind_broccoli_result(py::module_& m) {
   py::class_<tracking::PredictedHead>(
       m, "PredictedHead", "A tracked head this frame missed, where the filter expects it (camera frame, m).")
       .def_readonly("track_id", &tracking::PredictedHead::track_id)
@@ -92,7 +92,7 @@ void bind_result(py::module_& m) {
       });
 }
 
-void bind_pipeline(py::module_& m) {
+void bind_broccoli_pipeline(py::module_& m) {
   py::class_<broccoli::Pipeline>(
       m, "Pipeline",
       "The broccoli pipeline (detection, sizing, temporal filter, field map) of make_pipeline: model = a shipped "
@@ -158,7 +158,7 @@ py::dict figures_dict(const broccoli::Figures& r) {
 }
 
 // The evaluator keeps a reference to its pipeline: keep_alive ties their lifetimes.
-void bind_evaluator(py::module_& m) {
+void bind_broccoli_evaluator(py::module_& m) {
   py::class_<broccoli::Evaluator>(
       m, "Evaluator",
       "Table I / II figures of a pipeline's detector over labelled frames (the figures eval broccoli --json "
@@ -181,9 +181,9 @@ void bind_broccoli(py::module_& m) {
   bind_config_class<broccoli::Config>(m, "broccoli",
                                       "The broccoli pipeline's configuration (pipeline/broccoli/config.hpp): detector, "
                                       "detection (truth rules), sizing, tracking, track.");
-  bind_result(m);
-  bind_pipeline(m);
-  bind_evaluator(m);
+  bind_broccoli_result(m);
+  bind_broccoli_pipeline(m);
+  bind_broccoli_evaluator(m);
 }
 
 }  // namespace cropsight::python

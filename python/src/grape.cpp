@@ -7,6 +7,7 @@
 #include "bindings.hpp"
 #include "config.hpp"
 #include "cropsight/io/grape_text.hpp"
+#include "cropsight/pipeline/grape/eval.hpp"
 #include "cropsight/pipeline/grape/make_pipeline.hpp"
 #include "cropsight/pipeline/grape/truth.hpp"
 #include "frames.hpp"
@@ -96,6 +97,30 @@ py::dict result_dict(const grape::FrameResult& r) {
   return d;
 }
 
+// The figures of `eval grape --json` (Table 2 of Luo et al. and the protocols), as a dict.
+py::dict figures_dict(const grape::Figures& e) {
+  const auto& m = e.confusion;
+  py::dict d;
+  d["clouds"] = e.clouds, d["points"] = e.points;
+  d["oacc"] = m.overall_accuracy(), d["macc"] = m.mean_accuracy(), d["miou"] = m.mean_iou();
+  py::list per_class;
+  for (int c = 0; c < m.num_classes(); ++c) {
+    py::dict k;
+    k["label"] = c, k["points"] = m.truth_count(c), k["accuracy"] = m.class_accuracy(c), k["iou"] = m.class_iou(c);
+    per_class.append(k);
+  }
+  d["per_class"] = per_class;
+  d["ms_per_cloud"] = e.ms_per_cloud();
+  py::dict protocols;
+  for (const auto& p : grape::grape_protocols(e)) {
+    py::dict k;
+    k["classes"] = p.classes, k["miou"] = p.miou;
+    protocols[py::str(p.name)] = k;
+  }
+  d["protocols"] = protocols;
+  return d;
+}
+
 }  // namespace
 
 void bind_grape(py::module_& m) {
@@ -152,6 +177,19 @@ void bind_grape(py::module_& m) {
           py::arg("points"),
           "Labels every point of a cloud: points N×9 float32/float64, columns x y z nx ny nz r g b (the "
           "dataset's unit-sphere normalised clouds, colours in [0, 1]). Returns N int32 labels.")
+      .def("evaluate", [](const grape::Pipeline& p, const std::filesystem::path& folder, int limit) {
+             if (limit < 0) throw py::value_error("limit: must be at least 1 (0 = every cloud), got " + std::to_string(limit));
+             py::gil_scoped_release free;
+             auto files = io::list_grape_clouds(folder);
+             if (limit > 0 && std::size_t(limit) < files.size()) files.resize(std::size_t(limit));
+             const auto figures = grape::evaluate_grape(p.segmenter().model(), grape::load_grape_clouds(files));
+             py::gil_scoped_acquire gil;
+             return figures_dict(figures);
+           },
+           py::arg("clouds"), py::kw_only(), py::arg("limit") = 0,
+           "The segmenter's figures on a folder of labelled clouds (the first `limit`, 0 = all, in the order of "
+           "eval grape --limit): the dict eval grape --json prints (oacc, macc, miou, per_class, protocols, "
+           "ms_per_cloud, clouds, points).")
       .def_property_readonly("segmenter_mode",
                              [](const grape::Pipeline& p) { return std::string(p.segmenter().mode()); })
       .def_property_readonly("config", [](const grape::Pipeline& p) { return config_values(p.config()); });

@@ -14,9 +14,9 @@ namespace {
 
 namespace potato = pipeline::potato;
 
-py::tuple corners(const Detection2D& d) { return py::make_tuple(d.x1, d.y1, d.x2, d.y2); }  // as cropsight.Box
+py::tuple target_corners(const Detection2D& d) { return py::make_tuple(d.x1, d.y1, d.x2, d.y2); }  // as cropsight.Box
 
-void bind_values(py::module_& m) {
+void bind_potato_values(py::module_& m) {
   py::class_<potato::HarvestTarget>(
       m, "HarvestTarget",
       "The harvest message of one frame (paper Table 3.2): detection, depth_ok, x, y, z (m, camera frame), "
@@ -40,7 +40,7 @@ void bind_values(py::module_& m) {
       .def_readonly("score", &potato::HarvestTarget::score)
       .def_property_readonly("box",
                              [](const potato::HarvestTarget& t) -> py::object {
-                               return t.detection ? py::object(corners(t.box)) : py::object(py::none());
+                               return t.detection ? py::object(target_corners(t.box)) : py::object(py::none());
                              })
       .def("__repr__", [](const potato::HarvestTarget& t) {
         return "HarvestTarget(frame=" + std::to_string(t.frame) + ", detection=" + (t.detection ? "True" : "False") +
@@ -72,7 +72,7 @@ void bind_values(py::module_& m) {
 
 void bind_potato(py::module_& m) {
   bind_config_class<potato::Config>(m, "potato", "The potato pipeline's configuration (pipeline/potato/config.hpp).");
-  bind_values(m);
+  bind_potato_values(m);
   py::class_<potato::Pipeline>(
       m, "Pipeline",
       "The potato pipeline of make_pipeline: config = a preset name or YAML file (default potato), sets = "

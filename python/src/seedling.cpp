@@ -19,7 +19,7 @@ namespace {
 
 namespace seedling = pipeline::seedling;
 
-void bind_result(py::module_& m) {
+void bind_seedling_result(py::module_& m) {
   py::class_<seedling::FrameResult>(
       m, "FrameResult",
       "One pair's result, rectified left camera frame (m): found; points (N×3 float32, the dense seedling "
@@ -76,7 +76,7 @@ void bind_seedling(py::module_& m) {
   static_assert(sizeof(Eigen::Vector3f) == 3 * sizeof(float));  // points are viewed as N×3
   bind_config_class<seedling::Config>(m, "seedling",
                                       "The seedling pipeline's configuration (pipeline/seedling/config.hpp).");
-  bind_result(m);
+  bind_seedling_result(m);
   py::class_<seedling::Pipeline>(
       m, "Pipeline",
       "The broccoli-seedling recogniser of make_pipeline: config = a preset name or YAML file (default "

@@ -69,3 +69,13 @@ def test_process_with_boxes_equals_detect_grape(broccoli_pass, tmp_path):
     with pytest.raises(ValueError) as e:
         cs.grape.Pipeline(model=MODEL, threads=1).process(cs.read_sequence(broccoli_pass)[0], [(1, 2, 3)])
     assert str(e.value) == "boxes[0]: expected (category, x, y, width, height[, score]), got (1, 2, 3)"
+
+
+def test_evaluate_equals_eval_grape(real_cloud):
+    folder = os.path.dirname(real_cloud)
+    want = run_cli_json("eval", "grape", "--clouds", folder, "--model", MODEL, "--limit", 3, "--threads", 1)
+    got = cs.grape.Pipeline(model=MODEL, threads=1).evaluate(folder, limit=3)
+    for key, value in got.items():
+        if key != "ms_per_cloud":  # wall-clock
+            assert value == want[key], key
+    assert got["clouds"] == 3 and 0.5 < got["oacc"] <= 1.0
