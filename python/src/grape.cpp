@@ -121,10 +121,7 @@ py::dict figures_dict(const grape::Figures& e) {
   return d;
 }
 
-}  // namespace
-
-void bind_grape(py::module_& m) {
-  bind_config_class<grape::Config>(m, "grape", "The grape pipeline's configuration (pipeline/grape/config.hpp).");
+void bind_grape_pipeline(py::module_& m) {
   py::class_<grape::Pipeline>(
       m, "Pipeline",
       "The grape pipeline of make_pipeline: model = the segmenter (a shipped model's name, a preset such as "
@@ -177,22 +174,32 @@ void bind_grape(py::module_& m) {
           py::arg("points"),
           "Labels every point of a cloud: points N×9 float32/float64, columns x y z nx ny nz r g b (the "
           "dataset's unit-sphere normalised clouds, colours in [0, 1]). Returns N int32 labels.")
-      .def("evaluate", [](const grape::Pipeline& p, const std::filesystem::path& folder, int limit) {
-             if (limit < 0) throw py::value_error("limit: must be at least 1 (0 = every cloud), got " + std::to_string(limit));
-             py::gil_scoped_release free;
-             auto files = io::list_grape_clouds(folder);
-             if (limit > 0 && std::size_t(limit) < files.size()) files.resize(std::size_t(limit));
-             const auto figures = grape::evaluate_grape(p.segmenter().model(), grape::load_grape_clouds(files));
-             py::gil_scoped_acquire gil;
-             return figures_dict(figures);
-           },
-           py::arg("clouds"), py::kw_only(), py::arg("limit") = 0,
-           "The segmenter's figures on a folder of labelled clouds (the first `limit`, 0 = all, in the order of "
-           "eval grape --limit): the dict eval grape --json prints (oacc, macc, miou, per_class, protocols, "
-           "ms_per_cloud, clouds, points).")
+      .def(
+          "evaluate",
+          [](const grape::Pipeline& p, const std::filesystem::path& folder, int limit) {
+            if (limit < 0)
+              throw py::value_error("limit: must be at least 1 (0 = every cloud), got " + std::to_string(limit));
+            py::gil_scoped_release free;
+            auto files = io::list_grape_clouds(folder);
+            if (limit > 0 && std::size_t(limit) < files.size()) files.resize(std::size_t(limit));
+            const auto figures = grape::evaluate_grape(p.segmenter().model(), grape::load_grape_clouds(files));
+            py::gil_scoped_acquire gil;
+            return figures_dict(figures);
+          },
+          py::arg("clouds"), py::kw_only(), py::arg("limit") = 0,
+          "The segmenter's figures on a folder of labelled clouds (the first `limit`, 0 = all, in the order of "
+          "eval grape --limit): the dict eval grape --json prints (oacc, macc, miou, per_class, protocols, "
+          "ms_per_cloud, clouds, points).")
       .def_property_readonly("segmenter_mode",
                              [](const grape::Pipeline& p) { return std::string(p.segmenter().mode()); })
       .def_property_readonly("config", [](const grape::Pipeline& p) { return config_values(p.config()); });
+}
+
+}  // namespace
+
+void bind_grape(py::module_& m) {
+  bind_config_class<grape::Config>(m, "grape", "The grape pipeline's configuration (pipeline/grape/config.hpp).");
+  bind_grape_pipeline(m);
   m.def(
       "read_cloud",
       [](const std::filesystem::path& path) {

@@ -8,7 +8,9 @@
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "config.hpp"
+#include "cropsight/pipeline/seedling/eval.hpp"
 #include "cropsight/pipeline/seedling/make_pipeline.hpp"
+#include "cropsight/pipeline/seedling/truth.hpp"
 #include "cropsight/stereo/calibration.hpp"
 #include "cropsight/stereo/rectification.hpp"
 #include "cropsight/stereo/stereo_io.hpp"
@@ -70,6 +72,22 @@ void bind_seedling_result(py::module_& m) {
       });
 }
 
+// The figures of `eval seedling --json` (without the cv::ml::EM comparison: --no-opencv), as a dict.
+py::dict seedling_figures_dict(const seedling::Figures& e) {
+  py::list per;
+  for (const auto& r : e.per_pair) {
+    py::dict k;
+    k["pair"] = r.pair, k["iou"] = r.score.iou, k["sensitivity"] = r.score.sensitivity;
+    k["volume_ratio"] = r.score.volume_ratio, k["ms"] = r.ms, k["gmm_iterations"] = r.gmm_iterations;
+    per.append(k);
+  }
+  py::dict d;
+  d["pairs"] = e.pairs, d["recognition_rate"] = e.recognition_rate, d["sensitivity"] = e.sensitivity;
+  d["volume_ratio"] = e.volume_ratio, d["ms_total"] = e.ms_total, d["ms_sgm"] = e.ms_sgm, d["ms_gmm"] = e.ms_gmm;
+  d["per_pair"] = per;
+  return d;
+}
+
 }  // namespace
 
 void bind_seedling(py::module_& m) {
@@ -103,6 +121,21 @@ void bind_seedling(py::module_& m) {
           py::arg("left"), py::arg("right"), py::arg("calibration"),
           "Detects the seedling in a stereo pair: left, right H×W×3 uint8 RGB as the camera took them, "
           "calibration the stereo calibration file (YAML, docs/formats.md); the library rectifies the pair.")
+      .def(
+          "evaluate",
+          [](const seedling::Pipeline& p, const std::filesystem::path& data, const py::object& calib) {
+            // None, not a default path: Python's Path('') is '.'.
+            const auto calibration = calib.is_none() ? std::filesystem::path() : calib.cast<std::filesystem::path>();
+            const auto figures = [&] {
+              py::gil_scoped_release free;
+              return seedling::evaluate_seedling_dataset(seedling::open_dataset(data, calibration), p, {});
+            }();
+            return seedling_figures_dict(figures);
+          },
+          py::arg("data"), py::arg("calibration") = py::none(),
+          "The figures of eval seedling --json --no-opencv on a folder written by simulate seedling "
+          "(calibration: default DATA/rig.yaml): pairs, recognition_rate, sensitivity, volume_ratio, "
+          "ms_total, ms_sgm, ms_gmm, per_pair.")
       .def_property_readonly("config", [](const seedling::Pipeline& p) { return config_values(p.config()); });
   m.def(
       "read_pair",

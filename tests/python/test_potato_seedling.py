@@ -75,3 +75,16 @@ def test_seedling_bad_input(seedling_data):
     with pytest.raises(cs.Error) as e:
         pipe.process(left, left, os.path.join(seedling_data, "missing.yaml"))
     assert "missing.yaml" in str(e.value)
+
+
+def test_seedling_evaluate_equals_eval_seedling(seedling_data):
+    want = run_cli_json("eval", "seedling", "--data", seedling_data, "--no-opencv", "--quiet")
+    got = cs.seedling.Pipeline().evaluate(seedling_data)
+    timing = {"ms_total", "ms_sgm", "ms_gmm", "ms"}  # wall-clock
+    for key, value in got.items():
+        if key == "per_pair":
+            assert [{k: v for k, v in r.items() if k not in timing} for r in value] == \
+                   [{k: v for k, v in r.items() if k not in timing} for r in want[key]]
+        elif key not in timing:
+            assert value == want[key], key
+    assert got["pairs"] == 2
