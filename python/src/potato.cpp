@@ -1,10 +1,12 @@
 // cropsight.potato: the potato pipeline (pipeline/potato/) built with make_pipeline; a frame in,
 // the harvest target message (HarvestTarget) and the boxes that led to it out.
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "config.hpp"
+#include "cropsight/pipeline/potato/eval.hpp"
 #include "cropsight/pipeline/potato/make_pipeline.hpp"
 #include "frames.hpp"
 
@@ -68,6 +70,33 @@ void bind_potato_values(py::module_& m) {
       });
 }
 
+py::dict axis_dict(const potato::AxisError& a) {
+  py::dict d;
+  d["mean_mm"] = a.mean_mm, d["mae_mm"] = a.mae_mm, d["std_mm"] = a.std_mm;
+  return d;
+}
+
+// The figures of `eval potato --json` (without --frames), as a dict.
+py::dict potato_figures_dict(const potato::SequenceEvaluation& r) {
+  const potato::Figures& e = r.figures;
+  const potato::StageTimes& t = r.ms;
+  py::dict d, position, cut, ms;
+  d["frames"] = e.frames, d["frames_with_target"] = e.frames_with_target, d["frames_matched"] = e.frames_matched;
+  d["frames_on_target"] = e.frames_on_target, d["frames_positioned"] = e.frames_positioned;
+  d["frames_cut"] = e.frames_cut, d["targets"] = e.targets, d["target_switches"] = e.target_switches;
+  d["lost_events"] = e.lost_events;
+  position["x"] = axis_dict(e.x), position["y"] = axis_dict(e.y), position["z"] = axis_dict(e.z);
+  cut["x"] = axis_dict(e.cut_x), cut["y"] = axis_dict(e.cut_y), cut["z"] = axis_dict(e.cut_z);
+  d["position"] = position, d["position_cut"] = cut;
+  d["length_mae_mm"] = e.length_mae_mm, d["width_mae_mm"] = e.width_mae_mm, d["angle_mae_deg"] = e.angle_mae_deg;
+  d["angles"] = e.angles, d["angle_mae_full_view_deg"] = e.angle_mae_full_view_deg;
+  d["angles_full_view"] = e.angles_full_view;
+  ms["detect"] = t.detect, ms["locate"] = t.locate, ms["track"] = t.track, ms["orient"] = t.orient;
+  ms["total"] = t.total, ms["max"] = t.max_total;
+  d["ms_per_frame"] = ms;
+  return d;
+}
+
 }  // namespace
 
 void bind_potato(py::module_& m) {
@@ -101,6 +130,18 @@ void bind_potato(py::module_& m) {
           "One frame: process(frame) or process(color=H×W×3 uint8, depth=H×W uint16 or None, camera=...). "
           "Returns the FrameResult; .target is the harvest message.")
       .def("reset", &potato::Pipeline::reset, "Starts a new approach: drops the target.")
+      .def(
+          "evaluate",
+          [](potato::Pipeline& p, const std::filesystem::path& sequence, double min_iou) {
+            const auto r = [&] {
+              py::gil_scoped_release free;
+              return potato::evaluate_potato_sequence(p, sequence, min_iou);
+            }();
+            return potato_figures_dict(r);
+          },
+          py::arg("sequence"), py::kw_only(), py::arg("min_iou") = 0.3,
+          "The figures of eval potato --json on a sequence written by simulate potato (runs this pipeline "
+          "over it from a reset): frames, targets, position errors (mm), angle errors (deg), ms_per_frame.")
       .def_property_readonly("config", [](const potato::Pipeline& p) { return config_values(p.config()); });
 }
 

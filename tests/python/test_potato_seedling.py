@@ -88,3 +88,12 @@ def test_seedling_evaluate_equals_eval_seedling(seedling_data):
         elif key not in timing:
             assert value == want[key], key
     assert got["pairs"] == 2
+
+
+def test_potato_evaluate_equals_eval_potato(potato_seq):
+    want = run_cli_json("eval", "potato", "--data", potato_seq)
+    got = cs.potato.Pipeline().evaluate(potato_seq)
+    for key, value in got.items():
+        if key != "ms_per_frame":  # wall-clock
+            assert value == want[key], key
+    assert got["frames"] == 4
