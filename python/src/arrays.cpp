@@ -92,4 +92,10 @@ py::array gray_view(const GrayImage& image, py::handle owner) {
   return view(image.data.data(), {image.height, image.width}, owner);
 }
 
+py::dict stage_ms_dict(const StageTimer& timer) {
+  py::dict d;
+  for (const auto& s : timer.stages()) d[py::str(s.name)] = s.total_ms;
+  return d;
+}
+
 }  // namespace cropsight::python

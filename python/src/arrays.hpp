@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "cropsight/core/image.hpp"
+#include "cropsight/core/timer.hpp"
 
 namespace cropsight::python {
 
@@ -54,5 +55,7 @@ inline py::array_t<double> vector_array(const Eigen::Vector3f& v) {
 py::array image_view(const DepthImage& image, py::handle owner);
 py::object color_view(const ColorImage& image, py::handle owner);  ///< None when empty
 py::array gray_view(const GrayImage& image, py::handle owner);
+/// A result's wall-clock stages: {stage name: ms}, in the order they first ran.
+py::dict stage_ms_dict(const StageTimer& timer);
 
 }  // namespace cropsight::python

@@ -21,12 +21,6 @@ struct BroccoliResult {
   int width = 0, height = 0;
 };
 
-py::dict stage_ms(const StageTimer& timer) {
-  py::dict d;
-  for (const auto& s : timer.stages()) d[py::str(s.name)] = s.total_ms;
-  return d;
-}
-
 void bind_broccoli_result(py::module_& m) {
   py::class_<tracking::PredictedHead>(
       m, "PredictedHead", "A tracked head this frame missed, where the filter expects it (camera frame, m).")
@@ -49,7 +43,7 @@ void bind_broccoli_result(py::module_& m) {
       .def_property_readonly("predicted", [](const BroccoliResult& b) { return b.r.predicted; })
       .def_property_readonly("camera_estimate",
                              [](const BroccoliResult& b) { return vector_array(b.r.association.camera_position); })
-      .def_property_readonly("stage_ms", [](const BroccoliResult& b) { return stage_ms(b.r.timer); })
+      .def_property_readonly("stage_ms", [](const BroccoliResult& b) { return stage_ms_dict(b.r.timer); })
       .def_property_readonly("detect_ms", [](const BroccoliResult& b) { return b.r.detect_ms(); })
       .def_property_readonly("track_ms", [](const BroccoliResult& b) { return b.r.track_ms(); })
       .def(

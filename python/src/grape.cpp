@@ -91,9 +91,7 @@ py::dict result_dict(const grape::FrameResult& r) {
   d["bunches"] = bunches;
   d["detections"] = r.detections.size();
   d["outside_image"] = r.outside.size();
-  py::dict stages;
-  for (const auto& s : r.timer.stages()) stages[py::str(s.name)] = s.total_ms;
-  d["stage_ms"] = stages;
+  d["stage_ms"] = stage_ms_dict(r.timer);
   return d;
 }
 

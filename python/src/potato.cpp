@@ -63,11 +63,7 @@ void bind_potato_values(py::module_& m) {
                              })
       .def_property_readonly(
           "ripe", [](const potato::FrameResult& r) { return std::vector<bool>(r.ripe.begin(), r.ripe.end()); })
-      .def_property_readonly("stage_ms", [](const potato::FrameResult& r) {
-        py::dict d;
-        for (const auto& s : r.timer.stages()) d[py::str(s.name)] = s.total_ms;
-        return d;
-      });
+      .def_property_readonly("stage_ms", [](const potato::FrameResult& r) { return stage_ms_dict(r.timer); });
 }
 
 py::dict axis_dict(const potato::AxisError& a) {

@@ -60,12 +60,7 @@ void bind_seedling_result(py::module_& m) {
       .def_readonly("points_candidates", &seedling::FrameResult::points_candidates)
       .def_readonly("points_sampled", &seedling::FrameResult::points_sampled)
       .def_readonly("points_seedling_sampled", &seedling::FrameResult::points_seedling_sampled)
-      .def_property_readonly("stage_ms",
-                             [](const seedling::FrameResult& r) {
-                               py::dict d;
-                               for (const auto& s : r.timer.stages()) d[py::str(s.name)] = s.total_ms;
-                               return d;
-                             })
+      .def_property_readonly("stage_ms", [](const seedling::FrameResult& r) { return stage_ms_dict(r.timer); })
       .def("__repr__", [](const seedling::FrameResult& r) {
         return std::string("seedling.FrameResult(found=") + (r.found ? "True" : "False") + ", " +
                std::to_string(r.points.size()) + " points)";
