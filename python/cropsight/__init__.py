@@ -5,7 +5,7 @@ model, a preset and sets, exactly as the CLI builds it, so that the same data gi
 results. numpy arrays in and out; the GIL is released while a pipeline runs. docs/python.md.
 
     import cropsight as cs
-    seq = cs.read_sequence("SEQ")
+    seq = cs.read_sequence("SEQ")            # or cs.read_bag("FILE.bag")
     pipe = cs.broccoli.Pipeline(model="broccoli-oes-general", sets={"tracking.use_poses": True})
     for frame in seq:
         result = pipe.process(frame)
@@ -17,6 +17,7 @@ _plugin_paths.point_library_at_prefix()
 
 from ._cropsight import (Box, Camera, Detection, Detector, Error, Frame, Sequence, read_image,  # noqa: E402
                          read_sequence)
+from ._bags import read_bag  # noqa: E402
 from . import broccoli, grape, potato, seedling, simulate  # noqa: E402
 
 
@@ -28,5 +29,5 @@ def _frames(self):
 
 Sequence.__iter__ = _frames
 
-__all__ = ["Box", "Camera", "Detection", "Detector", "Error", "Frame", "Sequence", "read_image", "read_sequence",
+__all__ = ["Box", "Camera", "Detection", "Detector", "Error", "Frame", "Sequence", "read_bag", "read_image", "read_sequence",
            "broccoli", "grape", "potato", "seedling", "simulate"]

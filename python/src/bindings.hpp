@@ -18,5 +18,6 @@ void bind_potato(py::module_& m);     // cropsight.potato
 void bind_seedling(py::module_& m);   // cropsight.seedling
 void bind_grape(py::module_& m);      // cropsight.grape
 void bind_simulate(py::module_& m);   // cropsight.simulate
+void bind_bags(py::module_& m);       // _import_bag (cropsight.read_bag)
 
 }  // namespace cropsight::python

@@ -8,6 +8,7 @@ PYBIND11_MODULE(_cropsight, m) {
   bind_core(m);
   bind_detection(m);
   bind_detector(m);
+  bind_bags(m);
   auto broccoli = m.def_submodule("broccoli", "Broccoli heads from depth frames (Montes 2020, Kusumam 2017)");
   bind_broccoli(broccoli);
   auto potato = m.def_submodule("potato", "Potatoes on an aeroponic rig: the harvest target per RGB-D frame");
