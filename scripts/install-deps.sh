@@ -31,6 +31,11 @@ PACKAGES=(
   libroscpp-dev librosbag-storage-dev libmessage-filters-dev libstd-msgs-dev libgeometry-msgs-dev
   libsensor-msgs-dev libvisualization-msgs-dev libdiagnostic-msgs-dev libtf2-msgs-dev
   python3-roslaunch python3-gencpp python3-genmsg python3-rosbag
+  # the Python package (python/) and its tests, notebooks and Dask example (docs/python.md)
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-nbconvert python3-nbformat python3-ipykernel
+  python3-matplotlib python3-distributed python3-dask
+  # pip install . offline (tests/install/test_pip_install.sh): a venv, Debian's pip and setuptools
+  python3-venv python3-pip python3-setuptools
 )
 
 missing=()

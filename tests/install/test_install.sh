@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The install, moved: `cmake --install` into a temporary prefix, the prefix copied to another path
 # and the original removed, then the installed CLI run from an unrelated working folder on a
-# simulated pass with a shipped model given by name; no installed file may hold a path of the
-# source or build tree; a small consumer project builds and runs against the moved install with
-# find_package(cropsight CONFIG). Usage: test_install.sh BUILD_DIR SOURCE_DIR
+# simulated pass with a shipped model given by name, and the installed Python package on the same
+# pass; no installed file may hold a path of the source or build tree; a small consumer project
+# builds and runs against the moved install with find_package(cropsight CONFIG). Usage: test_install.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 build=$(realpath "$1")
 src=$(realpath "$2")
@@ -38,6 +38,22 @@ grep -q '"frames":4' "$work/summary.json" || { echo "FAIL: detect broccoli: $(ca
 [[ $(wc -l <"$work/det.jsonl") -eq 4 ]] || { echo "FAIL: det.jsonl has not 4 lines"; exit 1; }
 # A preset by name, and its model relative to the preset (configs/potato-fusion.yaml -> ../models).
 "$cli" harvest potato --data "$work/pass" --config potato-fusion --out "$work/h.jsonl" --quiet >/dev/null
+
+# The Python package of the moved prefix, where the build made one (pybind11-dev): it finds the
+# shipped models by name and the plugin of its own prefix, and detects what the installed CLI did.
+site=$(ls -d "$prefix"/lib/python3*/dist-packages 2>/dev/null | head -1)
+if [[ -n "$site" && -d "$site/cropsight" ]]; then
+  PYTHONPATH="$site" /usr/bin/python3 - "$work/pass" "$work/det.jsonl" "$prefix" <<'PY' || { echo "FAIL: python package"; exit 1; }
+import json, os, sys
+import cropsight as cs
+seq, lines, prefix = sys.argv[1:]
+assert os.environ["CROPSIGHT_NN_BACKEND"] == os.path.join(prefix, "lib", "libcropsight_nn_torch.so")
+pipe = cs.broccoli.Pipeline(model="broccoli-oes-general", sets={"track": False})
+want = [[d["score"] for d in json.loads(line)["detections"]] for line in open(lines)]
+got = [[d.score for d in pipe.process(f).detections] for f in cs.read_sequence(seq)]
+assert got == want, (got, want)
+PY
+fi
 
 # A C++ consumer of the moved install.
 mkdir "$work/consumer"

@@ -14,6 +14,12 @@ for f in bin/cropsight share/cropsight/configs/broccoli-oes-uk.yaml share/cropsi
   lib/libcropsight_nn_torch.so lib/cmake/cropsight/cropsightConfig.cmake; do
   grep -q "/usr/local/$f\$" <<<"$contents" || { echo "FAIL: $f not in $deb"; exit 1; }
 done
+# The Python package, where the build made one (pybind11-dev), in /usr/local's Python path.
+if ls "$build"/python/cropsight/_cropsight*.so >/dev/null 2>&1; then
+  grep -q "/usr/local/lib/python3\.[0-9]*/dist-packages/cropsight/__init__.py\$" <<<"$contents" ||
+    { echo "FAIL: the Python package is not in $deb"; exit 1; }
+  grep -q "python3-numpy" <<<"$(dpkg-deb --field "$deb" Depends)" || { echo "FAIL: Depends lacks python3-numpy"; exit 1; }
+fi
 depends=$(dpkg-deb --field "$deb" Depends)
 for p in libpcl-dev libopencv-dev libxgboost-dev libtorch-dev; do
   grep -q "$p" <<<"$depends" || { echo "FAIL: Depends lacks $p: $depends"; exit 1; }

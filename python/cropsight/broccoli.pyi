@@ -1,0 +1,69 @@
+from os import PathLike
+from typing import Any, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+
+from . import Camera, Detection, Frame
+from ._config import ConfigMapping
+
+_Sets = Union[dict[str, Any], Sequence[str], None]
+
+class Config(ConfigMapping): ...
+
+class PredictedHead:
+    track_id: int
+    @property
+    def centroid(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def pixels(self) -> npt.NDArray[np.int32]: ...
+
+class FrameResult:
+    @property
+    def frame(self) -> int: ...
+    @property
+    def detections(self) -> list[Detection]: ...
+    @property
+    def predicted(self) -> list[PredictedHead]: ...
+    @property
+    def camera_estimate(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def stage_ms(self) -> dict[str, float]: ...
+    @property
+    def detect_ms(self) -> float: ...
+    @property
+    def track_ms(self) -> float: ...
+    def label_image(self) -> npt.NDArray[np.uint16]: ...
+
+class FieldHead:
+    id: int
+    score: float
+    frames_seen: int
+    partial_frames: int
+    first_frame: int
+    last_frame: int
+    mean_detection_score: float
+    size_samples: int
+    bbox_mm: float
+    hull_mm: float
+    diameter_mm: float
+    harvestable: bool
+    @property
+    def position(self) -> npt.NDArray[np.float64]: ...
+
+class Pipeline:
+    def __init__(self, *, model: str = "broccoli-oes-general", config: str = "", sets: _Sets = None) -> None: ...
+    def process(self, frame: Optional[Frame] = None, *, depth: Optional[npt.NDArray[np.uint16]] = None,
+                color: Optional[npt.NDArray[np.uint8]] = None, camera: Optional[Camera] = None) -> FrameResult: ...
+    def field_map(self) -> list[FieldHead]: ...
+    def reset(self) -> None: ...
+    @property
+    def config(self) -> Config: ...
+
+class Evaluator:
+    def __init__(self, pipeline: Pipeline) -> None: ...
+    def add_frame(self, frame: Frame) -> None: ...
+    def figures(self) -> dict[str, float]: ...
+
+def evaluate(data: Union[str, PathLike, Sequence[Union[str, PathLike]]], model: str = "broccoli-oes-general",
+             config: str = "", sets: _Sets = None) -> dict[str, float]: ...
