@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -20,6 +21,14 @@ namespace cropsight::learning::detail {
 
 namespace {
 void silent(const char*) {}  // libsvm prints optimisation progress on stdout otherwise
+
+// libsvm reads and writes its text with strtok and switches the process locale (setlocale) while
+// it does: two loads at once crash (two threads building pipelines did). One lock serialises
+// libsvm's file calls; they are rare and short beside the work, and nothing else takes the lock.
+std::mutex& libsvm_file_mutex() {
+  static std::mutex m;
+  return m;
+}
 
 typedef float v8f __attribute__((vector_size(32)));
 typedef float v4f __attribute__((vector_size(16)));
@@ -104,7 +113,11 @@ SvmClassifier::SvmClassifier(const Dataset& data, const ClassifierParams& params
   // The trained model points into `nodes`; go through libsvm's own text format so that the
   // object holds exactly what a saved file holds (and owns its memory).
   TempFile tmp;
-  const int rc = svm_save_model(tmp.path().c_str(), trained);
+  int rc = 0;
+  {
+    const std::lock_guard<std::mutex> lock(libsvm_file_mutex());
+    rc = svm_save_model(tmp.path().c_str(), trained);
+  }
   svm_free_and_destroy_model(&trained);
   if (rc != 0) throw Error(tmp.path().string(), "libsvm could not write its model");
   load_text(io::read_file(tmp.path()), where);
@@ -209,6 +222,7 @@ void SvmClassifier::load_text(const std::string& text, const std::string& where)
   {
     TempFile tmp;
     tmp.write(text);
+    const std::lock_guard<std::mutex> lock(libsvm_file_mutex());
     model_ = svm_load_model(tmp.path().c_str());
   }
   if (!model_) throw Error(where, "libsvm cannot parse the embedded SVM model");
