@@ -93,14 +93,14 @@ SequenceReader::SequenceReader(fs::path dir) {
   // Anything else at the top level is tolerated only when hidden (editor/OS files); a stray
   // visible entry usually means a misspelt file name, which would otherwise be silently ignored.
   static const char* kKnown[] = {"camera.yaml",      "depth",      "color", "labels", "poses.csv",
-                                 "groundtruth.json", "depth_color"};
+                                 "groundtruth.json", "depth_color", "geo_origin.yaml"};
   for (const auto& entry : fs::directory_iterator(d)) {
     const std::string name = entry.path().filename().string();
     if (name.empty() || name[0] == '.') continue;
     if (std::find(std::begin(kKnown), std::end(kKnown), name) == std::end(kKnown))
       throw Error(entry.path().string(),
                   "unexpected entry in sequence (known: camera.yaml, depth/, color/, labels/, poses.csv, "
-                  "groundtruth.json, depth_color/)");
+                  "groundtruth.json, depth_color/, geo_origin.yaml)");
   }
 }
 

@@ -65,12 +65,17 @@ void SequenceWriter::write(const RgbdFrame& frame) {
 }
 
 void SequenceWriter::set_groundtruth(GroundTruth truth) { truth_ = std::move(truth); }
+void SequenceWriter::set_geo_origin(const GeoOrigin& origin) {
+  origin.validate(dir_.string() + "/" + kGeoOriginFile);
+  geo_origin_ = origin;
+}
 
 void SequenceWriter::finish() {
   if (finished_) return;
   if (next_ == 0) throw Error(dir_.string(), "no frames written (a sequence needs at least one frame)");
   if (!poses_.empty()) write_file_atomic(tmp_ / "poses.csv", detail::format_poses_csv(poses_));
   if (truth_) write_file_atomic(tmp_ / "groundtruth.json", detail::format_groundtruth_json(*truth_, dir_.string()));
+  if (geo_origin_) write_file_atomic(tmp_ / kGeoOriginFile, geo_origin_yaml(*geo_origin_));
 
   out_->commit("sequence");  // a previous sequence is swapped out in one step
   finished_ = true;
