@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -209,6 +210,11 @@ void SvmClassifier::load_text(const std::string& text, const std::string& where)
   {
     TempFile tmp;
     tmp.write(text);
+    // svm_load_model splits its lines with strtok, whose position is one static pointer for the
+    // whole process: two threads loading models at once (a batch's workers) read each other's
+    // freed buffers. The lock serialises the loads only; prediction needs none.
+    static std::mutex libsvm_load;
+    const std::lock_guard lock(libsvm_load);
     model_ = svm_load_model(tmp.path().c_str());
   }
   if (!model_) throw Error(where, "libsvm cannot parse the embedded SVM model");
