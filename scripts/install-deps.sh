@@ -29,6 +29,9 @@ PACKAGES=(
   libroscpp-dev librosbag-storage-dev libmessage-filters-dev libstd-msgs-dev libgeometry-msgs-dev
   libsensor-msgs-dev libvisualization-msgs-dev libdiagnostic-msgs-dev libtf2-msgs-dev
   python3-roslaunch python3-gencpp python3-genmsg python3-rosbag
+  # field batches: the Slurm engine's tests against a real one-node cluster (scripts/slurm-local.sh),
+  # PROJ for geo-referenced maps, GDAL's ogrinfo to read the GeoJSON back as QGIS would
+  slurm-wlm munge libproj-dev proj-data gdal-bin
 )
 
 missing=()
