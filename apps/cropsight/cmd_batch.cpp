@@ -43,8 +43,8 @@ void dry_run(const BatchCliOptions& o, const batch::Manifest& m, const batch::Ba
   batch::check_geo_origins(plan);
   std::cout << plan.shards.size() << " shards:\n";
   for (const auto& s : plan.shards)
-    std::cout << "  " << s.name << "  frames " << s.first_frame << "-" << s.end_frame << " (owns " << s.own_first
-              << "-" << s.own_end << ")  " << s.sequence.string() << "\n";
+    std::cout << "  " << s.name << "  frames " << s.first_frame << "-" << s.end_frame << " (owns " << s.own_first << "-"
+              << s.own_end << ")  " << s.sequence.string() << "\n";
   if (o.engine == "slurm") std::cout << "\n" << batch::sbatch_script(o.out, options.slurm);
 }
 
@@ -83,7 +83,8 @@ void run(const BatchCliOptions& o) {
 void add_batch(CLI::App& app) {
   using namespace batch_cmd;
   auto o = std::make_shared<BatchCliOptions>();
-  auto* cmd = app.add_subcommand("batch", "Run many recordings as shards (local or Slurm), resumable, and merge the maps");
+  auto* cmd =
+      app.add_subcommand("batch", "Run many recordings as shards (local or Slurm), resumable, and merge the maps");
   cmd->add_option("--manifest", o->manifest, "Batch manifest (YAML; docs/batch.md)")->required();
   cmd->add_option("--out", o->out, "Batch folder: new, or an earlier run of this batch to resume")->required();
   cmd->add_option("--engine", o->engine, "local (threads on this machine) or slurm (a job array)")

@@ -24,7 +24,8 @@ struct MergeCliOptions {
 void run(const MergeCliOptions& o) {
   const auto maps = split_list(o.maps, "--maps");
   const auto data = o.data.empty() ? std::vector<std::string>(maps.size()) : split_list(o.data, "--data");
-  if (data.size() != maps.size()) throw Error("--data", "needs one recording per map (" + std::to_string(maps.size()) + ")");
+  if (data.size() != maps.size())
+    throw Error("--data", "needs one recording per map (" + std::to_string(maps.size()) + ")");
   if (!(o.radius_m > 0)) throw Error("--radius", "must be positive");
   std::vector<std::string> inputs = maps;
   inputs.insert(inputs.end(), data.begin(), data.end());
@@ -41,11 +42,15 @@ void run(const MergeCliOptions& o) {
   const batch::MergeSummary s = batch::merge_maps(in, rule, out.path(), o.row_gap_m);
   out.commit("merged map");
   if (o.common.json)
-    print_json({{"maps", s.maps}, {"heads_in", s.heads_in}, {"heads", s.heads_out}, {"harvestable", s.harvestable},
-                {"geo", s.geo}, {"out", o.out}});
+    print_json({{"maps", s.maps},
+                {"heads_in", s.heads_in},
+                {"heads", s.heads_out},
+                {"harvestable", s.harvestable},
+                {"geo", s.geo},
+                {"out", o.out}});
   else
-    std::printf("merged %zu maps: %zu heads into %zu (%zu harvestable)%s; wrote %s\n", s.maps, s.heads_in,
-                s.heads_out, s.harvestable, s.geo ? " with WGS84" : "", o.out.c_str());
+    std::printf("merged %zu maps: %zu heads into %zu (%zu harvestable)%s; wrote %s\n", s.maps, s.heads_in, s.heads_out,
+                s.harvestable, s.geo ? " with WGS84" : "", o.out.c_str());
 }
 }  // namespace merge_cmd
 

@@ -60,8 +60,8 @@ void run_simulate_broccoli(const SimulateBroccoliOptions& o) {
   const auto geo_origin = parse_geo_origin(o.geo_origin);
 
   Progress progress("simulate broccoli", o.frames, o.common.json || o.quiet);
-  const auto summary = sim::simulate_broccoli_sequence(cfg, o.seed, o.frames, o.out, policy,
-                                                       [&](int done, int) { progress.update(done); }, geo_origin);
+  const auto summary = sim::simulate_broccoli_sequence(
+      cfg, o.seed, o.frames, o.out, policy, [&](int done, int) { progress.update(done); }, geo_origin);
   progress.finish();
   if (o.common.json) {
     print_json({{"out", o.out},

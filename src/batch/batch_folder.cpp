@@ -20,8 +20,9 @@ bool open_batch_folder(const fs::path& dir, const BatchPlan& plan) {
     if (!marker.present || marker.command != "batch")
       throw Error(dir.string(), "holds a plan.json but no batch marker; give a new --out");
     if (io::read_file(dir / "plan.json") != text)
-      throw Error(dir.string(), "holds a batch of another plan (the manifest or the recordings changed); give a "
-                                "new --out or restore the manifest");
+      throw Error(dir.string(),
+                  "holds a batch of another plan (the manifest or the recordings changed); give a "
+                  "new --out or restore the manifest");
     return true;
   }
   io::check_output_folder(dir, policy);  // new, empty, or refused (a batch is never --force replaced)

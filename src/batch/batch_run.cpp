@@ -11,8 +11,7 @@ namespace cropsight::batch {
 
 namespace fs = std::filesystem;
 
-BatchResult run_batch(const Manifest& manifest, const fs::path& dir, const BatchOptions& options,
-                      const BatchLog& log) {
+BatchResult run_batch(const Manifest& manifest, const fs::path& dir, const BatchOptions& options, const BatchLog& log) {
   if (options.engine != "local" && options.engine != "slurm")
     throw Error("--engine", "must be local or slurm, got '" + options.engine + "'");
   BatchResult result;
@@ -48,9 +47,8 @@ std::string batch_summary_json(const BatchResult& r) {
                    {"errors", e.errors},
                    {"merged", r.merged}};
   if (r.merged)
-    j["merge"] = {{"maps", r.merge.maps},           {"passes", r.merge.passes},
-                  {"heads_in", r.merge.heads_in},   {"heads", r.merge.heads_out},
-                  {"harvestable", r.merge.harvestable}, {"geo", r.merge.geo},
+    j["merge"] = {{"maps", r.merge.maps},       {"passes", r.merge.passes},           {"heads_in", r.merge.heads_in},
+                  {"heads", r.merge.heads_out}, {"harvestable", r.merge.harvestable}, {"geo", r.merge.geo},
                   {"seconds", r.merge.seconds}};
   return j.dump() + "\n";
 }

@@ -36,7 +36,8 @@ EngineReport run_local(const BatchPlan& plan, const fs::path& dir, int workers, 
         report.ran += 1;
         report.cpu_s += r.cpu_s;
         report.frames += r.frames;
-        if (log) log("shard " + shard.name + " done (" + std::to_string(report.ran) + "/" + std::to_string(todo.size()) + ")");
+        if (log)
+          log("shard " + shard.name + " done (" + std::to_string(report.ran) + "/" + std::to_string(todo.size()) + ")");
       } catch (const std::exception& e) {
         const std::lock_guard lock(mutex);
         report.failed += 1;

@@ -108,8 +108,7 @@ void read_options(const ManifestYaml& y, Manifest& m) {
     m.sharding.overlap_frames = y.integer(s, "overlap_frames", m.sharding.overlap_frames, 0);
   }
   if (const YAML::Node s = y.root["slurm"]) {
-    y.check_keys(s, "slurm",
-                 {"partition", "account", "time", "mem", "cpus_per_task", "max_retries", "max_parallel"});
+    y.check_keys(s, "slurm", {"partition", "account", "time", "mem", "cpus_per_task", "max_retries", "max_parallel"});
     SlurmOptions& o = m.slurm;
     if (s["partition"]) o.partition = y.text(s, "partition");
     if (s["account"]) o.account = y.text(s, "account");

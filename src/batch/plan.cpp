@@ -15,24 +15,22 @@ namespace cropsight::batch {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-namespace {
-
-void add_recording_shards(const fs::path& sequence, int frames, const ShardingOptions& o, std::vector<Shard>& out) {
+std::vector<Shard> plan_recording(const fs::path& sequence, int frames, const ShardingOptions& o) {
+  std::vector<Shard> out;
   const std::string pass = sequence.filename().string();
   if (o.frames_per_shard <= 0 || frames <= o.frames_per_shard) {
     out.push_back({pass, pass, sequence, 0, frames, 0, frames});
-    return;
+    return out;
   }
   for (int a = 0; a < frames; a += o.frames_per_shard) {
     const int b = std::min(frames, a + o.frames_per_shard);
     char name[32];
     std::snprintf(name, sizeof name, "-f%06d", a);  // zero-padded: names sort in frame order
-    out.push_back({pass + name, pass, sequence, std::max(0, a - o.overlap_frames), std::min(frames, b + o.overlap_frames),
-                   a, b});
+    out.push_back(
+        {pass + name, pass, sequence, std::max(0, a - o.overlap_frames), std::min(frames, b + o.overlap_frames), a, b});
   }
+  return out;
 }
-
-}  // namespace
 
 BatchPlan plan_batch(const Manifest& m) {
   BatchPlan plan;
@@ -44,7 +42,8 @@ BatchPlan plan_batch(const Manifest& m) {
   plan.merge = {pipe->config().tracking.association_radius_m, pipe->config().sizing.market_min_mm,
                 pipe->config().sizing.market_max_mm};
   for (const fs::path& rec : m.recordings)
-    add_recording_shards(rec, io::SequenceReader(rec).size(), m.sharding, plan.shards);
+    for (Shard& s : plan_recording(rec, io::SequenceReader(rec).size(), m.sharding))
+      plan.shards.push_back(std::move(s));
   std::sort(plan.shards.begin(), plan.shards.end(), [](const Shard& a, const Shard& b) { return a.name < b.name; });
   return plan;
 }
@@ -90,7 +89,7 @@ BatchPlan read_plan(const fs::path& path) {
     p.merge = {merge.at("association_radius_m").get<double>(), merge.at("market_min_mm").get<double>(),
                merge.at("market_max_mm").get<double>()};
     const json& s = j.at("slurm");
-    p.slurm = {s.at("partition"),    s.at("account"),     s.at("time"),        s.at("mem"),
+    p.slurm = {s.at("partition"),     s.at("account"),     s.at("time"),        s.at("mem"),
                s.at("cpus_per_task"), s.at("max_retries"), s.at("max_parallel")};
     for (const json& e : j.at("shards"))
       p.shards.push_back({e.at("name"), e.at("pass"), e.at("sequence").get<std::string>(), e.at("frames").at(0),

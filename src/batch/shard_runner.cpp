@@ -34,8 +34,8 @@ std::string host_name() {
 }
 
 json record_json(const ShardRecord& r) {
-  return {{"name", r.name},       {"pass", r.pass},     {"frames", r.frames}, {"detections", r.detections},
-          {"heads", r.heads},     {"wall_s", r.wall_s}, {"cpu_s", r.cpu_s},   {"host", r.host}};
+  return {{"name", r.name},   {"pass", r.pass},     {"frames", r.frames}, {"detections", r.detections},
+          {"heads", r.heads}, {"wall_s", r.wall_s}, {"cpu_s", r.cpu_s},   {"host", r.host}};
 }
 
 }  // namespace
@@ -80,8 +80,8 @@ ShardRecord run_shard(const BatchPlan& plan, std::size_t index, const fs::path& 
 ShardRecord read_shard_record(const fs::path& path) {
   try {
     const json j = json::parse(io::read_file(path));
-    return {j.at("name"),   j.at("pass"),  j.at("frames"), j.at("detections"),
-            j.at("heads"),  j.at("wall_s"), j.at("cpu_s"), j.at("host")};
+    return {j.at("name"),  j.at("pass"),   j.at("frames"), j.at("detections"),
+            j.at("heads"), j.at("wall_s"), j.at("cpu_s"),  j.at("host")};
   } catch (const json::exception& e) {
     throw Error(path.string(), std::string("not a shard record: ") + e.what());
   }

@@ -35,7 +35,8 @@ void follow(const fs::path& dir, const std::string& job, double poll_s) {
     const auto r = run_command({"squeue", "-h", "-j", job, "-o", "%i"});
     if (r.exit_code == 0 && r.out.find_first_not_of(" \n") == std::string::npos) break;
     if (r.exit_code != 0 && r.out.find("Invalid job id") != std::string::npos) break;  // purged already
-    if (r.exit_code != 0 && ++errors >= 30) throw Error("squeue", "cannot follow job " + job + ": " + first_line(r.out));
+    if (r.exit_code != 0 && ++errors >= 30)
+      throw Error("squeue", "cannot follow job " + job + ": " + first_line(r.out));
   }
   const auto show = run_command({"scontrol", "show", "job", job});
   io::write_file_atomic(dir / "slurm" / (job + ".scontrol.txt"), show.out);
@@ -80,7 +81,8 @@ EngineReport run_slurm(const BatchPlan& plan, const fs::path& dir, const SlurmRu
     if (round > 0) report.resubmitted += pending.size();
     const std::string job = submit(script, pending, run.options.max_parallel);
     report.job_ids.push_back(job);
-    if (log) log("job " + job + ": " + std::to_string(pending.size()) + " array tasks" + (round ? " (resubmitted)" : ""));
+    if (log)
+      log("job " + job + ": " + std::to_string(pending.size()) + " array tasks" + (round ? " (resubmitted)" : ""));
     follow(dir, job, run.poll_s);
     pending = missing_shards(plan, dir);
     if (log && !pending.empty()) log("job " + job + ": " + std::to_string(pending.size()) + " shards not done");

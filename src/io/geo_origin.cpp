@@ -81,8 +81,8 @@ std::optional<GeoOrigin> read_sequence_geo_origin(const fs::path& sequence_dir) 
 std::string geo_origin_yaml(const GeoOrigin& g) {
   using detail::format_double;
   return "latitude_deg: " + format_double(g.latitude_deg) + "\nlongitude_deg: " + format_double(g.longitude_deg) +
-         "\naltitude_m: " + format_double(g.altitude_m) + "\nfield_x_azimuth_deg: " +
-         format_double(g.field_x_azimuth_deg) + "\n";
+         "\naltitude_m: " + format_double(g.altitude_m) +
+         "\nfield_x_azimuth_deg: " + format_double(g.field_x_azimuth_deg) + "\n";
 }
 
 void write_geo_origin(const fs::path& path, const GeoOrigin& origin) {

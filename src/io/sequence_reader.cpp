@@ -92,7 +92,7 @@ SequenceReader::SequenceReader(fs::path dir) {
 
   // Anything else at the top level is tolerated only when hidden (editor/OS files); a stray
   // visible entry usually means a misspelt file name, which would otherwise be silently ignored.
-  static const char* kKnown[] = {"camera.yaml",      "depth",      "color", "labels", "poses.csv",
+  static const char* kKnown[] = {"camera.yaml",      "depth",       "color",          "labels", "poses.csv",
                                  "groundtruth.json", "depth_color", "geo_origin.yaml"};
   for (const auto& entry : fs::directory_iterator(d)) {
     const std::string name = entry.path().filename().string();

@@ -30,16 +30,17 @@ inline std::string simulate_passes(const fs::path& dir) {
                          "--set motion.start_x_m=0 --set camera.lateral_offset_m=0.6",
                          "--set motion.start_x_m=0.4 --set camera.lateral_offset_m=0.6"};
   for (int i = 0; i < 4; ++i) {
-    const auto r = run_cli("simulate broccoli --quiet --seed 7 --frames " + std::to_string(kPassFrames) + " " +
-                           sets[i] + " --geo-origin 52.2,0.12,90 --out " +
-                           shell_quoted(dir / ("pass" + std::to_string(i + 1))));
+    const auto r =
+        run_cli("simulate broccoli --quiet --seed 7 --frames " + std::to_string(kPassFrames) + " " + sets[i] +
+                " --geo-origin 52.2,0.12,90 --out " + shell_quoted(dir / ("pass" + std::to_string(i + 1))));
     if (r.exit_code != 0) return r.err;
   }
   return "";
 }
 
 inline fs::path write_manifest(const fs::path& file, const std::string& extra = "") {
-  cropsight::testing::write_text(file, "recordings: [pass1, pass2, pass3, pass4]\npipeline:\n  crop: broccoli\n" + extra);
+  cropsight::testing::write_text(file,
+                                 "recordings: [pass1, pass2, pass3, pass4]\npipeline:\n  crop: broccoli\n" + extra);
   return file;
 }
 
@@ -71,8 +72,8 @@ inline pid_t start_cli(const std::string& args, const fs::path& log) {
   const pid_t pid = fork();
   if (pid == 0) {
     setpgid(0, 0);
-    const std::string cmd = "exec '" + cropsight::testing::cli_path().string() + "' " + args + " >'" +
-                            log.string() + "' 2>&1 </dev/null";
+    const std::string cmd =
+        "exec '" + cropsight::testing::cli_path().string() + "' " + args + " >'" + log.string() + "' 2>&1 </dev/null";
     execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }

@@ -45,8 +45,9 @@ TEST_F(BatchCli, LocalBatchMergesGeoReferencesAndResumes) {
   // The GeoJSON as a real consumer reads it: GDAL's ogrinfo (what QGIS uses underneath).
   if (std::system("command -v ogrinfo >/dev/null 2>&1") != 0) GTEST_SKIP() << "ogrinfo (gdal-bin) not installed";
   const fs::path info = dir() / "ogrinfo.txt";
-  ASSERT_EQ(std::system(("ogrinfo -ro -al -so " + shell_quoted(out / "field-map.geojson") + " >" +
-                         shell_quoted(info) + " 2>&1").c_str()),
+  ASSERT_EQ(std::system(
+                ("ogrinfo -ro -al -so " + shell_quoted(out / "field-map.geojson") + " >" + shell_quoted(info) + " 2>&1")
+                    .c_str()),
             0)
       << slurp(info);
   const std::string text = slurp(info);
@@ -77,11 +78,11 @@ TEST_F(BatchCli, InterruptedBatchRunsOnlyTheRest) {
 
 TEST_F(BatchCli, BadManifestIsOneLineAndExit2) {
   const std::string cases[] = {
-      "recordings: [pass1, nowhere]\npipeline: {crop: broccoli}\n",              // missing recording
-      "recordings: [pass1]\npipeline: {crop: broccoli, config: no-such-preset}\n",  // unknown preset
-      "recordings: [pass1, ./pass1]\npipeline: {crop: broccoli}\n",              // duplicate output
+      "recordings: [pass1, nowhere]\npipeline: {crop: broccoli}\n",                   // missing recording
+      "recordings: [pass1]\npipeline: {crop: broccoli, config: no-such-preset}\n",    // unknown preset
+      "recordings: [pass1, ./pass1]\npipeline: {crop: broccoli}\n",                   // duplicate output
       "recordings: [pass1]\npipeline: {crop: broccoli, sets: {tracking.nope: 1}}\n",  // unknown key
-      "recordings: [pass1]\npipeline: {crop: broccoli}\nslurm: {partiton: x}\n",  // misspelt option
+      "recordings: [pass1]\npipeline: {crop: broccoli}\nslurm: {partiton: x}\n",      // misspelt option
       "recordings: [pass1]\npipeline: {crop: cabbage}\n",
   };
   for (const std::string& text : cases) {

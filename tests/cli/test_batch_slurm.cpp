@@ -16,7 +16,8 @@ namespace {
 // Slurm's commands find the cluster through SLURM_CONF; slurm-local.sh's default folder when unset.
 bool slurm_answers() {
   const char* conf = std::getenv("SLURM_CONF");
-  if (!conf && fs::exists("/tmp/cropsight-slurm/slurm.conf")) setenv("SLURM_CONF", "/tmp/cropsight-slurm/slurm.conf", 1);
+  if (!conf && fs::exists("/tmp/cropsight-slurm/slurm.conf"))
+    setenv("SLURM_CONF", "/tmp/cropsight-slurm/slurm.conf", 1);
   return std::system("scontrol ping 2>/dev/null | grep -q 'is UP'") == 0;
 }
 

@@ -51,8 +51,8 @@ TEST(GeoOrigin, FieldAxesFollowTheAzimuth) {
 
 TEST(GeoOrigin, RoundTripIsExactToAMicrometre) {
   const GeoReference ref(GeoOrigin{-33.9, 151.2, 40.0, 37.5});
-  for (const Eigen::Vector3d& p : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(812.3, -402.1, 0.7),
-                                  Eigen::Vector3d(-2000, 1500, -3)}) {
+  for (const Eigen::Vector3d& p :
+       {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(812.3, -402.1, 0.7), Eigen::Vector3d(-2000, 1500, -3)}) {
     const Eigen::Vector3d back = ref.to_field(ref.to_wgs84(p));
     EXPECT_LT((back - p).norm(), 1e-6) << p.transpose();
   }

@@ -35,18 +35,17 @@ std::optional<io::GeoOrigin> check_geo_origins(const BatchPlan& plan);
 
 /// One field map to merge and where it came from.
 struct MapInput {
-  std::string pass;                 ///< its recording's name
-  std::string name;                 ///< unique (a shard's name)
-  std::filesystem::path map;        ///< field-map.csv (tracking/field_map_io.hpp)
-  std::filesystem::path sequence;   ///< the recording (its geo_origin.yaml); empty: none
+  std::string pass;                ///< its recording's name
+  std::string name;                ///< unique (a shard's name)
+  std::filesystem::path map;       ///< field-map.csv (tracking/field_map_io.hpp)
+  std::filesystem::path sequence;  ///< the recording (its geo_origin.yaml); empty: none
 };
 
 /// Merges `inputs` in order into the files above in `out_dir` (which must exist). Geo-referenced
 /// when the inputs' sequences carry geo_origin.yaml (all or none, else Error). `records`: the
 /// shards' records for passes.csv's frame counts (may be empty).
 MergeSummary merge_maps(const std::vector<MapInput>& inputs, const MergeRule& rule,
-                        const std::filesystem::path& out_dir, double row_gap_m,
-                        std::vector<ShardRecord> records = {});
+                        const std::filesystem::path& out_dir, double row_gap_m, std::vector<ShardRecord> records = {});
 
 /// Merges the shards of `plan` in `batch_dir` (all must be done) and writes the files above.
 /// `row_gap_m`: assign_rows's gap. Throws Error naming a missing shard or an unreadable map.

@@ -23,7 +23,7 @@ struct BatchResult {
   BatchPlan plan;
   bool resumed = false;  ///< DIR held this batch already
   EngineReport engine;
-  bool merged = false;   ///< every shard done, merge written
+  bool merged = false;  ///< every shard done, merge written
   MergeSummary merge;
 };
 

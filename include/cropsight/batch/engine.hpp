@@ -14,14 +14,14 @@ namespace cropsight::batch {
 
 /// What an engine did in this run.
 struct EngineReport {
-  std::size_t planned = 0;      ///< shards in the plan
-  std::size_t already_done = 0; ///< done before this run (skipped)
-  std::size_t ran = 0;          ///< done by this run
-  std::size_t failed = 0;       ///< still not done at the end
-  std::size_t resubmitted = 0;  ///< array tasks submitted again (Slurm)
-  double cpu_s = 0.0;           ///< CPU seconds of the shards this run finished (their shard.json)
-  double wall_s = 0.0;          ///< this run, seconds
-  long frames = 0;              ///< frames processed by the shards this run finished
+  std::size_t planned = 0;           ///< shards in the plan
+  std::size_t already_done = 0;      ///< done before this run (skipped)
+  std::size_t ran = 0;               ///< done by this run
+  std::size_t failed = 0;            ///< still not done at the end
+  std::size_t resubmitted = 0;       ///< array tasks submitted again (Slurm)
+  double cpu_s = 0.0;                ///< CPU seconds of the shards this run finished (their shard.json)
+  double wall_s = 0.0;               ///< this run, seconds
+  long frames = 0;                   ///< frames processed by the shards this run finished
   std::vector<std::string> job_ids;  ///< Slurm jobs submitted
   std::vector<std::string> errors;   ///< one line per failed shard
 };

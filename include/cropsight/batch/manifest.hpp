@@ -36,13 +36,13 @@ struct ShardingOptions {
 };
 
 struct SlurmOptions {
-  std::string partition;         ///< "" = the cluster's default
-  std::string account;           ///< "" = the user's default
-  std::string time = "01:00:00"; ///< per array task, Slurm's time format
-  std::string mem = "2G";        ///< per array task, Slurm's memory format
+  std::string partition;          ///< "" = the cluster's default
+  std::string account;            ///< "" = the user's default
+  std::string time = "01:00:00";  ///< per array task, Slurm's time format
+  std::string mem = "2G";         ///< per array task, Slurm's memory format
   int cpus_per_task = 1;
-  int max_retries = 2;           ///< resubmissions of an array task whose shard is not done
-  int max_parallel = 0;          ///< array throttle (%N); 0 = none
+  int max_retries = 2;   ///< resubmissions of an array task whose shard is not done
+  int max_parallel = 0;  ///< array throttle (%N); 0 = none
 };
 
 struct Manifest {

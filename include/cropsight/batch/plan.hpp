@@ -22,9 +22,9 @@
 namespace cropsight::batch {
 
 struct Shard {
-  std::string name;                  ///< folder under DIR/shards/: the recording's name [+ "-fFIRST"]
-  std::string pass;                  ///< the recording's folder name: shards of one recording form one pass
-  std::filesystem::path sequence;    ///< absolute
+  std::string name;                    ///< folder under DIR/shards/: the recording's name [+ "-fFIRST"]
+  std::string pass;                    ///< the recording's folder name: shards of one recording form one pass
+  std::filesystem::path sequence;      ///< absolute
   int first_frame = 0, end_frame = 0;  ///< processed frames [first, end)
   int own_first = 0, own_end = 0;      ///< owned frames: heads whose track began here are kept
 };
@@ -45,6 +45,8 @@ struct BatchPlan {
   std::vector<Shard> shards;  ///< sorted by name; the index is the Slurm array task id
 };
 
+/// The shards of one recording of `frames` frames (the seam rule above), in frame order.
+std::vector<Shard> plan_recording(const std::filesystem::path& sequence, int frames, const ShardingOptions& options);
 /// Plans `manifest`: shards per the seam rule above, the merge rule from the pipeline's config.
 BatchPlan plan_batch(const Manifest& manifest);
 /// plan.json text (deterministic) and its reader (Error(path, ...) on anything malformed).

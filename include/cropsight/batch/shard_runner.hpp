@@ -20,12 +20,12 @@ namespace cropsight::batch {
 /// shard.json: what a finished shard reports.
 struct ShardRecord {
   std::string name, pass;
-  int frames = 0;          ///< frames processed (overlaps included)
-  long detections = 0;     ///< detections over those frames
-  int heads = 0;           ///< heads kept (seam rule)
-  double wall_s = 0.0;     ///< seconds from the pipeline's construction to the folder's rename
-  double cpu_s = 0.0;      ///< CPU seconds of the thread that ran the shard
-  std::string host;        ///< the machine that ran it
+  int frames = 0;       ///< frames processed (overlaps included)
+  long detections = 0;  ///< detections over those frames
+  int heads = 0;        ///< heads kept (seam rule)
+  double wall_s = 0.0;  ///< seconds from the pipeline's construction to the folder's rename
+  double cpu_s = 0.0;   ///< CPU seconds of the thread that ran the shard
+  std::string host;     ///< the machine that ran it
 };
 
 std::filesystem::path shard_folder(const std::filesystem::path& batch_dir, const Shard& shard);

@@ -264,7 +264,7 @@ SimulationSummary simulate_broccoli_sequence(const BroccoliSimConfig& config, st
                                              const std::optional<io::GeoOrigin>& geo_origin) {
   const Stopwatch clock;
   if (geo_origin) geo_origin->validate("--geo-origin");  // before any rendering
-  io::check_output_folder(out, policy);  // before the field is grown
+  io::check_output_folder(out, policy);                  // before the field is grown
   BroccoliSimulator sim(config, seed, frames);
   io::SequenceWriter writer(out, sim.camera(), policy);
   SimulationSummary s;
