@@ -58,6 +58,7 @@ MergeSummary merge_maps(const std::vector<MapInput>& inputs, const MergeRule& ru
     }
     sum.heads_in += m.heads.size();
     passes.insert(in.pass);
+    sum.map_passes.push_back(in.pass);
     maps.push_back(std::move(m));
   }
   const Stopwatch clock;
@@ -73,6 +74,7 @@ MergeSummary merge_maps(const std::vector<MapInput>& inputs, const MergeRule& ru
   io::write_file_atomic(out_dir / "passes.csv", passes_csv(heads, maps, sum.records));
   io::write_file_atomic(out_dir / "rows.csv", rows_csv(heads, maps));
   if (common) io::write_file_atomic(out_dir / "field-map.geojson", merged_map_geojson(heads, maps, *common));
+  sum.heads = std::move(heads);
   return sum;
 }
 

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cropsight/batch/batch_folder.hpp"
+#include "cropsight/batch/batch_report.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 
@@ -28,6 +29,7 @@ BatchResult run_batch(const Manifest& manifest, const fs::path& dir, const Batch
     result.merged = true;
   }
   io::write_file_atomic(dir / "summary.json", batch_summary_json(result));
+  write_batch_report(dir / "report.html", result);
   mark_batch_folder(dir);
   return result;
 }

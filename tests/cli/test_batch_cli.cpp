@@ -35,6 +35,13 @@ TEST_F(BatchCli, LocalBatchMergesGeoReferencesAndResumes) {
   // Overlapping passes saw some heads twice: fewer merged heads than heads in the pass maps.
   EXPECT_LT(json_number(r.out, "heads"), json_number(r.out, "heads_in"));
   EXPECT_GT(json_number(r.out, "heads"), 0);
+  // The HTML summary: one map circle per merged head among its marks, the shards' run times.
+  const std::string html = slurp(out / "report.html");
+  long marks = 0;
+  for (auto at = html.find("class=\"cs-mark\""); at != std::string::npos; at = html.find("class=\"cs-mark\"", at + 1))
+    ++marks;
+  EXPECT_GT(marks, json_number(r.out, "heads")) << html.substr(0, 400);
+  EXPECT_NE(html.find("run time per shard"), std::string::npos);
 
   const auto again = run_cli("batch --manifest " + shell_quoted(m) + " --out " + shell_quoted(out) + " --json");
   ASSERT_EQ(again.exit_code, 0) << again.err;

@@ -13,6 +13,7 @@
 #include <optional>
 #include <vector>
 
+#include "cropsight/batch/field_merge.hpp"
 #include "cropsight/batch/plan.hpp"
 #include "cropsight/batch/shard_runner.hpp"
 #include "cropsight/io/geo_origin.hpp"
@@ -27,6 +28,8 @@ struct MergeSummary {
   bool geo = false;
   double seconds = 0.0;  ///< the merge itself (reading and writing excluded)
   std::vector<ShardRecord> records;
+  std::vector<MergedHead> heads;        ///< the merged map (common field frame)
+  std::vector<std::string> map_passes;  ///< per input map: its pass (Sighting::map indexes it)
 };
 
 /// The origin of the common field frame: the first recording's geo origin, nullopt when none has
