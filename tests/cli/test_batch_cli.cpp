@@ -83,6 +83,23 @@ TEST_F(BatchCli, InterruptedBatchRunsOnlyTheRest) {
   EXPECT_LT(done, 4) << "the kill came too late to test anything";
 }
 
+TEST_F(BatchCli, FrameRangeShardsKeepEachHeadOnce) {
+  // The seam rule (batch/plan.hpp): ranges of 6 frames with 10 frames of overlap find the heads
+  // the whole recordings find, each once (no head kept by two shards, none lost at a cut).
+  const fs::path whole = write_manifest(dir() / "m-whole.yaml"),
+                 ranges =
+                     write_manifest(dir() / "m-ranges.yaml", "shards: {frames_per_shard: 6, overlap_frames: 10}\n");
+  const auto a =
+      run_cli("batch --json --workers 2 --manifest " + shell_quoted(whole) + " --out " + shell_quoted(dir() / "whole"));
+  const auto b = run_cli("batch --json --workers 2 --manifest " + shell_quoted(ranges) + " --out " +
+                         shell_quoted(dir() / "ranges"));
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_EQ(json_number(b.out, "maps"), 12);  // 3 ranges per 16-frame pass
+  EXPECT_EQ(json_number(b.out, "heads"), json_number(a.out, "heads")) << a.out << "\n" << b.out;
+  EXPECT_EQ(json_number(b.out, "harvestable"), json_number(a.out, "harvestable"));
+}
+
 TEST_F(BatchCli, BadManifestIsOneLineAndExit2) {
   const std::string cases[] = {
       "recordings: [pass1, nowhere]\npipeline: {crop: broccoli}\n",                   // missing recording
