@@ -19,7 +19,7 @@ namespace batch_cmd {
 struct BatchCliOptions {
   std::string manifest, out, engine = "local";
   int workers = 1;
-  bool dry_run = false, quiet = false;
+  bool dry_run = false, quiet = false, force = false;
   CommonOptions common;  // --json only
   std::string partition, account, time, mem;
   int cpus_per_task = 0, max_retries = -1;
@@ -53,6 +53,7 @@ void run(const BatchCliOptions& o) {
   batch::BatchOptions options;
   options.engine = o.engine;
   options.workers = o.workers;
+  options.force = o.force;
   if (o.workers < 1) throw Error("--workers", "must be at least 1");
   options.slurm = slurm_run(o, manifest);
   if (o.dry_run) return dry_run(o, manifest, options);
@@ -98,6 +99,8 @@ void add_batch(CLI::App& app) {
   cmd->add_option("--cpus-per-task", o->cpus_per_task, "Slurm CPUs per task (overrides the manifest)");
   cmd->add_option("--max-retries", o->max_retries, "Resubmissions of a failed array task (overrides the manifest)");
   cmd->add_option("--poll", o->poll_s, "Seconds between squeue polls")->default_val(1.0);
+  cmd->add_flag("--force", o->force,
+                "Start over in --out when it holds an earlier cropsight output (without: resume the same batch)");
   cmd->add_flag("--quiet", o->quiet, "No progress lines");
   add_json_flag(cmd, o->common);
   cmd->callback([o] { run(*o); });

@@ -18,7 +18,7 @@ BatchResult run_batch(const Manifest& manifest, const fs::path& dir, const Batch
   BatchResult result;
   result.plan = plan_batch(manifest);
   check_geo_origins(result.plan);  // a mixed batch must fail before submission, not at the merge
-  result.resumed = open_batch_folder(dir, result.plan);
+  result.resumed = open_batch_folder(dir, result.plan, options.force);
   if (options.engine == "local")
     result.engine = run_local(result.plan, dir, options.workers, log);
   else

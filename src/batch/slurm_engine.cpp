@@ -62,7 +62,7 @@ std::string sbatch_script(const fs::path& dir, const SlurmRun& run) {
                   "\n#SBATCH --time=" + o.time + "\n#SBATCH --mem=" + o.mem + "\n";
   if (!o.partition.empty()) s += "#SBATCH --partition=" + o.partition + "\n";
   if (!o.account.empty()) s += "#SBATCH --account=" + o.account + "\n";
-  s += "set -eu\nexec " + shell_quote(run.cropsight_binary) + " batch-shard --out " + shell_quote(d) +
+  s += "set -eu\nexec " + shell_quote(run.cropsight_binary) + " batch-shard --batch-dir " + shell_quote(d) +
        " --index \"$SLURM_ARRAY_TASK_ID\"\n";
   return s;
 }

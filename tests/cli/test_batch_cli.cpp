@@ -100,6 +100,23 @@ TEST_F(BatchCli, FrameRangeShardsKeepEachHeadOnce) {
   EXPECT_EQ(json_number(b.out, "harvestable"), json_number(a.out, "harvestable"));
 }
 
+TEST_F(BatchCli, AnotherPlanIsRefusedUnlessForcedAndAUsersFileAlways) {
+  const fs::path one = dir() / "one.yaml", two = dir() / "two.yaml", out = dir() / "forced";
+  cropsight::testing::write_text(one, "recordings: [pass1]\npipeline: {crop: broccoli}\n");
+  cropsight::testing::write_text(two, "recordings: [pass1, pass2]\npipeline: {crop: broccoli}\n");
+  const std::string to = " --out " + shell_quoted(out);
+  ASSERT_EQ(run_cli("batch --quiet --manifest " + shell_quoted(one) + to).exit_code, 0);
+  const auto other = run_cli("batch --quiet --manifest " + shell_quoted(two) + to);
+  EXPECT_EQ(other.exit_code, 2);
+  EXPECT_NE(other.err.find("another plan"), std::string::npos) << other.err;
+  const auto forced = run_cli("batch --json --force --manifest " + shell_quoted(two) + to);
+  ASSERT_EQ(forced.exit_code, 0) << forced.err;
+  EXPECT_EQ(json_number(forced.out, "ran"), 2);  // started over
+  cropsight::testing::write_text(out / "my-notes.txt", "rows 3-4 flooded");
+  EXPECT_EQ(run_cli("batch --quiet --force --manifest " + shell_quoted(one) + to).exit_code, 2);
+  EXPECT_EQ(slurp(out / "my-notes.txt"), "rows 3-4 flooded");
+}
+
 TEST_F(BatchCli, BadManifestIsOneLineAndExit2) {
   const std::string cases[] = {
       "recordings: [pass1, nowhere]\npipeline: {crop: broccoli}\n",                   // missing recording

@@ -78,7 +78,7 @@ TEST_F(BatchSlurm, MergedMapEqualsLocalAndSchedulerListsTheArrayTasks) {
     EXPECT_TRUE(std::regex_search(shown, std::regex("ArrayJobId=" + job + " ArrayTaskId=" + std::to_string(task) +
                                                     "[\\s\\S]*?JobState=COMPLETED")))
         << shown;
-  EXPECT_NE(slurp(out / "slurm" / "batch.sbatch").find("batch-shard --out"), std::string::npos);
+  EXPECT_NE(slurp(out / "slurm" / "batch.sbatch").find("batch-shard --batch-dir"), std::string::npos);
 }
 
 TEST_F(BatchSlurm, TaskThatFailsOnceIsResubmittedAndTheBatchCompletes) {

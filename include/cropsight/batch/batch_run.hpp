@@ -17,6 +17,7 @@ struct BatchOptions {
   int workers = 1;               ///< local engine threads
   SlurmRun slurm;                ///< slurm engine settings (options: the manifest's with overrides)
   double row_gap_m = 0.3;        ///< assign_rows's gap (half the narrowest row spacing of the presets)
+  bool force = false;            ///< --force: start over in a DIR that is an earlier cropsight output
 };
 
 struct BatchResult {

@@ -3,7 +3,7 @@
 // plan.json), followed to the end and resubmitted where a task failed.
 //
 //   1. write DIR/slurm/batch.sbatch (sbatch_script: #SBATCH lines from SlurmOptions, one command:
-//      `cropsight batch-shard --out DIR --index $SLURM_ARRAY_TASK_ID`);
+//      `cropsight batch-shard --batch-dir DIR --index $SLURM_ARRAY_TASK_ID`);
 //   2. `sbatch --parsable --array=I,J,...[%max_parallel] DIR/slurm/batch.sbatch`;
 //   3. poll `squeue -h -j JOB` until the job has left the queue, then keep `scontrol show job JOB`
 //      (every array task's state and exit code) in DIR/slurm/JOB.scontrol.txt;
