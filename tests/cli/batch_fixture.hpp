@@ -2,7 +2,7 @@
 // Shared by the batch CLI tests (local engine, tests/cli/test_batch_cli.cpp) and the Slurm tests
 // (tests/cli/test_batch_slurm.cpp): four simulated passes over overlapping rows of one field
 // (same seed; two start positions along the rows × two lateral offsets one row apart), each
-// geo-referenced, and a manifest over them.
+// geo-referenced, and manifests over them.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "testing/testing.hpp"
 
@@ -23,25 +24,44 @@ using cropsight::testing::shell_quoted;
 
 inline constexpr int kPassFrames = 16;
 
-/// Simulates the four passes into `dir` (about 4 s each on the project's 2-core machine).
-inline std::string simulate_passes(const fs::path& dir) {
+/// The four passes, simulated once per build of the CLI and shared by every test process of it
+/// (ctest runs each test in its own process; simulating them costs about 16 s): a folder under
+/// the build tree named after the binary's time stamp and size. A pass folder appears whole (the
+/// simulator renames it into place), so a process that finds it uses it, and one that loses a
+/// race to simulate it finds it written by the other. Tests never modify these recordings.
+/// Returns "" or the simulator's error.
+inline std::string shared_passes(fs::path& dir) {
+  const fs::path bin = cropsight::testing::cli_path();
+  const auto stamp =
+      std::to_string(fs::last_write_time(bin).time_since_epoch().count()) + "-" + std::to_string(fs::file_size(bin));
+  dir = bin.parent_path().parent_path() / "test-fixtures" / ("batch-passes-" + stamp);
+  fs::create_directories(dir);
   const char* sets[4] = {"--set motion.start_x_m=0 --set camera.lateral_offset_m=0",
                          "--set motion.start_x_m=0.4 --set camera.lateral_offset_m=0",
                          "--set motion.start_x_m=0 --set camera.lateral_offset_m=0.6",
                          "--set motion.start_x_m=0.4 --set camera.lateral_offset_m=0.6"};
   for (int i = 0; i < 4; ++i) {
-    const auto r =
-        run_cli("simulate broccoli --quiet --seed 7 --frames " + std::to_string(kPassFrames) + " " + sets[i] +
-                " --geo-origin 52.2,0.12,90 --out " + shell_quoted(dir / ("pass" + std::to_string(i + 1))));
-    if (r.exit_code != 0) return r.err;
+    const fs::path pass = dir / ("pass" + std::to_string(i + 1));
+    if (fs::exists(pass)) continue;
+    const auto r = run_cli("simulate broccoli --quiet --seed 7 --frames " + std::to_string(kPassFrames) + " " +
+                           sets[i] + " --geo-origin 52.2,0.12,90 --out " + shell_quoted(pass));
+    if (r.exit_code != 0 && !fs::exists(pass)) return r.err;
   }
   return "";
 }
 
-inline fs::path write_manifest(const fs::path& file, const std::string& extra = "") {
-  cropsight::testing::write_text(file,
-                                 "recordings: [pass1, pass2, pass3, pass4]\npipeline:\n  crop: broccoli\n" + extra);
+/// A manifest over `passes` (absolute paths) with `extra` YAML appended.
+inline fs::path write_manifest(const fs::path& file, const std::vector<fs::path>& passes,
+                               const std::string& extra = "") {
+  std::string list;
+  for (const fs::path& p : passes) list += (list.empty() ? "" : ", ") + ("'" + p.string() + "'");
+  cropsight::testing::write_text(file, "recordings: [" + list + "]\npipeline:\n  crop: broccoli\n" + extra);
   return file;
+}
+inline std::vector<fs::path> pass_paths(const fs::path& dir, int n = 4) {
+  std::vector<fs::path> out;
+  for (int i = 1; i <= n; ++i) out.push_back(dir / ("pass" + std::to_string(i)));
+  return out;
 }
 
 inline std::string slurp(const fs::path& p) {

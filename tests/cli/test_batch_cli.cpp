@@ -10,21 +10,24 @@ class BatchCli : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     tmp_ = new cropsight::testing::TempDir();
-    error_ = simulate_passes(tmp_->path());
+    error_ = shared_passes(passes_);
   }
   static void TearDownTestSuite() { delete tmp_; }
   void SetUp() override {
     if (!error_.empty()) GTEST_FAIL() << "simulation failed: " << error_;
   }
   static fs::path dir() { return tmp_->path(); }
+  static std::vector<fs::path> passes(int n = 4) { return pass_paths(passes_, n); }
   static cropsight::testing::TempDir* tmp_;
+  static fs::path passes_;
   static std::string error_;
 };
 cropsight::testing::TempDir* BatchCli::tmp_ = nullptr;
+fs::path BatchCli::passes_;
 std::string BatchCli::error_;
 
 TEST_F(BatchCli, LocalBatchMergesGeoReferencesAndResumes) {
-  const fs::path m = write_manifest(dir() / "m.yaml"), out = dir() / "local";
+  const fs::path m = write_manifest(dir() / "m.yaml", passes()), out = dir() / "local";
   const auto r = run_cli("batch --manifest " + shell_quoted(m) + " --out " + shell_quoted(out) + " --workers 2 --json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(json_number(r.out, "ran"), 4);
@@ -67,7 +70,7 @@ TEST_F(BatchCli, LocalBatchMergesGeoReferencesAndResumes) {
 }
 
 TEST_F(BatchCli, InterruptedBatchRunsOnlyTheRest) {
-  const fs::path m = write_manifest(dir() / "m-kill.yaml"), out = dir() / "killed";
+  const fs::path m = write_manifest(dir() / "m-kill.yaml", passes()), out = dir() / "killed";
   const pid_t pid = start_cli("batch --manifest " + shell_quoted(m) + " --out " + shell_quoted(out) + " --workers 1",
                               dir() / "killed.log");
   ASSERT_TRUE(wait_for([&] { return done_shards(out) >= 2; }, 120)) << slurp(dir() / "killed.log");
@@ -86,9 +89,9 @@ TEST_F(BatchCli, InterruptedBatchRunsOnlyTheRest) {
 TEST_F(BatchCli, FrameRangeShardsKeepEachHeadOnce) {
   // The seam rule (batch/plan.hpp): ranges of 6 frames with 10 frames of overlap find the heads
   // the whole recordings find, each once (no head kept by two shards, none lost at a cut).
-  const fs::path whole = write_manifest(dir() / "m-whole.yaml"),
-                 ranges =
-                     write_manifest(dir() / "m-ranges.yaml", "shards: {frames_per_shard: 6, overlap_frames: 10}\n");
+  const fs::path whole = write_manifest(dir() / "m-whole.yaml", passes()),
+                 ranges = write_manifest(dir() / "m-ranges.yaml", passes(),
+                                         "shards: {frames_per_shard: 6, overlap_frames: 10}\n");
   const auto a =
       run_cli("batch --json --workers 2 --manifest " + shell_quoted(whole) + " --out " + shell_quoted(dir() / "whole"));
   const auto b = run_cli("batch --json --workers 2 --manifest " + shell_quoted(ranges) + " --out " +
@@ -102,8 +105,8 @@ TEST_F(BatchCli, FrameRangeShardsKeepEachHeadOnce) {
 
 TEST_F(BatchCli, AnotherPlanIsRefusedUnlessForcedAndAUsersFileAlways) {
   const fs::path one = dir() / "one.yaml", two = dir() / "two.yaml", out = dir() / "forced";
-  cropsight::testing::write_text(one, "recordings: [pass1]\npipeline: {crop: broccoli}\n");
-  cropsight::testing::write_text(two, "recordings: [pass1, pass2]\npipeline: {crop: broccoli}\n");
+  write_manifest(one, passes(1));
+  write_manifest(two, passes(2));
   const std::string to = " --out " + shell_quoted(out);
   ASSERT_EQ(run_cli("batch --quiet --manifest " + shell_quoted(one) + to).exit_code, 0);
   const auto other = run_cli("batch --quiet --manifest " + shell_quoted(two) + to);
@@ -118,13 +121,15 @@ TEST_F(BatchCli, AnotherPlanIsRefusedUnlessForcedAndAUsersFileAlways) {
 }
 
 TEST_F(BatchCli, BadManifestIsOneLineAndExit2) {
+  const std::string p1 = "'" + (passes_ / "pass1").string() + "'",
+                    p1again = "'" + (passes_ / "." / "pass1").string() + "'";
   const std::string cases[] = {
-      "recordings: [pass1, nowhere]\npipeline: {crop: broccoli}\n",                   // missing recording
-      "recordings: [pass1]\npipeline: {crop: broccoli, config: no-such-preset}\n",    // unknown preset
-      "recordings: [pass1, ./pass1]\npipeline: {crop: broccoli}\n",                   // duplicate output
-      "recordings: [pass1]\npipeline: {crop: broccoli, sets: {tracking.nope: 1}}\n",  // unknown key
-      "recordings: [pass1]\npipeline: {crop: broccoli}\nslurm: {partiton: x}\n",      // misspelt option
-      "recordings: [pass1]\npipeline: {crop: cabbage}\n",
+      "recordings: [" + p1 + ", nowhere]\npipeline: {crop: broccoli}\n",                   // missing recording
+      "recordings: [" + p1 + "]\npipeline: {crop: broccoli, config: no-such-preset}\n",    // unknown preset
+      "recordings: [" + p1 + ", " + p1again + "]\npipeline: {crop: broccoli}\n",           // duplicate output
+      "recordings: [" + p1 + "]\npipeline: {crop: broccoli, sets: {tracking.nope: 1}}\n",  // unknown key
+      "recordings: [" + p1 + "]\npipeline: {crop: broccoli}\nslurm: {partiton: x}\n",      // misspelt option
+      "recordings: [" + p1 + "]\npipeline: {crop: cabbage}\n",
   };
   for (const std::string& text : cases) {
     cropsight::testing::write_text(dir() / "bad.yaml", text);
@@ -138,13 +143,13 @@ TEST_F(BatchCli, BadManifestIsOneLineAndExit2) {
 }
 
 TEST_F(BatchCli, MergeCommandFusesPassMaps) {
-  const fs::path m = write_manifest(dir() / "m.yaml"), out = dir() / "local";
+  const fs::path m = write_manifest(dir() / "m.yaml", passes()), out = dir() / "local";
   ASSERT_EQ(run_cli("batch --quiet --manifest " + shell_quoted(m) + " --out " + shell_quoted(out)).exit_code, 0);
   std::string maps, data;
   for (int i = 1; i <= 4; ++i) {
     const std::string p = "pass" + std::to_string(i);
     maps += (i > 1 ? "," : "") + (out / "shards" / p / "field-map.csv").string();
-    data += (i > 1 ? "," : "") + (dir() / p).string();
+    data += (i > 1 ? "," : "") + (passes_ / p).string();
   }
   const auto r = run_cli("merge --json --maps " + shell_quoted(maps) + " --data " + shell_quoted(data) + " --out " +
                          shell_quoted(dir() / "merged"));

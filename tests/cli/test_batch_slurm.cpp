@@ -42,8 +42,8 @@ class BatchSlurm : public ::testing::Test {
   static void SetUpTestSuite() {
     if (!slurm_answers()) return;
     tmp_ = new cropsight::testing::TempDir();
-    error_ = simulate_passes(tmp_->path());
-    const fs::path m = write_manifest(tmp_->path() / "m.yaml");
+    error_ = shared_passes(passes_);
+    const fs::path m = write_manifest(tmp_->path() / "m.yaml", pass_paths(passes_));
     const auto r = run_cli("batch --quiet --manifest " + shell_quoted(m) + " --out " + shell_quoted(local()));
     if (error_.empty() && r.exit_code != 0) error_ = "local batch: " + r.err;
   }
@@ -59,9 +59,11 @@ class BatchSlurm : public ::testing::Test {
            shell_quoted(out);
   }
   static cropsight::testing::TempDir* tmp_;
+  static fs::path passes_;
   static std::string error_;
 };
 cropsight::testing::TempDir* BatchSlurm::tmp_ = nullptr;
+fs::path BatchSlurm::passes_;
 std::string BatchSlurm::error_;
 
 TEST_F(BatchSlurm, MergedMapEqualsLocalAndSchedulerListsTheArrayTasks) {
@@ -82,12 +84,18 @@ TEST_F(BatchSlurm, MergedMapEqualsLocalAndSchedulerListsTheArrayTasks) {
 }
 
 TEST_F(BatchSlurm, TaskThatFailsOnceIsResubmittedAndTheBatchCompletes) {
-  // The injected fault: one frame of pass2 unreadable until its first attempt has failed.
-  const fs::path frame = dir() / "pass2" / "depth" / "000003.png";
+  // The injected fault: one frame of pass2 unreadable until its first attempt has failed (in a
+  // copy: the shared passes are never modified).
+  fs::create_directories(dir() / "fault");
+  fs::copy(passes_ / "pass2", dir() / "fault" / "pass2", fs::copy_options::recursive);
+  auto recordings = pass_paths(passes_);
+  recordings[1] = dir() / "fault" / "pass2";
+  const fs::path manifest = write_manifest(dir() / "m-fault.yaml", recordings);
+  const fs::path frame = dir() / "fault" / "pass2" / "depth" / "000003.png";
   const std::string good = slurp(frame);
   cropsight::testing::write_text(frame, "not a PNG");
   const fs::path out = dir() / "slurm-fault", log = dir() / "fault.log";
-  const pid_t pid = start_cli(batch_args(dir() / "m.yaml", out) + " --json", log);
+  const pid_t pid = start_cli(batch_args(manifest, out) + " --json", log);
   const bool failed_once = wait_for(
       [&] {
         std::error_code ec;
@@ -109,7 +117,7 @@ TEST_F(BatchSlurm, TaskThatFailsOnceIsResubmittedAndTheBatchCompletes) {
 
 TEST_F(BatchSlurm, InterruptedBatchRestartedRunsOnlyTheRest) {
   // One task at a time (the array throttle), so that the interruption falls between shards.
-  const fs::path m = write_manifest(dir() / "m-throttled.yaml", "slurm: {max_parallel: 1}\n");
+  const fs::path m = write_manifest(dir() / "m-throttled.yaml", pass_paths(passes_), "slurm: {max_parallel: 1}\n");
   const fs::path out = dir() / "slurm-killed", log = dir() / "killed.log";
   const pid_t pid = start_cli(batch_args(m, out), log);
   ASSERT_TRUE(wait_for([&] { return done_shards(out) >= 2; }, 120)) << slurp(log);
@@ -132,7 +140,7 @@ TEST_F(BatchSlurm, InterruptedBatchRestartedRunsOnlyTheRest) {
 
 TEST_F(BatchSlurm, BadManifestFailsBeforeSubmission) {
   const std::string before = command_output("squeue -h -o %i");
-  cropsight::testing::write_text(dir() / "bad.yaml", "recordings: [pass1, missing]\npipeline: {crop: broccoli}\n");
+  write_manifest(dir() / "bad.yaml", {passes_ / "pass1", dir() / "missing"});
   const auto r = run_cli(batch_args(dir() / "bad.yaml", dir() / "never"));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
