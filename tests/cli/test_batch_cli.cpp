@@ -120,6 +120,26 @@ TEST_F(BatchCli, AnotherPlanIsRefusedUnlessForcedAndAUsersFileAlways) {
   EXPECT_EQ(slurp(out / "my-notes.txt"), "rows 3-4 flooded");
 }
 
+TEST_F(BatchCli, FailedShardExits3AndTheRerunFinishesIt) {
+  fs::create_directories(dir() / "broken");
+  fs::copy(passes_ / "pass2", dir() / "broken" / "pass2", fs::copy_options::recursive);
+  const fs::path frame = dir() / "broken" / "pass2" / "depth" / "000005.png", out = dir() / "partial";
+  const std::string good = slurp(frame);
+  cropsight::testing::write_text(frame, "not a PNG");
+  const fs::path m = write_manifest(dir() / "m-broken.yaml", {passes_ / "pass1", dir() / "broken" / "pass2"});
+  const auto r = run_cli("batch --manifest " + shell_quoted(m) + " --out " + shell_quoted(out) + " --workers 2");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.out.find("shard pass2:"), std::string::npos) << r.out;  // the summary names it and why
+  EXPECT_NE(r.out.find("000005.png"), std::string::npos) << r.out;
+  EXPECT_FALSE(fs::exists(out / "shards" / "pass2"));
+  EXPECT_FALSE(fs::exists(out / "field-map.csv"));
+  std::ofstream(frame, std::ios::binary) << good;
+  const auto again = run_cli("batch --json --manifest " + shell_quoted(m) + " --out " + shell_quoted(out));
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_EQ(json_number(again.out, "already_done"), 1);
+  EXPECT_EQ(json_number(again.out, "ran"), 1);
+}
+
 TEST_F(BatchCli, BadManifestIsOneLineAndExit2) {
   const std::string p1 = "'" + (passes_ / "pass1").string() + "'",
                     p1again = "'" + (passes_ / "." / "pass1").string() + "'";
