@@ -86,7 +86,7 @@ controller_answers() { [[ -f $conf ]] && scontrol ping 2>/dev/null | grep -q "is
 
 start() {
   need_root
-  "$here/install-deps.sh"
+  "$here/install-deps.sh" >&2  # stdout carries only the export line (eval "$(... start)")
   if controller_answers; then echo "export SLURM_CONF=$conf"; return; fi
   write_config
   start_munge
