@@ -12,6 +12,8 @@ find_package(Threads REQUIRED)
 find_package(tinyxml2 REQUIRED)
 # zlib: inflating the deflated entries of libtorch archives to check their CRC-32 (src/io/zip_check.cpp).
 find_package(ZLIB REQUIRED)
+# PROJ: field frame <-> WGS84 for geo-referenced maps (io/geo_origin.hpp)
+find_package(PROJ REQUIRED CONFIG)
 
 # PCL: only the component libraries we use, found directly. PCL's own CMake config pulls in
 # VTK (and through it MPI and Qt), which we never use and which slows configuration down.

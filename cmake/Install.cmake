@@ -71,7 +71,7 @@ set(CPACK_PACKAGING_INSTALL_PREFIX /usr/local)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_DEPENDS
-    "libopencv-dev, libopencv-dnn-dev, libpcl-dev, libeigen3-dev, libnanoflann-dev, libtbb-dev, libsvm-dev, libyaml-cpp-dev, nlohmann-json3-dev, libspdlog-dev, libfmt-dev, libtinyxml2-dev, libtorch-dev, libxgboost-dev, libopenblas0-pthread, libroscpp-dev, librosbag-storage-dev")
+    "libopencv-dev, libopencv-dnn-dev, libpcl-dev, libeigen3-dev, libnanoflann-dev, libtbb-dev, libsvm-dev, libyaml-cpp-dev, nlohmann-json3-dev, libspdlog-dev, libfmt-dev, libtinyxml2-dev, libproj-dev, libtorch-dev, libxgboost-dev, libopenblas0-pthread, libroscpp-dev, librosbag-storage-dev")
 # The Python package (python/CMakeLists.txt) runs on Debian's interpreter and numpy.
 if(CROPSIGHT_HAS_PYTHON)
   string(APPEND CPACK_DEBIAN_PACKAGE_DEPENDS ", python3 (>= ${CROPSIGHT_PYTHON_VERSION}), python3-numpy")

@@ -36,6 +36,9 @@ PACKAGES=(
   python3-matplotlib python3-distributed python3-dask
   # pip install . offline (tests/install/test_pip_install.sh): a venv, Debian's pip and setuptools
   python3-venv python3-pip python3-setuptools
+  # field batches: the Slurm engine's tests against a real one-node cluster (scripts/slurm-local.sh),
+  # PROJ for geo-referenced maps, GDAL's ogrinfo to read the GeoJSON back as QGIS would
+  slurm-wlm munge libproj-dev proj-data gdal-bin
 )
 
 missing=()

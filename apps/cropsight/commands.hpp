@@ -57,4 +57,9 @@ void add_calibrate_detector(CLI::App& app);
 void add_detect_objects(CLI::App& detect);
 void add_eval_detector(CLI::App& eval);
 
+// Field batches: batch (local or Slurm), batch-shard (one array task), merge
+void add_batch(CLI::App& app);
+void add_batch_shard(CLI::App& app);
+void add_merge(CLI::App& app);
+
 }  // namespace cropsight::cli

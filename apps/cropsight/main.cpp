@@ -80,6 +80,11 @@ int main(int argc, char** argv) {
   add_detect_objects(*detect);
   add_eval_detector(*eval);
 
+  // Field batches
+  add_batch(app);
+  add_batch_shard(app);
+  add_merge(app);
+
   // CLI11 reports a mistyped command as "A subcommand is required"; name it instead. Same one
   // level down (cropsight detect brocoli).
   for (CLI::App* level = &app; level;) {

@@ -198,6 +198,12 @@ OutputFolder::~OutputFolder() {
   if (!created_parent_.empty() && only_folders_under(created_parent_)) fs::remove_all(created_parent_, ec);
 }
 
+void write_output_marker(const fs::path& dir, const std::string& command, const std::vector<std::string>& entries) {
+  std::string text = std::string(kMarkerHeader) + "\ncommand: " + command + "\n";
+  for (const std::string& e : entries) text += e + "\n";
+  write_file_atomic(dir / kOutputMarker, text);
+}
+
 void OutputFolder::commit(const std::string& what) {
   if (committed_) return;
   std::error_code ec;

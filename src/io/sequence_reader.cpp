@@ -61,8 +61,8 @@ void check_size(const fs::path& path, int w, int h, const CameraIntrinsics& cam)
 }
 
 // The entries a sequence may hold at its top level (docs/formats.md).
-const char* const kKnownEntries[] = {"camera.yaml",      "depth",      "color", "labels", "poses.csv", "timestamps.csv",
-                                     "groundtruth.json", "depth_color"};
+const char* const kKnownEntries[] = {"camera.yaml",    "depth",       "color",           "labels",          "poses.csv",
+                                     "timestamps.csv", "depth_color", "geo_origin.yaml", "groundtruth.json"};
 
 // Levenshtein distance: the fewest insertions, deletions and substitutions from a to b.
 std::size_t edit_distance(const std::string& a, const std::string& b) {
@@ -93,7 +93,7 @@ std::vector<fs::path> unknown_entries(const fs::path& dir) {
       if (edit_distance(name, known) <= 2)
         throw Error(entry.path().string(), std::string("unexpected entry in sequence: did you mean ") + known +
                                                "? (known: camera.yaml, depth/, color/, labels/, poses.csv, "
-                                               "timestamps.csv, groundtruth.json, depth_color/)");
+                                               "timestamps.csv, groundtruth.json, depth_color/, geo_origin.yaml)");
     unknown.push_back(entry.path());
   }
   std::sort(unknown.begin(), unknown.end());

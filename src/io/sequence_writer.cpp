@@ -68,6 +68,10 @@ void SequenceWriter::write(const RgbdFrame& frame) {
 }
 
 void SequenceWriter::set_groundtruth(GroundTruth truth) { truth_ = std::move(truth); }
+void SequenceWriter::set_geo_origin(const GeoOrigin& origin) {
+  origin.validate(dir_.string() + "/" + kGeoOriginFile);
+  geo_origin_ = origin;
+}
 
 void SequenceWriter::finish() {
   if (finished_) return;
@@ -78,6 +82,7 @@ void SequenceWriter::finish() {
   const bool timed = std::any_of(timestamps_.begin(), timestamps_.end(), [](double t) { return t != 0.0; });
   if (poses_.empty() && timed) write_file_atomic(tmp_ / "timestamps.csv", detail::format_timestamps_csv(timestamps_));
   if (truth_) write_file_atomic(tmp_ / "groundtruth.json", detail::format_groundtruth_json(*truth_, dir_.string()));
+  if (geo_origin_) write_file_atomic(tmp_ / kGeoOriginFile, geo_origin_yaml(*geo_origin_));
 
   out_->commit("sequence");  // a previous sequence is swapped out in one step
   finished_ = true;

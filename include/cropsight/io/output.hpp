@@ -50,6 +50,13 @@ struct OutputMarker {
 };
 OutputMarker read_output_marker(const std::filesystem::path& dir);
 
+/// Writes `dir`'s marker naming `command` and listing `entries` (paths relative to `dir`, folders
+/// included: what the command wrote), for an output folder that is filled in place step by step
+/// instead of written whole (a resumable batch: each step is its own atomic folder or file); call
+/// it again after each step. Throws Error(dir, ...).
+void write_output_marker(const std::filesystem::path& dir, const std::string& command,
+                         const std::vector<std::string>& entries);
+
 /// Throws Error(out, ...) when `out` is one of `policy.inputs`, lies inside one, or contains one.
 void check_not_an_input(const std::filesystem::path& out, const OutputPolicy& policy);
 

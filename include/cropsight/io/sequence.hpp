@@ -21,6 +21,7 @@
 
 #include "cropsight/core/camera.hpp"
 #include "cropsight/core/rgbd_frame.hpp"
+#include "cropsight/io/geo_origin.hpp"
 #include "cropsight/io/output.hpp"
 
 namespace cropsight::io {
@@ -122,6 +123,8 @@ class SequenceWriter {
   /// Frames must arrive in order 0, 1, 2, ...; colour/labels presence must not change.
   void write(const RgbdFrame& frame);
   void set_groundtruth(GroundTruth truth);
+  /// Writes geo_origin.yaml with the sequence (io/geo_origin.hpp): where its field frame lies on the Earth.
+  void set_geo_origin(const GeoOrigin& origin);
   /// Writes poses.csv (from frames' camera_position and timestamp), groundtruth.json, then renames.
   void finish();
 
@@ -134,6 +137,7 @@ class SequenceWriter {
   std::vector<CameraPose> poses_;
   std::vector<double> timestamps_;
   std::optional<GroundTruth> truth_;
+  std::optional<GeoOrigin> geo_origin_;
 };
 
 /// Frame file name: zero-padded to six digits, e.g. 000042.png.

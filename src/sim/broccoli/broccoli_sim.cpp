@@ -260,9 +260,11 @@ SimulationSummary simulate_broccoli_sequence(const BroccoliSimConfig& config, st
 
 SimulationSummary simulate_broccoli_sequence(const BroccoliSimConfig& config, std::uint64_t seed, int frames,
                                              const std::filesystem::path& out, const io::OutputPolicy& policy,
-                                             const std::function<void(int, int)>& progress) {
+                                             const std::function<void(int, int)>& progress,
+                                             const std::optional<io::GeoOrigin>& geo_origin) {
   const Stopwatch clock;
-  io::check_output_folder(out, policy);  // before the field is grown
+  if (geo_origin) geo_origin->validate("--geo-origin");  // before any rendering
+  io::check_output_folder(out, policy);                  // before the field is grown
   BroccoliSimulator sim(config, seed, frames);
   io::SequenceWriter writer(out, sim.camera(), policy);
   SimulationSummary s;
@@ -283,6 +285,7 @@ SimulationSummary simulate_broccoli_sequence(const BroccoliSimConfig& config, st
   if (n) s.mean_occlusion /= n;
   s.valid_fraction = valid / frames;
   writer.set_groundtruth(std::move(gt));
+  if (geo_origin) writer.set_geo_origin(*geo_origin);
   writer.finish();
   s.seconds = clock.seconds();
   return s;

@@ -15,9 +15,11 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "cropsight/core/rgbd_frame.hpp"
+#include "cropsight/io/geo_origin.hpp"
 #include "cropsight/io/output.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/sim/broccoli/broccoli_config.hpp"
@@ -100,10 +102,12 @@ struct SimulationSummary {
 /// Simulates `frames` frames and writes the sequence (io::SequenceWriter: camera.yaml, depth/,
 /// color/, labels/, poses.csv, groundtruth.json) to `out`, atomically. Throws Error(out, ...)
 /// before any rendering when `policy` refuses `out` (io/output.hpp). `progress(done, total)` is
-/// called after each frame.
+/// called after each frame. With `geo_origin`, the sequence also gets geo_origin.yaml, which ties
+/// the simulator's field frame to WGS84 (io/geo_origin.hpp).
 SimulationSummary simulate_broccoli_sequence(const BroccoliSimConfig& config, std::uint64_t seed, int frames,
                                              const std::filesystem::path& out, const io::OutputPolicy& policy,
-                                             const std::function<void(int, int)>& progress = {});
+                                             const std::function<void(int, int)>& progress = {},
+                                             const std::optional<io::GeoOrigin>& geo_origin = std::nullopt);
 /// The same as the command "simulate broccoli" with `overwrite` as its --force.
 SimulationSummary simulate_broccoli_sequence(const BroccoliSimConfig& config, std::uint64_t seed, int frames,
                                              const std::filesystem::path& out, bool overwrite,
