@@ -9,15 +9,6 @@
 
 namespace cropsight::cli {
 
-namespace {
-// A double as text that reads back to the same value.
-std::string number_text(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-}  // namespace
-
 void GrapeSegmenterOptions::add_options(CLI::App* cmd, const std::string& default_preset,
                                         const std::string& preset_flag) {
   default_preset_ = default_preset;
@@ -39,7 +30,7 @@ void GrapeSegmenterOptions::add_options(CLI::App* cmd, const std::string& defaul
   };
   auto number = [&](const std::string& flag, const std::string& key, const std::string& help) {
     cmd->add_option_function<double>(
-        flag, [this, key](double v) { flags_[key] = number_text(v); }, help);
+        flag, [this, key](double v) { flags_[key] = detail::exact_number(v); }, help);
   };
   // A model file, or a shipped model's name (io::find_model), as --model everywhere.
   cmd->add_option_function<std::string>(

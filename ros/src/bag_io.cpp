@@ -293,6 +293,11 @@ BagImportSummary import_bag_sequence(const BagImportOptions& o) {
     if (!o.poses.empty()) {  // joined to the header stamps, the clock a robot's odometry shares
       if (!(o.pose_tolerance_s > 0)) throw Error("--pose-tolerance", "must be > 0 seconds");
       const io::PoseTrack track = io::read_pose_track(o.poses);
+      // The bag's frames are written as they stream; a geo origin would need the sink to carry it.
+      if (track.geo_origin)
+        throw Error(o.poses,
+                    "GNSS poses are joined to folder imports only (a bag's frames stream into the "
+                    "sequence, which would then have no geo origin)");
       std::vector<double> times;
       for (const ros::Time& t : frames) times.push_back(t.toSec());
       positions = io::join_poses(track, times, o.pose_tolerance_s, o.poses);

@@ -20,5 +20,7 @@ PoseTrack read_pose_csv(const std::filesystem::path& path, const std::string& te
 PoseTrack read_pose_tum(const std::filesystem::path& path, const std::string& text);
 bool looks_like_pose_csv(const std::filesystem::path& path, std::string_view first_line);
 bool looks_like_pose_tum(const std::filesystem::path& path, std::string_view first_line);
+PoseTrack read_pose_gnss(const std::filesystem::path& path, const std::string& text);
+bool looks_like_pose_gnss(const std::filesystem::path& path, std::string_view first_line);
 
 }  // namespace cropsight::io::detail

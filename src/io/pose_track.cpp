@@ -19,6 +19,8 @@ const std::vector<PoseFormat>& pose_formats() {
       {"csv", "CSV with a header naming timestamp, x, y, z [, qx, qy, qz, qw]", detail::looks_like_pose_csv,
        detail::read_pose_csv},
       {"tum", "TUM trajectory: 't x y z qx qy qz qw' per line", detail::looks_like_pose_tum, detail::read_pose_tum},
+      {"gnss", "GNSS: CSV 'timestamp,lat,lon[,alt]' or an NMEA log (GGA, RMC)", detail::looks_like_pose_gnss,
+       detail::read_pose_gnss},
   };
   return formats;
 }

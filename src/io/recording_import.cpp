@@ -110,7 +110,7 @@ std::vector<double> clock_times(const ImportOptions& o, const std::vector<Record
 }
 
 std::vector<Eigen::Vector3d> joined_poses(const ImportOptions& o, const std::vector<double>& times, bool timed,
-                                          std::string& format) {
+                                          std::string& format, std::optional<GeoOrigin>& geo_origin) {
   if (o.poses.empty()) return {};
   if (!(o.pose_tolerance_s > 0)) throw Error("--pose-tolerance", "must be > 0 seconds");
   if (!timed && times.size() > 1)
@@ -119,6 +119,7 @@ std::vector<Eigen::Vector3d> joined_poses(const ImportOptions& o, const std::vec
                 "by timestamp)");
   const PoseTrack track = read_pose_track(o.poses);
   format = track.format;
+  geo_origin = track.geo_origin;
   return join_poses(track, times, o.pose_tolerance_s, o.poses.string());
 }
 
@@ -151,8 +152,11 @@ ImportSummary import_recording(const ImportOptions& o) {
   const std::vector<double> clock = clock_times(o, frames, stamps);
   ImportSummary s;
   s.time_source = csv ? "csv" : stamps ? "names" : o.fps > 0 ? "fps" : "none";
-  const std::vector<Eigen::Vector3d> positions = joined_poses(o, clock, csv || stamps || o.fps > 0, s.poses_format);
+  std::optional<GeoOrigin> geo_origin;  // GNSS poses: the sequence is geo-referenced
+  const std::vector<Eigen::Vector3d> positions =
+      joined_poses(o, clock, csv || stamps || o.fps > 0, s.poses_format, geo_origin);
   SequenceWriter writer(o.out, camera, policy);  // temporary folder, renamed by finish()
+  if (geo_origin) writer.set_geo_origin(*geo_origin);
   for (std::size_t i = 0; i < frames.size(); ++i) {
     RgbdFrame f;
     f.index = int(i);

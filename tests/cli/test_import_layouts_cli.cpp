@@ -213,3 +213,37 @@ TEST_F(ImportLayouts, PcdLabelsKept) {
 
 }  // namespace
 }  // namespace cropsight::testing
+
+namespace cropsight::testing {
+namespace {
+
+// --poses with GNSS fixes (a lat/lon CSV here; NMEA reads the same way): the sequence gets the
+// fixes as field-frame positions and a geo_origin.yaml, so that batch maps are geo-referenced.
+TEST_F(ImportLayouts, GnssPosesGeoReferenceTheSequence) {
+  ASSERT_TRUE(ok_) << "simulation failed";
+  const io::SequenceReader truth(sim());
+  const RecorderLayout l = write_recorder_layout(truth, dir() / "gnss", Recorder::RealSense);
+  // The recorder's pose times, each as a fix 0.00001° further north (about 1.11 m).
+  std::ifstream poses(l.poses);
+  std::string line, fixes = "timestamp,lat,lon\n";
+  std::getline(poses, line);  // header: timestamp first
+  for (int k = 0; std::getline(poses, line); ++k) {
+    char lat[32];
+    std::snprintf(lat, sizeof lat, "%.5f", 52.2 + 1e-5 * k);
+    fixes += line.substr(0, line.find(',')) + "," + lat + ",0.12\n";
+  }
+  write_text(dir() / "gnss.csv", fixes);
+  std::string args = import_args(l, dir() / "gnss-seq");
+  args = replace(args, l.poses, dir() / "gnss.csv");
+  const CommandResult r = run_cli(args + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["poses"], "gnss");
+  ASSERT_TRUE(fs::exists(dir() / "gnss-seq" / "geo_origin.yaml"));
+  const io::SequenceReader back(dir() / "gnss-seq");
+  ASSERT_EQ(back.poses().size(), std::size_t(truth.size()));
+  for (std::size_t i = 1; i < back.poses().size(); ++i)  // driving north: x grows, y stays
+    EXPECT_GT(back.poses()[i].position.x(), back.poses()[i - 1].position.x());
+}
+
+}  // namespace
+}  // namespace cropsight::testing

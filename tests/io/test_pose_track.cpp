@@ -37,6 +37,27 @@ TEST(PoseTrack, TumWithOrientation) {
   EXPECT_DOUBLE_EQ(p.poses[1].position.x(), 0.2);
 }
 
+// GNSS fixes as a pose file: local metres (origin at the first fix, x along the travel) and the
+// geo origin that ties them to WGS84; back to the same latitude and longitude through it.
+TEST(PoseTrack, GnssFixesBecomeLocalPositionsWithTheirOrigin) {
+  TempDir t;
+  // Due north, 0.0001° of latitude apart (about 11.1 m).
+  write_text(t / "fixes.csv", "timestamp,lat,lon,alt\n10.0,52.2,0.12,20\n11.0,52.2001,0.12,20\n");
+  const PoseTrack p = read_pose_track(t / "fixes.csv");
+  EXPECT_EQ(p.format, "gnss");
+  ASSERT_TRUE(p.geo_origin.has_value());
+  EXPECT_DOUBLE_EQ(p.geo_origin->latitude_deg, 52.2);
+  EXPECT_NEAR(p.geo_origin->field_x_azimuth_deg, 0.0, 1e-3);  // x along the travel: north
+  ASSERT_EQ(p.poses.size(), 2u);
+  EXPECT_DOUBLE_EQ(p.poses[0].time, 10.0);
+  EXPECT_NEAR(p.poses[0].position.norm(), 0.0, 1e-9);
+  EXPECT_NEAR(p.poses[1].position.x(), 11.13, 0.02);  // WGS84 metres per 0.0001° of latitude at 52.2°
+  EXPECT_NEAR(p.poses[1].position.y(), 0.0, 1e-6);
+  const Wgs84 back = GeoReference(*p.geo_origin).to_wgs84(p.poses[1].position);
+  EXPECT_NEAR(back.latitude_deg, 52.2001, 1e-9);
+  EXPECT_NEAR(back.longitude_deg, 0.12, 1e-9);
+}
+
 // One line naming the file, the line and the problem.
 TEST(PoseTrack, BadFiles) {
   TempDir t;
@@ -55,9 +76,13 @@ TEST(PoseTrack, BadFiles) {
   EXPECT_NE(tum_nan.find("line 1: t must be a finite number"), std::string::npos) << tum_nan;
   const std::string quat = error_of("e.txt", "1.0 0 0 0 0 0 0 2\n");
   EXPECT_NE(quat.find("not of unit length"), std::string::npos) << quat;
-  const std::string unknown = error_of("f.csv", "lat,lon\n52.1,5.2\n");
+  const std::string unknown = error_of("f.csv", "speed,heading\n1.1,5.2\n");
   EXPECT_NE(unknown.find("not a pose file in a known format (csv: "), std::string::npos) << unknown;
   EXPECT_NE(unknown.find("tum: "), std::string::npos);
+  EXPECT_NE(unknown.find("gnss: "), std::string::npos);
+  // Latitude and longitude without time: the GNSS reader names the header it needs.
+  const std::string untimed = error_of("f2.csv", "lat,lon\n52.1,5.2\n");
+  EXPECT_NE(untimed.find("expected the header timestamp,lat,lon"), std::string::npos) << untimed;
   const std::string no_z = error_of("g.csv", "timestamp,x,y\n1,2,3\n");
   EXPECT_NE(no_z.find("not a pose file"), std::string::npos) << no_z;  // needs 4 columns to be a pose CSV
   const std::string header_only = error_of("h.csv", "timestamp,x,y,z\n");

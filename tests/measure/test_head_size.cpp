@@ -129,6 +129,7 @@ TEST(HeadSize, DegenerateSetsFallBack) {
 
 TEST(HeadSize, SizerCorrectsAndDecidesHarvest) {
   HeadSizeConfig cfg;
+  cfg.estimator = "bbox";  // the default is the hull; both are checked
   cfg.bbox_scale = 1.1;
   cfg.bbox_offset_mm = -4.0;
   cfg.market_min_mm = 100;
@@ -162,6 +163,7 @@ TEST(HeadSize, OrganizedCloudSkipsHoles) {
   c.z = {0.8f, 0.79f, NAN, 0.81f};
   HeadSizeConfig cfg;
   cfg.min_points = 3;
+  cfg.estimator = "bbox";
   cfg.compute_hull = false;
   const auto s = HeadSizer(cfg).measure(c, {0, 1, 2, 3});
   EXPECT_TRUE(s.valid);

@@ -79,7 +79,10 @@ TEST(HeadMapper, SizesTracksAndRescores) {
       if (u >= 32 && u < 38 && v >= 32 && v < 38) fp.push_back(i);
     }
   HeadMapperConfig cfg;
-  ConfigMap m{{"sizing.compute_hull", "false"}, {"tracking.min_track_score", "3"}, {"detector.other", "1"}};
+  ConfigMap m{{"sizing.estimator", "bbox"},
+              {"sizing.compute_hull", "false"},
+              {"tracking.min_track_score", "3"},
+              {"detector.other", "1"}};
   cfg.apply(m, "test");
   EXPECT_FALSE(cfg.sizing.compute_hull);
   // Without recording (the ROS node's setting) the sizes, ids and map are the same and nothing
@@ -178,7 +181,8 @@ TEST(HeadMapper, PositionIsTheTopOfTheHead) {
   mean /= float(head.size());
   auto position = [&](const std::string& cap) {
     HeadMapperConfig cfg;
-    cfg.apply({{"sizing.compute_hull", "false"}, {"tracking.position_cap_m", cap}}, "test");
+    cfg.apply({{"sizing.estimator", "bbox"}, {"sizing.compute_hull", "false"}, {"tracking.position_cap_m", cap}},
+              "test");
     HeadMapper mapper(cfg);
     std::vector<Detection> d(1);
     d[0].indices = head;
@@ -260,7 +264,7 @@ TEST(HeadMapper, PredictsTheHeadsAFrameMissed) {
   };
   std::vector<PredictedHead> missed;
   std::vector<int> truth;
-  run({{"sizing.compute_hull", "false"}, {"tracking.use_poses", "true"}}, missed, truth);
+  run({{"sizing.estimator", "bbox"}, {"sizing.compute_hull", "false"}, {"tracking.use_poses", "true"}}, missed, truth);
   ASSERT_EQ(missed.size(), 1u);
   EXPECT_EQ(missed[0].track_id, 1);
   std::vector<int> common;
@@ -270,8 +274,11 @@ TEST(HeadMapper, PredictsTheHeadsAFrameMissed) {
   EXPECT_EQ(missed[0].indices.size(), truth.size()) << "no ground point is";
   EXPECT_GT(truth.size(), 100u);
 
-  run({{"sizing.compute_hull", "false"}, {"tracking.use_poses", "true"}, {"tracking.predict_missed", "false"}}, missed,
-      truth);
+  run({{"sizing.estimator", "bbox"},
+       {"sizing.compute_hull", "false"},
+       {"tracking.use_poses", "true"},
+       {"tracking.predict_missed", "false"}},
+      missed, truth);
   EXPECT_TRUE(missed.empty());
 
   HeadMapper mapper;

@@ -88,7 +88,9 @@ std::vector<TrackedHead> run(TemporalFilter& tf, const Scene& s, int frames,
 
 TEST(TemporalFilter, ConstantVelocityMapsEveryHeadOnce) {
   Scene s = row(6);
-  TemporalFilter tf;  // defaults: estimate x_c from the data, anchored at the first pose only
+  measure::HeadSizeConfig bbox;  // the sizes below are the bounding box's (the default is the hull)
+  bbox.estimator = "bbox";
+  TemporalFilter tf({}, measure::HeadSizer(bbox));  // estimate x_c from the data, anchored at the first pose only
   const auto map = run(tf, s, 40);
   ASSERT_EQ(map.size(), s.heads.size());
   const auto m = match(s, map, 1e-6 + 1e-4);

@@ -54,6 +54,15 @@ std::string format_number(T v) {
   o << v;
   return o.str();
 }
+/// A double as text that reads back to the same value (17 significant digits, classic locale):
+/// what a fitted value written into a config or a model file keeps.
+inline std::string exact_number(double v) {
+  std::ostringstream o;
+  o.imbue(std::locale::classic());
+  o.precision(17);
+  o << v;
+  return o.str();
+}
 }  // namespace detail
 
 /// The valid range of a numeric config field (see above): [lo, hi], either end open or infinite;

@@ -8,6 +8,9 @@
 //        qx, qy, qz, qw; other columns are ignored. Comma-separated.
 //   tum  TUM RGB-D benchmark trajectories: `t x y z qx qy qz qw` per line, separated by spaces,
 //        '#' comment lines.
+//   gnss a `timestamp,lat,lon[,alt]` CSV or an NMEA log (io/gnss_poses.hpp): the fixes in a local
+//        metric frame (origin at the first fix, x along the direction of travel), with the geo
+//        origin that ties it to WGS84.
 // Times are seconds on the clock of the recording's frames (file-name timestamps, bag stamps, or
 // index / fps); positions metres in the field (odometry) frame; orientation the camera's, a unit
 // quaternion (read and checked; poses.csv keeps positions only).
@@ -19,6 +22,8 @@
 #include <string_view>
 #include <vector>
 
+#include "cropsight/io/geo_origin.hpp"
+
 namespace cropsight::io {
 
 struct TimedPose {
@@ -28,8 +33,9 @@ struct TimedPose {
 };
 
 struct PoseTrack {
-  std::string format;            ///< the reader's name ("csv", "tum")
-  std::vector<TimedPose> poses;  ///< strictly increasing time
+  std::string format;                   ///< the reader's name ("csv", "tum", "gnss")
+  std::vector<TimedPose> poses;         ///< strictly increasing time
+  std::optional<GeoOrigin> geo_origin;  ///< gnss: where the positions' frame lies on the Earth
 };
 
 /// One pose file format. `accepts` looks at the file name and its first line that is neither

@@ -1,23 +1,10 @@
 #include "cropsight/pipeline/broccoli/size_calibration.hpp"
 
-#include <cstdio>
-
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/pipeline/broccoli/tracking_eval.hpp"
 
 namespace cropsight::pipeline::broccoli {
-
-namespace {
-
-// Shortest decimal that reads back to the same double, so that a model file's value is the fit.
-std::string exact(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
-}  // namespace
 
 SizeCorrection fit_size_correction(std::shared_ptr<const learning::Model> model, Config cfg,
                                    const std::vector<std::string>& sequences,
@@ -47,10 +34,10 @@ SizeCorrection fit_size_correction(std::shared_ptr<const learning::Model> model,
 }
 
 ConfigMap size_correction_values(const SizeCorrection& fit) {
-  return {{"sizing.hull_scale", exact(fit.hull.scale)},
-          {"sizing.hull_offset_mm", exact(fit.hull.offset_mm)},
-          {"sizing.bbox_scale", exact(fit.bbox.scale)},
-          {"sizing.bbox_offset_mm", exact(fit.bbox.offset_mm)},
+  return {{"sizing.hull_scale", detail::exact_number(fit.hull.scale)},
+          {"sizing.hull_offset_mm", detail::exact_number(fit.hull.offset_mm)},
+          {"sizing.bbox_scale", detail::exact_number(fit.bbox.scale)},
+          {"sizing.bbox_offset_mm", detail::exact_number(fit.bbox.offset_mm)},
           {"sizing.hull_max_points", std::to_string(fit.hull_max_points)}};
 }
 
