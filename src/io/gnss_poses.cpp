@@ -3,8 +3,8 @@
 
 #include <cmath>
 #include <cstdio>
-#include <optional>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "cropsight/core/error.hpp"
@@ -84,7 +84,8 @@ std::optional<double> nmea_time(const std::string& hhmmss) {
 // Days since 1970-01-01 of an RMC date "ddmmyy" (years 2000-2099).
 std::optional<long> nmea_days(const std::string& ddmmyy) {
   if (ddmmyy.size() != 6 || ddmmyy.find_first_not_of("0123456789") != std::string::npos) return std::nullopt;
-  const int d = std::stoi(ddmmyy.substr(0, 2)), m = std::stoi(ddmmyy.substr(2, 2)), y = 2000 + std::stoi(ddmmyy.substr(4));
+  const int d = std::stoi(ddmmyy.substr(0, 2)), m = std::stoi(ddmmyy.substr(2, 2)),
+            y = 2000 + std::stoi(ddmmyy.substr(4));
   // Howard Hinnant's days_from_civil.
   const int yy = y - (m <= 2), era = yy / 400, yoe = yy - era * 400;
   const int doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1, doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;

@@ -54,9 +54,9 @@ TEST(GnssPoses, NmeaGgaAndRmcWithChecksumsAndHemispheres) {
   std::string log = sentence("GPRMC,120000.00,A,5212.0000,N,00007.2000,W,0.6,45.0,071226,,,A");
   log += sentence("GPGGA,120000.00,5212.0000,N,00007.2000,W,4,12,0.8,15.5,M,45.1,M,,");
   log += sentence("GNGGA,120001.00,5212.0006,N,00007.2000,W,4,12,0.8,15.6,M,45.1,M,,");
-  log += sentence("GPGGA,120002.00,5212.0012,N,00007.2000,W,0,00,,,M,,M,,");  // no fix: skipped
+  log += sentence("GPGGA,120002.00,5212.0012,N,00007.2000,W,0,00,,,M,,M,,");           // no fix: skipped
   log += "$GPGGA,120003.00,5212.0018,N,00007.2000,W,4,12,0.8,15.7,M,45.1,M,,*00\r\n";  // bad checksum
-  log += sentence("GPGSV,3,1,12,01,40,083,46");                                       // ignored
+  log += sentence("GPGSV,3,1,12,01,40,083,46");                                        // ignored
   cropsight::testing::TempDir tmp;
   write_file_atomic(tmp / "pass.nmea", log);
   const auto fixes = read_gnss_fixes(tmp / "pass.nmea");

@@ -35,9 +35,9 @@ struct GnssFix {
 std::vector<GnssFix> read_gnss_fixes(const std::filesystem::path& path);
 
 struct LocalTrack {
-  GeoOrigin origin;                         ///< what geo_origin.yaml holds
-  std::vector<double> timestamps;           ///< seconds, as read
-  std::vector<Eigen::Vector3d> positions;   ///< field frame, metres
+  GeoOrigin origin;                        ///< what geo_origin.yaml holds
+  std::vector<double> timestamps;          ///< seconds, as read
+  std::vector<Eigen::Vector3d> positions;  ///< field frame, metres
 };
 
 /// The fixes in a local frame (see the top of this file). `field_x_azimuth_deg` overrides the
