@@ -4,7 +4,9 @@
 #   make demo    the five systems on built-in (simulated) data; prints the path of the HTML page.
 #                Builds only the CLI, what it needs and the libtorch plugin (not the tests,
 #                benchmarks or examples)
-#   make test    the test suite (ctest)
+#   make test    the test suite (ctest), but for `pip install .` from the checkout
+#   make test-pip    `pip install .` offline into a venv and the installed package run (minutes:
+#                a second CMake build of the library, tests/install/test_pip_install.sh)
 #   make build   build only (Release, portable flags)
 #   make bench   micro-benchmarks and end-to-end benchmarks
 #   make asan    ASan+UBSan build in build-asan/ and its tests
@@ -26,6 +28,8 @@ CMAKE_ARGS ?=
 # configured before keeps its generator (cmake refuses to switch one).
 GENERATOR  ?= $(if $(shell command -v ninja),Ninja,Unix Makefiles)
 CTEST_ARGS ?=
+# make test: test labels left out (pip: a second full build of the library, run by make test-pip).
+TEST_EXCLUDE ?= pip
 # make asan: the test executables to build (default: all); .ci/run names the fast modules' ones.
 ASAN_TARGETS ?=
 FUZZ_SECONDS ?= 15
@@ -37,7 +41,7 @@ FUZZ_SEED ?= 1
 export CCACHE_BASEDIR := $(CURDIR)
 export CCACHE_NOHASHDIR := 1
 
-.PHONY: all deps configure build test demo bench asan tsan fuzz format format-check clean install package
+.PHONY: all deps configure build test test-pip demo bench asan tsan fuzz format format-check clean install package
 
 all: build
 
@@ -56,7 +60,10 @@ test: build
 	@# The real grape clouds ship as an archive; unpack it to the user cache (idempotent) so the
 	@# data-driven grape tests run. Without ../shared/data they skip with a message.
 	@scripts/unpack-grape.sh >/dev/null 2>&1 || echo "grape archive not unpacked: the real-cloud grape tests will skip"
-	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
+	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) $(if $(TEST_EXCLUDE),-LE '$(TEST_EXCLUDE)') $(CTEST_ARGS)
+
+test-pip: build
+	cd $(BUILD) && ctest --output-on-failure -L pip $(CTEST_ARGS)
 
 # The demo runs the CLI alone (scripts/demo.sh), so it builds the `cropsight` target and its
 # dependencies, and the libtorch plugin that the grape chapter's network loads; `make test` /
