@@ -65,7 +65,8 @@ BagExportResult export_bag(const std::string& seq, const std::string& bag, const
 }
 
 BagImportResult import_bag(const std::string& bag, const std::string& out, const BagTopicOptions& topics,
-                           bool overwrite, const std::string& poses, double pose_tolerance_s) {
+                           bool overwrite, const std::string& poses, double pose_tolerance_s,
+                           const std::string& color_camera, const std::string& extrinsics) {
   ros_io::BagImportOptions o;
   o.bag = bag;
   o.out = out;
@@ -73,6 +74,8 @@ BagImportResult import_bag(const std::string& bag, const std::string& out, const
   o.overwrite = overwrite;
   o.poses = poses;
   o.pose_tolerance_s = pose_tolerance_s;
+  o.color_camera = color_camera;
+  o.extrinsics = extrinsics;
   const auto s = ros_io::import_bag_sequence(o);
   return {s.frames, s.color, s.unmatched_color, s.skipped_without_color, s.poses_format};
 }
@@ -87,7 +90,7 @@ BagExportResult export_bag(const std::string&, const std::string& bag, const Bag
   no_ros(bag);
 }
 BagImportResult import_bag(const std::string& bag, const std::string&, const BagTopicOptions&, bool, const std::string&,
-                           double) {
+                           double, const std::string&, const std::string&) {
   no_ros(bag);
 }
 #endif

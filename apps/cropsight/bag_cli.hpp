@@ -67,8 +67,10 @@ struct BagImportResult {
   int skipped_without_color = 0;
   std::string poses_format;  ///< "" without a pose file
 };
-/// `poses` (may be empty): a pose file joined to the depth stamps within `pose_tolerance_s`.
+/// `poses` (may be empty): a pose file joined to the depth stamps within `pose_tolerance_s`;
+/// `color_camera` and `extrinsics` (both or neither): colour of another size registered to depth.
 BagImportResult import_bag(const std::string& bag, const std::string& out, const BagTopicOptions& topics,
-                           bool overwrite, const std::string& poses = "", double pose_tolerance_s = 0.05);
+                           bool overwrite, const std::string& poses = "", double pose_tolerance_s = 0.05,
+                           const std::string& color_camera = "", const std::string& extrinsics = "");
 
 }  // namespace cropsight::cli

@@ -20,13 +20,11 @@ struct ImportCliOptions {
 
 // A ROS bag: depth, camera_info and colour topics.
 void run_bag(const ImportCliOptions& o) {
-  if (!o.io.depth_dir.empty() || !o.io.pcd_dir.empty() || !o.io.camera_yaml.empty() || !o.io.color_camera.empty() ||
-      !o.io.timestamps.empty())
+  if (!o.io.depth_dir.empty() || !o.io.pcd_dir.empty() || !o.io.camera_yaml.empty() || !o.io.timestamps.empty())
     throw Error("--data",
-                "reads depth and camera info from the bag: leave out --depth, --pcd, --camera, "
-                "--color-camera and --timestamps");
-  const BagImportResult r =
-      import_bag(o.bag, o.io.out.string(), o.topics, o.io.overwrite, o.io.poses.string(), o.io.pose_tolerance_s);
+                "reads depth and camera info from the bag: leave out --depth, --pcd, --camera and --timestamps");
+  const BagImportResult r = import_bag(o.bag, o.io.out.string(), o.topics, o.io.overwrite, o.io.poses.string(),
+                                       o.io.pose_tolerance_s, o.io.color_camera.string(), o.io.extrinsics.string());
   if (o.json) {
     print_json({{"out", o.io.out.string()},
                 {"frames", r.frames},

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -13,8 +14,10 @@
 #include "bag_check.hpp"
 #include "cropsight/bridge/sequence_io.hpp"
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/color_registration.hpp"
 #include "cropsight/io/output.hpp"
 #include "cropsight/io/pose_track.hpp"
+#include "cropsight/io/sequence.hpp"
 #include "ros_conversions.hpp"
 
 namespace fs = std::filesystem;
@@ -177,6 +180,29 @@ BagIndex index_bag(rosbag::View& view, const BagImportOptions& o) {
 
 // The second pass: frames complete (depth, and colour when the sequence has it) are written in
 // stamp order as soon as they are; what waits is only what a bag's interleaving holds back.
+static_assert(sizeof(Rgb8) == 3, "ColorImage pixels are copied as packed R G B bytes");
+
+// A colour camera of another size than depth and where it sits (BagImportOptions::color_camera,
+// ::extrinsics): each colour image is resampled onto the depth pixels (io::register_color).
+struct ColourRegistration {
+  CameraIntrinsics color_camera;
+  io::DepthToColor extrinsics;
+};
+
+std::optional<ColourRegistration> colour_registration(const BagImportOptions& o) {
+  if (o.color_camera.empty() != o.extrinsics.empty())
+    throw Error(o.color_camera.empty() ? "--extrinsics" : "--color-camera",
+                "registering colour needs both --color-camera and --extrinsics");
+  if (o.color_camera.empty()) return std::nullopt;
+  return ColourRegistration{io::read_camera_yaml(o.color_camera), io::read_extrinsics_yaml(o.extrinsics)};
+}
+
+bridge::CameraModel camera_model(const CameraIntrinsics& c) {
+  bridge::CameraModel m;
+  m.width = c.width, m.height = c.height, m.fx = c.fx, m.fy = c.fy, m.cx = c.cx, m.cy = c.cy;
+  return m;
+}
+
 class FrameStream {
  public:
   FrameStream(const BagImportOptions& o, const BagIndex& x, const bridge::CameraModel& cam,
@@ -184,6 +210,7 @@ class FrameStream {
       : o_(o),
         x_(x),
         cam_(cam),
+        registration_(colour_registration(o)),
         frames_(std::move(frames)),
         positions_(std::move(positions)),
         sink_(o.out, cam, o.overwrite) {
@@ -237,7 +264,9 @@ class FrameStream {
     f.timestamp = t.toSec() - o_.start_s;
     f.camera = cam_;
     f.depth = depth_from_image(*p.depth, cam_, o_.bag + " " + o_.topics.depth);
-    if (p.color) f.rgb = rgb_from_image(*p.color, cam_, o_.bag + " " + o_.topics.color);
+    if (p.color)
+      f.rgb =
+          registration_ ? registered_rgb(*p.color, f) : rgb_from_image(*p.color, cam_, o_.bag + " " + o_.topics.color);
     if (!positions_.empty()) {
       f.has_camera_position = true;
       for (int c = 0; c < 3; ++c) f.camera_position[c] = positions_[std::size_t(next_)][c];
@@ -254,9 +283,27 @@ class FrameStream {
     sink_.write(f);
   }
 
+  // The colour image at its own size, resampled onto this frame's depth pixels.
+  std::vector<std::uint8_t> registered_rgb(const sensor_msgs::Image& color, const bridge::FrameBuffers& f) const {
+    const CameraIntrinsics& cc = registration_->color_camera;
+    const std::vector<std::uint8_t> rgb = rgb_from_image(color, camera_model(cc), o_.bag + " " + o_.topics.color);
+    ColorImage colour(cc.width, cc.height);
+    std::memcpy(colour.data.data(), rgb.data(), rgb.size());
+    DepthImage depth(cam_.width, cam_.height);
+    depth.data = f.depth;
+    CameraIntrinsics dc;
+    dc.width = cam_.width, dc.height = cam_.height, dc.fx = cam_.fx, dc.fy = cam_.fy, dc.cx = cam_.cx, dc.cy = cam_.cy;
+    dc.depth_scale = cam_.depth_scale;
+    const ColorImage registered = io::register_color(depth, dc, colour, cc, registration_->extrinsics);
+    std::vector<std::uint8_t> out(3 * registered.data.size());
+    std::memcpy(out.data(), registered.data.data(), out.size());
+    return out;
+  }
+
   const BagImportOptions& o_;
   const BagIndex& x_;
   bridge::CameraModel cam_;
+  std::optional<ColourRegistration> registration_;
   std::vector<ros::Time> frames_;
   std::vector<Eigen::Vector3d> positions_;  // from --poses, one per frame; empty: /tf's
   std::map<ros::Time, int> index_of_;

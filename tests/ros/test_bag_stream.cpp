@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cropsight/bridge/sequence_io.hpp"
+#include "cropsight/core/error.hpp"
 #include "cropsight_ros/bag_io.hpp"
 #include "ros_test_support.hpp"
 
@@ -112,6 +113,82 @@ TEST(BagStream, PoseFileJoinedToTheStamps) {
   const std::string error = ros_test::error_of([&] { import_bag_sequence(o); });
   EXPECT_NE(error.find("short.tum: no pose within 0.05 s of frame 1"), std::string::npos) << error;
   EXPECT_FALSE(fs::exists(d / "none"));
+}
+
+}  // namespace
+}  // namespace cropsight::ros_io
+
+namespace cropsight::ros_io {
+namespace {
+
+// Copies `in` to `out` with every colour image twice the size (each pixel a 2x2 block): a colour
+// stream of another resolution than depth, as unaligned drivers publish.
+void double_colour_size(const fs::path& in, const fs::path& out) {
+  rosbag::Bag src(in.string(), rosbag::bagmode::Read), dst(out.string(), rosbag::bagmode::Write);
+  const BagTopics topics;
+  for (const rosbag::MessageInstance& m : rosbag::View(src)) {
+    if (m.getTopic() != topics.color) {
+      dst.write(m.getTopic(), m.getTime(), m);
+      continue;
+    }
+    const auto im = m.instantiate<sensor_msgs::Image>();
+    sensor_msgs::Image big = *im;
+    big.width = 2 * im->width;
+    big.height = 2 * im->height;
+    big.step = 3 * big.width;
+    big.data.assign(std::size_t(big.step) * big.height, 0);
+    for (std::uint32_t v = 0; v < big.height; ++v)
+      for (std::uint32_t u = 0; u < big.width; ++u)
+        for (int c = 0; c < 3; ++c)
+          big.data[std::size_t(v) * big.step + 3 * u + std::size_t(c)] =
+              im->data[std::size_t(v / 2) * im->step + 3 * (u / 2) + std::size_t(c)];
+    dst.write(m.getTopic(), m.getTime(), big);
+  }
+  dst.close();
+}
+
+// Colour of another size, registered with --color-camera and --extrinsics: a colour camera at the
+// depth camera's place with twice its focal length sees each depth pixel in a 2x2 block of the
+// same colour, so registration gives back the original colour on every pixel with depth.
+TEST(BagStream, ColourOfAnotherSizeIsRegisteredToDepth) {
+  const fs::path d = ros_test::scratch_dir("bag_registration");
+  ASSERT_EQ(ros_test::run(ros_test::cli() + " simulate broccoli --frames 3 --out " + (d / "sim").string() +
+                          " > /dev/null 2>&1"),
+            0);
+  ASSERT_EQ(ros_test::run(ros_test::cli() + " export --data " + (d / "sim").string() + " --out " +
+                          (d / "full.bag").string() + " > /dev/null"),
+            0);
+  double_colour_size(d / "full.bag", d / "big.bag");
+  bridge::SequenceSource sim((d / "sim").string());
+  const bridge::CameraModel c = sim.read(0).camera;
+  std::ofstream(d / "color.yaml") << "width: " << 2 * c.width << "\nheight: " << 2 * c.height << "\nfx: " << 2 * c.fx
+                                  << "\nfy: " << 2 * c.fy << "\ncx: " << 2 * c.cx + 0.5 << "\ncy: " << 2 * c.cy + 0.5
+                                  << "\ndepth_scale: " << c.depth_scale << "\n";
+  std::ofstream(d / "extrinsics.yaml")
+      << "depth_to_color:\n  rotation: [1, 0, 0, 0, 1, 0, 0, 0, 1]\n  translation: [0, 0, 0]\n";
+  BagImportOptions o;
+  o.bag = (d / "big.bag").string();
+  o.out = (d / "unregistered").string();
+  EXPECT_THROW(import_bag_sequence(o), Error);  // colour of another size without its camera
+  EXPECT_FALSE(fs::exists(o.out));
+  o.out = (d / "registered").string();
+  o.color_camera = (d / "color.yaml").string();
+  o.extrinsics = (d / "extrinsics.yaml").string();
+  ASSERT_EQ(import_bag_sequence(o).frames, 3);
+  bridge::SequenceSource back(o.out);
+  for (int k = 0; k < 3; ++k) {
+    const auto a = sim.read(k), b = back.read(k);
+    ASSERT_EQ(b.rgb.size(), a.rgb.size());
+    long compared = 0, equal = 0;
+    for (std::size_t i = 0; i < a.depth.size(); ++i) {
+      if (a.depth[i] == 0) continue;
+      ++compared;
+      equal +=
+          b.rgb[3 * i] == a.rgb[3 * i] && b.rgb[3 * i + 1] == a.rgb[3 * i + 1] && b.rgb[3 * i + 2] == a.rgb[3 * i + 2];
+    }
+    EXPECT_GT(compared, 0);
+    EXPECT_EQ(equal, compared) << "frame " << k;
+  }
 }
 
 }  // namespace

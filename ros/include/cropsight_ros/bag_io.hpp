@@ -55,6 +55,10 @@ struct BagImportOptions {
   /// the /tf poses; empty: the bag's /tf.
   std::string poses;
   double pose_tolerance_s = 0.05;  ///< a frame's pose must lie within this of its stamp
+  /// Colour of another size than depth (unaligned streams): its intrinsics (camera.yaml or ROS
+  /// camera_info YAML) and the depth-to-colour extrinsics YAML (cropsight/io/color_registration.hpp);
+  /// both or neither. Each colour image is then registered to its depth frame.
+  std::string color_camera, extrinsics;
 };
 
 struct BagImportSummary {
