@@ -261,7 +261,8 @@ class FrameStream {
     const ros::Time t = frames_[std::size_t(next_)];
     bridge::FrameBuffers f;
     f.index = next_;
-    f.timestamp = t.toSec() - o_.start_s;
+    // From the first frame, as a folder import counts: a robot's bag stamps are Unix times.
+    f.timestamp = (t - frames_.front()).toSec();
     f.camera = cam_;
     f.depth = depth_from_image(*p.depth, cam_, o_.bag + " " + o_.topics.depth);
     if (p.color)

@@ -3,7 +3,8 @@
 // with standard types only, so that the C++20 CLI calls it without seeing a ROS header.
 //
 // A bag holds per frame, all stamped with the frame's time (timestamp, or index / fps when the
-// sequence has no timestamps; ROS time 0 is not allowed in a bag, so stamps start at `start_s`):
+// sequence has no timestamps; ROS time 0 is not allowed in a bag, so stamps start at `start_s`).
+// Imported frames are timed from the first depth frame's stamp, as folder imports are:
 //   depth        sensor_msgs/Image 16UC1 (the raw sensor units; REP 118's millimetres when
 //                depth_scale = 0.001 — any other scale is refused, as no ROS field carries it)
 //   camera_info  sensor_msgs/CameraInfo (K, plumb_bob D, size) of the depth image
@@ -48,7 +49,6 @@ struct BagImportOptions {
   std::string bag;  ///< input .bag
   std::string out;  ///< output sequence folder (written whole through a temporary sibling)
   BagTopics topics;
-  double start_s = 1.0;  ///< subtracted from the stamps to give the frames' timestamps
   bool overwrite = false;
   double max_skew_s = 0.005;  ///< colour is matched to the depth frame whose stamp is within this
   /// A pose file (CSV or TUM, cropsight/io/pose_track.hpp) joined to the depth stamps, in place of
