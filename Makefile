@@ -29,7 +29,7 @@ CMAKE_ARGS ?=
 GENERATOR  ?= $(if $(shell command -v ninja),Ninja,Unix Makefiles)
 CTEST_ARGS ?=
 # make test: test labels left out (pip: a second full build of the library, run by make test-pip).
-TEST_EXCLUDE ?= pip
+TEST_EXCLUDE ?= ^pip$$
 # make asan: the test executables to build (default: all); .ci/run names the fast modules' ones.
 ASAN_TARGETS ?=
 FUZZ_SECONDS ?= 15
@@ -63,7 +63,7 @@ test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) $(if $(TEST_EXCLUDE),-LE '$(TEST_EXCLUDE)') $(CTEST_ARGS)
 
 test-pip: build
-	cd $(BUILD) && ctest --output-on-failure -L pip $(CTEST_ARGS)
+	cd $(BUILD) && ctest --output-on-failure -L '^pip$$' $(CTEST_ARGS)
 
 # The demo runs the CLI alone (scripts/demo.sh), so it builds the `cropsight` target and its
 # dependencies, and the libtorch plugin that the grape chapter's network loads; `make test` /
