@@ -11,6 +11,7 @@
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/pipeline/broccoli/make_pipeline.hpp"
+#include "io/yaml_file.hpp"
 
 namespace cropsight::batch {
 
@@ -128,11 +129,7 @@ Manifest read_manifest(const fs::path& file) {
   ManifestYaml y;
   y.where = file.string();
   y.folder = fs::absolute(file).parent_path();
-  try {
-    y.root = YAML::Load(io::read_file(file));
-  } catch (const YAML::Exception& e) {
-    throw Error(y.where, "malformed YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
-  }
+  y.root = io::detail::load_yaml_file(file);
   if (!y.root.IsMap()) throw Error(y.where, "expected a YAML mapping with 'recordings' and 'pipeline'");
   y.check_keys(y.root, "manifest", {"recordings", "pipeline", "shards", "slurm"});
   Manifest m;

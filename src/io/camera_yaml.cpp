@@ -8,6 +8,7 @@
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "number_text.hpp"
+#include "yaml_file.hpp"
 #include "yaml_key.hpp"
 
 namespace cropsight::io {
@@ -56,13 +57,7 @@ std::string quote(const std::string& s) {
 
 CameraIntrinsics read_camera_yaml(const fs::path& path) {
   const std::string where = path.string();
-  const std::string text = read_file(path);  // Error(path, "file not found") when absent
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw Error(where, "malformed YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
-  }
+  const YAML::Node root = detail::load_yaml_file(path);  // Error(path, "file not found") when absent
   if (root.IsMap())
     for (const auto& kv : root) detail::yaml_key(kv.first, where);  // a list or mapping as a key is an error
   const detail::CameraFileKind kind = detail::camera_file_kind(root);

@@ -11,6 +11,7 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #include "number_text.hpp"
+#include "yaml_file.hpp"
 #include "yaml_key.hpp"
 
 namespace cropsight::io {
@@ -55,13 +56,7 @@ Eigen::Vector2d project_distorted(const CameraIntrinsics& c, const Eigen::Vector
 
 DepthToColor read_extrinsics_yaml(const fs::path& path) {
   const std::string where = path.string();
-  const std::string text = read_file(path);
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw Error(where, "malformed YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
-  }
+  const YAML::Node root = detail::load_yaml_file(path);
   const bool forward = root.IsMap() && root["depth_to_color"];
   const bool inverse = root.IsMap() && root["color_to_depth"];
   if (forward == inverse)

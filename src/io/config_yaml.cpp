@@ -8,6 +8,7 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/install_paths.hpp"
 #include "cropsight/io/files.hpp"
+#include "yaml_file.hpp"
 #include "yaml_key.hpp"
 
 namespace cropsight::io {
@@ -56,13 +57,7 @@ std::string looked_in(const std::vector<fs::path>& roots) {
 }  // namespace
 
 ConfigMap load_config_map(const fs::path& path) {
-  const std::string text = read_file(path);
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw Error(path.string(), "malformed YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
-  }
+  const YAML::Node root = detail::load_yaml_file(path);
   if (!root.IsMap() && !root.IsNull()) throw Error(path.string(), "expected a YAML mapping at the top level");
   ConfigMap out;
   flatten(root, "", out, path);

@@ -11,6 +11,7 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #include "number_text.hpp"
+#include "yaml_file.hpp"
 #include "yaml_key.hpp"
 
 namespace cropsight::io {
@@ -48,13 +49,7 @@ void GeoOrigin::validate(const std::string& where) const {
 
 GeoOrigin read_geo_origin(const fs::path& path) {
   const std::string where = path.string();
-  const std::string text = read_file(path);
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw Error(where, "malformed YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
-  }
+  const YAML::Node root = detail::load_yaml_file(path);
   if (!root.IsMap()) throw Error(where, "expected a YAML mapping with latitude_deg and longitude_deg");
   static const std::set<std::string> known = {"latitude_deg", "longitude_deg", "altitude_m", "field_x_azimuth_deg"};
   std::set<std::string> seen;
