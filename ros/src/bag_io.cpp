@@ -6,12 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <map>
 #include <optional>
 
 #include "bag_check.hpp"
+#include "bridge/frame_conversion.hpp"
 #include "cropsight/bridge/sequence_io.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/color_registration.hpp"
@@ -180,8 +180,6 @@ BagIndex index_bag(rosbag::View& view, const BagImportOptions& o) {
 
 // The second pass: frames complete (depth, and colour when the sequence has it) are written in
 // stamp order as soon as they are; what waits is only what a bag's interleaving holds back.
-static_assert(sizeof(Rgb8) == 3, "ColorImage pixels are copied as packed R G B bytes");
-
 // A colour camera of another size than depth and where it sits (BagImportOptions::color_camera,
 // ::extrinsics): each colour image is resampled onto the depth pixels (io::register_color).
 struct ColourRegistration {
@@ -195,12 +193,6 @@ std::optional<ColourRegistration> colour_registration(const BagImportOptions& o)
                 "registering colour needs both --color-camera and --extrinsics");
   if (o.color_camera.empty()) return std::nullopt;
   return ColourRegistration{io::read_camera_yaml(o.color_camera), io::read_extrinsics_yaml(o.extrinsics)};
-}
-
-bridge::CameraModel camera_model(const CameraIntrinsics& c) {
-  bridge::CameraModel m;
-  m.width = c.width, m.height = c.height, m.fx = c.fx, m.fy = c.fy, m.cx = c.cx, m.cy = c.cy;
-  return m;
 }
 
 class FrameStream {
@@ -287,18 +279,10 @@ class FrameStream {
   // The colour image at its own size, resampled onto this frame's depth pixels.
   std::vector<std::uint8_t> registered_rgb(const sensor_msgs::Image& color, const bridge::FrameBuffers& f) const {
     const CameraIntrinsics& cc = registration_->color_camera;
-    const std::vector<std::uint8_t> rgb = rgb_from_image(color, camera_model(cc), o_.bag + " " + o_.topics.color);
-    ColorImage colour(cc.width, cc.height);
-    std::memcpy(colour.data.data(), rgb.data(), rgb.size());
-    DepthImage depth(cam_.width, cam_.height);
-    depth.data = f.depth;
-    CameraIntrinsics dc;
-    dc.width = cam_.width, dc.height = cam_.height, dc.fx = cam_.fx, dc.fy = cam_.fy, dc.cx = cam_.cx, dc.cy = cam_.cy;
-    dc.depth_scale = cam_.depth_scale;
-    const ColorImage registered = io::register_color(depth, dc, colour, cc, registration_->extrinsics);
-    std::vector<std::uint8_t> out(3 * registered.data.size());
-    std::memcpy(out.data(), registered.data.data(), out.size());
-    return out;
+    const ColorImage colour = bridge::color_from_rgb(
+        rgb_from_image(color, bridge::to_camera_model(cc), o_.bag + " " + o_.topics.color), cc.width, cc.height);
+    const RgbdFrame depth = bridge::to_rgbd_frame(f);  // f has no colour yet: depth and its camera
+    return bridge::rgb_from_color(io::register_color(depth.depth, depth.camera, colour, cc, registration_->extrinsics));
   }
 
   const BagImportOptions& o_;
