@@ -101,7 +101,8 @@ std::vector<GnssFix> read_nmea(const std::string& text, const std::string& where
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.size() < 7 || !checksum_ok(line)) continue;
     const auto f = split(line.substr(0, line.find('*')), ',');
-    const std::string type = f[0].substr(3);
+    // "$GPGGA" → "GGA"; a talker field too short to hold a type is no sentence we read.
+    const std::string type = f[0].size() == 6 ? f[0].substr(3) : std::string();
     if (type == "GGA" && f.size() >= 10 && f[6] != "0" && !f[6].empty()) {
       const auto t = nmea_time(f[1]);
       const auto lat = nmea_angle(f[2], f[3], 4), lon = nmea_angle(f[4], f[5], 5);
