@@ -118,7 +118,8 @@ void check_crop_pipeline(const std::string& crop, const pipeline::PipelineSpec& 
   if (pipeline::grape::make_pipeline(spec)->has_detector()) return;
   for (const fs::path& r : recordings) {
     const fs::path boxes = r / "detections.json";
-    if (!fs::is_regular_file(boxes))
+    std::error_code ec;
+    if (!fs::is_regular_file(boxes, ec))
       throw Error(boxes.string(), "missing: a grape batch without pipeline.detector reads each recording's boxes here");
     pipeline::grape::read_coco_detections(boxes);  // parses it whole: a bad file fails before submission
   }

@@ -20,14 +20,16 @@ void set_crop(Manifest& m, const std::string& where, const std::string& crop) {
 std::string file_or_name(const fs::path& folder, const std::string& value) {
   if (value.empty()) return value;
   const fs::path p = fs::path(value).is_absolute() ? fs::path(value) : folder / value;
-  return fs::is_regular_file(p) ? fs::absolute(p).lexically_normal().string() : value;
+  std::error_code ec;  // a name too long for a path is a shipped name to look up, not a crash
+  return fs::is_regular_file(p, ec) ? p.lexically_normal().string() : value;
 }
 
 void add_recording(Manifest& m, const std::string& where, const std::string& text, const fs::path& folder) {
   if (text.empty()) throw Error(where, "a recording is an empty path");
   const fs::path rel = text;
-  const fs::path path = fs::absolute(rel.is_absolute() ? rel : folder / rel).lexically_normal();
-  if (!fs::is_directory(path))
+  std::error_code ec;
+  const fs::path path = fs::absolute(rel.is_absolute() ? rel : folder / rel, ec).lexically_normal();
+  if (ec || !fs::is_directory(path, ec))
     throw Error(where,
                 "recording " + text + " is not a folder" +
                     (path.extension() == ".bag" ? " (import a bag first: cropsight import --data BAG --out SEQ)" : ""));

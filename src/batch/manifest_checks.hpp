@@ -11,8 +11,8 @@ namespace cropsight::batch::detail {
 /// Sets m.crop; Error(where, ...) when empty or not a crop batches run.
 void set_crop(Manifest& m, const std::string& where, const std::string& crop);
 
-/// A model, preset or detector as written in a manifest in `folder`: a file (relative to the
-/// manifest or absolute) becomes absolute; anything else (a shipped name) stays as written.
+/// A model, preset or detector as written in a manifest in `folder` (absolute): a file (relative
+/// to the manifest or absolute) becomes absolute; anything else (a shipped name) stays as written.
 std::string file_or_name(const std::filesystem::path& folder, const std::string& value);
 
 /// Adds the recording `text` (relative to `folder` or absolute) to m.recordings after opening it
