@@ -311,8 +311,11 @@ class IntegralRing {
  public:
   IntegralRing(std::vector<double>& storage, int w, int S, const float* X, const float* Y, const float* Z)
       : w_(w), ring_(S + 2), row_len_(std::size_t(w + 1) * kCell), X_(X), Y_(Y), Z_(Z) {
-    storage.assign(row_len_ * ring_, 0.0);
+    // Only I(0) must start as zeros: build_row() writes every cell of the other slots before
+    // they are read, so the rest of the buffer keeps what the last frame left in it.
+    storage.resize(row_len_ * ring_);
     data_ = storage.data();
+    std::fill(data_, data_ + row_len_, 0.0);
   }
   const double* row(int r) const { return data_ + std::size_t(r % ring_) * row_len_; }
   // Builds I(built) .. I(r_last).
