@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "core/cpu_dispatch.hpp"
@@ -118,11 +119,12 @@ CROPSIGHT_AVX2_CLONES void block_bins(int n, const Points& p, Block& b, const Fr
 }
 
 // The usable points of `indices` (finite position and normal), in index order, as planes of
-// `buf`; returns them and their count.
-std::size_t gather_usable(const OrganizedCloud& c, std::span<const int> indices, std::vector<float>& buf, Points& p) {
+// `buf` (6 planes of indices.size() floats); returns their count.
+std::size_t gather_usable(const OrganizedCloud& c, std::span<const int> indices, std::unique_ptr<float[]>& buf,
+                          Points& p) {
   const std::size_t cap = indices.size();
-  buf.resize(6 * cap);
-  float* x = buf.data();
+  buf = std::make_unique_for_overwrite<float[]>(6 * cap);  // not zeroed: every read entry is written first
+  float* x = buf.get();
   float *y = x + cap, *z = y + cap, *nx = z + cap, *ny = nx + cap, *nz = ny + cap;
   const float *X = c.x.data(), *Y = c.y.data(), *Z = c.z.data();
   const float *NX = c.nx.data(), *NY = c.ny.data(), *NZ = c.nz.data();
@@ -156,7 +158,7 @@ void counts_to_bins(const int* count, int bins, float inc, std::vector<float>& s
 void compute_vfh(const OrganizedCloud& cloud, std::span<const int> indices, const VfhConfig& cfg, float* out) {
   std::fill(out, out + kVfhBins, 0.0f);
   if (!cloud.has_normals()) return;
-  std::vector<float> buf;
+  std::unique_ptr<float[]> buf;
   Points p;
   const std::size_t n = gather_usable(cloud, indices, buf, p);
   if (n < 2) return;
