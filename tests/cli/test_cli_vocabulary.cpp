@@ -75,7 +75,7 @@ TEST(CliVocabulary, EveryCommandFollowsTheConventions) {
   // Commands that print progress lines on stderr: each can be silenced with --quiet.
   const std::set<std::string> with_progress = {"simulate broccoli", "simulate potato", "simulate seedling",
                                                "detect broccoli",   "eval broccoli",   "train broccoli",
-                                               "eval seedling",     "harvest potato",  "report",
+                                               "eval seedling",     "harvest potato",  "report",            "suggest",
                                                "train grape",       "train detector",  "bench potato"};
   std::string problems;
   for (const std::string& name : with_progress)
