@@ -24,17 +24,32 @@ import sys
 
 CS = os.environ.get("CROPSIGHT", "build/bin/cropsight")
 
-# The description the held-back generator was drawn to (docs/experiments/2026-12-06-broccoli-split-
-# accepted-field-maps.md, "ia" / "ib"), with seeds used nowhere else.
-COMMON = ["randomize.leaf_family_weights=[0,1,0]", "randomize.head_diameter_mm=[55,165]",
-          "randomize.stereo_prob=0", "randomize.sunlight_prob=0"]
+# A field kind is what a farm's own fields share: one variety, one rig, one soil. Every
+# randomize.* range of `--variety random-wide` is pinned to one value (head sizes to a window), so
+# that the kind's passes differ only in their plants' layout, size and leaves drawn within it. The
+# values lie in random-wide's ranges and are no preset's; no seed here trains or tunes a shipped model.
+def pinned(values):
+    return [f"randomize.{k}=[{v},{v}]" if not isinstance(v, list) else f"randomize.{k}=[{v[0]},{v[1]}]"
+            for k, v in values.items()] + ["randomize.stereo_prob=0", "randomize.sunlight_prob=0"]
+
+
 KINDS = {
-    "two rows, 1.25 m": {"sets": ["randomize.camera_height_m=[1.25,1.25]", "randomize.one_row_prob=0",
-                                  "randomize.inner_leaves=[1,3]"] + COMMON,
-                         "pools": [8501, 8502], "tests": [8511, 8512, 8513, 8514]},
-    "one row, 1.40 m": {"sets": ["randomize.camera_height_m=[1.40,1.40]", "randomize.one_row_prob=1",
-                                 "randomize.inner_leaves=[3,6]"] + COMMON,
-                        "pools": [8521, 8522], "tests": [8531, 8532, 8533, 8534]},
+    "A: broad leaves, two rows, 1.25 m": {"sets": pinned({
+        "camera_height_m": 1.25, "camera_tilt_deg": 2, "row_spacing_m": 0.75, "in_row_spacing_m": 0.38,
+        "leaf_count": 10, "leaf_length_m": 0.38, "leaf_elevation_deg": 50,
+        "leaf_droop_deg": 45, "leaf_ruffle_m": 0.01, "plant_height_m": 0.62, "head_diameter_mm": [55, 165],
+        "head_dome_ratio": 0.6, "floret_ratio": 0.12, "floret_height": 0.4, "head_below_canopy_m": 0.12,
+        "inner_leaves": 2, "soil_roughness_m": 0.01, "clod_density_m2": 40, "weed_density_m2": 5,
+        "tof_noise_at_1m_m": 0.003, "tof_flying_prob": 0.5, "tof_amplitude_min": 0.08, "random_dropout": 0.01})
+        + ["randomize.one_row_prob=0", "randomize.leaf_family_weights=[0,1,0]"], "pools": [8501, 8502], "tests": [8511, 8512, 8513, 8514]},
+    "B: pointed leaves, one row, 1.40 m": {"sets": pinned({
+        "camera_height_m": 1.40, "camera_tilt_deg": 4, "row_spacing_m": 0.9, "in_row_spacing_m": 0.30,
+        "leaf_count": 14, "leaf_length_m": 0.45, "leaf_elevation_deg": 60,
+        "leaf_droop_deg": 30, "leaf_ruffle_m": 0.02, "plant_height_m": 0.70, "head_diameter_mm": [70, 180],
+        "head_dome_ratio": 0.45, "floret_ratio": 0.2, "floret_height": 0.7, "head_below_canopy_m": 0.18,
+        "inner_leaves": 4, "soil_roughness_m": 0.02, "clod_density_m2": 100, "weed_density_m2": 20,
+        "tof_noise_at_1m_m": 0.005, "tof_flying_prob": 0.7, "tof_amplitude_min": 0.12, "random_dropout": 0.02})
+        + ["randomize.one_row_prob=1", "randomize.leaf_family_weights=[1,0,0]"], "pools": [8521, 8522], "tests": [8531, 8532, 8533, 8534]},
 }
 POOL_FRAMES, TEST_FRAMES, NS = 40, 30, [5, 10, 20]
 

@@ -10,6 +10,7 @@
 
 #include "cli_common.hpp"
 #include "cropsight/learning/grid_search.hpp"
+#include "cropsight/pipeline/broccoli/config.hpp"
 #include "cropsight/pipeline/broccoli/training.hpp"
 
 namespace cropsight::cli::train_broccoli_cmd {
