@@ -88,6 +88,29 @@ double cvat_number(const tinyxml2::XMLElement* e, const char* name, const std::s
   return *v;
 }
 
+// Whether `s` is well-formed UTF-8 (XML text must be; tinyxml2 does not check, and the names go on
+// into JSON, which must be).
+bool valid_utf8(const std::string& s) {
+  for (std::size_t i = 0; i < s.size();) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    const int extra = c < 0x80 ? 0 : (c >> 5) == 0x6 ? 1 : (c >> 4) == 0xE ? 2 : (c >> 3) == 0x1E ? 3 : -1;
+    if (extra < 0 || (extra > 0 && i + std::size_t(extra) >= s.size())) return false;
+    for (int k = 1; k <= extra; ++k)
+      if ((static_cast<unsigned char>(s[i + std::size_t(k)]) >> 6) != 0x2) return false;
+    i += std::size_t(extra) + 1;
+  }
+  return true;
+}
+
+// A text attribute of a CVAT element: present, well-formed UTF-8.
+std::string cvat_text(const tinyxml2::XMLElement* e, const char* name, const std::string& file,
+                      const std::string& what) {
+  const char* text = e->Attribute(name);
+  if (!text || !*text) throw Error(file, what + ": no " + name + " attribute");
+  if (!valid_utf8(text)) throw Error(file, what + ": attribute " + name + " is not UTF-8");
+  return text;
+}
+
 void note_class(LabelSet& set, const std::string& label) {
   if (std::find(set.classes.begin(), set.classes.end(), label) == set.classes.end()) set.classes.push_back(label);
 }
@@ -228,16 +251,16 @@ LabelSet read_cvat_labels(const fs::path& path) {
   int index = 0;
   for (const auto* im = root->FirstChildElement("image"); im; im = im->NextSiblingElement("image"), ++index) {
     const std::string what = "image " + std::to_string(index);
-    const char* name = im->Attribute("name");
-    if (!name) throw Error(file, what + ": no name attribute");
-    ImageLabels image{name, int(cvat_number(im, "width", file, what)), int(cvat_number(im, "height", file, what)), {}};
-    if (image.width <= 0 || image.height <= 0) throw Error(file, what + ": width and height must be positive");
+    const double width = cvat_number(im, "width", file, what), height = cvat_number(im, "height", file, what);
+    if (!(width >= 1 && width <= 1e6 && height >= 1 && height <= 1e6) || width != std::floor(width) ||
+        height != std::floor(height))
+      throw Error(file, what + ": width and height must be whole numbers of pixels in 1..1000000");
+    ImageLabels image{cvat_text(im, "name", file, what), int(width), int(height), {}};
     for (const auto* e = im->FirstChildElement(); e; e = e->NextSiblingElement()) {
       const std::string kind = e->Name(), at = what + " <" + kind + ">";
       if (kind != "box" && kind != "polygon") continue;  // tags, points, masks: not shapes we import
       LabelShape s;
-      s.label = e->Attribute("label") ? e->Attribute("label") : "";
-      if (s.label.empty()) throw Error(file, at + ": no label attribute");
+      s.label = cvat_text(e, "label", file, at);
       if (kind == "box") {
         s.x1 = cvat_number(e, "xtl", file, at), s.y1 = cvat_number(e, "ytl", file, at);
         s.x2 = cvat_number(e, "xbr", file, at), s.y2 = cvat_number(e, "ybr", file, at);

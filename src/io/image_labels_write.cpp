@@ -86,7 +86,8 @@ std::string coco_json(const LabelSet& set) {
       j["annotations"].push_back(std::move(a));
     }
   }
-  return j.dump(1) + "\n";
+  // Names come from files checked as UTF-8; replace, not throw, should one still be malformed.
+  return j.dump(1, ' ', false, json::error_handler_t::replace) + "\n";
 }
 
 std::string yolo_text(const ImageLabels& image, const std::vector<std::string>& classes) {

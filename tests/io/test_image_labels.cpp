@@ -117,6 +117,11 @@ TEST(ImageLabels, ReadsCvatBoxesAndPolygons) {
   write_text(t / "bad.xml", R"(<annotations><image name="a.png" width="4" height="4">
     <polygon label="head" points="1,1;2;3,3"/></image></annotations>)");
   expect_error_naming([&] { io::read_cvat_labels(t / "bad.xml"); }, "image 0 <polygon>: points '2'");
+  // Found by fuzzing: a name that is not UTF-8 went on into the COCO JSON, whose writer threw.
+  write_text(t / "latin1.xml", "<annotations><image name=\"frame\xb6_1.png\" width=\"4\" height=\"4\"/></annotations>");
+  expect_error_naming([&] { io::read_cvat_labels(t / "latin1.xml"); }, "image 0: attribute name is not UTF-8");
+  write_text(t / "huge.xml", R"(<annotations><image name="a.png" width="1e300" height="4"/></annotations>)");
+  expect_error_naming([&] { io::read_cvat_labels(t / "huge.xml"); }, "whole numbers of pixels");
   write_text(t / "root.xml", "<annotation/>");
   expect_error_naming([&] { io::read_cvat_labels(t / "root.xml"); }, "<annotations>");
 }
