@@ -10,7 +10,7 @@ evaluated on the kind's test passes (`eval broccoli`: kappa and precision per cl
 --with-general the N frames are trained together with the general model's own training passes
 (`--extra-data`), for N = 10 only (each such training takes minutes).
 
-    scripts/broccoli-adaptation.py OUT [--recipe small|general] [--with-general] [--draws 5]
+    scripts/broccoli-adaptation.py OUT [--recipe small|general] [--with-general] [--draws 5] [--pools 2]
     (CROPSIGHT=build/bin/cropsight)
 
 Writes OUT/results-RECIPE[-with-general].json (every run) and prints the markdown table of docs/studio.md.
@@ -106,7 +106,7 @@ def run_kind(out, kind, spec, a, general):
     tests = [simulate(out, "random-wide", s, TEST_FRAMES, spec["sets"], f"test-{s}") for s in spec["tests"]]
     base = cs("eval", "broccoli", "--data", ",".join(tests), "--model", "broccoli-oes-general", "--json")
     res = {"kind": kind, "general": {"kappa": base["kappa"], "precision": base["precision"]}, "runs": []}
-    for pool_seed in spec["pools"]:
+    for pool_seed in spec["pools"][:a.pools]:
         pool = simulate(out, "random-wide", pool_seed, POOL_FRAMES, spec["sets"], f"pool-{pool_seed}")
         ns = [10] if with_general else NS
         for n in ns:
@@ -147,6 +147,7 @@ def main():
     ap.add_argument("out")
     ap.add_argument("--draws", type=int, default=5, help="random draws per pool and N")
     ap.add_argument("--with-general", action="store_true", help="train with the general model's passes (N = 10)")
+    ap.add_argument("--pools", type=int, default=2, help="labelling passes per field kind (1 or 2)")
     ap.add_argument("--recipe", choices=sorted(RECIPES), default="small", help="training settings (above)")
     a = ap.parse_args()
     os.makedirs(os.path.join(a.out, "models-" + a.recipe), exist_ok=True)

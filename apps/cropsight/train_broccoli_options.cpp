@@ -54,7 +54,7 @@ void add_sequence(const TrainOptions& o, const std::string& dir, const std::vect
   if (!reader.info().has_labels) throw Error(dir, "sequence has no labels/ (training needs ground truth)");
   if (!chosen.empty() && chosen.back() >= reader.size())
     throw Error("--frame-list", "frame " + std::to_string(chosen.back()) + " is past the end of " + dir + " (" +
-                                std::to_string(reader.size()) + " frames)");
+                                    std::to_string(reader.size()) + " frames)");
   const auto& attrs = reader.groundtruth().attributes;
   auto attr = [&](const char* k) { return attrs.count(k) ? attrs.at(k) : std::string("?"); };
   seeds += (seeds.empty() ? "" : ",") + attr("seed");
