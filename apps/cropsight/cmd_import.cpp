@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/recording_import.hpp"
+#include "import_labels_cli.hpp"
 
 namespace cropsight::cli {
 
@@ -16,6 +17,7 @@ struct ImportCliOptions {
   bool json = false;
   std::string bag;
   BagTopicOptions topics;
+  LabelImportOptions labels;  // --coco / --labelme / --cvat
 };
 
 // A ROS bag: depth, camera_info and colour topics.
@@ -43,6 +45,12 @@ void run_bag(const ImportCliOptions& o) {
 }
 
 void run_import(const ImportCliOptions& o) {
+  if (o.labels.given()) {
+    if (!o.io.depth_dir.empty() || !o.io.pcd_dir.empty() || !o.io.camera_yaml.empty())
+      throw Error("--coco/--labelme/--cvat",
+                  "import labels onto a sequence (--data SEQ), not with --depth/--pcd/--camera");
+    return run_label_import(o.labels, o.bag, o.io.out.string(), o.io.overwrite, o.json);
+  }
   if (!o.bag.empty()) return run_bag(o);
   if (o.io.camera_yaml.empty()) throw Error("--camera", "is required (or give --bag)");
   const io::ImportSummary s = io::import_recording(o.io);
@@ -81,12 +89,14 @@ void add_import(CLI::App& app) {
   cmd->add_option("--pose-tolerance", o->io.pose_tolerance_s, "Seconds a frame's pose may lie from it")
       ->capture_default_str();
   cmd->add_option("--data", o->bag,
-                  "A ROS bag instead (.bag: depth 16UC1/32FC1, camera_info, colour; no master needed)");
+                  "A ROS bag instead (.bag: depth 16UC1/32FC1, camera_info, colour; no master needed), or with "
+                  "--coco/--labelme/--cvat the sequence the labels were drawn on");
   add_deprecated_option(cmd, "--bag", o->bag, "--data");
   add_bag_topic_options(cmd, o->topics);
   cmd->add_option("--out", o->io.out, "New sequence folder to write")->required();
   cmd->add_option("--timestamps", o->io.timestamps, "CSV of frame (the names' number), timestamp (s)");
   cmd->add_option("--fps", o->io.fps, "Frame rate for frame-numbered files (timestamps = index / fps; default 0)");
+  add_label_import_options(cmd, o->labels);
   add_force_flag(cmd, o->io.overwrite);
   cmd->add_flag("--json", o->json, "Print a JSON summary");
   cmd->callback([o] { run_import(*o); });

@@ -14,8 +14,11 @@ namespace cropsight::cli {
 
 namespace train_broccoli_cmd {
 void run(const TrainOptions& o) {
-  std::vector<std::string> inputs = split_list(o.data, "--data");
+  std::vector<std::string> inputs = training_sequences(o);
   inputs.push_back(o.common.config);
+  if (o.fit_size_bias && !o.frames.empty())
+    throw Error("--fit-size-bias", "fits the size correction on whole passes; not with --frame-list");
+  if (!o.frames.empty()) parse_frame_list(o.frames);  // a bad list fails before the output is checked
   io::check_output_file(o.out, output_policy("train broccoli", o.force, inputs));  // before minutes of training
   auto [full, grid] = train_configs(o);
   pipeline::broccoli::DetectorConfig& cfg = full.detector;
@@ -65,6 +68,11 @@ void add_train_broccoli(CLI::App& train) {
   auto o = std::make_shared<TrainOptions>();
   auto* cmd = train.add_subcommand("broccoli", "Train a broccoli head classifier on labelled sequences");
   cmd->add_option("--data", o->data, "Sequence directories, comma separated")->required();
+  cmd->add_option("--frame-list", o->frames,
+                  "Only these frames (comma list of 0-based indices) of each --data sequence, e.g. those "
+                  "`suggest` chose");
+  cmd->add_option("--extra-data", o->extra_data,
+                  "Sequences trained on whole next to --data's frames (e.g. the general model's passes)");
   cmd->add_option("--pipeline", o->pipeline, "oes | org | fec (default: preset or oes)");
   cmd->add_option("--features", o->features, "Comma list of vfh, va, geom, cvfh (default: preset or vfh)");
   cmd->add_option("--classifier", o->classifier, "svm-rbf | svm-linear | knn (default: preset or svm-rbf)");

@@ -24,6 +24,7 @@ void add_train_broccoli(CLI::App& train);
 void add_detect_broccoli(CLI::App& detect);
 void add_eval_broccoli(CLI::App& eval);
 void add_bench_broccoli(CLI::App& bench);
+void add_suggest(CLI::App& app);  // which frames to label next
 
 // Grape bunches: train / segment / eval grape, roi-cloud; detect grape
 void add_train_grape(CLI::App& train);

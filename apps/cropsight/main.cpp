@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
   add_detect_broccoli(*detect);
   add_eval_broccoli(*eval);
   add_bench_broccoli(*bench);
+  add_suggest(app);
   // Grape bunches
   auto* segment = app.add_subcommand("segment", "Label the points of a cloud with a trained model");
   segment->require_subcommand(1);

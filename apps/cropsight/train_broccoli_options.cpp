@@ -1,5 +1,6 @@
 #include "train_broccoli_options.hpp"
 
+#include <algorithm>
 #include <optional>
 
 #include "cropsight/core/error.hpp"
@@ -26,25 +27,69 @@ std::pair<pipeline::broccoli::Config, learning::GridSearchConfig> train_configs(
   return {full, grid};
 }
 
-// Adds every frame of the --data sequences to `builder`; returns the provenance the model file
-// records (data, seeds, varieties, frames).
+// The --frame-list list: ascending, without repeats.
+std::vector<int> parse_frame_list(const std::string& text) {
+  std::vector<int> frames;
+  for (const auto& part : split_list(text, "--frame-list")) {
+    std::size_t used = 0;
+    int value = -1;
+    try {
+      value = std::stoi(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != part.size() || value < 0)
+      throw Error("--frame-list", "'" + part + "' is not a frame index (a comma list of integers >= 0)");
+    frames.push_back(value);
+  }
+  std::sort(frames.begin(), frames.end());
+  frames.erase(std::unique(frames.begin(), frames.end()), frames.end());
+  return frames;
+}
+
+// Adds the frames `chosen` (every frame when empty) of the sequence `dir` to `builder`.
+void add_sequence(const TrainOptions& o, const std::string& dir, const std::vector<int>& chosen,
+                  pipeline::broccoli::DatasetBuilder& builder, std::string& seeds, std::string& varieties) {
+  io::SequenceReader reader(dir);
+  if (!reader.info().has_labels) throw Error(dir, "sequence has no labels/ (training needs ground truth)");
+  if (!chosen.empty() && chosen.back() >= reader.size())
+    throw Error("--frame-list", "frame " + std::to_string(chosen.back()) + " is past the end of " + dir + " (" +
+                                    std::to_string(reader.size()) + " frames)");
+  const auto& attrs = reader.groundtruth().attributes;
+  auto attr = [&](const char* k) { return attrs.count(k) ? attrs.at(k) : std::string("?"); };
+  seeds += (seeds.empty() ? "" : ",") + attr("seed");
+  varieties += (varieties.empty() ? "" : ",") + attr("variety");
+  const long total = chosen.empty() ? reader.size() : long(chosen.size());
+  Progress progress("train broccoli: " + dir, total, o.quiet || o.common.json);
+  for (long k = 0; k < total; ++k) {
+    builder.add_frame(reader.read(chosen.empty() ? int(k) : chosen[std::size_t(k)]));
+    progress.update(k + 1);
+  }
+  progress.finish();
+}
+
+// Adds the chosen frames of the --data sequences and every frame of --extra-data to `builder`;
+// returns the provenance the model file records.
 std::map<std::string, std::string> add_sequences(const TrainOptions& o, pipeline::broccoli::DatasetBuilder& builder) {
   std::string seeds, varieties;
-  for (const auto& dir : split_list(o.data, "--data")) {
-    io::SequenceReader reader(dir);
-    if (!reader.info().has_labels) throw Error(dir, "sequence has no labels/ (training needs ground truth)");
-    const auto& attrs = reader.groundtruth().attributes;
-    auto attr = [&](const char* k) { return attrs.count(k) ? attrs.at(k) : std::string("?"); };
-    seeds += (seeds.empty() ? "" : ",") + attr("seed");
-    varieties += (varieties.empty() ? "" : ",") + attr("variety");
-    Progress progress("train broccoli: " + dir, reader.size(), o.quiet || o.common.json);
-    for (int i = 0; i < reader.size(); ++i) {
-      builder.add_frame(reader.read(i));
-      progress.update(i + 1);
-    }
-    progress.finish();
-  }
-  return {{"data", o.data}, {"seeds", seeds}, {"varieties", varieties}, {"frames", std::to_string(builder.frames())}};
+  const std::vector<int> chosen = o.frames.empty() ? std::vector<int>{} : parse_frame_list(o.frames);
+  for (const auto& dir : split_list(o.data, "--data")) add_sequence(o, dir, chosen, builder, seeds, varieties);
+  if (!o.extra_data.empty())
+    for (const auto& dir : split_list(o.extra_data, "--extra-data"))
+      add_sequence(o, dir, {}, builder, seeds, varieties);
+  std::map<std::string, std::string> provenance{
+      {"data", o.data}, {"seeds", seeds}, {"varieties", varieties}, {"frames", std::to_string(builder.frames())}};
+  if (!o.frames.empty()) provenance["chosen_frames"] = o.frames;
+  if (!o.extra_data.empty()) provenance["extra_data"] = o.extra_data;
+  return provenance;
+}
+
+// Every sequence trained on: --data's, then --extra-data's.
+std::vector<std::string> training_sequences(const TrainOptions& o) {
+  std::vector<std::string> all = split_list(o.data, "--data");
+  if (!o.extra_data.empty())
+    for (auto& dir : split_list(o.extra_data, "--extra-data")) all.push_back(std::move(dir));
+  return all;
 }
 
 // The cross-validated grid search: sets cfg.classifier to the best point, returns its figures.
@@ -72,7 +117,7 @@ nlohmann::json fit_sizes(const TrainOptions& o, const pipeline::broccoli::Config
                          const std::shared_ptr<learning::Model>& model) {
   std::optional<Progress> progress;
   const auto fit = pipeline::broccoli::fit_size_correction(
-      model, full, split_list(o.data, "--data"), [&](const std::string& dir, int done, int total) {
+      model, full, training_sequences(o), [&](const std::string& dir, int done, int total) {
         if (done == 1) progress.emplace("size fit: " + dir, total, o.quiet || o.common.json);
         progress->update(done);
         if (done == total) progress->finish();

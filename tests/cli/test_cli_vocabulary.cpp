@@ -73,10 +73,10 @@ TEST(CliVocabulary, EveryCommandFollowsTheConventions) {
   // Old spellings work for one release but are never shown (docs/cli.md, "Older spellings").
   const std::set<std::string> retired = {"--overwrite", "--bag", "--input"};
   // Commands that print progress lines on stderr: each can be silenced with --quiet.
-  const std::set<std::string> with_progress = {"simulate broccoli", "simulate potato", "simulate seedling",
-                                               "detect broccoli",   "eval broccoli",   "train broccoli",
-                                               "eval seedling",     "harvest potato",  "report",
-                                               "train grape",       "train detector",  "bench potato"};
+  const std::set<std::string> with_progress = {
+      "simulate broccoli", "simulate potato", "simulate seedling", "detect broccoli", "eval broccoli",
+      "train broccoli",    "eval seedling",   "harvest potato",    "report",          "suggest",
+      "train grape",       "train detector",  "bench potato"};
   std::string problems;
   for (const std::string& name : with_progress)
     if (!all.count(name)) problems += name + ": no such command (update this test)\n";
