@@ -93,7 +93,7 @@ asan:
 	@scripts/install-deps.sh
 	cmake -S . -B build-asan $(if $(wildcard build-asan/CMakeCache.txt),,-G "$(GENERATOR)") -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DCROPSIGHT_SANITIZE=ON -DCROPSIGHT_BUILD_BENCH=OFF $(CMAKE_ARGS)
 	cmake --build build-asan -j $(JOBS) $(if $(ASAN_TARGETS),--target $(ASAN_TARGETS))
-	cd build-asan && ASAN_OPTIONS=detect_leaks=1 ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
+	cd build-asan && ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions=$(CURDIR)/tests/lsan.supp:print_suppressions=0 ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
 
 # Pipelines in parallel threads under TSan (tests/threads/): only that test and the libraries.
 # The suppressions also while building: gtest_discover_tests runs test_threads to list its tests.
