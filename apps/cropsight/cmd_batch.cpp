@@ -89,7 +89,8 @@ void add_batch(CLI::App& app) {
   auto o = std::make_shared<BatchCliOptions>();
   auto* cmd =
       app.add_subcommand("batch", "Run many recordings as shards (local or Slurm), resumable, and merge the maps");
-  cmd->add_option("--manifest", o->manifest, "Batch manifest: YAML, or CSV with one row a recording (docs/batch.md)")->required();
+  cmd->add_option("--manifest", o->manifest, "Batch manifest: YAML, or CSV with one row a recording (docs/batch.md)")
+      ->required();
   cmd->add_option("--out", o->out, "Batch folder: new, or an earlier run of this batch to resume")->required();
   cmd->add_option("--engine", o->engine, "local (threads on this machine) or slurm (a job array)")
       ->check(CLI::IsMember({"local", "slurm"}));

@@ -12,6 +12,7 @@
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/io/voc.hpp"
+#include "one_line_error.hpp"
 #include "testing/testing.hpp"
 
 namespace fs = std::filesystem;
@@ -42,11 +43,7 @@ nlohmann::json boxes_of(const LabelImage& labels, long image_id, long& next_id) 
   return out;
 }
 
-void expect_one_line_error(const cropsight::testing::CommandResult& r, const std::string& names) {
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find(names), std::string::npos) << r.err;
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-}
+using cropsight::testing::expect_one_line_error;
 
 }  // namespace import_labels_cli_test
 

@@ -8,6 +8,7 @@
 #include "cropsight/io/cloud_io.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/grape_text.hpp"
+#include "one_line_error.hpp"
 #include "pipeline/grape/grape_test_clouds.hpp"
 #include "testing/testing.hpp"
 
@@ -25,12 +26,7 @@ Cloud metric_blobs(std::uint32_t seed) {
   return c;
 }
 
-// The error contract: exit 2, exactly one line on stderr that names `what`.
-void expect_one_line_error(const cropsight::testing::CommandResult& r, const std::string& what) {
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find(what), std::string::npos) << "expected '" << what << "' in: " << r.err;
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-}
+using cropsight::testing::expect_one_line_error;
 
 std::string model_path() { return (cropsight::testing::source_dir() / "models" / "grape-gbdt-fast.json").string(); }
 

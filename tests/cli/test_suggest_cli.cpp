@@ -10,6 +10,7 @@
 
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/learning/model.hpp"
+#include "one_line_error.hpp"
 #include "testing/testing.hpp"
 
 namespace fs = std::filesystem;
@@ -35,14 +36,9 @@ class SuggestCli : public ::testing::Test {
 };
 cropsight::testing::TempDir* SuggestCli::tmp_ = nullptr;
 
-void expect_one_line_error(const cropsight::testing::CommandResult& r, const std::string& names) {
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find(names), std::string::npos) << r.err;
-  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
-}
+using cropsight::testing::expect_one_line_error;
 }  // namespace suggest_cli_test
 
-using suggest_cli_test::expect_one_line_error;
 using suggest_cli_test::SuggestCli;
 
 TEST_F(SuggestCli, RanksFramesAsJsonAndText) {
