@@ -39,7 +39,7 @@ std::map<std::string, std::string> add_sequences(const TrainOptions& o, pipeline
     varieties += (varieties.empty() ? "" : ",") + attr("variety");
     Progress progress("train broccoli: " + dir, reader.size(), o.quiet || o.common.json);
     for (int i = 0; i < reader.size(); ++i) {
-      builder.add_frame(reader.read(i));
+      if (reader.info().labelled(i)) builder.add_frame(reader.read(i));  // a partly labelled pass (labelled.csv)
       progress.update(i + 1);
     }
     progress.finish();
