@@ -114,7 +114,8 @@ function labelledShare(c) {
 }
 
 // ---- drawing ------------------------------------------------------------------------------
-const headColours = [[255, 214, 0], [0, 200, 255], [255, 120, 200], [160, 255, 90], [255, 150, 40], [180, 140, 255]];
+// Bright, cold tints that read over the depth map's warm near end (leaves and heads are near).
+const headColours = [[0, 255, 255], [255, 0, 255], [255, 255, 255], [120, 255, 0], [0, 140, 255], [255, 120, 255]];
 function render() {
   const canvas = $('overlay');
   const ctx = canvas.getContext('2d');
@@ -124,13 +125,13 @@ function render() {
     const id = S.labels[p];
     if (!id) continue;
     const c = headColours[id % headColours.length];
-    d.set([c[0], c[1], c[2], 110], 4 * p);
+    d.set([c[0], c[1], c[2], 140], 4 * p);
   }
   for (const p of S.outline) {
     const c = S.cands[S.candAt[p] - 1];
     if (c.score < S.filter) continue;
     const head = labelledShare(c) > 0.5;
-    d.set(head ? [40, 255, 120, 255] : [255, 60, 60, 200], 4 * p);
+    d.set(head ? [0, 255, 90, 255] : [235, 235, 235, 150], 4 * p);
   }
   ctx.putImageData(img, 0, 0);
 }
@@ -201,10 +202,23 @@ function onDown(ev) {
     return;
   }
   snapshot();
-  const id = S.tool === 'erase' ? 0 : (S.labels[p] || S.nextId++);
+  const id = S.tool === 'erase' ? 0 : (headNear(at[0], at[1], S.brush + 2) || S.nextId++);
   S.stroke = { x: at[0], y: at[1], id };
   dab(at[0], at[1], id);
   render();
+}
+// The head a paint stroke starting at (x, y) extends: the nearest labelled pixel within `r`
+// (on or beside a head), else none and the stroke starts a new head.
+function headNear(x, y, r) {
+  let best = 0, bestD = Infinity;
+  for (let dy = -r; dy <= r; ++dy)
+    for (let dx = -r; dx <= r; ++dx) {
+      const u = x + dx, v = y + dy, d = dx * dx + dy * dy;
+      if (u < 0 || v < 0 || u >= S.w || v >= S.h || d > r * r || d >= bestD) continue;
+      const id = S.labels[v * S.w + u];
+      if (id) { best = id; bestD = d; }
+    }
+  return best;
 }
 function onMove(ev) { const at = S.stroke && pixelOf(ev); if (at) strokeTo(at[0], at[1]); }
 function onUp() { if (S.stroke) { S.stroke = null; edited(); } }
