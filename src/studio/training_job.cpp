@@ -1,9 +1,14 @@
 // The studio's background training job (studio/training_job.hpp).
 #include "cropsight/studio/training_job.hpp"
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/files.hpp"
 #include "cropsight/io/output.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/pipeline/broccoli/eval.hpp"
@@ -125,17 +130,25 @@ fs::path TrainingJob::keep(const fs::path& folder) {
   if (!trained_ || status_.state != "done") throw Error("keep", "no finished model to keep");
   const fs::path dir = folder.empty() ? io::resolved_path(sequence_).parent_path() : folder;
   const std::string stem = "studio-" + io::resolved_path(sequence_).filename().string() + "-";
-  for (int n = 1;; ++n) {
+  // Written whole under a temporary name, then linked to the first free name: link() fails when
+  // the name exists, so no file is ever replaced, even one that appears meanwhile.
+  const fs::path tmp = io::temporary_sibling(dir / (stem + "model.json"));
+  io::check_output_file(tmp, {"studio", false, {sequence_}});
+  learning::save_model(tmp, *trained_);
+  for (int n = 1; n < 100000; ++n) {
     const fs::path file = dir / (stem + std::to_string(n) + ".json");
-    if (fs::exists(file)) continue;
-    // A file, never an input (the sequence), never replaced (no --force), writable.
-    io::check_output_file(file, {"studio", false, {sequence_}});
-    learning::save_model(file, *trained_);
-    status_.state = "kept";
-    status_.message = file.string();
-    trained_.reset();
-    return file;
+    if (::link(tmp.c_str(), file.c_str()) == 0) {
+      fs::remove(tmp);
+      status_.state = "kept";
+      status_.message = file.string();
+      trained_.reset();
+      return file;
+    }
+    if (errno != EEXIST) break;
   }
+  const std::string why = std::strerror(errno);
+  fs::remove(tmp);
+  throw Error(dir.string(), "cannot write the model: " + why);
 }
 
 void TrainingJob::discard() {
