@@ -47,21 +47,12 @@ nlohmann::json heads_json(const LabelImage& labels) {
 // POST /api/frame/N/labels: {"heads": [runs, ...]}.
 void save_labels(ServerState& s, int frame, const httplib::Request& req, httplib::Response& res) {
   if (!s.writable) return reply_error(res, 403, "this studio is read-only (--read-only, or another studio writes)");
-  const auto body = body_object(req, res);
-  if (!body) return;
-  if (!body->contains("heads") || !(*body)["heads"].is_array())
-    return reply_error(res, 400, "expected {\"heads\": [runs, ...]}");
   const auto& cam = s.reader.info().camera;
-  const int pixels = cam.width * cam.height;
-  std::vector<HeadPixels> heads;
-  for (const auto& runs : (*body)["heads"]) {
-    std::string error;
-    auto head = from_runs(runs, pixels, error);
-    if (!head) return reply_error(res, 400, error);
-    heads.push_back(std::move(*head));
-  }
-  s.labels->save(frame, heads, s.reader.read(frame).depth);
-  reply_json(res, {{"frame", frame}, {"heads", heads.size()}, {"labelled", s.labels->labelled()}});
+  std::string error;
+  const auto heads = parse_heads_body(req.body, cam.width * cam.height, error);
+  if (!heads) return reply_error(res, 400, error);
+  s.labels->save(frame, *heads, s.reader.read(frame).depth);
+  reply_json(res, {{"frame", frame}, {"heads", heads->size()}, {"labelled", s.labels->labelled()}});
 }
 
 }  // namespace

@@ -39,4 +39,31 @@ std::optional<std::vector<int>> from_runs(const nlohmann::json& runs, int pixels
   return out;
 }
 
+std::optional<std::vector<std::vector<int>>> parse_heads_body(const std::string& body, int pixels, std::string& error) {
+  const nlohmann::json j = nlohmann::json::parse(body, nullptr, /*allow_exceptions=*/false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("heads") || !j["heads"].is_array()) {
+    error = "expected {\"heads\": [runs, ...]}";
+    return std::nullopt;
+  }
+  if (j["heads"].size() > std::size_t(pixels)) {
+    error = "more heads than pixels";
+    return std::nullopt;
+  }
+  // Overlapping heads are allowed (the later wins), but not without bound: a small body of long
+  // runs could otherwise make the server hold gigabytes of pixel indices.
+  std::vector<std::vector<int>> heads;
+  std::size_t total = 0;
+  for (const auto& runs : j["heads"]) {
+    auto head = from_runs(runs, pixels, error);
+    if (!head) return std::nullopt;
+    total += head->size();
+    if (total > 4 * std::size_t(pixels)) {
+      error = "the masks cover the frame more than four times over";
+      return std::nullopt;
+    }
+    heads.push_back(std::move(*head));
+  }
+  return heads;
+}
+
 }  // namespace cropsight::studio

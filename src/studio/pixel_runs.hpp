@@ -17,4 +17,9 @@ nlohmann::json to_runs(const std::vector<int>& ascending);
 /// pixels in all (a body cannot make the server allocate more than one frame per head).
 std::optional<std::vector<int>> from_runs(const nlohmann::json& runs, int pixels, std::string& error);
 
+/// The heads of a label save's body, {"heads": [runs, ...]}, each as ascending-by-run pixel
+/// indices; nothing (with `error` set) when the body is not that JSON or a mask is invalid
+/// (from_runs), or the masks hold more than four frames' worth of pixels together.
+std::optional<std::vector<std::vector<int>>> parse_heads_body(const std::string& body, int pixels, std::string& error);
+
 }  // namespace cropsight::studio
