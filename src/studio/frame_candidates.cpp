@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "cropsight/pipeline/broccoli/make_pipeline.hpp"
+#include "studio/head_geometry.hpp"
 
 namespace cropsight::studio {
 
@@ -31,7 +32,8 @@ std::shared_ptr<const FrameCandidates> FrameAnalyzer::analyse(int frame) {
   out->certainty = std::numeric_limits<float>::infinity();
   for (const auto& c : pipeline_->detector().candidates()) {
     if (c.segment.indices.empty()) continue;
-    out->candidates.push_back({c.segment.indices, c.score, c.head});
+    out->candidates.push_back(
+        {c.segment.indices, c.score, c.head, head_geometry(c.segment.indices, f.depth, f.camera).diameter_mm});
     out->certainty = std::min(out->certainty, std::abs(c.score - threshold_));
   }
   cache_[frame] = out;

@@ -27,7 +27,7 @@ nlohmann::json info_json(const ServerState& s) {
 nlohmann::json candidates_json(const FrameCandidates& fc, float threshold) {
   nlohmann::json list = nlohmann::json::array();
   for (const auto& c : fc.candidates)
-    list.push_back({{"score", c.score}, {"head", c.head}, {"runs", to_runs(c.pixels)}});
+    list.push_back({{"score", c.score}, {"head", c.head}, {"diameter_mm", c.diameter_mm}, {"runs", to_runs(c.pixels)}});
   return {{"frame", fc.frame},
           {"threshold", threshold},
           {"certainty", std::isfinite(fc.certainty) ? nlohmann::json(fc.certainty) : nlohmann::json(nullptr)},

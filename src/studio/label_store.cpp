@@ -3,14 +3,13 @@
 #include "cropsight/studio/label_store.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <numbers>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "io/sequence_text.hpp"  // the format's groundtruth.json reader and writer
+#include "studio/head_geometry.hpp"
 
 namespace cropsight::studio {
 
@@ -40,26 +39,17 @@ std::string labelled_csv(const std::vector<int>& frames) {
   return text;
 }
 
-// A head's truth from its pixels: centroid in the camera frame of its frame (m) and the diameter
-// of the disc of its measured area (mm; each pixel covers (z/fx)·(z/fy) m² at depth z).
+// A head's truth from its pixels (head_geometry.hpp); the position is in the camera frame of
+// its frame, which the extra keys say.
 io::InstanceTruth head_truth(int id, int frame, const HeadPixels& pixels, const DepthImage& depth,
                              const CameraIntrinsics& cam) {
+  const HeadGeometry g = head_geometry(pixels, depth, cam);
   io::InstanceTruth t;
   t.id = id;
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  double area = 0.0;
-  int measured = 0;
-  for (int p : pixels) {
-    const double z = double(depth.data[std::size_t(p)]) * cam.depth_scale;
-    if (z <= 0) continue;
-    sum += cam.deproject(float(p % depth.width), float(p / depth.width), float(z)).cast<double>();
-    area += (z / cam.fx) * (z / cam.fy);
-    ++measured;
-  }
-  if (measured > 0) t.position = sum / measured;
-  t.diameter_mm = 2000.0 * std::sqrt(area / std::numbers::pi);
+  t.position = g.centroid;
+  t.diameter_mm = g.diameter_mm;
   t.extra["studio_frame"] = frame;
-  t.extra["camera_frame_position"] = 1.0;  // position is in the camera frame of studio_frame
+  t.extra["camera_frame_position"] = 1.0;
   return t;
 }
 

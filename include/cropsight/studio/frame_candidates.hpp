@@ -21,6 +21,7 @@ struct CandidateView {
   std::vector<int> pixels;  ///< ascending pixel indices (y·width + x)
   float score = 0.0f;       ///< classifier score
   bool head = false;        ///< the pipeline's verdict (score above threshold + margin)
+  double diameter_mm = 0;   ///< of the disc of its measured area (a size at a glance, not the sizer's)
 };
 
 struct FrameCandidates {

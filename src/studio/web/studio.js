@@ -58,7 +58,7 @@ async function openFrame(f) {
   document.body.dataset.ready = '0';
   const [cands, labels] = await Promise.all([api(`/api/frame/${f}/candidates`), api(`/api/frame/${f}/labels`)]);
   S.frame = f;
-  S.cands = cands.candidates.map((c, i) => ({ index: i, score: c.score, head: c.head, pixels: fromRuns(c.runs) }));
+  S.cands = cands.candidates.map((c, i) => ({ index: i, score: c.score, head: c.head, diameter: c.diameter_mm, pixels: fromRuns(c.runs) }));
   $('threshold').textContent = `threshold ${cands.threshold.toFixed(2)}`;
   indexCandidates();
   S.labels = new Uint16Array(S.w * S.h);
@@ -137,6 +137,8 @@ function render() {
 }
 
 function listCandidates() {
+  const heads = new Set(S.labels).size - (S.labels.includes(0) ? 1 : 0);
+  $('frame-heads').textContent = `${heads} head${heads === 1 ? '' : 's'} on this frame`;
   const ul = $('candidates');
   ul.replaceChildren();
   const sorted = [...S.cands].sort((a, b) => b.score - a.score).filter((c) => c.score >= S.filter);
@@ -144,7 +146,7 @@ function listCandidates() {
     const li = document.createElement('li');
     const head = labelledShare(c) > 0.5;
     li.className = head ? 'head' : '';
-    li.textContent = `${c.score.toFixed(2)} ${head ? 'head' : 'not head'} (${c.pixels.length} px)`;
+    li.textContent = `${c.score.toFixed(2)} ${head ? 'head' : 'not head'} · ${Math.round(c.diameter)} mm (${c.pixels.length} px)`;
     li.onclick = () => toggleCandidate(c);
     ul.appendChild(li);
   }
