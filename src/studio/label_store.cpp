@@ -3,6 +3,7 @@
 #include "cropsight/studio/label_store.hpp"
 
 #include <algorithm>
+#include <limits>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
@@ -56,16 +57,14 @@ io::InstanceTruth head_truth(int id, int frame, const HeadPixels& pixels, const 
 }  // namespace
 
 LabelStore::LabelStore(fs::path sequence, const CameraIntrinsics& camera, int frames, bool read_only)
-    : dir_(std::move(sequence)), camera_(camera), frames_(frames), read_only_(read_only) {
-  if (read_only_) return;
-  const std::vector<int> have = frames_in_labels(dir_ / "labels", frames_);
-  // A sequence labelled whole by another tool (the simulator) needs no list; a partly labelled one
-  // does (a kill between a label image and the list's rename leaves one to rebuild).
-  const bool listed = fs::exists(dir_ / "labelled.csv");
-  if (listed || (!have.empty() && int(have.size()) != frames_)) {
-    fs::create_directories(dir_ / "labels");
-    io::write_file_atomic(dir_ / "labelled.csv", labelled_csv(have));
-  }
+    : dir_(std::move(sequence)), camera_(camera), frames_(frames), read_only_(read_only) {}
+
+bool LabelStore::reconcile(const fs::path& sequence) {
+  if (!fs::exists(sequence / "labelled.csv")) return false;
+  const std::vector<int> have = frames_in_labels(sequence / "labels", std::numeric_limits<int>::max());
+  fs::create_directories(sequence / "labels");
+  io::write_file_atomic(sequence / "labelled.csv", labelled_csv(have));
+  return true;
 }
 
 std::vector<int> LabelStore::labelled() const {
@@ -84,6 +83,10 @@ void LabelStore::save(int frame, const std::vector<HeadPixels>& heads, const Dep
   if (read_only_) throw Error(dir_.string(), "opened read-only: labels are not written");
   if (frame < 0 || frame >= frames_) throw Error(dir_.string(), "frame " + std::to_string(frame) + " out of range");
   std::lock_guard lock(mutex_);
+  // The list first when the sequence has none yet: a kill after the image's rename then leaves a
+  // list that reconcile() repairs, never label images without a list (an invalid sequence).
+  if (!fs::exists(dir_ / "labelled.csv"))
+    io::write_file_atomic(dir_ / "labelled.csv", labelled_csv(frames_in_labels(dir_ / "labels", frames_)));
   LabelImage image(depth.width, depth.height, 0);
   for (std::size_t k = 0; k < heads.size(); ++k)
     for (int p : heads[k])

@@ -16,16 +16,21 @@ namespace {
 // A sequence folder the studio may write into: locked, and not opened --read-only.
 std::unique_ptr<SequenceLock> try_lock(const StudioOptions& o) {
   if (o.read_only) return nullptr;
-  if (::access(o.sequence.c_str(), W_OK) != 0) return nullptr;  // a read-only folder: a read-only studio
+  std::error_code ec;
+  if (!std::filesystem::is_directory(o.sequence, ec)) return nullptr;  // the reader says what is wrong
+  if (::access(o.sequence.c_str(), W_OK) != 0) return nullptr;         // a read-only folder: a read-only studio
   return std::make_unique<SequenceLock>(o.sequence);
 }
 
 }  // namespace
 
-ServerState::ServerState(StudioOptions o) : options(std::move(o)), reader(options.sequence) {
+ServerState::ServerState(StudioOptions o)
+    : options(std::move(o)),
+      lock(try_lock(options)),
+      writable(lock && lock->held()),
+      reconciled(writable && LabelStore::reconcile(options.sequence)),
+      reader(options.sequence) {
   if (options.token.empty()) options.token = new_token();
-  lock = try_lock(options);
-  writable = lock && lock->held();
   const auto& info = reader.info();
   labels = std::make_unique<LabelStore>(options.sequence, info.camera, info.frames, !writable);
   analyzer = std::make_unique<FrameAnalyzer>(reader, options.model);

@@ -23,10 +23,12 @@ namespace cropsight::studio {
 struct ServerState {
   explicit ServerState(StudioOptions o);
 
+  // In this order: the lock, then labelled.csv repaired, then the reader that checks it.
   StudioOptions options;
-  io::SequenceReader reader;  // read() is const and only reads files: shared by the handlers
   std::unique_ptr<SequenceLock> lock;
   bool writable = false;
+  bool reconciled = false;
+  io::SequenceReader reader;  // read() is const and only reads files: shared by the handlers
   std::unique_ptr<LabelStore> labels;
   std::unique_ptr<FrameAnalyzer> analyzer;
   std::unique_ptr<TrainingJob> training;

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "cropsight/core/error.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "studio_fixture.hpp"
@@ -160,6 +161,23 @@ TEST(StudioServer, ConcurrentSavesLeaveOneWholeFrame) {
   for (const auto& e : fs::recursive_directory_iterator(seq))
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
   EXPECT_FALSE(fs::exists(dir.path().parent_path() / "labels"));
+}
+
+TEST(StudioServer, AKillBetweenImageAndListHealsAtTheNextStart) {
+  testing::TempDir dir;
+  const fs::path seq = unlabelled_copy(dir.path());
+  const int width = io::SequenceReader(seq).info().camera.width;
+  {
+    RunningStudio studio(options_for(seq));
+    ASSERT_EQ(studio.client().Post("/api/frame/2/labels", heads_body({{5, 5}}, 4, width), "application/json")->status,
+              200);
+  }
+  // As if killed after labels/000002.png was renamed and before labelled.csv was.
+  testing::write_text(seq / "labelled.csv", "frame\n");
+  EXPECT_THROW(io::SequenceReader{seq}, Error);
+  RunningStudio again(options_for(seq));
+  EXPECT_EQ(nlohmann::json::parse(again.client().Get("/api/info")->body)["labelled"], nlohmann::json({2}));
+  EXPECT_EQ(io::SequenceReader(seq).info().labelled_frames, std::vector<int>{2});
 }
 
 TEST(StudioServer, SecondStudioOnASequenceIsReadOnly) {

@@ -5,8 +5,9 @@
 // training skips them), and one SEQ/groundtruth.json instance per labelled head.
 //
 // Every file is written under a temporary name and renamed (io/files.hpp), label image first, so
-// a kill leaves either the old or the new frame. labels/ is the truth: labelled.csv is rebuilt
-// from it when the store opens, so a kill between the renames heals at the next start (the
+// a kill leaves either the old or the new frame. labels/ is the truth: labelled.csv is written
+// before the first image and rebuilt from labels/ when a studio opens the sequence (reconcile),
+// so a kill between the renames heals at the next start (the
 // frame's groundtruth.json entries at its next save; training reads only the images). Instances
 // other tools wrote into groundtruth.json are kept; a frame's own instances (extra key
 // "studio_frame") are replaced when it is saved again. Ids are unique over the sequence; the
@@ -28,9 +29,12 @@ using HeadPixels = std::vector<int>;
 
 class LabelStore {
  public:
-  /// Opens the labels of `sequence` (frames of `frames` depth images); reconciles labelled.csv
-  /// with labels/ unless `read_only`. Throws Error naming a file it cannot read or write.
+  /// The labels of `sequence` (frames of `frames` depth images). Throws nothing.
   LabelStore(std::filesystem::path sequence, const CameraIntrinsics& camera, int frames, bool read_only);
+  /// Rewrites labelled.csv from labels/ when the sequence has one (a writer killed between a
+  /// label image and the list); call before reading the sequence, holding its lock. Returns
+  /// whether it rewrote. Throws Error naming the file it cannot write.
+  static bool reconcile(const std::filesystem::path& sequence);
 
   /// Labelled frames, ascending.
   std::vector<int> labelled() const;
