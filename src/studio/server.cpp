@@ -1,5 +1,6 @@
 // The studio server: opening the sequence, the lock, binding, and the helpers every handler uses
 // (studio/server.hpp, server_state.hpp).
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -67,6 +68,13 @@ std::optional<int> frame_of(const ServerState& s, const httplib::Request& req, h
 StudioServer::StudioServer(StudioOptions options) : s_(std::make_unique<ServerState>(std::move(options))) {
   auto& http = s_->http;
   http.set_payload_max_length(s_->options.max_body_bytes);
+  // httplib's default also sets SO_REUSEPORT, with which a second studio of the same user binds a
+  // port the first one serves and the kernel splits the connections between them: a taken port
+  // must be an error instead.
+  http.set_socket_options([](socket_t sock) {
+    const int yes = 1;
+    ::setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+  });
   http.set_default_headers(
       {{"Cache-Control", "no-store"},
        {"X-Content-Type-Options", "nosniff"},
