@@ -8,7 +8,10 @@
 #   make test-pip    `pip install .` offline into a venv and the installed package run (minutes:
 #                a second CMake build of the library, tests/install/test_pip_install.sh)
 #   make build   build only (Release, portable flags)
-#   make bench   micro-benchmarks and end-to-end benchmarks
+#   make bench   one table of the headline workloads, each beside a baseline timed in the same
+#                run, with callgrind instruction counts of the broccoli stages (a few minutes;
+#                JSON in $(BUILD)/bench/summary.json, tools/bench-compare A.json B.json)
+#   make bench-micro   every Google Benchmark binary (bench/), JSON in $(BUILD)/bench/ (long)
 #   make asan    ASan+UBSan build in build-asan/ and its tests
 #   make tsan    ThreadSanitizer build in build-tsan/ and the thread-safety test (label threads)
 #   make fuzz    libFuzzer harnesses (Clang, build-fuzz/): replay the seeds and past findings, then
@@ -41,7 +44,7 @@ FUZZ_SEED ?= 1
 export CCACHE_BASEDIR := $(CURDIR)
 export CCACHE_NOHASHDIR := 1
 
-.PHONY: all deps configure build test test-pip demo bench asan tsan fuzz format format-check clean install package
+.PHONY: all deps configure build test test-pip demo bench bench-micro asan tsan fuzz format format-check clean install package
 
 all: build
 
@@ -80,6 +83,9 @@ package: build
 	cd $(BUILD) && cpack -G DEB
 
 bench: build
+	@/usr/bin/python3 scripts/bench-table.py $(BUILD)
+
+bench-micro: build
 	@scripts/bench.sh $(BUILD)
 
 # -O1 -g1: ASan's usual optimisation, line tables for the reports; compiles faster than -O2 -g.

@@ -16,7 +16,8 @@ mkdir -p "$out" "$data"
 cd "$here"
 [[ -d "$data/uk-2001" ]] || "$bin" simulate broccoli --variety uk --seed 2001 --frames 50 --out "$data/uk-2001" >/dev/null
 [[ -d "$data/spain-2002" ]] || "$bin" simulate broccoli --variety spain --seed 2002 --frames 20 --out "$data/spain-2002" >/dev/null
-S="$data/uk-2001"; P="$data/spain-2002"
+[[ -d "$data/random-wide-7001" ]] || "$bin" simulate broccoli --variety random-wide --seed 7001 --frames 10 --out "$data/random-wide-7001" >/dev/null
+S="$data/uk-2001"; P="$data/spain-2002"; R="$data/random-wide-7001"
 run() { local name="$1"; shift; "$bin" "$@" > "$out/$name.json" 2> "$out/$name.err" || echo "exit $?" >> "$out/$name.err"; }
 run eval-oes-uk eval broccoli --data "$S" --model models/broccoli-oes-uk.json --json --quiet
 run eval-org-spain eval broccoli --data "$P" --model models/broccoli-org-spain.json --json --quiet
@@ -24,6 +25,10 @@ run eval-fec-uk eval broccoli --data "$S" --model models/broccoli-fec-uk.json --
 run eval-track-poses eval broccoli --data "$S,$P" --model models/broccoli-oes-uk.json --track --json --quiet --set tracking.use_poses=true --set sizing.estimator=hull
 run eval-track-fit eval broccoli --data "$P" --model models/broccoli-oes-spain.json --track --fit-size-bias --json --quiet
 run detect-track detect broccoli --data "$S" --model models/broccoli-oes-uk.json --out "$out/detect.jsonl" --masks "$out/masks" --track --map "$out/map.csv" --json --quiet
+# The general model (debris pass, denoising, crease split, completion, soil-following window) on a
+# test pass of its own: detections, scores, masks, sizes and the field map, and its figures.
+run detect-general detect broccoli --data "$R" --model models/broccoli-oes-general.json --out "$out/detect-general.jsonl" --masks "$out/masks-general" --track --map "$out/map-general.csv" --json --quiet
+run eval-general eval broccoli --data "$R,$S" --model models/broccoli-oes-general.json --json --quiet
 run detect-plain detect broccoli --data "$P" --model models/broccoli-fec-spain.json --out "$out/detect-plain.jsonl" --json --quiet
 run report report --data "$P" --model models/broccoli-oes-spain.json --out "$out/report.html" --json
 run train train broccoli --data "$P" --config broccoli-oes-spain --out "$out/train-model.json" --json --quiet

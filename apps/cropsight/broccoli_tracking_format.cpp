@@ -77,6 +77,8 @@ nlohmann::json tracking_json(const pipeline::broccoli::TrackingFigures& f) {
     nlohmann::json fit;
     if (f.bbox_fit) fit["bbox"] = fit_json("bbox", *f.bbox_fit);
     if (f.hull_fit) fit["hull"] = fit_json("hull", *f.hull_fit);
+    if (f.head_bbox_fit) fit["mapped_heads"]["bbox"] = fit_json("bbox", *f.head_bbox_fit);
+    if (f.head_hull_fit) fit["mapped_heads"]["hull"] = fit_json("hull", *f.head_hull_fit);
     j["size_bias_fit"] = fit;
   }
   return j;

@@ -69,7 +69,10 @@ void run(const BatchCliOptions& o) {
     std::printf("%zu shards: %zu done before, %zu ran, %zu failed, %zu resubmitted; %.4f CPU-hours, %.1f s\n",
                 e.planned, e.already_done, e.ran, e.failed, e.resubmitted, e.cpu_s / 3600.0, e.wall_s);
     for (const auto& line : e.errors) std::printf("  %s\n", line.c_str());
-    if (r.merged)
+    if (r.merged && r.plan.crop != "broccoli")
+      std::printf("wrote %s/%s: %zu rows of %zu recordings (sums in passes.csv)\n", o.out.c_str(),
+                  r.concat.file.c_str(), r.concat.rows, r.concat.recordings.size());
+    else if (r.merged)
       std::printf("merged %zu maps of %zu passes: %zu heads (%zu harvestable)%s; wrote %s/field-map.csv\n",
                   r.merge.maps, r.merge.passes, r.merge.heads_out, r.merge.harvestable,
                   r.merge.geo ? " with WGS84 (field-map.geojson)" : "", o.out.c_str());
@@ -86,7 +89,7 @@ void add_batch(CLI::App& app) {
   auto o = std::make_shared<BatchCliOptions>();
   auto* cmd =
       app.add_subcommand("batch", "Run many recordings as shards (local or Slurm), resumable, and merge the maps");
-  cmd->add_option("--manifest", o->manifest, "Batch manifest (YAML; docs/batch.md)")->required();
+  cmd->add_option("--manifest", o->manifest, "Batch manifest: YAML, or CSV with one row a recording (docs/batch.md)")->required();
   cmd->add_option("--out", o->out, "Batch folder: new, or an earlier run of this batch to resume")->required();
   cmd->add_option("--engine", o->engine, "local (threads on this machine) or slurm (a job array)")
       ->check(CLI::IsMember({"local", "slurm"}));

@@ -26,8 +26,8 @@ void run(const ShardCliOptions& o) {
     return;
   }
   const batch::ShardRecord r = batch::run_shard(plan, std::size_t(o.index), o.batch);
-  std::printf("shard %s: %d frames, %ld detections, %d heads, %.2f CPU s on %s\n", r.name.c_str(), r.frames,
-              r.detections, r.heads, r.cpu_s, r.host.c_str());
+  std::printf("shard %s: %d frames, %ld detections, %d kept, %.2f CPU s on %s\n", r.name.c_str(), r.frames,
+              r.detections, r.items, r.cpu_s, r.host.c_str());
 }
 }  // namespace batch_shard_cmd
 

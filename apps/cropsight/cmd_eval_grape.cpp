@@ -14,7 +14,7 @@
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/threads.hpp"
-#include "cropsight/io/grape_text.hpp"
+#include "cropsight/pipeline/grape/cloud_files.hpp"
 #include "cropsight/pipeline/grape/eval.hpp"
 #include "cropsight/pipeline/grape/model.hpp"
 #include "cropsight/pipeline/grape/segmenter.hpp"
@@ -34,14 +34,14 @@ struct EvalGrapeOptions {
 };
 
 void run(const EvalGrapeOptions& o) {
-  if (o.data.empty()) throw Error("--clouds", "give the folder of labelled clouds");
+  if (o.data.empty()) throw Error("--clouds", "give the labelled clouds (a folder, files or a list)");
   check_thread_count(o.threads, "--threads");
   auto cfg = o.segmenter.config();
   cfg.threads = o.threads;
   const pipeline::grape::Segmenter segmenter(cfg, "command line");
   const pipeline::grape::Model& model = segmenter.model();
   if (o.limit_set && o.limit < 1) throw Error("--limit", "must be at least 1, got " + std::to_string(o.limit));
-  auto files = io::list_grape_clouds(o.data);
+  auto files = pipeline::grape::list_cloud_files(o.data);
   if (o.limit_set && std::size_t(o.limit) < files.size()) files.resize(std::size_t(o.limit));
   if (!o.fold.empty()) {
     const auto [k, K] = pipeline::grape::parse_fold(o.fold, "--fold");
@@ -73,7 +73,9 @@ void add_eval_grape(CLI::App& eval) {
   using namespace eval_grape_cmd;
   auto o = std::make_shared<EvalGrapeOptions>();
   auto* cmd = eval.add_subcommand("grape", "Evaluate a grape segmentation model on labelled text clouds");
-  cmd->add_option("--clouds", o->data, "Folder of labelled text clouds (directly or under points/)");
+  cmd->add_option("--clouds", o->data,
+                  "Labelled clouds: a folder (directly or under points/), files or a comma-separated list; the "
+                  "dataset's .txt, or .ply / .pcd with a label field");
   add_deprecated_option(cmd, "--data", o->data, "--clouds");
   cmd->add_option("--fold", o->fold, "k/K: evaluate only fold k of the by-cloud split");
   cmd->add_option("--split-seed", o->split_seed, "Seed of the fold split (as in train grape)");

@@ -15,7 +15,7 @@
 #include "commands.hpp"
 #include "cropsight/core/threads.hpp"
 #include "cropsight/core/timer.hpp"
-#include "cropsight/io/grape_text.hpp"
+#include "cropsight/pipeline/grape/cloud_files.hpp"
 #include "cropsight/pipeline/grape/model.hpp"
 #include "cropsight/pipeline/grape/training.hpp"
 #include "cropsight/pipeline/grape/truth.hpp"
@@ -28,7 +28,7 @@ namespace train_grape_cmd {
 void progress(const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); }
 
 void run(const TrainGrapeOptions& o) {
-  if (o.data.empty()) throw Error("--clouds", "give the folder of labelled clouds");
+  if (o.data.empty()) throw Error("--clouds", "give the labelled clouds (a folder, files or a list)");
   check_train_grape_options(o);
   // Before minutes of training: the model and the checkpoint (which a rerun resumes from, so it
   // may exist) are outputs, never inputs.
@@ -39,7 +39,7 @@ void run(const TrainGrapeOptions& o) {
   const auto say = [&o](const std::string& line) {
     if (!o.quiet) progress(line);
   };
-  auto files = io::list_grape_clouds(o.data);
+  auto files = pipeline::grape::list_cloud_files(o.data);
   if (o.limit_set && std::size_t(o.limit) < files.size()) files.resize(std::size_t(o.limit));
   const auto clouds = pipeline::grape::load_grape_clouds(files);
   nlohmann::json result = {{"model", cfg.model}, {"clouds", clouds.size()}};
@@ -75,7 +75,9 @@ void add_train_grape(CLI::App& train) {
   using namespace train_grape_cmd;
   auto o = std::make_shared<TrainGrapeOptions>();
   auto* cmd = train.add_subcommand("grape", "Train a grape bunch segmentation model (GBDT, PointResNet, PointNet++)");
-  cmd->add_option("--clouds", o->data, "Folder of labelled text clouds (directly or under points/)");
+  cmd->add_option("--clouds", o->data,
+                  "Labelled clouds: a folder (directly or under points/), files or a comma-separated list; the "
+                  "dataset's .txt, or .ply / .pcd with a label field");
   add_deprecated_option(cmd, "--data", o->data, "--clouds");
   cmd->add_option("--model", o->model,
                   "gbdt | pointresnet | pointnet2 (default: the --config preset's arch, else gbdt)");

@@ -7,6 +7,7 @@
 #include "bindings.hpp"
 #include "config.hpp"
 #include "cropsight/io/grape_text.hpp"
+#include "cropsight/pipeline/grape/cloud_files.hpp"
 #include "cropsight/pipeline/grape/eval.hpp"
 #include "cropsight/pipeline/grape/make_pipeline.hpp"
 #include "cropsight/pipeline/grape/truth.hpp"
@@ -178,7 +179,7 @@ void bind_grape_pipeline(py::module_& m) {
             if (limit < 0)
               throw py::value_error("limit: must be at least 1 (0 = every cloud), got " + std::to_string(limit));
             py::gil_scoped_release free;
-            auto files = io::list_grape_clouds(folder);
+            auto files = grape::list_cloud_files(folder.string());
             if (limit > 0 && std::size_t(limit) < files.size()) files.resize(std::size_t(limit));
             const auto figures = grape::evaluate_grape(p.segmenter().model(), grape::load_grape_clouds(files));
             py::gil_scoped_acquire gil;

@@ -8,33 +8,40 @@
 #include "cropsight/io/files.hpp"
 #include "cropsight/report/html_page.hpp"
 #include "cropsight/report/svg_charts.hpp"
+#include "fixed_text.hpp"
 
 namespace cropsight::batch {
 
 namespace {
 
-std::string number(double v, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
+using detail::fixed;
+
+const std::vector<ShardRecord>& records_of(const BatchResult& r) {
+  return r.plan.crop == "broccoli" ? r.merge.records : r.concat.records;
 }
 
 void add_summary(report::HtmlPage& page, const BatchResult& r) {
   const EngineReport& e = r.engine;
   double all_cpu_s = 0.0;  // every shard's, this run's and earlier runs'
-  for (const ShardRecord& s : r.merge.records) all_cpu_s += s.cpu_s;
+  for (const ShardRecord& s : records_of(r)) all_cpu_s += s.cpu_s;
   page.section("Summary");
-  page.key_values({{"shards", std::to_string(e.planned)},
-                   {"done before this run", std::to_string(e.already_done)},
-                   {"ran", std::to_string(e.ran)},
-                   {"failed", std::to_string(e.failed)},
-                   {"resubmitted (Slurm)", std::to_string(e.resubmitted)},
-                   {"frames processed", std::to_string(e.frames)},
-                   {"CPU-hours (this run)", number(e.cpu_s / 3600.0, 4)},
-                   {"CPU-hours (all shards)", number(all_cpu_s / 3600.0, 4)},
-                   {"wall time (s)", number(e.wall_s, 1)},
-                   {"merged heads", std::to_string(r.merge.heads_out)},
-                   {"harvestable", std::to_string(r.merge.harvestable)}});
+  std::vector<std::pair<std::string, std::string>> values{{"crop", r.plan.crop},
+                                                          {"shards", std::to_string(e.planned)},
+                                                          {"done before this run", std::to_string(e.already_done)},
+                                                          {"ran", std::to_string(e.ran)},
+                                                          {"failed", std::to_string(e.failed)},
+                                                          {"resubmitted (Slurm)", std::to_string(e.resubmitted)},
+                                                          {"frames processed", std::to_string(e.frames)},
+                                                          {"CPU-hours (this run)", fixed(e.cpu_s / 3600.0, 4)},
+                                                          {"CPU-hours (all shards)", fixed(all_cpu_s / 3600.0, 4)},
+                                                          {"wall time (s)", fixed(e.wall_s, 1)}};
+  if (r.plan.crop == "broccoli") {
+    values.push_back({"merged heads", std::to_string(r.merge.heads_out)});
+    values.push_back({"harvestable", std::to_string(r.merge.harvestable)});
+  } else {
+    values.push_back({"rows in " + r.concat.file, std::to_string(r.concat.rows)});
+  }
+  page.key_values(values);
   for (const std::string& line : e.errors) page.paragraph(line);
 }
 
@@ -79,14 +86,34 @@ void add_passes(report::HtmlPage& page, const BatchResult& r) {
   page.svg(report::svg_bar_chart(times, "run time per shard", " s"));
 }
 
+// Potato, grape and seedling: per recording what its shards counted, and the shards' run times.
+void add_recordings(report::HtmlPage& page, const BatchResult& r) {
+  static const std::map<std::string, std::string> kItems{
+      {"potato", "targets selected"}, {"grape", "bunches"}, {"seedling", "seedlings found"}};
+  std::vector<report::Bar> detections, items, times;
+  for (const RecordingSummary& s : r.concat.recordings) {
+    detections.push_back({s.pass, double(s.detections)});
+    items.push_back({s.pass, double(s.items)});
+  }
+  for (const ShardRecord& s : r.concat.records) times.push_back({s.name, s.wall_s});
+  page.section("Recordings");
+  page.paragraph("Every row is in " + r.concat.file + " and the sums per recording in passes.csv.");
+  page.svg(report::svg_bar_chart(detections, "detections per recording", ""));
+  page.svg(report::svg_bar_chart(items, kItems.at(r.plan.crop) + " per recording", ""));
+  page.section("Shards");
+  page.svg(report::svg_bar_chart(times, "run time per shard", " s"));
+}
+
 }  // namespace
 
 std::string batch_report_html(const BatchResult& r) {
   report::HtmlPage page("cropsight batch");
   add_summary(page, r);
-  if (r.merged) {
+  if (r.merged && r.plan.crop == "broccoli") {
     add_map(page, r);
     add_passes(page, r);
+  } else if (r.merged) {
+    add_recordings(page, r);
   }
   return page.html();
 }

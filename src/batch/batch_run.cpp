@@ -25,7 +25,10 @@ BatchResult run_batch(const Manifest& manifest, const fs::path& dir, const Batch
     result.engine = run_slurm(result.plan, dir, options.slurm, log);
   mark_batch_folder(dir);
   if (result.engine.failed == 0) {
-    result.merge = merge_batch(result.plan, dir, options.row_gap_m);
+    if (result.plan.crop == "broccoli")
+      result.merge = merge_batch(result.plan, dir, options.row_gap_m);
+    else
+      result.concat = concat_batch(result.plan, dir);
     result.merged = true;
   }
   io::write_file_atomic(dir / "summary.json", batch_summary_json(result));
@@ -36,7 +39,8 @@ BatchResult run_batch(const Manifest& manifest, const fs::path& dir, const Batch
 
 std::string batch_summary_json(const BatchResult& r) {
   const EngineReport& e = r.engine;
-  nlohmann::json j{{"shards", e.planned},
+  nlohmann::json j{{"crop", r.plan.crop},
+                   {"shards", e.planned},
                    {"already_done", e.already_done},
                    {"ran", e.ran},
                    {"failed", e.failed},
@@ -48,7 +52,12 @@ std::string batch_summary_json(const BatchResult& r) {
                    {"jobs", e.job_ids},
                    {"errors", e.errors},
                    {"merged", r.merged}};
-  if (r.merged)
+  if (r.merged && r.plan.crop != "broccoli") {
+    nlohmann::json per = nlohmann::json::array();
+    for (const RecordingSummary& s : r.concat.recordings)
+      per.push_back({{"recording", s.pass}, {"frames", s.frames}, {"detections", s.detections}, {"items", s.items}});
+    j["concat"] = {{"file", r.concat.file}, {"rows", r.concat.rows}, {"recordings", per}};
+  } else if (r.merged)
     j["merge"] = {{"maps", r.merge.maps},       {"passes", r.merge.passes},           {"heads_in", r.merge.heads_in},
                   {"heads", r.merge.heads_out}, {"harvestable", r.merge.harvestable}, {"geo", r.merge.geo},
                   {"seconds", r.merge.seconds}};

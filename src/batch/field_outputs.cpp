@@ -1,6 +1,8 @@
 // Text of the merged map's files (batch/field_outputs.hpp). Fixed formats: equal maps, equal bytes.
 #include "cropsight/batch/field_outputs.hpp"
 
+#include "fixed_text.hpp"
+
 #include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -27,11 +29,7 @@ std::string seen_by_text(const MergedHead& h, const std::vector<PassMap>& maps) 
   return out;
 }
 
-std::string fixed(double v, int digits) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", digits, v);
-  return buf;
-}
+using detail::fixed;
 
 }  // namespace
 

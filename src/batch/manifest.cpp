@@ -9,9 +9,8 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/files.hpp"
-#include "cropsight/io/sequence.hpp"
-#include "cropsight/pipeline/broccoli/make_pipeline.hpp"
 #include "io/yaml_file.hpp"
+#include "manifest_checks.hpp"
 
 namespace cropsight::batch {
 
@@ -48,44 +47,28 @@ struct ManifestYaml {
     if (v < min) throw Error(where, "'" + key + "' must be at least " + std::to_string(min));
     return v;
   }
-  // A file named relative to the manifest becomes absolute; anything else (a shipped name) stays.
-  std::string file_or_name(const std::string& value) const {
-    if (value.empty()) return value;
-    const fs::path p = fs::path(value).is_absolute() ? fs::path(value) : folder / value;
-    return fs::is_regular_file(p) ? fs::absolute(p).lexically_normal().string() : value;
-  }
+  std::string file_or_name(const std::string& value) const { return detail::file_or_name(folder, value); }
 };
 
 void read_recordings(const ManifestYaml& y, Manifest& m) {
   const YAML::Node list = y.root["recordings"];
   if (!list || !list.IsSequence() || list.size() == 0)
-    throw Error(y.where, "'recordings' must be a non-empty list of sequence folders");
-  std::map<std::string, std::string> by_name;  // shard folder name → recording, to refuse duplicates
+    throw Error(y.where, "'recordings' must be a non-empty list of recording folders");
   for (const auto& item : list) {
     if (!item.IsScalar()) throw Error(y.where, "each recording must be a path");
-    const fs::path rel = item.Scalar();
-    const fs::path path = fs::absolute(rel.is_absolute() ? rel : y.folder / rel).lexically_normal();
-    if (!fs::is_directory(path)) throw Error(y.where, "recording " + item.Scalar() + " is not a sequence folder");
-    io::SequenceReader check(path);  // Error(file, ...) names what is wrong inside it
-    const std::string name = path.filename().string();
-    const auto [it, fresh] = by_name.emplace(name, item.Scalar());
-    if (!fresh)
-      throw Error(y.where, "recordings " + it->second + " and " + item.Scalar() + " would both write shards/" + name +
-                               " (give the folders distinct names)");
-    m.recordings.push_back(path);
+    detail::add_recording(m, y.where, item.Scalar(), y.folder);
   }
+  detail::check_distinct_names(m, y.where);
 }
 
 void read_pipeline(const ManifestYaml& y, Manifest& m) {
   const YAML::Node p = y.root["pipeline"];
   if (!p) throw Error(y.where, "missing 'pipeline' (crop, model, config, sets)");
-  y.check_keys(p, "pipeline", {"crop", "model", "config", "sets"});
-  m.crop = y.text(p, "crop");
-  if (m.crop.empty()) throw Error(y.where, "'pipeline.crop' is required (broccoli)");
-  if (!batch_supports_crop(m.crop))
-    throw Error(y.where, "pipeline.crop '" + m.crop + "': batches run broccoli only so far");
+  y.check_keys(p, "pipeline", {"crop", "model", "config", "sets", "detector"});
+  detail::set_crop(m, y.where, y.text(p, "crop"));
   m.spec.model = y.file_or_name(y.text(p, "model"));
   m.spec.preset = y.file_or_name(y.text(p, "config"));
+  m.spec.detector = y.file_or_name(y.text(p, "detector"));
   if (const YAML::Node sets = p["sets"]) {
     if (!sets.IsMap()) throw Error(y.where, "'pipeline.sets' must be a mapping of key: value");
     for (const auto& kv : sets) {
@@ -93,12 +76,6 @@ void read_pipeline(const ManifestYaml& y, Manifest& m) {
         throw Error(y.where, "'pipeline.sets' entries must be key: value");
       m.spec.sets.push_back(kv.first.Scalar() + "=" + kv.second.Scalar());
     }
-  }
-  // The same call every shard makes: an unknown preset, model or key fails now, not on the cluster.
-  try {
-    pipeline::broccoli::make_pipeline(m.spec);
-  } catch (const Error& e) {
-    throw Error(y.where, "pipeline: " + std::string(e.what()));
   }
 }
 
@@ -123,9 +100,8 @@ void read_options(const ManifestYaml& y, Manifest& m) {
 
 }  // namespace
 
-bool batch_supports_crop(const std::string& crop) { return crop == "broccoli"; }
-
 Manifest read_manifest(const fs::path& file) {
+  if (file.extension() == ".csv") return read_manifest_csv(file);
   ManifestYaml y;
   y.where = file.string();
   y.folder = fs::absolute(file).parent_path();
@@ -134,9 +110,11 @@ Manifest read_manifest(const fs::path& file) {
   y.check_keys(y.root, "manifest", {"recordings", "pipeline", "shards", "slurm"});
   Manifest m;
   m.file = fs::absolute(file);
+  read_pipeline(y, m);  // first: the crop says what a recording is
   read_recordings(y, m);
   read_options(y, m);
-  read_pipeline(y, m);
+  // The same call every shard makes: an unknown preset, model or key fails now, not on the cluster.
+  detail::check_pipeline(m, y.where);
   return m;
 }
 

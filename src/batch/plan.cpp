@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "cropsight/batch/crop_shards.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
-#include "cropsight/io/sequence.hpp"
 #include "cropsight/pipeline/broccoli/make_pipeline.hpp"
 
 namespace cropsight::batch {
@@ -38,12 +38,13 @@ BatchPlan plan_batch(const Manifest& m) {
   plan.crop = m.crop;
   plan.spec = m.spec;
   plan.slurm = m.slurm;
-  const auto pipe = pipeline::broccoli::make_pipeline(m.spec);
-  plan.merge = {pipe->config().tracking.association_radius_m, pipe->config().sizing.market_min_mm,
-                pipe->config().sizing.market_max_mm};
+  if (m.crop == "broccoli") {
+    const auto pipe = pipeline::broccoli::make_pipeline(m.spec);
+    plan.merge = {pipe->config().tracking.association_radius_m, pipe->config().sizing.market_min_mm,
+                  pipe->config().sizing.market_max_mm};
+  }
   for (const fs::path& rec : m.recordings)
-    for (Shard& s : plan_recording(rec, io::SequenceReader(rec).size(), m.sharding))
-      plan.shards.push_back(std::move(s));
+    for (Shard& s : plan_recording(rec, recording_frames(m.crop, rec), m.sharding)) plan.shards.push_back(std::move(s));
   std::sort(plan.shards.begin(), plan.shards.end(), [](const Shard& a, const Shard& b) { return a.name < b.name; });
   return plan;
 }
@@ -56,22 +57,24 @@ std::string plan_json(const BatchPlan& p) {
                       {"sequence", s.sequence.string()},
                       {"frames", {s.first_frame, s.end_frame}},
                       {"owned_frames", {s.own_first, s.own_end}}});
-  const json j{{"manifest", p.manifest.string()},
-               {"crop", p.crop},
-               {"pipeline", {{"preset", p.spec.preset}, {"model", p.spec.model}, {"sets", p.spec.sets}}},
-               {"merge",
-                {{"association_radius_m", p.merge.association_radius_m},
-                 {"market_min_mm", p.merge.market_min_mm},
-                 {"market_max_mm", p.merge.market_max_mm}}},
-               {"slurm",
-                {{"partition", p.slurm.partition},
-                 {"account", p.slurm.account},
-                 {"time", p.slurm.time},
-                 {"mem", p.slurm.mem},
-                 {"cpus_per_task", p.slurm.cpus_per_task},
-                 {"max_retries", p.slurm.max_retries},
-                 {"max_parallel", p.slurm.max_parallel}}},
-               {"shards", shards}};
+  const json j{
+      {"manifest", p.manifest.string()},
+      {"crop", p.crop},
+      {"pipeline",
+       {{"preset", p.spec.preset}, {"model", p.spec.model}, {"sets", p.spec.sets}, {"detector", p.spec.detector}}},
+      {"merge",
+       {{"association_radius_m", p.merge.association_radius_m},
+        {"market_min_mm", p.merge.market_min_mm},
+        {"market_max_mm", p.merge.market_max_mm}}},
+      {"slurm",
+       {{"partition", p.slurm.partition},
+        {"account", p.slurm.account},
+        {"time", p.slurm.time},
+        {"mem", p.slurm.mem},
+        {"cpus_per_task", p.slurm.cpus_per_task},
+        {"max_retries", p.slurm.max_retries},
+        {"max_parallel", p.slurm.max_parallel}}},
+      {"shards", shards}};
   return j.dump(1) + "\n";
 }
 
@@ -85,6 +88,7 @@ BatchPlan read_plan(const fs::path& path) {
     p.spec.preset = pipe.at("preset").get<std::string>();
     p.spec.model = pipe.at("model").get<std::string>();
     p.spec.sets = pipe.at("sets").get<std::vector<std::string>>();
+    p.spec.detector = pipe.value("detector", std::string());  // absent in plans of broccoli-only batches
     const json& merge = j.at("merge");
     p.merge = {merge.at("association_radius_m").get<double>(), merge.at("market_min_mm").get<double>(),
                merge.at("market_max_mm").get<double>()};

@@ -6,12 +6,10 @@
 #include <ctime>
 #include <nlohmann/json.hpp>
 
+#include "cropsight/batch/crop_shards.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/core/timer.hpp"
 #include "cropsight/io/files.hpp"
-#include "cropsight/io/sequence.hpp"
-#include "cropsight/pipeline/broccoli/make_pipeline.hpp"
-#include "cropsight/tracking/field_map_io.hpp"
 
 namespace cropsight::batch {
 
@@ -35,7 +33,7 @@ std::string host_name() {
 
 json record_json(const ShardRecord& r) {
   return {{"name", r.name},   {"pass", r.pass},     {"frames", r.frames}, {"detections", r.detections},
-          {"heads", r.heads}, {"wall_s", r.wall_s}, {"cpu_s", r.cpu_s},   {"host", r.host}};
+          {"items", r.items}, {"wall_s", r.wall_s}, {"cpu_s", r.cpu_s},   {"host", r.host}};
 }
 
 }  // namespace
@@ -54,21 +52,12 @@ ShardRecord run_shard(const BatchPlan& plan, std::size_t index, const fs::path& 
   const fs::path folder = shard_folder(batch_dir, shard);
   fs::create_directories(folder.parent_path());
   io::TempDirectory tmp(folder);  // removes what killed attempts left beside it
-  const auto pipe = pipeline::broccoli::make_pipeline(plan.spec);
-  const io::SequenceReader reader(shard.sequence);
-  if (shard.end_frame > reader.size())
-    throw Error(shard.sequence.string(), "has " + std::to_string(reader.size()) + " frames, the plan expected " +
+  const int frames = recording_frames(plan.crop, shard.sequence);
+  if (shard.end_frame > frames)
+    throw Error(shard.sequence.string(), "has " + std::to_string(frames) + " frames, the plan expected " +
                                              std::to_string(shard.end_frame) + " (re-plan with a new --out)");
-  ShardRecord r{shard.name, shard.pass};
-  for (int i = shard.first_frame; i < shard.end_frame; ++i) {
-    r.detections += long(pipe->process(reader.read(i)).detections.size());
-    ++r.frames;
-  }
-  std::vector<tracking::TrackedHead> kept;
-  for (const auto& h : pipe->finish())
-    if (h.first_frame >= shard.own_first && h.first_frame < shard.own_end) kept.push_back(h);
-  r.heads = int(kept.size());
-  tracking::write_field_map(tmp.path() / "field-map.csv", kept);
+  const ShardCounts counts = run_crop_shard(plan.crop, plan.spec, shard, tmp.path());
+  ShardRecord r{shard.name, shard.pass, counts.frames, counts.detections, counts.items};
   r.cpu_s = thread_cpu_seconds() - cpu0;
   r.wall_s = clock.seconds();
   r.host = host_name();
@@ -80,8 +69,10 @@ ShardRecord run_shard(const BatchPlan& plan, std::size_t index, const fs::path& 
 ShardRecord read_shard_record(const fs::path& path) {
   try {
     const json j = json::parse(io::read_file(path));
-    return {j.at("name"),  j.at("pass"),   j.at("frames"), j.at("detections"),
-            j.at("heads"), j.at("wall_s"), j.at("cpu_s"),  j.at("host")};
+    // "heads": the key of batches written before other crops could run.
+    const json& items = j.contains("items") ? j.at("items") : j.at("heads");
+    return {j.at("name"), j.at("pass"),   j.at("frames"), j.at("detections"),
+            items,        j.at("wall_s"), j.at("cpu_s"),  j.at("host")};
   } catch (const json::exception& e) {
     throw Error(path.string(), std::string("not a shard record: ") + e.what());
   }

@@ -4,10 +4,12 @@
 // acos(|a1|) > acos(|a2|), which for |a| ≤ 1 is |a1| < |a2| (acos is decreasing), evaluated here
 // without the two acos calls.
 //
-// For speed the points are processed in blocks: gathered into small structure-of-arrays buffers
-// on the stack, their bins computed in one branch-free loop that the compiler vectorises (AVX2
-// clone picked at run time; no FMA, so every float operation rounds as in the scalar code), then
-// added to the histogram in point order (the same float sums as a point-by-point loop). atan2 is
+// For speed the usable points are gathered once into structure-of-arrays buffers (the centroid
+// sums then run over them), their bins computed in blocks by one branch-free loop that the
+// compiler vectorises (AVX2 / AVX-512 clone picked at run time; no FMA, so every float operation
+// rounds as in the scalar code), and the bins counted as integers: every point adds the same
+// increment to its bin, so a bin's float sum after c additions is the c-th entry of the running
+// sum 0, inc, inc + inc, ... (the same float additions as a point-by-point loop). atan2 is
 // the only call that does not vectorise: the loop uses a polynomial atan2 (Cephes atanf, error
 // ~1e-7 rad) and only points whose angle lies within 1e-4 of a bin boundary (far more than the
 // polynomial's error) are recomputed with std::atan2, so every bin is the one std::atan2 gives.
@@ -15,22 +17,24 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <vector>
 
 #include "core/cpu_dispatch.hpp"
 
 namespace cropsight::features {
 
 namespace {
-inline bool usable(const OrganizedCloud& c, int i) {
-  return std::isfinite(c.x[i]) && std::isfinite(c.y[i]) && std::isfinite(c.z[i]) && std::isfinite(c.nx[i]) &&
-         std::isfinite(c.ny[i]) && std::isfinite(c.nz[i]);
-}
 
 constexpr int kBlock = 256;  // points per block (stack buffers: ~17 KB)
 
-// Structure-of-arrays view of one block of points and the per-point results.
+// The usable points of one segment, structure of arrays (x, y, z, nx, ny, nz planes of `n`).
+struct Points {
+  const float *x, *y, *z, *nx, *ny, *nz;
+};
+
+// The per-point results of one block.
 struct Block {
-  alignas(32) float x[kBlock], y[kBlock], z[kBlock], nx[kBlock], ny[kBlock], nz[kBlock];
   alignas(32) int vp[kBlock], b1[kBlock], b2[kBlock], b3[kBlock], flag[kBlock];
   alignas(32) float f4[kBlock], f1y[kBlock], f1x[kBlock];
 };
@@ -71,10 +75,10 @@ inline float atan2_poly(float y, float x) {
 
 // Bins of one block (n ≤ kBlock points). The float expressions are those of the scalar
 // computePairFeatures port, in the same order.
-CROPSIGHT_AVX2_CLONES void block_bins(int n, Block& b, const Frame& f, double d_pi) {
+CROPSIGHT_AVX2_CLONES void block_bins(int n, const Points& p, Block& b, const Frame& f, double d_pi) {
   for (int k = 0; k < n; ++k) {
-    const float px = b.x[k], py = b.y[k], pz = b.z[k];
-    const float n2x = b.nx[k], n2y = b.ny[k], n2z = b.nz[k];
+    const float px = p.x[k], py = p.y[k], pz = p.z[k];
+    const float n2x = p.nx[k], n2y = p.ny[k], n2z = p.nz[k];
     // Viewpoint component.
     const double alpha = (double(n2x * f.vx + n2y * f.vy + n2z * f.vz) + 1.0) * 0.5;
     const int fi = int(std::floor(alpha * 128.0));
@@ -113,23 +117,58 @@ CROPSIGHT_AVX2_CLONES void block_bins(int n, Block& b, const Frame& f, double d_
     b.flag[k] = ((f4 != 0.0f) & (vnorm != 0.0f) ? kPair : 0) | (exact ? kExactF1 : 0);
   }
 }
+
+// The usable points of `indices` (finite position and normal), in index order, as planes of
+// `buf` (6 planes of indices.size() floats); returns their count.
+std::size_t gather_usable(const OrganizedCloud& c, std::span<const int> indices, std::unique_ptr<float[]>& buf,
+                          Points& p) {
+  const std::size_t cap = indices.size();
+  buf = std::make_unique_for_overwrite<float[]>(6 * cap);  // not zeroed: every read entry is written first
+  float* x = buf.get();
+  float *y = x + cap, *z = y + cap, *nx = z + cap, *ny = nx + cap, *nz = ny + cap;
+  const float *X = c.x.data(), *Y = c.y.data(), *Z = c.z.data();
+  const float *NX = c.nx.data(), *NY = c.ny.data(), *NZ = c.nz.data();
+  std::size_t m = 0;
+  for (int i : indices) {
+    // Usable: finite position and normal. Written unconditionally, kept by advancing m: no
+    // branch on the (unpredictable) test.
+    const float a = X[i], b = Y[i], d = Z[i], e = NX[i], f = NY[i], g = NZ[i];
+    x[m] = a, y[m] = b, z[m] = d, nx[m] = e, ny[m] = f, nz[m] = g;
+    const bool ok =
+        std::isfinite(a) & std::isfinite(b) & std::isfinite(d) & std::isfinite(e) & std::isfinite(f) & std::isfinite(g);
+    m += ok ? 1 : 0;
+  }
+  p = Points{x, y, z, nx, ny, nz};
+  return m;
+}
+
+// hist[b] = the float sum of count[b] additions of `inc` to 0, as a point-by-point loop adds
+// them: the running sums 0, inc, inc + inc, ... up to the largest count.
+void counts_to_bins(const int* count, int bins, float inc, std::vector<float>& sums, float* hist) {
+  const int most = *std::max_element(count, count + bins);
+  sums.resize(std::size_t(most) + 1);
+  float s = 0.0f;
+  sums[0] = s;
+  for (int c = 1; c <= most; ++c) sums[std::size_t(c)] = s = s + inc;
+  for (int b = 0; b < bins; ++b) hist[b] = sums[std::size_t(count[b])];
+}
 }  // namespace
 
 // Long on purpose: PCL's VFH as its numbered steps in one hot pass per cluster.
 void compute_vfh(const OrganizedCloud& cloud, std::span<const int> indices, const VfhConfig& cfg, float* out) {
   std::fill(out, out + kVfhBins, 0.0f);
   if (!cloud.has_normals()) return;
+  std::unique_ptr<float[]> buf;
+  Points p;
+  const std::size_t n = gather_usable(cloud, indices, buf, p);
+  if (n < 2) return;
   // Step 1: centroid (position) and mean normal (not renormalised, as in PCL).
   double sx = 0, sy = 0, sz = 0;
   float snx = 0, sny = 0, snz = 0;
-  std::size_t n = 0;
-  for (int i : indices) {
-    if (!usable(cloud, i)) continue;
-    sx += cloud.x[i], sy += cloud.y[i], sz += cloud.z[i];
-    snx += cloud.nx[i], sny += cloud.ny[i], snz += cloud.nz[i];
-    ++n;
+  for (std::size_t k = 0; k < n; ++k) {
+    sx += p.x[k], sy += p.y[k], sz += p.z[k];
+    snx += p.nx[k], sny += p.ny[k], snz += p.nz[k];
   }
-  if (n < 2) return;
   const float cx = float(sx / double(n)), cy = float(sy / double(n)), cz = float(sz / double(n));
   const float fn = float(n);
   const float n1x = snx / fn, n1y = sny / fn, n1z = snz / fn;
@@ -138,9 +177,8 @@ void compute_vfh(const OrganizedCloud& cloud, std::span<const int> indices, cons
   float max_dist = 1.0f;
   if (cfg.size_component && cfg.normalize_distances) {
     float best = -1.0f;
-    for (int i : indices) {
-      if (!usable(cloud, i)) continue;
-      const float dx = cloud.x[i] - cx, dy = cloud.y[i] - cy, dz = cloud.z[i] - cz;
+    for (std::size_t k = 0; k < n; ++k) {
+      const float dx = p.x[k] - cx, dy = p.y[k] - cy, dz = p.z[k] - cz;
       best = std::max(best, dx * dx + dy * dy + dz * dz);
     }
     // PCL: (centroid(w=1) - farthest(w=0)).norm() — the w difference of 1 is included.
@@ -161,41 +199,39 @@ void compute_vfh(const OrganizedCloud& cloud, std::span<const int> indices, cons
   const float f_incr = cfg.normalize_bins ? 100.0f / float(n - 1) : 1.0f;
   const float vp_incr = cfg.normalize_bins ? float(100.0 / double(n)) : 1.0f;
   const double d_pi = double(1.0f / (2.0f * float(M_PI)));
-  float* h1 = out;
-  float* h2 = out + 45;
-  float* h3 = out + 90;
-  float* h4 = out + 135;
-  float* hvp = out + 180;
 
-  // Step 2: blocks of usable points → bins (vectorised) → histogram, in point order.
+  // Step 2: blocks of usable points → bins (vectorised) → integer counts per bin, in the
+  // histogram's layout (f1 45, f2 45, f3 45, f4 45, viewpoint 128).
+  int count[kVfhBins] = {};
+  int* c1 = count;
+  int* c2 = count + 45;
+  int* c3 = count + 90;
+  int* c4 = count + 135;
+  int* cvp = count + 180;
   Block b;
-  std::size_t next = 0;
-  while (next < indices.size()) {
-    int m = 0;
-    for (; next < indices.size() && m < kBlock; ++next) {
-      const int i = indices[next];
-      if (!usable(cloud, i)) continue;
-      b.x[m] = cloud.x[i], b.y[m] = cloud.y[i], b.z[m] = cloud.z[i];
-      b.nx[m] = cloud.nx[i], b.ny[m] = cloud.ny[i], b.nz[m] = cloud.nz[i];
-      ++m;
-    }
-    block_bins(m, b, frame, d_pi);
+  for (std::size_t first = 0; first < n; first += kBlock) {
+    const int m = int(std::min<std::size_t>(kBlock, n - first));
+    const Points q{p.x + first, p.y + first, p.z + first, p.nx + first, p.ny + first, p.nz + first};
+    block_bins(m, q, b, frame, d_pi);
     for (int k = 0; k < m; ++k) {
-      hvp[b.vp[k]] += vp_incr;  // every usable point, including those with no pair feature
+      ++cvp[b.vp[k]];  // every usable point, including those with no pair feature
       const int flag = b.flag[k];
       if (!(flag & kPair)) continue;
       const int bin1 = (flag & kExactF1) ? angle_bin(std::atan2(b.f1y[k], b.f1x[k]), d_pi) : b.b1[k];
-      h1[bin1] += f_incr;
-      h2[b.b2[k]] += f_incr;
-      h3[b.b3[k]] += f_incr;
+      ++c1[bin1];
+      ++c2[b.b2[k]];
+      ++c3[b.b3[k]];
       if (cfg.size_component) {
         const float f4 = b.f4[k];
         const int hi = cfg.normalize_distances ? int(std::floor(45.0 * (double(f4) / double(max_dist))))
                                                : int(std::floor(double(f4) * 100.0 + 0.5));  // pcl_round
-        h4[std::clamp(hi, 0, 44)] += f_incr;
+        ++c4[std::clamp(hi, 0, 44)];
       }
     }
   }
+  std::vector<float> sums;
+  counts_to_bins(count, 180, f_incr, sums, out);
+  counts_to_bins(cvp, 128, vp_incr, sums, out + 180);
 }
 
 }  // namespace cropsight::features

@@ -16,7 +16,9 @@
 #include "cropsight/geometry/integral_normals.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "core/cpu_dispatch.hpp"
@@ -311,8 +313,11 @@ class IntegralRing {
  public:
   IntegralRing(std::vector<double>& storage, int w, int S, const float* X, const float* Y, const float* Z)
       : w_(w), ring_(S + 2), row_len_(std::size_t(w + 1) * kCell), X_(X), Y_(Y), Z_(Z) {
-    storage.assign(row_len_ * ring_, 0.0);
+    // Only I(0) must start as zeros: build_row() writes every cell of the other slots before
+    // they are read, so the rest of the buffer keeps what the last frame left in it.
+    storage.resize(row_len_ * ring_);
     data_ = storage.data();
+    std::fill(data_, data_ + row_len_, 0.0);
   }
   const double* row(int r) const { return data_ + std::size_t(r % ring_) * row_len_; }
   // Builds I(built) .. I(r_last).
@@ -352,29 +357,41 @@ struct RowLists {
 };
 
 // The pixels of row v (o = v·w) that get a normal: valid, window larger than 2, selected (when
-// `sel`); writes their columns and window sizes int(min(distance, smoothing)), returns how many.
-// Branch-free (& instead of &&: the tests are cheap and their outcome changes often along a
-// row); NaN points have distance 0, so the window test also skips them.
-CROPSIGHT_AVX2_CLONES int list_row(const float* Z, const float* dist, const int* sel, std::size_t o, int w, int S,
-                                   float smoothing, int* cols, int* sizes) {
-  int count = 0;
+// `sel`). Two passes: need[k] = 1 for pixel u = S + k that does, for the row's w - 2S pixels
+// (branch-free, vectorised: & instead of &&; NaN points have distance 0, so the window test also
+// skips them), then the compaction, a 64-bit word of `need` at a time (most words of a sparse
+// selection are zero), writing their columns and window sizes int(min(distance, smoothing)) in
+// column order, with their positions; returns how many.
+CROPSIGHT_AVX2_CLONES void need_row(const float* __restrict Z, const float* __restrict dist, const int* __restrict sel,
+                                    int m, float smoothing, std::uint8_t* __restrict need) {
   if (sel) {
-    for (int u = S; u < w - S; ++u) {
-      const std::size_t i = o + u;
-      const float sm = std::min(dist[i], smoothing);
-      const bool window = std::isfinite(Z[i]) & (sm > 2.0f) & (sel[i] >= 0);
-      cols[count] = u, sizes[count] = int(sm);
-      count += window ? 1 : 0;
-    }
+    for (int k = 0; k < m; ++k)
+      need[k] = std::uint8_t(std::isfinite(Z[k]) & (std::min(dist[k], smoothing) > 2.0f) & (sel[k] >= 0));
   } else {
-    for (int u = S; u < w - S; ++u) {
-      const std::size_t i = o + u;
-      const float sm = std::min(dist[i], smoothing);
-      const bool window = std::isfinite(Z[i]) & (sm > 2.0f);
-      cols[count] = u, sizes[count] = int(sm);
-      count += window ? 1 : 0;
-    }
+    for (int k = 0; k < m; ++k) need[k] = std::uint8_t(std::isfinite(Z[k]) & (std::min(dist[k], smoothing) > 2.0f));
   }
+}
+int list_row(const float* const xyz[3], const float* dist, const int* sel, std::size_t o, int w, int S, float smoothing,
+             std::uint8_t* need, const RowLists& L) {
+  const int m = w - 2 * S;
+  const std::size_t first = o + std::size_t(S);
+  need_row(xyz[2] + first, dist + first, sel ? sel + first : nullptr, m, smoothing, need);
+  const float* d = dist + first;
+  const float *x = xyz[0] + first, *y = xyz[1] + first, *z = xyz[2] + first;
+  int count = 0;
+  auto take = [&](int k) {  // also the pixel's position, for solve_row()
+    L.cols[count] = S + k, L.sizes[count] = int(std::min(d[k], smoothing));
+    L.PX[count] = x[k], L.PY[count] = y[k], L.PZ[count] = z[k];
+    ++count;
+  };
+  int k0 = 0;
+  for (; k0 + 8 <= m; k0 += 8) {
+    std::uint64_t word;
+    std::memcpy(&word, need + k0, 8);
+    for (; word != 0; word &= word - 1) take(k0 + std::countr_zero(word) / 8);  // bytes are 0 or 1
+  }
+  for (; k0 < m; ++k0)
+    if (need[k0]) take(k0);
   return count;
 }
 
@@ -419,12 +436,14 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int
   float* NZ = cloud.nz.data();
   float* CV = cloud.curvature.data();
   const int* sel = select.empty() ? nullptr : select.data();
+  const float* const xyz[3] = {X, Y, Z};
   // Integral rows of each window size s = 2..S for the current pixel row (sm > 2 gives s >= 2).
   std::vector<const double*> tops(std::size_t(S) + 1, nullptr), bottoms(std::size_t(S) + 1, nullptr);
   for (int v = S; v < h - S; ++v) {
     const std::size_t o = std::size_t(v) * w;
     nan_rows(cloud, v, v + 1);
-    const int count = list_row(Z, dist, sel, o, w, S, cfg_.normal_smoothing_size, L.cols, L.sizes);
+    // flags_ (the depth-change map's 3w bytes, free by now) holds the row's "needs a normal" bytes.
+    const int count = list_row(xyz, dist, sel, o, w, S, cfg_.normal_smoothing_size, flags_.data(), L);
     if (count == 0) continue;
     integral.build_until(v + S - S / 2);
     // Window rows per size: top v - s/2, bottom v - s/2 + s.
@@ -432,10 +451,6 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int
       tops[std::size_t(s)] = integral.row(v - s / 2), bottoms[std::size_t(s)] = integral.row(v - s / 2 + s);
     scatter_row(count, L.cols, L.sizes, tops.data(), bottoms.data(), L.M, L.stride,
                 cfg_.nan_breaks_window ? 0.0 : double(cfg_.min_valid_fraction));
-    for (int k = 0; k < count; ++k) {
-      const int u = L.cols[k];
-      L.PX[k] = X[o + u], L.PY[k] = Y[o + u], L.PZ[k] = Z[o + u];
-    }
     solve_row(count, L.M, L.stride, L.PX, L.PY, L.PZ, L.RX, L.RY, L.RZ, L.RC);
     for (int k = 0; k < count; ++k) {
       const std::size_t i = o + L.cols[k];

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <utility>
 
 #include "core/cpu_dispatch.hpp"
 #include "cropsight/core/error.hpp"
@@ -91,9 +90,13 @@ void detect_organized_edges(const OrganizedCloud& cloud, const OrganizedEdgeConf
   const int ddy[8] = {0, -1, -1, -1, 0, 1, 1, 1};
   int doff[8];
   for (int k = 0; k < 8; ++k) doff[k] = ddy[k] * w + ddx[k];
-  // Walk steps per direction (dx, dy in -8..8, count 1..8 → 17·17·9 keys), filled on first use.
+  // Walk steps per direction (dx, dy in -8..8, count 1..8 → 17·17·9 keys), filled on first use:
+  // each step's row and column offset and its offset in the flat image.
+  struct Step {
+    int dr, dc, offset;
+  };
   std::vector<int> dir_slot(17 * 17 * 9, -1);
-  std::vector<std::pair<int, int>> steps;
+  std::vector<Step> steps;
 
   for (int row = 1; row < h - 1; ++row) {
     std::uint8_t* lrow = labels.data() + std::size_t(row) * w;
@@ -128,16 +131,18 @@ void detect_organized_edges(const OrganizedCloud& cloud, const OrganizedEdgeConf
       if (slot < 0) {
         slot = int(steps.size());
         const float fdx = float(dx) / float(count), fdy = float(dy) / float(count);
-        for (int s = 1; s < cfg.max_search_neighbors; ++s)
-          steps.push_back({floor_int(fdy * float(s)), floor_int(fdx * float(s))});
+        for (int s = 1; s < cfg.max_search_neighbors; ++s) {
+          const int dr = floor_int(fdy * float(s)), dc = floor_int(fdx * float(s));
+          steps.push_back({dr, dc, dr * w + dc});
+        }
       }
-      const std::pair<int, int>* st = steps.data() + slot;
+      const Step* st = steps.data() + slot;
       float corr = std::numeric_limits<float>::quiet_NaN();
       for (int s = 1; s < cfg.max_search_neighbors; ++s) {
-        const int sr = row + st[s - 1].first;
-        const int sc = col + st[s - 1].second;
-        if (sr < 0 || sr >= h || sc < 0 || sc >= w) break;
-        const float zs = Z[sr * w + sc];
+        // Inside the image: one unsigned comparison per coordinate (a negative one wraps high).
+        const Step& step = st[s - 1];
+        if (unsigned(row + step.dr) >= unsigned(h) || unsigned(col + step.dc) >= unsigned(w)) break;
+        const float zs = Z[i + step.offset];
         if (std::isfinite(zs)) {
           corr = std::abs(zs);
           break;

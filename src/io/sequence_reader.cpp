@@ -62,10 +62,12 @@ void check_size(const fs::path& path, int w, int h, const CameraIntrinsics& cam)
                                    std::to_string(cam.width) + "x" + std::to_string(cam.height));
 }
 
-// The entries a sequence may hold at its top level (docs/formats.md).
-const char* const kKnownEntries[] = {"camera.yaml",      "depth",          "color",       "labels",
-                                     "poses.csv",        "timestamps.csv", "depth_color", "geo_origin.yaml",
-                                     "groundtruth.json", "labelled.csv"};
+// The entries a sequence may hold at its top level (docs/formats.md); detections.json: 2D boxes
+// per frame (COCO, image_id = frame), which a grape batch reads when it runs no detector;
+// labelled.csv: the labelled frames of a partly labelled sequence.
+const char* const kKnownEntries[] = {"camera.yaml",      "depth",           "color",       "labels",
+                                     "poses.csv",        "timestamps.csv",  "depth_color", "geo_origin.yaml",
+                                     "groundtruth.json", "detections.json", "labelled.csv"};
 
 // Levenshtein distance: the fewest insertions, deletions and substitutions from a to b.
 std::size_t edit_distance(const std::string& a, const std::string& b) {

@@ -162,6 +162,41 @@ TEST_F(BatchCli, BadManifestIsOneLineAndExit2) {
   }
 }
 
+TEST_F(BatchCli, CsvManifestRunsTheSameBatchAsYaml) {
+  const fs::path yaml = write_manifest(dir() / "same.yaml", passes(2), "  model: broccoli-oes-general\n");
+  std::string csv = "# recordings listed by a script\nrecording,crop,model\n";
+  csv += "\"" + (passes_ / "pass1").string() + "\",broccoli,broccoli-oes-general\n";
+  csv += (passes_ / "pass2").string() + ",,\n";  // empty cells: the other rows' values
+  cropsight::testing::write_text(dir() / "same.csv", csv);
+  const auto a = run_cli("batch --quiet --manifest " + shell_quoted(yaml) + " --out " + shell_quoted(dir() / "y"));
+  const auto b =
+      run_cli("batch --quiet --manifest " + shell_quoted(dir() / "same.csv") + " --out " + shell_quoted(dir() / "c"));
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  EXPECT_EQ(slurp(dir() / "c" / "field-map.csv"), slurp(dir() / "y" / "field-map.csv"));
+
+  const std::string p1 = (passes_ / "pass1").string(), p2 = (passes_ / "pass2").string();
+  const std::string bad[] = {
+      "recording,crop\n" + p1 + ",broccoli\n" + p2 + ",potato\n",  // two pipelines
+      "recording,crop,colour\n" + p1 + ",broccoli,red\n",          // unknown column
+      "path,crop\n" + p1 + ",broccoli\n",                          // no recording column
+      "recording,crop\n" + p1 + ",broccoli,extra\n",               // field count
+      "recording,crop\n\"" + p1 + ",broccoli\n",                   // unterminated quote
+      "recording,crop\n" + p1 + "\n",                              // field count (too few)
+      "recording\n" + p1 + "\n",                                   // no crop
+      "recording,crop\nnowhere,broccoli\n",                        // missing recording
+  };
+  for (const std::string& text : bad) {
+    cropsight::testing::write_text(dir() / "bad.csv", text);
+    const auto r = run_cli("batch --manifest " + shell_quoted(dir() / "bad.csv") + " --out " +
+                           shell_quoted(dir() / "bad-csv-out"));
+    EXPECT_EQ(r.exit_code, 2) << text;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("bad.csv"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir() / "bad-csv-out")) << text;
+  }
+}
+
 TEST_F(BatchCli, MergeCommandFusesPassMaps) {
   const fs::path m = write_manifest(dir() / "m.yaml", passes()), out = dir() / "local";
   ASSERT_EQ(run_cli("batch --quiet --manifest " + shell_quoted(m) + " --out " + shell_quoted(out)).exit_code, 0);

@@ -66,6 +66,24 @@ cropsight::testing::TempDir* BatchSlurm::tmp_ = nullptr;
 fs::path BatchSlurm::passes_;
 std::string BatchSlurm::error_;
 
+TEST_F(BatchSlurm, SeedlingRowsEqualLocal) {
+  // A crop whose results are rows, not a map: the array tasks write the same rows as local workers.
+  for (int seed : {1, 2})
+    ASSERT_EQ(run_cli("simulate seedling --pairs 2 --calib-pairs 0 --seed " + std::to_string(seed) + " --out " +
+                      shell_quoted(dir() / ("seedling-" + std::to_string(seed))))
+                  .exit_code,
+              0);
+  cropsight::testing::write_text(dir() / "seedlings.csv", "recording,crop\nseedling-1,seedling\nseedling-2,\n");
+  const auto local_run = run_cli("batch --quiet --manifest " + shell_quoted(dir() / "seedlings.csv") + " --out " +
+                                 shell_quoted(dir() / "seedling-local"));
+  ASSERT_EQ(local_run.exit_code, 0) << local_run.err;
+  const auto r = run_cli(batch_args(dir() / "seedlings.csv", dir() / "seedling-slurm") + " --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_EQ(json_number(r.out, "ran"), 2);
+  EXPECT_EQ(slurp(dir() / "seedling-slurm" / "seedlings.csv"), slurp(dir() / "seedling-local" / "seedlings.csv"));
+  EXPECT_NE(slurp(dir() / "seedling-slurm" / "seedlings.csv").find("seedling-2,seedling-2,1,pair_"), std::string::npos);
+}
+
 TEST_F(BatchSlurm, MergedMapEqualsLocalAndSchedulerListsTheArrayTasks) {
   const fs::path out = dir() / "slurm";
   const auto r = run_cli(batch_args(dir() / "m.yaml", out) + " --json");

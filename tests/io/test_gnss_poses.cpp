@@ -57,6 +57,7 @@ TEST(GnssPoses, NmeaGgaAndRmcWithChecksumsAndHemispheres) {
   log += sentence("GPGGA,120002.00,5212.0012,N,00007.2000,W,0,00,,,M,,M,,");           // no fix: skipped
   log += "$GPGGA,120003.00,5212.0018,N,00007.2000,W,4,12,0.8,15.7,M,45.1,M,,*00\r\n";  // bad checksum
   log += sentence("GPGSV,3,1,12,01,40,083,46");                                        // ignored
+  log += sentence("G,1,2,3") + sentence("GPGGAX,1,2,3");  // no sentence type we read: skipped
   cropsight::testing::TempDir tmp;
   write_file_atomic(tmp / "pass.nmea", log);
   const auto fixes = read_gnss_fixes(tmp / "pass.nmea");

@@ -1,10 +1,12 @@
 #pragma once
 // A whole batch, as `cropsight batch` runs it: plan the manifest, check everything that can be
 // checked before submission (recordings, pipeline, geo origins, the output folder), run the
-// missing shards on an engine, merge when every shard is done, and write DIR/summary.json.
+// missing shards on an engine, merge (broccoli: batch_merge.hpp) or concatenate (potato, grape,
+// seedling: batch_concat.hpp) when every shard is done, and write DIR/summary.json and report.html.
 #include <filesystem>
 #include <string>
 
+#include "cropsight/batch/batch_concat.hpp"
 #include "cropsight/batch/batch_merge.hpp"
 #include "cropsight/batch/engine.hpp"
 #include "cropsight/batch/manifest.hpp"
@@ -24,8 +26,9 @@ struct BatchResult {
   BatchPlan plan;
   bool resumed = false;  ///< DIR held this batch already
   EngineReport engine;
-  bool merged = false;  ///< every shard done, merge written
-  MergeSummary merge;
+  bool merged = false;   ///< every shard done, merge (or concatenation) written
+  MergeSummary merge;    ///< broccoli
+  ConcatSummary concat;  ///< potato, grape, seedling
 };
 
 /// Runs the batch into `dir`. Throws Error (manifest, recording, DIR, sbatch) before any shard

@@ -1,9 +1,10 @@
 #pragma once
-// One shard of a batch, run: the crop's make_pipeline over the shard's frames, its kept heads
+// One shard of a batch, run: the crop's make_pipeline over the shard's frames, what it kept
 // (plan.hpp's seam rule) written to DIR/shards/NAME/ as
 //
-//   field-map.csv   the shard's heads (tracking/field_map_io.hpp), field frame of its recording
-//   shard.json      what ran: frames, detections, heads, wall and CPU seconds, host — the done marker
+//   field-map.csv   broccoli: the shard's heads (tracking/field_map_io.hpp), field frame of its recording
+//                   (potato targets.csv, grape bunches.csv, seedling seedlings.csv: crop_shards.hpp)
+//   shard.json      what ran: frames, detections, items, wall and CPU seconds, host — the done marker
 //
 // The folder is written under a temporary name and renamed whole when complete (io::TempDirectory),
 // with shard.json written last inside it, so a shard folder exists only when it is done: a task
@@ -22,7 +23,7 @@ struct ShardRecord {
   std::string name, pass;
   int frames = 0;       ///< frames processed (overlaps included)
   long detections = 0;  ///< detections over those frames
-  int heads = 0;        ///< heads kept (seam rule)
+  int items = 0;        ///< kept (seam rule): broccoli heads, potato targets, grape bunches, seedlings
   double wall_s = 0.0;  ///< seconds from the pipeline's construction to the folder's rename
   double cpu_s = 0.0;   ///< CPU seconds of the thread that ran the shard
   std::string host;     ///< the machine that ran it

@@ -65,7 +65,7 @@ class IntegralNormalEstimator {
   std::vector<float> distance_;       // chamfer distance to the nearest depth change, pixels
   std::vector<float> scratch_;        // one row of the distance passes
   std::vector<std::uint8_t> change_;  // 0 = depth change / NaN pixel
-  std::vector<std::uint8_t> flags_;   // per-row depth-change test results
+  std::vector<std::uint8_t> flags_;   // per-row depth-change test results, then per-row "needs a normal" bytes
   std::vector<float> row_;            // per-row scatter matrices, positions, results (structure of arrays)
   std::vector<int> cols_;             // per-row: columns of the pixels that get a normal
   std::vector<int> sizes_;            // per-row: their window sizes

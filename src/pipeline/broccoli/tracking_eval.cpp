@@ -269,6 +269,16 @@ TrackingFigures TrackingEvaluator::figures() const {
   if (opt_.fit_size_bias) {
     r.bbox_fit = measure::fit_size_bias(frame_bbox_, frame_true_, "--fit-size-bias (bbox)");
     if (compute_hull_) r.hull_fit = measure::fit_size_bias(frame_hull_, frame_true_, "--fit-size-bias (hull)");
+    // The map-level fit needs spread in the mapped heads' true sizes; a pass too short to give it
+    // still has the per-detection fit.
+    try {
+      r.head_bbox_fit = measure::fit_size_bias(head_bbox_, head_true_, "--fit-size-bias (bbox, mapped heads)");
+      if (compute_hull_)
+        r.head_hull_fit = measure::fit_size_bias(head_hull_, head_true_, "--fit-size-bias (hull, mapped heads)");
+    } catch (const Error&) {
+      r.head_bbox_fit.reset();
+      r.head_hull_fit.reset();
+    }
   }
   return r;
 }

@@ -47,6 +47,15 @@ SegmentInput read_segment_input(const fs::path& path, const RoiConfig& cfg) {
   return in;
 }
 
+Cloud read_labelled_cloud(const fs::path& path, const RoiConfig& cfg) {
+  SegmentInput in = read_segment_input(path, cfg);
+  if (io::lower_extension(path) == ".txt") return std::move(in.model_view);  // labels in the text
+  if (in.original.labels.size() != in.original.size())
+    throw Error(path.string(), "has no label field: a training or evaluation cloud needs one label per point");
+  in.model_view.labels = std::move(in.original.labels);  // segmenter_input keeps the point order
+  return std::move(in.model_view);
+}
+
 void write_labelled_cloud(const fs::path& path, const Cloud& cloud) {
   if (io::lower_extension(path) == ".txt")
     io::write_grape_text(path, cloud);

@@ -1,7 +1,7 @@
 // Labelled grape clouds (see truth.hpp).
 #include "cropsight/pipeline/grape/truth.hpp"
 
-#include "cropsight/io/grape_text.hpp"
+#include "cropsight/pipeline/grape/cloud_files.hpp"
 
 namespace cropsight::pipeline::grape {
 
@@ -15,7 +15,7 @@ std::vector<long> label_counts(const Cloud& cloud) {
 std::vector<Cloud> load_grape_clouds(const std::vector<std::filesystem::path>& files) {
   std::vector<Cloud> out;
   out.reserve(files.size());
-  for (const auto& f : files) out.push_back(io::read_grape_text(f));
+  for (const auto& f : files) out.push_back(read_labelled_cloud(f));
   return out;
 }
 

@@ -68,7 +68,10 @@ struct TrackingFigures {
   double map50_95_single_frame = 0, map50_95_online = 0, map50_95_offline = 0;
   double ap50_single_frame_visible = 0, ap50_online_visible = 0, ap50_offline_visible = 0;
   double tracking_ms_per_frame = 0;                    ///< steps 2-4 of the pipeline, wall clock
-  std::optional<measure::BiasFit> bbox_fit, hull_fit;  ///< with fit_size_bias
+  std::optional<measure::BiasFit> bbox_fit, hull_fit;  ///< with fit_size_bias: per detection on a true head
+  /// With fit_size_bias: per mapped head matched to a true head (its mean raw size over the pass:
+  /// the quantity the field map reports); absent when fewer than two heads were mapped and sized.
+  std::optional<measure::BiasFit> head_bbox_fit, head_hull_fit;
 };
 
 /// Plain values of the first pass for a report (report::broccoli_report_data draws them).

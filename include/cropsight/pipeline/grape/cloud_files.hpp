@@ -29,6 +29,13 @@ struct SegmentInput {
 /// fewer than 3 points.
 SegmentInput read_segment_input(const std::filesystem::path& path, const RoiConfig& cfg = {});
 
+/// Reads one labelled cloud as the trainers and evaluators read it: the model's view of the file
+/// (read_segment_input) with the file's own labels, so that a PLY or PCD written by `segment
+/// grape` or `detect grape` and corrected in a point-cloud editor (CloudCompare and the like keep
+/// an integer `label` field) trains a model. Throws Error(path, ...) as read_segment_input, and
+/// for a PLY or PCD without a label per point.
+Cloud read_labelled_cloud(const std::filesystem::path& path, const RoiConfig& cfg = {});
+
 /// Writes `cloud` with its labels, the format by extension: .txt the dataset's text format, .ply
 /// or .pcd through PCL with an int32 `label` field. Atomic (temporary name, then rename).
 void write_labelled_cloud(const std::filesystem::path& path, const Cloud& cloud);

@@ -20,7 +20,8 @@ inline const std::vector<int>& grape_named_classes() {
 /// in id order, as a segmenter or the truth gives them.
 std::vector<long> label_counts(const Cloud& cloud);
 
-/// Loads every labelled cloud (io::read_grape_text) of `files`; throws Error(file, ...).
+/// Loads every labelled cloud of `files` (the dataset's text clouds, or PLY / PCD with a label
+/// field: read_labelled_cloud); throws Error(file, ...).
 std::vector<Cloud> load_grape_clouds(const std::vector<std::filesystem::path>& files);
 
 }  // namespace cropsight::pipeline::grape
