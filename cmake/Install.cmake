@@ -49,7 +49,8 @@ set_target_properties(cropsight_all PROPERTIES EXPORT_NAME cropsight)
 install(TARGETS ${cropsight_export_targets} EXPORT cropsightTargets
         ARCHIVE DESTINATION ${cropsight_lib} COMPONENT dev
         INCLUDES DESTINATION include)
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/cropsight DESTINATION include COMPONENT dev)
+# The studio's headers stay out: its library is linked into the CLI only (src/studio/CMakeLists.txt).
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/cropsight DESTINATION include COMPONENT dev PATTERN studio EXCLUDE)
 install(EXPORT cropsightTargets NAMESPACE cropsight:: DESTINATION ${cropsight_lib}/cmake/cropsight COMPONENT dev)
 set(CROPSIGHT_INSTALL_DATA_DIR share/cropsight)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/cropsightConfig.cmake.in

@@ -27,6 +27,9 @@ PACKAGES=(
   clang-14 libclang-rt-14-dev llvm-14
   # report rendering test (headless browser)
   chromium
+  # cropsight studio: its HTTP server (cpp-httplib), and its browser test (WebDriver from Python,
+  # PIL to read the written label images)
+  libcpp-httplib-dev chromium-driver python3-selenium python3-pil
   # ROS 1 nodes, bag files and their tests against a real roscore (ros/CMakeLists.txt)
   libroscpp-dev librosbag-storage-dev libmessage-filters-dev libstd-msgs-dev libgeometry-msgs-dev
   libsensor-msgs-dev libvisualization-msgs-dev libdiagnostic-msgs-dev libtf2-msgs-dev

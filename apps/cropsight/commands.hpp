@@ -17,6 +17,7 @@ void add_export(CLI::App& app);
 void add_import(CLI::App& app);
 void add_render(CLI::App& app);
 void add_report(CLI::App& app);
+void add_studio(CLI::App& app);               // the browser studio (src/studio)
 CLI::App* add_report_demo(CLI::App& report);  // called by add_report; returns the sub-command
 
 // Broccoli heads: train / detect / eval / bench broccoli

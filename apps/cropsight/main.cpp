@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   add_import(app);
   add_render(app);
   add_report(app);
+  add_studio(app);
   // Verbs shared by the pipelines (broccoli, stereo, grape...): each adds its sub-command.
   auto* train = app.add_subcommand("train", "Train a model on labelled data");
   train->require_subcommand(1);

@@ -59,11 +59,16 @@ void add_sequence(const TrainOptions& o, const std::string& dir, const std::vect
   auto attr = [&](const char* k) { return attrs.count(k) ? attrs.at(k) : std::string("?"); };
   seeds += (seeds.empty() ? "" : ",") + attr("seed");
   varieties += (varieties.empty() ? "" : ",") + attr("variety");
-  const long total = chosen.empty() ? reader.size() : long(chosen.size());
-  Progress progress("train broccoli: " + dir, total, o.quiet || o.common.json);
-  for (long k = 0; k < total; ++k) {
-    builder.add_frame(reader.read(chosen.empty() ? int(k) : chosen[std::size_t(k)]));
-    progress.update(k + 1);
+  // The --frame-list frames, or those labels/ holds: every frame, or the ones labelled.csv lists
+  // in a partly labelled pass (the studio writes such passes).
+  const std::vector<int>& frames = chosen.empty() ? reader.info().labelled_frames : chosen;
+  for (int f : chosen)
+    if (!reader.info().labelled(f))
+      throw Error("--frame-list", "frame " + std::to_string(f) + " of " + dir + " has no label image (labelled.csv)");
+  Progress progress("train broccoli: " + dir, long(frames.size()), o.quiet || o.common.json);
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    builder.add_frame(reader.read(frames[k]));
+    progress.update(long(k) + 1);
   }
   progress.finish();
 }

@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
+#include <sstream>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/files.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "number_text.hpp"
@@ -61,10 +63,11 @@ void check_size(const fs::path& path, int w, int h, const CameraIntrinsics& cam)
 }
 
 // The entries a sequence may hold at its top level (docs/formats.md); detections.json: 2D boxes
-// per frame (COCO, image_id = frame), which a grape batch reads when it runs no detector.
-const char* const kKnownEntries[] = {"camera.yaml",      "depth",          "color",       "labels",
-                                     "poses.csv",        "timestamps.csv", "depth_color", "geo_origin.yaml",
-                                     "groundtruth.json", "detections.json"};
+// per frame (COCO, image_id = frame), which a grape batch reads when it runs no detector;
+// labelled.csv: the labelled frames of a partly labelled sequence.
+const char* const kKnownEntries[] = {"camera.yaml",      "depth",           "color",       "labels",
+                                     "poses.csv",        "timestamps.csv",  "depth_color", "geo_origin.yaml",
+                                     "groundtruth.json", "detections.json", "labelled.csv"};
 
 // Levenshtein distance: the fewest insertions, deletions and substitutions from a to b.
 std::size_t edit_distance(const std::string& a, const std::string& b) {
@@ -95,7 +98,8 @@ std::vector<fs::path> unknown_entries(const fs::path& dir) {
       if (edit_distance(name, known) <= 2)
         throw Error(entry.path().string(), std::string("unexpected entry in sequence: did you mean ") + known +
                                                "? (known: camera.yaml, depth/, color/, labels/, poses.csv, "
-                                               "timestamps.csv, groundtruth.json, depth_color/, geo_origin.yaml)");
+                                               "timestamps.csv, groundtruth.json, labelled.csv, depth_color/, "
+                                               "geo_origin.yaml)");
     unknown.push_back(entry.path());
   }
   std::sort(unknown.begin(), unknown.end());
@@ -108,6 +112,35 @@ std::string ignored_notice(const std::vector<fs::path>& ignored) {
   return "cropsight: notice: " + ignored.front().parent_path().string() + ": ignored " +
          std::to_string(ignored.size()) + " entr" + (ignored.size() == 1 ? "y" : "ies") +
          " that are no part of a sequence (" + names + ")";
+}
+
+// labelled.csv: the header "frame", then the labelled frames in increasing order, one a line (a
+// partly labelled sequence, as the studio writes it while a user labels frame by frame).
+std::vector<int> read_labelled_csv(const fs::path& path, int frames) {
+  std::istringstream in(read_file(path));
+  std::string line;
+  std::vector<int> out;
+  int line_no = 0;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    const std::string at = "line " + std::to_string(line_no) + ": ";
+    if (line_no == 1) {
+      if (line != "frame") throw Error(path.string(), at + "expected the header 'frame'");
+      continue;
+    }
+    const bool digits =
+        line.size() <= 9 && std::all_of(line.begin(), line.end(), [](char c) { return c >= '0' && c <= '9'; });
+    const int f = digits ? std::stoi(line) : -1;
+    if (f < 0 || f >= frames)
+      throw Error(path.string(),
+                  at + "expected a frame number in 0.." + std::to_string(frames - 1) + ", got '" + line + "'");
+    if (!out.empty() && f <= out.back()) throw Error(path.string(), at + "frames must be listed in increasing order");
+    out.push_back(f);
+  }
+  if (line_no == 0) throw Error(path.string(), "empty (expected the header 'frame')");
+  return out;
 }
 
 }  // namespace
@@ -134,7 +167,15 @@ SequenceReader::SequenceReader(fs::path dir) {
   info_.has_color = fs::exists(d / "color");
   if (info_.has_color) check_same_frames(d, "color", info_.frames, "colour");
   info_.has_labels = fs::exists(d / "labels");
-  if (info_.has_labels) check_same_frames(d, "labels", info_.frames, "labels");
+  if (fs::exists(d / "labelled.csv")) {
+    if (!info_.has_labels) throw Error((d / "labelled.csv").string(), "lists labelled frames but there is no labels/");
+    info_.labelled_frames = read_labelled_csv(d / "labelled.csv", info_.frames);
+    if (list_frames(d / "labels") != info_.labelled_frames)
+      throw Error((d / "labels").string(), "holds other frames than labelled.csv lists");
+  } else if (info_.has_labels) {
+    check_same_frames(d, "labels", info_.frames, "labels");
+    for (int i = 0; i < info_.frames; ++i) info_.labelled_frames.push_back(i);
+  }
 
   info_.has_poses = fs::exists(d / "poses.csv");
   if (info_.has_poses) poses_ = detail::read_poses_csv(d / "poses.csv", info_.frames);
@@ -176,7 +217,7 @@ RgbdFrame SequenceReader::read(int index) const {
     f.color = read_color(cp);
     check_size(cp, f.color.width, f.color.height, info_.camera);
   }
-  if (info_.has_labels) {
+  if (info_.labelled(index)) {
     const fs::path lp = labels_path(index);
     f.labels = read_u16(lp);
     check_size(lp, f.labels.width, f.labels.height, info_.camera);

@@ -5,6 +5,7 @@
 //   SEQ/depth/000000.png     16-bit depth, 0 = no return
 //   SEQ/color/000000.png     8-bit colour registered to depth (optional)
 //   SEQ/labels/000000.png    16-bit instance id per pixel, 0 = other (optional; needs depth)
+//   SEQ/labelled.csv         frame: the frames labels/ holds when only some are labelled (optional)
 //   SEQ/poses.csv            frame,timestamp,x,y,z camera position in the field frame (optional)
 //   SEQ/timestamps.csv       frame,timestamp: frame times of a sequence without poses (optional)
 //   SEQ/groundtruth.json     {"instances": [{"id", "position": [x,y,z], "diameter_mm", ...}], ...}
@@ -12,6 +13,7 @@
 // Readers validate everything and throw cropsight::Error naming the offending file.
 // Not thread-safe per object; distinct readers may be used from distinct threads.
 #include <Eigen/Core>
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -57,6 +59,10 @@ struct SequenceInfo {
   int frames = 0;
   bool has_color = false;
   bool has_labels = false;
+  /// Frames with a label image, ascending: every frame, or those labelled.csv lists (a partly
+  /// labelled sequence: the other frames have no labels, and training skips them).
+  std::vector<int> labelled_frames;
+  bool labelled(int index) const { return std::binary_search(labelled_frames.begin(), labelled_frames.end(), index); }
   bool has_poses = false;
   bool has_timestamps = false;  ///< timestamps.csv (poses.csv carries the times when present)
   bool has_groundtruth = false;

@@ -1,0 +1,161 @@
+// The studio's background training job (studio/training_job.hpp).
+#include "cropsight/studio/training_job.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+
+#include "cropsight/core/error.hpp"
+#include "cropsight/io/files.hpp"
+#include "cropsight/io/output.hpp"
+#include "cropsight/io/sequence.hpp"
+#include "cropsight/pipeline/broccoli/eval.hpp"
+#include "cropsight/pipeline/broccoli/training.hpp"
+
+namespace cropsight::studio {
+
+namespace fs = std::filesystem;
+namespace broccoli = pipeline::broccoli;
+
+namespace {
+
+// Thrown inside the job when the page cancelled it.
+struct Cancelled {};
+
+HeldOutFigures held_out_figures(const broccoli::Figures& f) {
+  return {f.frames, f.clusters, f.truth_heads, f.confusion.kappa(), f.confusion.precision(), f.confusion.recall(),
+          f.ap50};
+}
+
+}  // namespace
+
+TrainingJob::TrainingJob(fs::path sequence, broccoli::Config config, std::shared_ptr<const learning::Model> current)
+    : sequence_(std::move(sequence)), config_(std::move(config)), current_(std::move(current)) {
+  config_.track = false;
+}
+
+TrainingJob::~TrainingJob() {
+  cancel();
+  if (thread_.joinable()) thread_.join();
+}
+
+bool TrainingJob::start(std::vector<int> labelled) {
+  std::lock_guard lock(mutex_);
+  if (status_.state == "running") return false;
+  if (thread_.joinable()) thread_.join();  // the previous job has ended (its state says so)
+  cancel_ = false;
+  trained_.reset();
+  status_ = TrainingStatus{};
+  status_.state = "running";
+  thread_ = std::thread([this, labelled = std::move(labelled)]() mutable { run(std::move(labelled)); });
+  return true;
+}
+
+void TrainingJob::cancel() { cancel_ = true; }
+
+TrainingStatus TrainingJob::status() const {
+  std::lock_guard lock(mutex_);
+  return status_;
+}
+
+// One job: split, read and cluster the training frames, train, score both models on the rest.
+void TrainingJob::run(std::vector<int> labelled) {
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    std::vector<int> train, test;
+    for (std::size_t k = 0; k < labelled.size(); ++k) (k % 4 == 3 ? test : train).push_back(labelled[k]);
+    if (test.empty() && train.size() >= 2) {
+      test.push_back(train.back());
+      train.pop_back();
+    }
+    if (train.empty() || test.empty()) throw Error("training", "label two frames at least (one is held out)");
+    const double steps = double(train.size() + 2 * test.size());
+    double done = 0;
+    auto step = [&] {
+      if (cancel_) throw Cancelled{};
+      std::lock_guard lock(mutex_);
+      status_.progress = ++done / steps;
+    };
+    {
+      std::lock_guard lock(mutex_);
+      status_.train_frames = train;
+      status_.test_frames = test;
+    }
+    const io::SequenceReader reader(sequence_);
+    broccoli::DatasetBuilder builder(config_.detector, config_.truth);
+    for (int f : train) {
+      builder.add_frame(reader.read(f));
+      step();
+    }
+    const auto& data = builder.dataset();
+    if (data.positives() == 0 || data.negatives() == 0)
+      throw Error("training", "the training frames' clusters are all of one class (" +
+                                  std::to_string(data.positives()) + " heads); label frames with heads and without");
+    auto model = std::make_shared<const learning::Model>(broccoli::train_model(
+        data, config_.detector, config_.truth,
+        {{"data", sequence_.string()}, {"frames", std::to_string(train.size())}, {"trained_by", "cropsight studio"}}));
+    auto score = [&](std::shared_ptr<const learning::Model> m) {
+      broccoli::Pipeline pipe(config_, std::move(m));
+      broccoli::Evaluator evaluator(pipe);
+      for (int f : test) {
+        evaluator.add_frame(reader.read(f));
+        step();
+      }
+      return held_out_figures(evaluator.figures());
+    };
+    const HeldOutFigures trained = score(model), current = score(current_);
+    std::lock_guard lock(mutex_);
+    trained_ = model;
+    status_.samples = long(data.size());
+    status_.positives = long(data.positives());
+    status_.trained = trained;
+    status_.current = current;
+    status_.state = "done";
+  } catch (const Cancelled&) {
+    std::lock_guard lock(mutex_);
+    status_.state = "cancelled";
+  } catch (const std::exception& e) {
+    std::lock_guard lock(mutex_);
+    status_.state = "failed";
+    status_.message = e.what();
+  }
+  std::lock_guard lock(mutex_);
+  status_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+fs::path TrainingJob::keep(const fs::path& folder) {
+  std::lock_guard lock(mutex_);
+  if (!trained_ || status_.state != "done") throw Error("keep", "no finished model to keep");
+  const fs::path dir = folder.empty() ? io::resolved_path(sequence_).parent_path() : folder;
+  const std::string stem = "studio-" + io::resolved_path(sequence_).filename().string() + "-";
+  // Written whole under a temporary name, then linked to the first free name: link() fails when
+  // the name exists, so no file is ever replaced, even one that appears meanwhile.
+  const fs::path tmp = io::temporary_sibling(dir / (stem + "model.json"));
+  io::check_output_file(tmp, {"studio", false, {sequence_}});
+  learning::save_model(tmp, *trained_);
+  for (int n = 1; n < 100000; ++n) {
+    const fs::path file = dir / (stem + std::to_string(n) + ".json");
+    if (::link(tmp.c_str(), file.c_str()) == 0) {
+      fs::remove(tmp);
+      status_.state = "kept";
+      status_.message = file.string();
+      trained_.reset();
+      return file;
+    }
+    if (errno != EEXIST) break;
+  }
+  const std::string why = std::strerror(errno);
+  fs::remove(tmp);
+  throw Error(dir.string(), "cannot write the model: " + why);
+}
+
+void TrainingJob::discard() {
+  std::lock_guard lock(mutex_);
+  if (!trained_ || status_.state != "done") throw Error("discard", "no finished model to discard");
+  trained_.reset();
+  status_.state = "discarded";
+}
+
+}  // namespace cropsight::studio

@@ -1,0 +1,31 @@
+// cropsight studio's bad input: one line naming the input, exit 2, and no lock file left behind.
+#include <gtest/gtest.h>
+
+#include "studio_fixture.hpp"
+
+namespace cropsight::studio_testing {
+
+namespace fs = std::filesystem;
+
+TEST(StudioCli, BadInputIsOneLineAndExit2) {
+  testing::TempDir dir;
+  const fs::path seq = unlabelled_copy(dir.path());
+  // A port that is taken: a studio holds it while the CLI tries it.
+  RunningStudio holder({.sequence = seq, .read_only = true});
+  const std::string port = std::to_string(holder.server().port());
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"--data " + testing::shell_quoted(dir / "missing"), "sequence directory not found"},
+      {"--data " + testing::shell_quoted(seq / "camera.yaml"), "not a directory"},
+      {"--data " + testing::shell_quoted(seq) + " --model no-such-model", "no-such-model"},
+      {"--data " + testing::shell_quoted(seq) + " --port " + port, "cannot listen"},
+      {"--data " + testing::shell_quoted(seq) + " --port 70000", "70000"}};
+  for (const auto& [args, words] : cases) {
+    const auto r = testing::run_cli("studio " + args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(seq / ".cropsight-studio.lock")) << args;
+  }
+}
+
+}  // namespace cropsight::studio_testing
