@@ -251,7 +251,9 @@ async function save() {
   const frame = S.frame;
   setSaveState('saving…');
   S.saving = api(`/api/frame/${frame}/labels`, { heads: [...heads.values()].map(toRuns) })
-    .then(() => { if (S.frame === frame) { S.dirty = false; setSaveState('saved'); } return refreshInfo(); })
+    .then(() => { if (S.frame === frame) S.dirty = false; return refreshInfo(); })
+    // 'saved' once the counter of labelled frames has caught up, so that the two never disagree.
+    .then(() => { if (S.frame === frame && !S.dirty) setSaveState('saved'); })
     .catch((e) => setSaveState(`save failed: ${e.message}`));
   await S.saving;
   S.saving = null;
