@@ -1,6 +1,8 @@
 // Per-crop shards of a batch (batch/crop_shards.hpp).
 #include "cropsight/batch/crop_shards.hpp"
 
+#include <map>
+
 #include "crop_rows.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
@@ -21,9 +23,17 @@ namespace {
 
 bool owned(const Shard& s, int frame) { return frame >= s.own_first && frame < s.own_end; }
 
+// The recording, opened once by the shard, still holds the frames the plan counted.
+void check_planned(const Shard& shard, int frames) {
+  if (shard.end_frame > frames)
+    throw Error(shard.sequence.string(), "has " + std::to_string(frames) + " frames, the plan expected " +
+                                             std::to_string(shard.end_frame) + " (re-plan with a new --out)");
+}
+
 ShardCounts run_broccoli(const pipeline::PipelineSpec& spec, const Shard& shard, const fs::path& folder) {
   const auto pipe = pipeline::broccoli::make_pipeline(spec);
   const io::SequenceReader reader(shard.sequence);
+  check_planned(shard, reader.size());
   ShardCounts c;
   for (int i = shard.first_frame; i < shard.end_frame; ++i, ++c.frames)
     c.detections += long(pipe->process(reader.read(i)).detections.size());
@@ -38,6 +48,7 @@ ShardCounts run_broccoli(const pipeline::PipelineSpec& spec, const Shard& shard,
 ShardCounts run_potato(const pipeline::PipelineSpec& spec, const Shard& shard, const fs::path& folder) {
   const auto pipe = pipeline::potato::make_pipeline(spec);
   const io::SequenceReader reader(shard.sequence);
+  check_planned(shard, reader.size());
   ShardCounts c;
   std::string csv = detail::potato_header();
   int last_target = 0;
@@ -53,18 +64,18 @@ ShardCounts run_potato(const pipeline::PipelineSpec& spec, const Shard& shard, c
   return c;
 }
 
-// Boxes from the detector, or from the recording's detections.json (read per frame: a COCO file
-// holds every frame's boxes, and a shard needs only its own).
+// Boxes from the detector, or from the recording's detections.json (read once: image_id = frame).
 ShardCounts run_grape(const pipeline::PipelineSpec& spec, const Shard& shard, const fs::path& folder) {
   const auto pipe = pipeline::grape::make_pipeline(spec);
   const io::SequenceReader reader(shard.sequence);
-  const fs::path boxes = shard.sequence / "detections.json";
+  check_planned(shard, reader.size());
+  std::map<long, std::vector<pipeline::grape::Detection>> boxes;
+  if (!pipe->has_detector()) boxes = pipeline::grape::read_coco_detections_by_image(shard.sequence / "detections.json");
   ShardCounts c;
   std::string csv = detail::grape_header();
   for (int i = shard.own_first; i < shard.own_end; ++i, ++c.frames) {  // frames are judged alone
     const RgbdFrame frame = reader.read(i);
-    const auto r = pipe->has_detector() ? pipe->process(frame)
-                                        : pipe->process(frame, pipeline::grape::read_coco_detections(boxes, i));
+    const auto r = pipe->has_detector() ? pipe->process(frame) : pipe->process(frame, boxes[i]);
     c.detections += long(r.detections.size());
     c.items += int(r.bunches.size());
     csv += detail::grape_rows(i, r, pipe->config().cut_point.peduncle_label);
@@ -76,6 +87,7 @@ ShardCounts run_grape(const pipeline::PipelineSpec& spec, const Shard& shard, co
 ShardCounts run_seedling(const pipeline::PipelineSpec& spec, const Shard& shard, const fs::path& folder) {
   const auto pipe = pipeline::seedling::make_pipeline(spec);
   const auto data = pipeline::seedling::open_dataset(shard.sequence);
+  check_planned(shard, int(data.pairs.size()));
   ShardCounts c;
   std::string csv = detail::seedling_header();
   for (int i = shard.own_first; i < shard.own_end; ++i, ++c.frames) {  // pairs are judged alone

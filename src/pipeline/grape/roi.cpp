@@ -147,7 +147,11 @@ RoiFrame grape_roi_clouds(const DepthImage& depth, const ColorImage& color, cons
   return frame;
 }
 
-std::vector<Detection> read_coco_detections(const std::filesystem::path& path, long image_id) {
+namespace {
+
+// The file's entries in file order with their image_id (-1 when they have none): every entry, or
+// with `only` >= 0 that image's (the others are skipped unchecked).
+std::vector<std::pair<long, Detection>> read_coco_entries(const std::filesystem::path& path, long only) {
   const std::string where = path.string();
   std::ifstream in(path);
   if (!in) throw Error(where, "cannot open file");
@@ -164,7 +168,7 @@ std::vector<Detection> read_coco_detections(const std::filesystem::path& path, l
     arr = &j["annotations"];
   }
   if (!arr->is_array()) throw Error(where, "expected a JSON array of detections");
-  std::vector<Detection> out;
+  std::vector<std::pair<long, Detection>> out;
   std::size_t k = 0;
   for (const auto& a : *arr) {
     const std::string item = "annotation " + std::to_string(k++);
@@ -175,7 +179,7 @@ std::vector<Detection> read_coco_detections(const std::filesystem::path& path, l
     // is undefined behaviour (as fuzzing finding 24).
     if (a.contains("image_id") && !a["image_id"].is_number_integer())
       throw Error(where, item + ": \"image_id\" must be an integer");
-    if (image_id >= 0 && a.value("image_id", -1L) != image_id) continue;
+    if (only >= 0 && a.value("image_id", -1L) != only) continue;
     double b[4];
     for (int i = 0; i < 4; ++i) {
       if (!a["bbox"][std::size_t(i)].is_number()) throw Error(where, item + ": bbox values must be numbers");
@@ -188,8 +192,22 @@ std::vector<Detection> read_coco_detections(const std::filesystem::path& path, l
     d.box = {int(std::floor(b[0])), int(std::floor(b[1])), int(std::ceil(b[2])), int(std::ceil(b[3]))};
     d.category = int(std::clamp<std::int64_t>(a["category_id"].get<std::int64_t>(), -1, 1 << 20));
     d.score = a.contains("score") && a["score"].is_number() ? a["score"].get<float>() : 1.f;
-    out.push_back(d);
+    out.emplace_back(a.value("image_id", -1L), d);
   }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Detection> read_coco_detections(const std::filesystem::path& path, long image_id) {
+  std::vector<Detection> out;
+  for (auto& [id, d] : read_coco_entries(path, image_id)) out.push_back(d);
+  return out;
+}
+
+std::map<long, std::vector<Detection>> read_coco_detections_by_image(const std::filesystem::path& path) {
+  std::map<long, std::vector<Detection>> out;
+  for (auto& [id, d] : read_coco_entries(path, -1)) out[id].push_back(d);
   return out;
 }
 

@@ -5,6 +5,7 @@
 // one frame). Pixels: x = column, y = row, origin top-left. Points: camera frame, metres.
 #include <Eigen/Core>
 #include <filesystem>
+#include <map>
 #include <vector>
 
 #include "cropsight/core/camera.hpp"
@@ -98,5 +99,8 @@ RoiFrame grape_roi_clouds(const DepthImage& depth, const ColorImage& color, cons
 /// results array; each entry needs "bbox" [x, y, w, h] and "category_id" ("score" optional).
 /// When `image_id` >= 0 only that image's entries are kept. Throws Error(path, ...).
 std::vector<Detection> read_coco_detections(const std::filesystem::path& path, long image_id = -1);
+/// The same file read once, its detections by image_id (-1: entries without one), each image's in
+/// file order. Throws Error(path, ...) as read_coco_detections.
+std::map<long, std::vector<Detection>> read_coco_detections_by_image(const std::filesystem::path& path);
 
 }  // namespace cropsight::pipeline::grape
