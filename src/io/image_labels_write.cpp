@@ -149,8 +149,13 @@ LabelImage rasterise_instances(const ImageLabels& image, int first_id) {
         for (const auto& p : part)
           x1 = std::min(x1, p.x()), y1 = std::min(y1, p.y()), x2 = std::max(x2, p.x()), y2 = std::max(y2, p.y());
     }
-    const int u0 = std::max(0, int(std::ceil(x1 - 0.5))), u1 = std::min(image.width, int(std::ceil(x2 - 0.5)));
-    const int v0 = std::max(0, int(std::ceil(y1 - 0.5))), v1 = std::min(image.height, int(std::ceil(y2 - 0.5)));
+    // Clamped while still a double (fmin/fmax also map NaN to a bound): a coordinate far outside the
+    // image must not overflow int.
+    const auto column = [](double x, int size) {
+      return int(std::fmin(std::fmax(std::ceil(x - 0.5), 0.0), double(size)));
+    };
+    const int u0 = column(x1, image.width), u1 = column(x2, image.width);
+    const int v0 = column(y1, image.height), v1 = column(y2, image.height);
     for (int v = v0; v < v1; ++v)
       for (int u = u0; u < u1; ++u)
         if (s.polygons.empty() || inside_polygons(s.polygons, u + 0.5, v + 0.5))

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/voc.hpp"
@@ -164,6 +166,17 @@ TEST(ImageLabels, RasterisesPixelCentresInsideEachShape) {
   EXPECT_EQ(l.at(3, 1), 7);
   EXPECT_EQ(l.at(0, 0), 0);
   EXPECT_THROW(io::rasterise_instances(im, 65534), Error) << "ids stay within 16 bits";
+}
+
+TEST(ImageLabels, ShapesFarBeyondTheImageAreClippedToIt) {
+  // A coordinate beyond int's range (a corrupt or hand-edited file) covers up to the image edge.
+  io::ImageLabels im{"a.png", 16, 12, {}};
+  im.shapes = {io::LabelShape{"head", 8, 2, 8.9e45, 4, {}}, io::LabelShape{"head", -1e300, 10, 2, 1e300, {}},
+               io::LabelShape{"head", 0, 0, std::nan(""), 1, {}}};
+  const LabelImage l = io::rasterise_instances(im, 1);
+  EXPECT_EQ(count_id(l, 1), 8 * 2);
+  EXPECT_EQ(count_id(l, 2), 2 * 2);
+  EXPECT_EQ(count_id(l, 3), 0) << "a NaN bound covers nothing";
 }
 
 TEST(ImageLabels, FrameIndexFromName) {
