@@ -11,6 +11,7 @@
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/image_labels.hpp"
+#include "json_file.hpp"
 #include "number_text.hpp"
 
 namespace cropsight::io {
@@ -18,14 +19,6 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace image_labels_detail {
-
-json parse_json_file(const fs::path& file) {
-  try {
-    return json::parse(read_file(file));
-  } catch (const json::parse_error& e) {
-    throw Error(file.string(), std::string("not valid JSON: ") + e.what());
-  }
-}
 
 double number_at(const json& j, const std::string& file, const std::string& what) {
   if (!j.is_number() || !std::isfinite(j.get<double>())) throw Error(file, what + ": expected a finite number");
@@ -159,7 +152,7 @@ using namespace image_labels_detail;
 
 LabelSet read_coco_labels(const fs::path& path) {
   const std::string file = path.string();
-  const json j = parse_json_file(path);
+  const json j = detail::read_json_file(path);
   for (const char* key : {"images", "annotations", "categories"})
     if (!j.is_object() || !j.contains(key) || !j[key].is_array())
       throw Error(file, std::string("'") + key + "' must be an array (a COCO instances file)");
@@ -201,7 +194,7 @@ LabelSet read_labelme_labels(const fs::path& dir) {
   LabelSet set;
   for (const fs::path& path : files) {
     const std::string file = path.string();
-    const json j = parse_json_file(path);
+    const json j = detail::read_json_file(path);
     if (!j.is_object() || !j.contains("shapes") || !j["shapes"].is_array())
       throw Error(file, "'shapes' must be an array (a labelme file)");
     ImageLabels image{string_at(j, "imagePath", file, "labelme"),

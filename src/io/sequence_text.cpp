@@ -10,6 +10,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
+#include "json_file.hpp"
 #include "number_text.hpp"
 
 namespace cropsight::io::detail {
@@ -118,13 +119,7 @@ std::string format_timestamps_csv(const std::vector<double>& timestamps) {
 
 GroundTruth read_groundtruth_json(const fs::path& path) {
   const std::string where = path.string();
-  const std::string text = read_file(path);
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {  // parse errors, and numbers out of range (1e999)
-    throw Error(where, std::string("malformed JSON: ") + e.what());
-  }
+  const nlohmann::json j = detail::read_json_file(path);
   if (!j.is_object()) throw Error(where, "expected a JSON object with \"instances\"");
   for (const auto& [key, value] : j.items())
     if (key != "instances" && key != "attributes") throw Error(where, "unknown key \"" + key + "\"");

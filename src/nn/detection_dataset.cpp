@@ -14,6 +14,7 @@
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/voc.hpp"
+#include "io/json_file.hpp"
 
 namespace cropsight::nn {
 
@@ -51,20 +52,11 @@ int class_of(const std::vector<std::string>& classes, const std::string& name) {
   return it == classes.end() ? -1 : int(it - classes.begin());
 }
 
-json parse_json_file(const std::filesystem::path& path) {
-  const std::string text = io::read_file(path);  // names a missing file or a folder
-  try {
-    return json::parse(text);
-  } catch (const json::exception& e) {
-    throw Error(path.string(), std::string("not JSON: ") + e.what());
-  }
-}
-
 }  // namespace
 
 std::map<std::string, long> coco_image_ids(const std::filesystem::path& annotations) {
   const std::string file = annotations.string();
-  const json root = parse_json_file(annotations);
+  const json root = io::detail::read_json_file(annotations);
   const json& images = member(root, "images", json::value_t::array, file, "root");
   std::map<std::string, long> ids;
   for (std::size_t i = 0; i < images.size(); ++i) {
@@ -81,7 +73,7 @@ std::map<std::string, long> coco_image_ids(const std::filesystem::path& annotati
 DetectionDataset read_coco_detection(const std::filesystem::path& annotations, const std::filesystem::path& images_dir,
                                      const std::vector<std::string>& classes) {
   const std::string file = annotations.string();
-  const json root = parse_json_file(annotations);
+  const json root = io::detail::read_json_file(annotations);
   DetectionDataset out;
   out.classes = classes;
   // Categories: id → class index.

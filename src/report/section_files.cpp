@@ -4,22 +4,13 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
+#include "io/json_file.hpp"
 
 namespace cropsight::report::detail {
 
-namespace {
-nlohmann::json parse(const std::string& text, const std::string& where) {
-  try {
-    return nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(where, std::string("not JSON: ") + e.what());
-  }
-}
-}  // namespace
-
 nlohmann::json read_json_file(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path)) throw Error(path.string(), "no such file");
-  return parse(io::read_file(path), path.string());
+  return io::detail::read_json_file(path);
 }
 
 nlohmann::json read_json_object(const std::filesystem::path& path) {
@@ -35,7 +26,7 @@ std::vector<nlohmann::json> read_json_lines(const std::filesystem::path& path) {
   std::string line;
   for (int n = 1; std::getline(in, line); ++n) {
     if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    out.push_back(parse(line, path.string() + ": line " + std::to_string(n)));
+    out.push_back(io::detail::parse_json_text(line, path.string() + ": line " + std::to_string(n)));
     if (!out.back().is_object()) throw Error(path.string(), "line " + std::to_string(n) + ": expected a JSON object");
   }
   return out;

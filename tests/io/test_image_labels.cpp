@@ -72,7 +72,7 @@ TEST(ImageLabels, MalformedCocoNamesFileAndKey) {
     write_text(t / "bad.json", text);
     expect_error_naming([&] { io::read_coco_labels(t / "bad.json"); }, needle);
   };
-  bad("{", "not valid JSON");
+  bad("{", "malformed JSON");
   bad(R"({"images": []})", "'annotations'");
   const std::string head = R"({"images": [{"id": 1, "file_name": "a.png", "width": 4, "height": 4}],
     "categories": [{"id": 1, "name": "head"}], "annotations": [)";

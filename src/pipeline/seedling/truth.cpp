@@ -9,20 +9,13 @@
 #include "cropsight/io/files.hpp"
 #include "cropsight/stereo/calibration.hpp"
 #include "cropsight/stereo/stereo_io.hpp"
+#include "io/json_file.hpp"
 
 namespace cropsight::pipeline::seedling {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-nlohmann::json parse_json(const fs::path& path) {
-  try {
-    return nlohmann::json::parse(io::read_file(path));
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(path.string(), std::string("malformed JSON: ") + e.what());
-  }
-}
 
 // A zero or non-finite box or plane would make the volume ratio and the top-view IoU meaningless.
 void check_truth(const Truth& t, const fs::path& path) {
@@ -45,7 +38,7 @@ Truth read_truth(const fs::path& p) {
   t.disparity = stereo::read_disparity(p / "disparity.png", 256.0, 16);
   t.mask = stereo::read_gray(p / "mask.png");
   const fs::path path = p / "truth.json";
-  const nlohmann::json j = parse_json(path);
+  const nlohmann::json j = io::detail::read_json_file(path);
   try {
     t.envelope.length = j.at("envelope").at("length_m").get<double>();
     t.envelope.width = j.at("envelope").at("width_m").get<double>();
