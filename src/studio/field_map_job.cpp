@@ -1,22 +1,19 @@
 // The studio's field map job (studio/field_map_job.hpp).
 #include "cropsight/studio/field_map_job.hpp"
 
-#include <chrono>
 #include <map>
 #include <set>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/pipeline/broccoli/make_pipeline.hpp"
+#include "studio/background_job.hpp"
 
 namespace cropsight::studio {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-// Thrown inside the job when the page cancelled it.
-struct MapCancelled {};
 
 // The map's id of a track: the filter merges a head lost and found again into the earlier one
 // (merged_ids: from → into), so a frame's detection may carry an id the map no longer has.
@@ -64,8 +61,7 @@ FieldMapStatus FieldMapJob::status() const {
 
 // One pass in frame order, as `detect broccoli --track` runs it; then the map and each head's frames.
 void FieldMapJob::run() {
-  const auto t0 = std::chrono::steady_clock::now();
-  try {
+  run_job(mutex_, status_, [&] {
     auto pipe = pipeline::broccoli::make_pipeline(
         {.sets = {"track=true"}, .model = model_.empty() ? pipeline::broccoli::kDefaultModel : model_});
     const io::SequenceReader reader(sequence_);
@@ -77,7 +73,7 @@ void FieldMapJob::run() {
     std::map<int, std::set<int>> frames_of;  // track id → frames
     std::vector<Eigen::Vector3d> camera;
     for (int f = 0; f < reader.size(); ++f) {
-      if (cancel_) throw MapCancelled{};
+      if (cancel_) throw JobCancelled{};
       RgbdFrame frame = reader.read(f);
       frame.labels = {};  // the model's view only, as the candidates
       const auto r = pipe->process(frame);
@@ -101,16 +97,7 @@ void FieldMapJob::run() {
     status_.camera = std::move(camera);
     status_.poses = poses;
     status_.state = "done";
-  } catch (const MapCancelled&) {
-    std::lock_guard lock(mutex_);
-    status_.state = "cancelled";
-  } catch (const std::exception& e) {
-    std::lock_guard lock(mutex_);
-    status_.state = "failed";
-    status_.message = e.what();
-  }
-  std::lock_guard lock(mutex_);
-  status_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  });
 }
 
 }  // namespace cropsight::studio

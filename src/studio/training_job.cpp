@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <chrono>
 #include <cstring>
 #include <functional>
 #include <map>
@@ -15,6 +14,7 @@
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/pipeline/broccoli/eval.hpp"
 #include "cropsight/pipeline/broccoli/training.hpp"
+#include "studio/background_job.hpp"
 
 namespace cropsight::studio {
 
@@ -22,9 +22,6 @@ namespace fs = std::filesystem;
 namespace broccoli = pipeline::broccoli;
 
 namespace {
-
-// Thrown inside the job when the page cancelled it.
-struct Cancelled {};
 
 // The labelled frames split into training and held-out frames: every fourth is held out, and at
 // least one.
@@ -113,13 +110,12 @@ TrainingStatus TrainingJob::status() const {
 // One job: split, read and cluster the training frames (and the general passes'), train, score
 // both models on the held-out frames.
 void TrainingJob::run(std::vector<int> labelled, bool with_general) {
-  const auto t0 = std::chrono::steady_clock::now();
-  try {
+  run_job(mutex_, status_, [&] {
     const auto [train, test] = split_held_out(labelled);
     const double steps = double(train.size() + 2 * test.size()) + (with_general ? double(general_frames_) : 0.0);
     double done = 0;
     auto step = [&] {
-      if (cancel_) throw Cancelled{};
+      if (cancel_) throw JobCancelled{};
       std::lock_guard lock(mutex_);
       status_.progress = ++done / steps;
     };
@@ -163,16 +159,7 @@ void TrainingJob::run(std::vector<int> labelled, bool with_general) {
     status_.trained = trained;
     status_.current = current;
     status_.state = "done";
-  } catch (const Cancelled&) {
-    std::lock_guard lock(mutex_);
-    status_.state = "cancelled";
-  } catch (const std::exception& e) {
-    std::lock_guard lock(mutex_);
-    status_.state = "failed";
-    status_.message = e.what();
-  }
-  std::lock_guard lock(mutex_);
-  status_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  });
 }
 
 fs::path TrainingJob::keep(const fs::path& folder) {

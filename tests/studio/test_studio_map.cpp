@@ -3,9 +3,7 @@
 // still maps (the filter estimates the motion) and says so; a job can be cancelled.
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <nlohmann/json.hpp>
-#include <thread>
 
 #include "cropsight/tracking/field_map_io.hpp"
 #include "studio_fixture.hpp"
@@ -16,14 +14,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-nlohmann::json wait_for_map(httplib::Client& client) {
-  for (int k = 0; k < 600; ++k) {
-    auto j = nlohmann::json::parse(client.Get("/api/map")->body);
-    if (j["state"] != "running") return j;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  return nullptr;
-}
+nlohmann::json wait_for_map(httplib::Client& client) { return wait_for_job(client, "/api/map"); }
 
 // The CLI's map of `seq` with the default model.
 std::vector<tracking::TrackedHead> cli_map(const fs::path& seq, const fs::path& dir) {

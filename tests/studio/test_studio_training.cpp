@@ -35,14 +35,7 @@ std::string truth_body(int frame) {
   return nlohmann::json{{"heads", list}}.dump();
 }
 
-nlohmann::json wait_for_training(httplib::Client& client) {
-  for (int k = 0; k < 600; ++k) {
-    auto j = nlohmann::json::parse(client.Get("/api/train")->body);
-    if (j["state"] != "running") return j;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  return nullptr;
-}
+nlohmann::json wait_for_training(httplib::Client& client) { return wait_for_job(client, "/api/train"); }
 
 }  // namespace
 
