@@ -2,7 +2,7 @@
 // studio's model (tracking on, as `detect broccoli --track --map`) in a background job; this file
 // follows the job and draws the map as SVG: every head at its field position as a disc of its
 // diameter, the camera's path, the open frame's heads highlighted; a click on a head opens a frame
-// that detected it. It reads the page's state (studio.js: S, openFrame) and changes nothing else.
+// that detected it. It uses studio.js's api() and openFrame() and changes nothing else of the page.
 'use strict';
 
 const FieldMap = { map: null, uv: null };  // the map, and field (x, y) → drawing (u, v)
