@@ -4,7 +4,6 @@
 #include <map>
 #include <set>
 
-#include "cropsight/core/error.hpp"
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/pipeline/broccoli/make_pipeline.hpp"
 #include "studio/background_job.hpp"
@@ -66,10 +65,6 @@ void FieldMapJob::run() {
         {.sets = {"track=true"}, .model = model_.empty() ? pipeline::broccoli::kDefaultModel : model_});
     const io::SequenceReader reader(sequence_);
     const bool poses = reader.info().has_poses;
-    if (pipe->config().tracking.use_poses && !poses)
-      throw Error(sequence_.string(),
-                  "the model's configuration takes the camera's positions from poses.csv "
-                  "(tracking.use_poses) and this sequence has none");
     std::map<int, std::set<int>> frames_of;  // track id → frames
     std::vector<Eigen::Vector3d> camera;
     for (int f = 0; f < reader.size(); ++f) {

@@ -1,6 +1,7 @@
 // The field map from the page: the job over HTTP draws the heads `detect broccoli --track --map`
 // maps (same model, same pass), each with the frames that detected it; a pass without poses.csv
-// still maps (the filter estimates the motion) and says so; a job can be cancelled.
+// still maps (the filter estimates the motion) and says so; a job can be cancelled; a frame that
+// cannot be read fails it with the file's name.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -83,6 +84,20 @@ TEST(StudioMap, CancelStopsAJob) {
   const auto map = wait_for_map(client);
   // A pass this short may be mapped before the cancel arrives; either way the job has ended.
   EXPECT_TRUE(map["state"] == "cancelled" || map["state"] == "done") << map;
+}
+
+TEST(StudioMap, AFrameThatCannotBeReadFailsWithItsName) {
+  testing::TempDir dir;
+  const fs::path seq = unlabelled_copy(dir.path());
+  RunningStudio studio({.sequence = seq, .read_only = true});
+  // Broken after the studio checked the sequence (a disk error, a copy still running).
+  testing::write_text(seq / "depth" / "000002.png", "not a PNG");
+  auto client = studio.client();
+  ASSERT_EQ(client.Post("/api/map", "{}", "application/json")->status, 202);
+  const auto map = wait_for_map(client);
+  EXPECT_EQ(map["state"], "failed") << map;
+  EXPECT_NE(map["message"].get<std::string>().find("000002.png"), std::string::npos) << map;
+  EXPECT_TRUE(map["heads"].empty());
 }
 
 }  // namespace cropsight::studio_testing

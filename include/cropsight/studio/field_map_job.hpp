@@ -9,8 +9,8 @@
 // Positions are in the field frame (tracking.camera_to_field, metres). With poses.csv the map is
 // anchored at the first camera pose; without it the filter estimates the camera's motion from the
 // heads themselves (the paper's way: no odometry) and the origin is the camera at the first frame.
-// A model configured to take the camera from poses.csv (tracking.use_poses) cannot map a sequence
-// without one: the job fails with a message saying so.
+// A frame the pipeline cannot process fails the job with the pipeline's one-line message, which
+// the page shows in place of the map.
 //
 // Thread-safe: every public call may come from any server thread.
 #include <Eigen/Core>
