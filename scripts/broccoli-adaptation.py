@@ -13,7 +13,7 @@ evaluated on the kind's test passes (`eval broccoli`: kappa and precision per cl
     scripts/broccoli-adaptation.py OUT [--recipe small|general] [--with-general] [--draws 5] [--pools 2]
     (CROPSIGHT=build/bin/cropsight)
 
-Writes OUT/results-RECIPE[-with-general].json (every run) and prints the markdown table of docs/studio.md.
+Writes OUT/results-RECIPE[-with-general].json (every run) and prints the markdown table of docs/adapting.md.
 """
 import argparse
 import json

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <thread>
 
+#include "cli_common.hpp"
 #include "commands.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/studio/server.hpp"
@@ -19,7 +20,7 @@ namespace studio_cmd {
 
 struct Options {
   studio::StudioOptions studio;
-  std::string data, models_dir;
+  std::string data, models_dir, general_data;
 };
 
 // SIGINT and SIGTERM write one byte into a pipe that a watcher thread waits on; the watcher stops
@@ -38,6 +39,8 @@ void run(const Options& o) {
   studio::StudioOptions so = o.studio;
   so.sequence = o.data;
   so.models_dir = o.models_dir;
+  if (!o.general_data.empty())
+    for (const auto& dir : split_list(o.general_data, "--general-data")) so.general_data.emplace_back(dir);
   studio::StudioServer server(so);
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) throw Error("studio", "cannot create a pipe for Ctrl-C");
@@ -83,6 +86,9 @@ void add_studio(CLI::App& app) {
   cmd->add_option("--bind", o->studio.bind, "Address to listen on (default 127.0.0.1: this machine only)");
   cmd->add_option("--models-dir", o->models_dir,
                   "Folder where kept models are written (default: the sequence's parent)");
+  cmd->add_option("--general-data", o->general_data,
+                  "Labelled passes the page may train on next to the sequence's frames (the general model's "
+                  "training passes, comma separated; docs/studio.md)");
   cmd->add_flag("--read-only", o->studio.read_only, "Never write into the sequence");
   cmd->callback([o] { run(*o); });
 }

@@ -21,7 +21,9 @@ nlohmann::json info_json(const ServerState& s) {
           {"model", s.analyzer->model_name()},
           {"threshold", s.analyzer->threshold()},
           {"labelled", s.labels->labelled()},
-          {"read_only", !s.writable}};
+          {"read_only", !s.writable},
+          {"general_passes", s.training->general_passes()},
+          {"general_frames", s.training->general_frames()}};
 }
 
 nlohmann::json candidates_json(const FrameCandidates& fc, float threshold) {

@@ -35,7 +35,9 @@ ServerState::ServerState(StudioOptions o)
   const auto& info = reader.info();
   labels = std::make_unique<LabelStore>(options.sequence, info.camera, info.frames, !writable);
   analyzer = std::make_unique<FrameAnalyzer>(reader, options.model);
-  training = std::make_unique<TrainingJob>(options.sequence, analyzer->config(), analyzer->model());
+  training =
+      std::make_unique<TrainingJob>(options.sequence, analyzer->config(), analyzer->model(), options.general_data);
+  field_map = std::make_unique<FieldMapJob>(options.sequence, analyzer->model_name());
 }
 
 void reply_json(httplib::Response& res, const nlohmann::json& j, int status) {
@@ -92,6 +94,7 @@ StudioServer::StudioServer(StudioOptions options) : s_(std::make_unique<ServerSt
   add_page_routes(*s_);
   add_frame_routes(*s_);
   add_training_routes(*s_);
+  add_map_routes(*s_);
   const std::string& bind = s_->options.bind;
   const std::string where = bind + ":" + std::to_string(s_->options.port);
   if (s_->options.port == 0)
@@ -133,6 +136,7 @@ void StudioServer::stop() {
     if (!s_->run_started) return;
   }
   s_->training->cancel();
+  s_->field_map->cancel();
   while (!s_->http.is_running() && !s_->run_finished) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   s_->http.stop();
 }

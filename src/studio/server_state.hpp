@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "cropsight/io/sequence.hpp"
+#include "cropsight/studio/field_map_job.hpp"
 #include "cropsight/studio/frame_candidates.hpp"
 #include "cropsight/studio/label_store.hpp"
 #include "cropsight/studio/sequence_lock.hpp"
@@ -32,6 +33,7 @@ struct ServerState {
   std::unique_ptr<LabelStore> labels;
   std::unique_ptr<FrameAnalyzer> analyzer;
   std::unique_ptr<TrainingJob> training;
+  std::unique_ptr<FieldMapJob> field_map;
   httplib::Server http;
   int port = 0;
   std::atomic<bool> stopping{false};
@@ -53,10 +55,11 @@ std::optional<nlohmann::json> body_object(const httplib::Request& req, httplib::
 /// a frame of the sequence.
 std::optional<int> frame_of(const ServerState& s, const httplib::Request& req, httplib::Response& res);
 
-/// The route groups (page_routes.cpp, frame_routes.cpp, training_routes.cpp).
+/// The route groups (page_routes.cpp, frame_routes.cpp, training_routes.cpp, map_routes.cpp).
 void add_page_routes(ServerState& s);
 void add_frame_routes(ServerState& s);
 void add_training_routes(ServerState& s);
+void add_map_routes(ServerState& s);
 /// Host and token checks before every handler (access.hpp).
 void add_access_checks(ServerState& s);
 

@@ -4,8 +4,9 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <chrono>
 #include <cstring>
+#include <functional>
+#include <map>
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
@@ -13,6 +14,7 @@
 #include "cropsight/io/sequence.hpp"
 #include "cropsight/pipeline/broccoli/eval.hpp"
 #include "cropsight/pipeline/broccoli/training.hpp"
+#include "studio/background_job.hpp"
 
 namespace cropsight::studio {
 
@@ -21,8 +23,37 @@ namespace broccoli = pipeline::broccoli;
 
 namespace {
 
-// Thrown inside the job when the page cancelled it.
-struct Cancelled {};
+// The labelled frames split into training and held-out frames: every fourth is held out, and at
+// least one.
+std::pair<std::vector<int>, std::vector<int>> split_held_out(const std::vector<int>& labelled) {
+  std::vector<int> train, test;
+  for (std::size_t k = 0; k < labelled.size(); ++k) (k % 4 == 3 ? test : train).push_back(labelled[k]);
+  if (test.empty() && train.size() >= 2) {
+    test.push_back(train.back());
+    train.pop_back();
+  }
+  if (train.empty() || test.empty()) throw Error("training", "label two frames at least (one is held out)");
+  return {train, test};
+}
+
+// Every labelled frame of `passes` (whole passes, as `train broccoli --extra-data` adds them).
+void add_labelled_passes(const std::vector<fs::path>& passes, broccoli::DatasetBuilder& builder,
+                         const std::function<void()>& step) {
+  for (const auto& dir : passes) {
+    const io::SequenceReader reader(dir);
+    for (int f : reader.info().labelled_frames) {
+      builder.add_frame(reader.read(f));
+      step();
+    }
+  }
+}
+
+// The provenance's list of passes: comma separated, as --extra-data takes them.
+std::string joined(const std::vector<fs::path>& paths) {
+  std::string out;
+  for (const auto& p : paths) out += (out.empty() ? "" : ",") + p.string();
+  return out;
+}
 
 HeldOutFigures held_out_figures(const broccoli::Figures& f) {
   return {f.frames, f.clusters, f.truth_heads, f.confusion.kappa(), f.confusion.precision(), f.confusion.recall(),
@@ -31,9 +62,21 @@ HeldOutFigures held_out_figures(const broccoli::Figures& f) {
 
 }  // namespace
 
-TrainingJob::TrainingJob(fs::path sequence, broccoli::Config config, std::shared_ptr<const learning::Model> current)
-    : sequence_(std::move(sequence)), config_(std::move(config)), current_(std::move(current)) {
+TrainingJob::TrainingJob(fs::path sequence, broccoli::Config config, std::shared_ptr<const learning::Model> current,
+                         std::vector<fs::path> general)
+    : sequence_(std::move(sequence)),
+      config_(std::move(config)),
+      current_(std::move(current)),
+      general_(std::move(general)) {
   config_.track = false;
+  for (const auto& dir : general_) {
+    const io::SequenceReader reader(dir);  // names the file when it is no sequence
+    if (io::resolved_path(dir) == io::resolved_path(sequence_))
+      throw Error(dir.string(), "is the studio's own sequence; the general passes are other, labelled passes");
+    if (reader.info().labelled_frames.empty())
+      throw Error(dir.string(), "has no labels/ (simulate the general model's passes with their labels)");
+    general_frames_ += long(reader.info().labelled_frames.size());
+  }
 }
 
 TrainingJob::~TrainingJob() {
@@ -41,7 +84,7 @@ TrainingJob::~TrainingJob() {
   if (thread_.joinable()) thread_.join();
 }
 
-bool TrainingJob::start(std::vector<int> labelled) {
+bool TrainingJob::start(std::vector<int> labelled, bool with_general) {
   std::lock_guard lock(mutex_);
   if (status_.state == "running") return false;
   if (thread_.joinable()) thread_.join();  // the previous job has ended (its state says so)
@@ -49,7 +92,11 @@ bool TrainingJob::start(std::vector<int> labelled) {
   trained_.reset();
   status_ = TrainingStatus{};
   status_.state = "running";
-  thread_ = std::thread([this, labelled = std::move(labelled)]() mutable { run(std::move(labelled)); });
+  status_.with_general = with_general && !general_.empty();
+  status_.general_frames = status_.with_general ? general_frames_ : 0;
+  thread_ = std::thread([this, labelled = std::move(labelled), with = status_.with_general]() mutable {
+    run(std::move(labelled), with);
+  });
   return true;
 }
 
@@ -60,21 +107,15 @@ TrainingStatus TrainingJob::status() const {
   return status_;
 }
 
-// One job: split, read and cluster the training frames, train, score both models on the rest.
-void TrainingJob::run(std::vector<int> labelled) {
-  const auto t0 = std::chrono::steady_clock::now();
-  try {
-    std::vector<int> train, test;
-    for (std::size_t k = 0; k < labelled.size(); ++k) (k % 4 == 3 ? test : train).push_back(labelled[k]);
-    if (test.empty() && train.size() >= 2) {
-      test.push_back(train.back());
-      train.pop_back();
-    }
-    if (train.empty() || test.empty()) throw Error("training", "label two frames at least (one is held out)");
-    const double steps = double(train.size() + 2 * test.size());
+// One job: split, read and cluster the training frames (and the general passes'), train, score
+// both models on the held-out frames.
+void TrainingJob::run(std::vector<int> labelled, bool with_general) {
+  run_job(mutex_, status_, [&] {
+    const auto [train, test] = split_held_out(labelled);
+    const double steps = double(train.size() + 2 * test.size()) + (with_general ? double(general_frames_) : 0.0);
     double done = 0;
     auto step = [&] {
-      if (cancel_) throw Cancelled{};
+      if (cancel_) throw JobCancelled{};
       std::lock_guard lock(mutex_);
       status_.progress = ++done / steps;
     };
@@ -89,13 +130,18 @@ void TrainingJob::run(std::vector<int> labelled) {
       builder.add_frame(reader.read(f));
       step();
     }
+    std::map<std::string, std::string> provenance{{"data", sequence_.string()}, {"trained_by", "cropsight studio"}};
+    if (with_general) {
+      add_labelled_passes(general_, builder, step);
+      provenance["extra_data"] = joined(general_);
+    }
+    provenance["frames"] = std::to_string(builder.frames());
     const auto& data = builder.dataset();
     if (data.positives() == 0 || data.negatives() == 0)
       throw Error("training", "the training frames' clusters are all of one class (" +
                                   std::to_string(data.positives()) + " heads); label frames with heads and without");
-    auto model = std::make_shared<const learning::Model>(broccoli::train_model(
-        data, config_.detector, config_.truth,
-        {{"data", sequence_.string()}, {"frames", std::to_string(train.size())}, {"trained_by", "cropsight studio"}}));
+    auto model = std::make_shared<const learning::Model>(
+        broccoli::train_model(data, config_.detector, config_.truth, provenance));
     auto score = [&](std::shared_ptr<const learning::Model> m) {
       broccoli::Pipeline pipe(config_, std::move(m));
       broccoli::Evaluator evaluator(pipe);
@@ -113,16 +159,7 @@ void TrainingJob::run(std::vector<int> labelled) {
     status_.trained = trained;
     status_.current = current;
     status_.state = "done";
-  } catch (const Cancelled&) {
-    std::lock_guard lock(mutex_);
-    status_.state = "cancelled";
-  } catch (const std::exception& e) {
-    std::lock_guard lock(mutex_);
-    status_.state = "failed";
-    status_.message = e.what();
-  }
-  std::lock_guard lock(mutex_);
-  status_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  });
 }
 
 fs::path TrainingJob::keep(const fs::path& folder) {

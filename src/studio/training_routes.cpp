@@ -21,6 +21,8 @@ nlohmann::json status_json(const TrainingStatus& t) {
           {"samples", t.samples},
           {"positives", t.positives},
           {"seconds", t.seconds},
+          {"with_general", t.with_general},
+          {"general_frames", t.general_frames},
           {"trained", figures_json(t.trained)},
           {"current", figures_json(t.current)}};
 }
@@ -33,8 +35,14 @@ void add_training_routes(ServerState& s) {
     reply_json(res, status_json(s.training->status()));
   });
   http.Post("/api/train", [&s](const httplib::Request& req, httplib::Response& res) {
-    if (!body_object(req, res)) return;
-    if (!s.training->start(s.labels->labelled())) return reply_error(res, 409, "a training job is running");
+    const auto body = body_object(req, res);
+    if (!body) return;
+    const auto with_general = body->value("with_general", nlohmann::json(false));
+    if (!with_general.is_boolean()) return reply_error(res, 400, "with_general must be true or false");
+    if (with_general.get<bool>() && s.training->general_passes() == 0)
+      return reply_error(res, 400, "no general passes: start the studio with --general-data DIR[,DIR...]");
+    if (!s.training->start(s.labels->labelled(), with_general.get<bool>()))
+      return reply_error(res, 409, "a training job is running");
     reply_json(res, status_json(s.training->status()), 202);
   });
   http.Post("/api/train/cancel", [&s](const httplib::Request&, httplib::Response& res) {

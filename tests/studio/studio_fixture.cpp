@@ -1,6 +1,8 @@
 // The studio tests' simulated pass and running server (studio_fixture.hpp).
 #include "studio_fixture.hpp"
 
+#include <chrono>
+
 namespace cropsight::studio_testing {
 
 namespace fs = std::filesystem;
@@ -43,5 +45,14 @@ httplib::Client RunningStudio::client() const {
 }
 
 httplib::Client RunningStudio::anonymous() const { return httplib::Client("127.0.0.1", server_->port()); }
+
+nlohmann::json wait_for_job(httplib::Client& client, const std::string& path) {
+  for (int k = 0; k < 600; ++k) {
+    auto j = nlohmann::json::parse(client.Get(path)->body);
+    if (j["state"] != "running") return j;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return nullptr;
+}
 
 }  // namespace cropsight::studio_testing

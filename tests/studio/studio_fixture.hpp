@@ -5,6 +5,8 @@
 
 #include <filesystem>
 #include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
 #include <thread>
 
 #include "cropsight/studio/server.hpp"
@@ -34,5 +36,9 @@ class RunningStudio {
   std::unique_ptr<studio::StudioServer> server_;
   std::thread thread_;
 };
+
+/// Polls a background job's status (GET `path`, e.g. "/api/train") until it is not "running";
+/// null after a minute.
+nlohmann::json wait_for_job(httplib::Client& client, const std::string& path);
 
 }  // namespace cropsight::studio_testing

@@ -2,6 +2,7 @@
 python3-selenium). A simulated broccoli pass without its labels is labelled on five frames by
 accepting and rejecting the model's candidates and painting one head; the written label images
 must match the simulator's truth (mask IoU >= 0.9 per head), and a model is trained from the page.
+The field map panel then draws the heads the CLI's map holds, and a click on one opens its frame.
 
 Prints the clicks per head. Screenshots go to $STUDIO_SCREENSHOT_DIR (docs/studio.md uses them).
 Skips with a message when Chromium, chromedriver or Selenium is missing."""
@@ -211,6 +212,43 @@ def head_ious(written, truth, valid):
     return out
 
 
+def check_field_map(driver, seq, tmp_path, shots):
+    """Builds the field map from the page: it draws as many heads as `detect broccoli --track --map`
+    maps with the same model, and a click on a head opens a frame that detected it."""
+    driver.find_element(By.ID, "map-build").click()
+    WebDriverWait(driver, 120).until(lambda d: d.execute_script("return document.body.dataset.map") in
+                                     ("done", "failed"))
+    state = driver.find_element(By.ID, "map-state").text
+    assert driver.execute_script("return document.body.dataset.map") == "done", state
+    subprocess.run([CLI, "detect", "broccoli", "--data", str(seq), "--track", "--quiet", "--map",
+                    str(tmp_path / "map.csv"), "--out", str(tmp_path / "detections.jsonl")], check=True)
+    cli_heads = len((tmp_path / "map.csv").read_text().splitlines()) - 1  # after the header
+    drawn = driver.find_elements(By.CSS_SELECTOR, "#map-svg .map-head")
+    print(f"field map: {len(drawn)} heads drawn, {cli_heads} in the CLI's map; {state}")
+    assert cli_heads > 0 and len(drawn) == cli_heads
+    # The head farthest from its neighbours (nothing drawn over it) whose frame is not open.
+    target = driver.execute_script("""
+        const open = document.body.dataset.frame;
+        const heads = [...document.querySelectorAll('#map-svg .map-head')];
+        const at = (c) => [Number(c.getAttribute('cx')), Number(c.getAttribute('cy'))];
+        let best = null, bestGap = -1;
+        for (const c of heads) {
+          if (c.dataset.frame === open) continue;
+          const [x, y] = at(c);
+          const gap = Math.min(...heads.filter((o) => o !== c).map((o) => Math.hypot(at(o)[0] - x, at(o)[1] - y)));
+          if (gap > bestGap) { best = c; bestGap = gap; }
+        }
+        return best;""")
+    assert target is not None, "every head was detected on the open frame only"
+    frame = target.get_attribute("data-frame")
+    driver.execute_script("arguments[0].scrollIntoView({block: 'center'});", target)
+    ActionChains(driver).move_to_element(target).click().perform()
+    wait_ready(driver, frame)
+    assert "current" in target.get_attribute("class")
+    driver.execute_script("document.getElementById('field-map').scrollIntoView({block: 'end'});")
+    screenshot(driver, shots / "studio-map.png")
+
+
 def test_label_five_frames_then_train(browser, studio, tmp_path):
     shots = Path(os.environ.get("STUDIO_SCREENSHOT_DIR", tmp_path / "screenshots"))
     shots.mkdir(parents=True, exist_ok=True)
@@ -294,6 +332,12 @@ def test_label_five_frames_then_train(browser, studio, tmp_path):
     WebDriverWait(driver, 20).until(lambda d: d.find_element(By.ID, "train-state").text.startswith("kept"))
     kept = list((seq.parent).glob("studio-seq-*.json"))
     assert len(kept) == 1, kept
+
+    # Without --general-data the general passes' checkbox is off and says how to turn it on.
+    assert not driver.find_element(By.ID, "train-general").is_enabled()
+    assert "--general-data" in driver.find_element(By.ID, "train-general-label").get_attribute("title")
+
+    check_field_map(driver, seq, tmp_path, shots)
 
     # The CLI trains on the same labels (only the labelled frames).
     out = subprocess.run([CLI, "train", "broccoli", "--data", str(seq), "--out", str(tmp_path / "cli.json"),

@@ -13,12 +13,19 @@ TEST(StudioCli, BadInputIsOneLineAndExit2) {
   // A port that is taken: a studio holds it while the CLI tries it.
   RunningStudio holder({.sequence = seq, .read_only = true});
   const std::string port = std::to_string(holder.server().port());
+  fs::create_directory(dir / "other");
+  const fs::path unlabelled = unlabelled_copy(dir / "other");  // a pass without labels/
   const std::vector<std::pair<std::string, std::string>> cases{
       {"--data " + testing::shell_quoted(dir / "missing"), "sequence directory not found"},
       {"--data " + testing::shell_quoted(seq / "camera.yaml"), "not a directory"},
       {"--data " + testing::shell_quoted(seq) + " --model no-such-model", "no-such-model"},
       {"--data " + testing::shell_quoted(seq) + " --port " + port, "cannot listen"},
-      {"--data " + testing::shell_quoted(seq) + " --port 70000", "70000"}};
+      {"--data " + testing::shell_quoted(seq) + " --port 70000", "70000"},
+      {"--data " + testing::shell_quoted(seq) + " --general-data " + testing::shell_quoted(dir / "missing"),
+       "sequence directory not found"},
+      {"--data " + testing::shell_quoted(seq) + " --general-data " + testing::shell_quoted(seq), "own sequence"},
+      {"--data " + testing::shell_quoted(seq) + " --general-data " + testing::shell_quoted(unlabelled),
+       "has no labels"}};
   for (const auto& [args, words] : cases) {
     const auto r = testing::run_cli("studio " + args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;

@@ -35,14 +35,7 @@ std::string truth_body(int frame) {
   return nlohmann::json{{"heads", list}}.dump();
 }
 
-nlohmann::json wait_for_training(httplib::Client& client) {
-  for (int k = 0; k < 600; ++k) {
-    auto j = nlohmann::json::parse(client.Get("/api/train")->body);
-    if (j["state"] != "running") return j;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  return nullptr;
-}
+nlohmann::json wait_for_training(httplib::Client& client) { return wait_for_job(client, "/api/train"); }
 
 }  // namespace
 
@@ -107,6 +100,59 @@ TEST(StudioTraining, CancelStopsAJob) {
   const auto status = wait_for_training(client);
   // A job this small may finish before the cancel arrives; either way it has ended.
   EXPECT_TRUE(status["state"] == "cancelled" || status["state"] == "done") << status;
+}
+
+// Two short simulated passes stand in for the general model's training set (--general-data).
+TEST(StudioTraining, TrainsWithTheGeneralPassesWhenAsked) {
+  testing::TempDir dir;
+  const fs::path seq = unlabelled_copy(dir.path());
+  std::vector<fs::path> general;
+  for (int seed : {21, 22}) {
+    general.push_back(dir / ("general-" + std::to_string(seed)));
+    const auto r = testing::run_cli("simulate broccoli --frames 2 --quiet --seed " + std::to_string(seed) + " --out " +
+                                    testing::shell_quoted(general.back()));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  RunningStudio studio({.sequence = seq, .general_data = general});
+  auto client = studio.client();
+  const auto info = nlohmann::json::parse(client.Get("/api/info")->body);
+  EXPECT_EQ(info["general_passes"], 2);
+  EXPECT_EQ(info["general_frames"], 4);
+  for (int f = 0; f < 4; ++f)
+    ASSERT_EQ(client.Post("/api/frame/" + std::to_string(f) + "/labels", truth_body(f), "application/json")->status,
+              200);
+  EXPECT_EQ(client.Post("/api/train", R"({"with_general": 1})", "application/json")->status, 400);
+  // Without, then with the general passes: the same held-out frame, more training samples.
+  ASSERT_EQ(client.Post("/api/train", R"({"with_general": false})", "application/json")->status, 202);
+  const auto alone = wait_for_training(client);
+  ASSERT_EQ(alone["state"], "done") << alone;
+  EXPECT_FALSE(alone["with_general"].get<bool>());
+  ASSERT_EQ(client.Post("/api/train", R"({"with_general": true})", "application/json")->status, 202);
+  const auto both = wait_for_training(client);
+  ASSERT_EQ(both["state"], "done") << both;
+  EXPECT_TRUE(both["with_general"].get<bool>());
+  EXPECT_EQ(both["general_frames"], 4);
+  EXPECT_EQ(both["test_frames"], alone["test_frames"]);
+  EXPECT_GT(both["samples"].get<long>(), alone["samples"].get<long>());
+
+  const auto kept = client.Post("/api/train/keep", "{}", "application/json");
+  ASSERT_EQ(kept->status, 200) << kept->body;
+  const auto model = learning::load_model(nlohmann::json::parse(kept->body)["model"].get<std::string>());
+  EXPECT_EQ(model.info.provenance.at("extra_data"), general[0].string() + "," + general[1].string());
+  EXPECT_EQ(model.info.provenance.at("frames"), "7");  // 3 of the sequence + 2 × 2 general
+  EXPECT_EQ(model.info.provenance.at("data"), seq.string());
+}
+
+TEST(StudioTraining, WithoutGeneralPassesTheRequestIsRefused) {
+  testing::TempDir dir;
+  const fs::path seq = unlabelled_copy(dir.path());
+  RunningStudio studio({.sequence = seq});
+  auto client = studio.client();
+  EXPECT_EQ(nlohmann::json::parse(client.Get("/api/info")->body)["general_passes"], 0);
+  const auto r = client.Post("/api/train", R"({"with_general": true})", "application/json");
+  EXPECT_EQ(r->status, 400);
+  EXPECT_NE(r->body.find("--general-data"), std::string::npos) << r->body;
+  EXPECT_EQ(nlohmann::json::parse(client.Get("/api/train")->body)["state"], "idle");
 }
 
 }  // namespace cropsight::studio_testing

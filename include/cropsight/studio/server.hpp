@@ -17,13 +17,16 @@
 //   GET  /api/frame/N/labels                    {labelled, heads: [runs...]}
 //   POST /api/frame/N/labels                    {heads: [runs...]}: writes the frame's labels
 //   GET  /api/uncertain                         frames analysed so far, least certain first
-//   POST /api/train | /api/train/cancel | /api/train/keep | /api/train/discard
+//   POST /api/train {with_general?} | /api/train/cancel | /api/train/keep | /api/train/discard
 //   GET  /api/train                             the job's TrainingStatus
-//   GET  /files/PATH                            a file of the sequence (sequence_files.hpp)
+//   POST /api/map | /api/map/cancel             builds the field map in the background (field_map_job.hpp)
+//   GET  /api/map                               {state, progress, poses, heads: [{id, x, y, diameter_mm, frames...}],
+//   camera} GET  /files/PATH                            a file of the sequence (sequence_files.hpp)
 // "runs" are pixel runs [start, length, start, length, ...] over row-major pixel indices.
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace cropsight::studio {
 
@@ -38,6 +41,9 @@ struct StudioOptions {
   /// Where "keep" writes a model trained on the page ("" = the sequence's parent folder). Named
   /// here, never by a request, so no page can make the studio write elsewhere.
   std::filesystem::path models_dir;
+  /// Labelled passes a training job may add when the page asks (the general model's training
+  /// passes, simulated by the user: docs/studio.md); empty = training on the sequence only.
+  std::vector<std::filesystem::path> general_data;
 };
 
 struct ServerState;  // studio/server_state.hpp (internal)

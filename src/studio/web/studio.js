@@ -262,14 +262,14 @@ async function save() {
 // ---- training -----------------------------------------------------------------------------
 async function train() {
   if (S.dirty) await save();
-  try { await api('/api/train', {}); } catch (e) { $('train-state').textContent = e.message; return; }
+  try { await api('/api/train', { with_general: $('train-general').checked }); } catch (e) { $('train-state').textContent = e.message; return; }
   pollTraining();
 }
 async function pollTraining() {
   const t = await api('/api/train');
   $('train-progress').value = t.progress;
   $('train-state').textContent = t.state + (t.message ? `: ${t.message}` : '') +
-    (t.state === 'done' ? ` (${t.train_frames.length} frames, ${t.seconds.toFixed(1)} s)` : '');
+    (t.state === 'done' ? ` (${t.train_frames.length} frames${t.with_general ? ` + ${t.general_frames} general` : ''}, ${t.seconds.toFixed(1)} s)` : '');
   document.body.dataset.training = t.state;
   $('keep').disabled = $('discard').disabled = t.state !== 'done';
   if (t.state === 'done') showFigures(t);
@@ -351,6 +351,11 @@ async function start() {
   $('brush').oninput = (e) => setBrush(Number(e.target.value));
   $('undo').onclick = undo; $('redo').onclick = redo; $('save').onclick = save;
   $('train').onclick = train;
+  const general = $('train-general');
+  general.disabled = !S.info.general_passes;
+  $('train-general-label').title = S.info.general_passes
+    ? `train on ${S.info.general_frames} labelled frames of ${S.info.general_passes} general passes too (--general-data)`
+    : 'to enable: start the studio with --general-data DIR[,DIR...], the general model\'s training passes (docs/studio.md)';
   $('train-cancel').onclick = () => api('/api/train/cancel', {}).then(pollTraining);
   $('keep').onclick = () => api('/api/train/keep', {}).then((r) => { $('train-state').textContent = `kept: ${r.model}`; $('keep').disabled = $('discard').disabled = true; })
     .catch((e) => { $('train-state').textContent = e.message; });
