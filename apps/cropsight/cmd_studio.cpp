@@ -19,7 +19,7 @@ namespace studio_cmd {
 
 struct Options {
   studio::StudioOptions studio;
-  std::string data, models_dir;
+  std::string data, images, models_dir;
 };
 
 // SIGINT and SIGTERM write one byte into a pipe that a watcher thread waits on; the watcher stops
@@ -36,7 +36,9 @@ extern "C" void on_stop_signal(int) {
 
 void run(const Options& o) {
   studio::StudioOptions so = o.studio;
+  if (o.data.empty() == o.images.empty()) throw Error("studio", "give exactly one of --data and --images");
   so.sequence = o.data;
+  so.images = o.images;
   so.models_dir = o.models_dir;
   studio::StudioServer server(so);
   int fds[2];
@@ -47,9 +49,11 @@ void run(const Options& o) {
   sigemptyset(&action.sa_mask);
   ::sigaction(SIGINT, &action, nullptr);
   ::sigaction(SIGTERM, &action, nullptr);
-  std::printf("cropsight studio: %s, %s\n", o.data.c_str(),
-              server.writable() ? "labels are written into the sequence"
-                                : "read-only (--read-only, or another studio writes this sequence)");
+  const std::string& folder = o.data.empty() ? o.images : o.data;
+  std::printf("cropsight studio: %s, %s\n", folder.c_str(),
+              !server.writable()      ? "read-only (--read-only, or another studio writes this folder)"
+              : o.images.empty()      ? "labels are written into the sequence"
+                                      : "labels are written into its cropsight-labels/ folder");
   std::printf("open %s\n(Ctrl-C stops the studio)\n", server.url().c_str());
   std::fflush(stdout);
   std::thread watcher([&server, read_end = fds[0]] {
@@ -76,9 +80,12 @@ void add_studio(CLI::App& app) {
   using namespace studio_cmd;
   auto o = std::make_shared<Options>();
   auto* cmd =
-      app.add_subcommand("studio", "Review, label and train on a depth sequence in the browser (docs/studio.md)");
-  cmd->add_option("--data", o->data, "Depth sequence folder to review and label")->required();
-  cmd->add_option("--model", o->studio.model, "Broccoli model name or file (default: the general model)");
+      app.add_subcommand("studio", "Review, label and train on a depth sequence or label images in the browser (docs/studio.md)");
+  cmd->add_option("--data", o->data, "Depth sequence folder to review and label");
+  cmd->add_option("--images", o->images, "Folder of images to label with boxes and polygons");
+  cmd->add_option("--model", o->studio.model,
+                  "Broccoli model name or file (default: the general model); with --images, an ONNX detector "
+                  "(default: the potato preset's detector)");
   cmd->add_option("--port", o->studio.port, "Port to listen on (default: a free one)")->check(CLI::Range(0, 65535));
   cmd->add_option("--bind", o->studio.bind, "Address to listen on (default 127.0.0.1: this machine only)");
   cmd->add_option("--models-dir", o->models_dir,
