@@ -1,4 +1,5 @@
 // A folder of images: the images, the model's boxes and the labels (server_state.hpp).
+#include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
 #include "studio/image_shapes.hpp"
 #include "studio/server_state.hpp"
@@ -55,7 +56,11 @@ void save_image_labels(ServerState& s, int index, const httplib::Request& req, h
   auto shapes = parse_shapes_body(req.body, width, height, error);
   if (!shapes) return reply_error(res, 400, error);
   const std::size_t count = shapes->size();
-  s.image_labels->save(index, std::move(*shapes));
+  try {
+    s.image_labels->save(index, std::move(*shapes));
+  } catch (const Error& e) {
+    return reply_error(res, 409, e.what());  // a file of the user's in the way, or a folder that cannot be written
+  }
   reply_json(res, {{"image", index}, {"shapes", count}, {"labelled", s.image_labels->labelled()},
                    {"classes", s.image_labels->classes()}});
 }
