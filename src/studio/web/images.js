@@ -72,7 +72,7 @@ async function openImage(i) {
 function prefill() { return IS.proposals.filter((s) => s.score >= IS.minScore).map((s) => ({ ...s })); }
 
 function showImage() {
-  IS.zoom = Math.min(1.6, 900 / IS.w, 720 / IS.h);
+  IS.zoom = Math.min(1.5, 900 / IS.w, 720 / IS.h);
   const stack = $('stack');
   stack.style.setProperty('--w', IS.w); stack.style.setProperty('--h', IS.h); stack.style.setProperty('--zoom', IS.zoom);
   const canvas = $('overlay');
