@@ -99,10 +99,19 @@ void ImageLabelStore::save(int index, std::vector<io::LabelShape> shapes) {
   if (read_only_) throw Error(dir_.string(), "opened read-only: labels are not written");
   const auto [width, height] = size(index);
   std::lock_guard lock(mutex_);
+  // Kept to be put back should a write fail: the store then still says what the files hold.
+  const auto classes_before = classes_;
+  const auto saved_before = saved_;
   for (const auto& s : shapes) add_class(classes_, s.label);
   const std::string& name = names_.at(std::size_t(index));
   saved_[name] = io::ImageLabels{name, width, height, std::move(shapes)};
-  write_outputs(index);
+  try {
+    write_outputs(index);
+  } catch (...) {
+    classes_ = classes_before;
+    saved_ = saved_before;
+    throw;
+  }
 }
 
 void ImageLabelStore::write_outputs(int index) {

@@ -203,6 +203,8 @@ TEST(StudioImages, NeverReplacesAFileItDidNotWrite) {
   EXPECT_EQ(studio.client().Post("/api/image/1/labels", kTwoShapes, "application/json")->status, 409);
   EXPECT_EQ(io::read_file(out / "voc" / "img_1.xml"), "the user's");
   EXPECT_FALSE(fs::exists(out / "yolo" / "img_1.txt"));
+  const auto info = nlohmann::json::parse(studio.client().Get("/api/info")->body);
+  EXPECT_EQ(info["labelled"], nlohmann::json({0}));  // the refused save left no trace in the store either
   EXPECT_EQ(studio.client().Post("/api/image/2/labels", kTwoShapes, "application/json")->status, 200);
 }
 
