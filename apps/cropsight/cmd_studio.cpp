@@ -51,9 +51,9 @@ void run(const Options& o) {
   ::sigaction(SIGTERM, &action, nullptr);
   const std::string& folder = o.data.empty() ? o.images : o.data;
   std::printf("cropsight studio: %s, %s\n", folder.c_str(),
-              !server.writable()      ? "read-only (--read-only, or another studio writes this folder)"
-              : o.images.empty()      ? "labels are written into the sequence"
-                                      : "labels are written into its cropsight-labels/ folder");
+              !server.writable() ? "read-only (--read-only, or another studio writes this folder)"
+              : o.images.empty() ? "labels are written into the sequence"
+                                 : "labels are written into its cropsight-labels/ folder");
   std::printf("open %s\n(Ctrl-C stops the studio)\n", server.url().c_str());
   std::fflush(stdout);
   std::thread watcher([&server, read_end = fds[0]] {
@@ -79,8 +79,8 @@ void run(const Options& o) {
 void add_studio(CLI::App& app) {
   using namespace studio_cmd;
   auto o = std::make_shared<Options>();
-  auto* cmd =
-      app.add_subcommand("studio", "Review, label and train on a depth sequence or label images in the browser (docs/studio.md)");
+  auto* cmd = app.add_subcommand(
+      "studio", "Review, label and train on a depth sequence or label images in the browser (docs/studio.md)");
   cmd->add_option("--data", o->data, "Depth sequence folder to review and label");
   cmd->add_option("--images", o->images, "Folder of images to label with boxes and polygons");
   cmd->add_option("--model", o->studio.model,

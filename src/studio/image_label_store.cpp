@@ -22,7 +22,8 @@ constexpr const char* kMarkerCommand = "studio";
 std::vector<std::string> earlier_outputs(const fs::path& out) {
   std::error_code ec;
   if (!fs::exists(out, ec)) return {};
-  if (!fs::is_directory(out, ec)) throw Error(out.string(), "exists and is not a folder the studio wrote; move it away");
+  if (!fs::is_directory(out, ec))
+    throw Error(out.string(), "exists and is not a folder the studio wrote; move it away");
   const io::OutputMarker marker = io::read_output_marker(out);
   if (!marker.present || marker.command != kMarkerCommand)
     throw Error(out.string(), "exists and was not written by cropsight studio; move it away to label this folder");
@@ -44,6 +45,13 @@ std::vector<std::string> image_names(const fs::path& dir) {
   }
   if (names.empty()) throw Error(dir.string(), "holds no .jpg or .png image");
   return names;
+}
+
+// One name a line (YOLO's classes.txt: line k is class k).
+std::string lines(const std::vector<std::string>& names) {
+  std::string text;
+  for (const auto& n : names) text += n + "\n";
+  return text;
 }
 
 void add_class(std::vector<std::string>& classes, const std::string& name) {
@@ -125,11 +133,7 @@ void ImageLabelStore::write_outputs(int index) {
   const std::vector<std::pair<std::string, std::string>> files = {
       {"voc/" + stem + ".xml", io::voc_xml(labels)},
       {"yolo/" + stem + ".txt", io::yolo_text(labels, classes_)},
-      {"yolo/classes.txt", [&] {
-         std::string text;
-         for (const auto& c : classes_) text += c + "\n";
-         return text;
-       }()},
+      {"yolo/classes.txt", lines(classes_)},
       {"coco.json", io::coco_json(set)}};
   // Every file first checked: one the marker does not list and that exists is a user's.
   std::error_code ec;
@@ -142,7 +146,8 @@ void ImageLabelStore::write_outputs(int index) {
       // Listed before the file exists: a kill in between leaves a listed name without a file,
       // never a file of ours the next studio would take for the user's.
       for (const std::string& folder : {std::string("voc"), std::string("yolo")})
-        if (relative.rfind(folder + "/", 0) == 0 && std::find(written_.begin(), written_.end(), folder) == written_.end())
+        if (relative.rfind(folder + "/", 0) == 0 &&
+            std::find(written_.begin(), written_.end(), folder) == written_.end())
           written_.push_back(folder);
       written_.push_back(relative);
       io::write_output_marker(out, kMarkerCommand, written_);

@@ -41,8 +41,9 @@ nlohmann::json proposals_json(ServerState& s, int index) {
   const auto& names = s.proposals->class_names();
   nlohmann::json out = nlohmann::json::array();
   for (const Detection2D& d : s.proposals->detect(index, s.image_labels->image_path(index))) {
-    const std::string label = d.class_id >= 0 && std::size_t(d.class_id) < names.size() ? names[std::size_t(d.class_id)]
-                                                                                       : "class" + std::to_string(d.class_id);
+    const std::string label = d.class_id >= 0 && std::size_t(d.class_id) < names.size()
+                                  ? names[std::size_t(d.class_id)]
+                                  : "class" + std::to_string(d.class_id);
     out.push_back({{"label", label}, {"score", d.score}, {"box", {d.x1, d.y1, d.x2, d.y2}}});
   }
   return out;
@@ -61,7 +62,9 @@ void save_image_labels(ServerState& s, int index, const httplib::Request& req, h
   } catch (const Error& e) {
     return reply_error(res, 409, e.what());  // a file of the user's in the way, or a folder that cannot be written
   }
-  reply_json(res, {{"image", index}, {"shapes", count}, {"labelled", s.image_labels->labelled()},
+  reply_json(res, {{"image", index},
+                   {"shapes", count},
+                   {"labelled", s.image_labels->labelled()},
                    {"classes", s.image_labels->classes()}});
 }
 

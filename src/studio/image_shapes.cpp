@@ -81,7 +81,8 @@ std::optional<io::LabelShape> read_shape(const nlohmann::json& j, int width, int
     error = "a shape has either a \"box\" or a \"polygon\"";
     return std::nullopt;
   }
-  const bool ok = box ? read_box(j["box"], width, height, s, error) : read_polygon(j["polygon"], width, height, s, error);
+  const bool ok =
+      box ? read_box(j["box"], width, height, s, error) : read_polygon(j["polygon"], width, height, s, error);
   if (!ok) return std::nullopt;
   return s;
 }

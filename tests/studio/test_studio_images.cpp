@@ -46,7 +46,8 @@ studio::StudioOptions images_options(const fs::path& images) {
 std::map<std::string, std::uintmax_t> files_under(const fs::path& dir) {
   std::map<std::string, std::uintmax_t> out;
   for (const auto& e : fs::recursive_directory_iterator(dir))
-    if (e.path().filename() != ".cropsight-studio.lock") out[e.path().string()] = e.is_regular_file() ? e.file_size() : 0;
+    if (e.path().filename() != ".cropsight-studio.lock")
+      out[e.path().string()] = e.is_regular_file() ? e.file_size() : 0;
   return out;
 }
 
@@ -66,8 +67,9 @@ TEST(StudioImages, RefusesRequestsWithoutTokenOrForeignHost) {
   EXPECT_EQ(anonymous.Get("/api/image/0/pixels")->status, 403);
   EXPECT_EQ(anonymous.Post("/api/image/0/labels", kTwoShapes, "application/json")->status, 403);
   auto client = studio.client();
-  EXPECT_EQ(client.Get("/api/image/0/labels", {{"Host", "evil.example:" + std::to_string(studio.server().port())}})->status,
-            403);
+  EXPECT_EQ(
+      client.Get("/api/image/0/labels", {{"Host", "evil.example:" + std::to_string(studio.server().port())}})->status,
+      403);
   EXPECT_FALSE(fs::exists(dir / "images" / studio::kImageLabelsFolder));
   const auto info = nlohmann::json::parse(client.Get("/api/info")->body);
   EXPECT_EQ(info["mode"], "images");
@@ -109,13 +111,22 @@ TEST(StudioImages, RefusesOversizedAndMalformedBodiesAndWritesNothing) {
   EXPECT_EQ(client.Post("/api/image/0/labels", std::string(2u << 20, ' '), "application/json")->status, 413);
   const std::string nan_box = R"({"shapes": [{"label": "potato", "box": [0, 0, NaN, 4]}]})";
   for (const std::string& body : std::vector<std::string>{
-           "", "{", "[]", "null", R"({"shapes": 3})", R"({"shapes": [3]})", R"({"shapes": [{"box": [0, 0, 4, 4]}]})",
-           R"({"shapes": [{"label": "potato"}]})", R"({"shapes": [{"label": "potato", "box": [0, 0, 4]}]})",
+           "",
+           "{",
+           "[]",
+           "null",
+           R"({"shapes": 3})",
+           R"({"shapes": [3]})",
+           R"({"shapes": [{"box": [0, 0, 4, 4]}]})",
+           R"({"shapes": [{"label": "potato"}]})",
+           R"({"shapes": [{"label": "potato", "box": [0, 0, 4]}]})",
            R"({"shapes": [{"label": "potato", "box": [5, 5, 4, 9]}]})",
            R"({"shapes": [{"label": "potato", "box": [70, 50, 90, 60]}]})",  // empty once clamped into 64×48
-           R"({"shapes": [{"label": "potato", "box": ["0", 0, 4, 4]}]})", nan_box,
+           R"({"shapes": [{"label": "potato", "box": ["0", 0, 4, 4]}]})",
+           nan_box,
            R"({"shapes": [{"label": "potato", "box": [0, 0, 1e999, 4]}]})",
-           R"({"shapes": [{"label": "", "box": [0, 0, 4, 4]}]})", R"({"shapes": [{"label": "a\nb", "box": [0, 0, 4, 4]}]})",
+           R"({"shapes": [{"label": "", "box": [0, 0, 4, 4]}]})",
+           R"({"shapes": [{"label": "a\nb", "box": [0, 0, 4, 4]}]})",
            R"({"shapes": [{"label": " potato", "box": [0, 0, 4, 4]}]})",
            R"({"shapes": [{"label": "potato", "box": [0, 0, 4, 4], "polygon": [0, 0, 4, 0, 4, 4]}]})",
            R"({"shapes": [{"label": "potato", "polygon": [0, 0, 4, 0]}]})",
@@ -145,8 +156,7 @@ TEST(StudioImages, SavesCocoVocAndYoloIntoItsOwnFolderAndReadsThemBack) {
   auto after = files_under(images);
   for (const auto& [path, size] : before) EXPECT_EQ(after[path], size) << path;
   const fs::path out = images / studio::kImageLabelsFolder;
-  for (const auto& [path, size] : after)
-    EXPECT_TRUE(before.count(path) || path.rfind(out.string(), 0) == 0) << path;
+  for (const auto& [path, size] : after) EXPECT_TRUE(before.count(path) || path.rfind(out.string(), 0) == 0) << path;
   EXPECT_FALSE(fs::exists(images / ".cropsight-studio.lock"));
 
   const io::LabelSet coco = io::read_coco_labels(out / "coco.json");
@@ -160,7 +170,8 @@ TEST(StudioImages, SavesCocoVocAndYoloIntoItsOwnFolderAndReadsThemBack) {
   const io::LabelShape& polygon = coco.images[0].shapes[1];
   ASSERT_EQ(polygon.polygons.size(), 1u);
   EXPECT_EQ(polygon.polygons[0].size(), 3u);
-  EXPECT_EQ(std::vector<double>({polygon.x1, polygon.y1, polygon.x2, polygon.y2}), std::vector<double>({40, 10, 60, 30}));
+  EXPECT_EQ(std::vector<double>({polygon.x1, polygon.y1, polygon.x2, polygon.y2}),
+            std::vector<double>({40, 10, 60, 30}));
   EXPECT_TRUE(coco.images[1].shapes.empty());  // saved without shapes: labelled, no object
   const io::VocAnnotation voc = io::read_voc(out / "voc" / "img_1.xml");
   ASSERT_EQ(voc.objects.size(), 2u);
@@ -221,8 +232,8 @@ TEST(StudioImages, ConcurrentSavesAllLandAndASecondStudioIsReadOnly) {
   for (int k = 0; k < 9; ++k)
     threads.emplace_back([&, k] {
       const std::string body = R"({"shapes": [{"label": "c)" + std::to_string(k) + R"(", "box": [1, 1, 9, 9]}]})";
-      statuses[std::size_t(k)] = studio.client().Post("/api/image/" + std::to_string(k % 3) + "/labels", body,
-                                                      "application/json")->status;
+      statuses[std::size_t(k)] =
+          studio.client().Post("/api/image/" + std::to_string(k % 3) + "/labels", body, "application/json")->status;
     });
   for (auto& t : threads) t.join();
   for (int s : statuses) EXPECT_EQ(s, 200);
