@@ -39,6 +39,7 @@ void run(const Options& o) {
   if (o.data.empty() == o.images.empty()) throw Error("studio", "give exactly one of --data and --images");
   so.sequence = o.data;
   so.images = o.images;
+  if (!o.studio.detector.empty() && o.images.empty()) throw Error("--detector", "proposes boxes on --images only");
   so.models_dir = o.models_dir;
   studio::StudioServer server(so);
   int fds[2];
@@ -86,6 +87,9 @@ void add_studio(CLI::App& app) {
   cmd->add_option("--model", o->studio.model,
                   "Broccoli model name or file (default: the general model); with --images, an ONNX detector "
                   "(default: the potato preset's detector)");
+  cmd->add_option("--detector", o->studio.detector,
+                  "With --images: the 2D detector of detect objects (e.g. detector-grape, or a train detector model) "
+                  "in place of the potato pipeline");
   cmd->add_option("--port", o->studio.port, "Port to listen on (default: a free one)")->check(CLI::Range(0, 65535));
   cmd->add_option("--bind", o->studio.bind, "Address to listen on (default 127.0.0.1: this machine only)");
   cmd->add_option("--models-dir", o->models_dir,

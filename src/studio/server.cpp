@@ -32,7 +32,7 @@ ServerState::ServerState(StudioOptions o)
       reconciled(writable && !images_mode() && LabelStore::reconcile(options.sequence)) {
   if (options.token.empty()) options.token = new_token();
   if (images_mode()) {
-    proposals = std::make_unique<ImageProposals>(options.model);
+    proposals = std::make_unique<ImageProposals>(options.model, options.detector);
     image_labels = std::make_unique<ImageLabelStore>(options.images, proposals->class_names(), !writable);
     return;
   }

@@ -40,7 +40,9 @@ TEST(StudioCli, BadImageFolderIsOneLineAndExit2) {
       {"--images " + testing::shell_quoted(dir / "empty"), "no .jpg or .png"},
       {"--images " + testing::shell_quoted(dir / "images"), "stem 'a'"},
       {"--data " + testing::shell_quoted(seq) + " --images " + testing::shell_quoted(dir / "empty"), "exactly one"},
-      {"", "exactly one"}};
+      {"", "exactly one"},
+      {"--data " + testing::shell_quoted(seq) + " --detector detector-grape", "--images only"},
+      {"--images " + testing::shell_quoted(dir / "empty") + " --detector no-such-detector", "no-such-detector"}};
   for (const auto& [args, words] : cases) {
     const auto r = testing::run_cli("studio " + args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;

@@ -7,9 +7,11 @@
 #include <thread>
 
 #include "cropsight/core/error.hpp"
+#include "cropsight/io/config_yaml.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/image_labels.hpp"
 #include "cropsight/io/voc.hpp"
+#include "cropsight/nn/center_onnx.hpp"
 #include "cropsight/studio/image_label_store.hpp"
 #include "studio_fixture.hpp"
 
@@ -217,6 +219,23 @@ TEST(StudioImages, NeverReplacesAFileItDidNotWrite) {
   const auto info = nlohmann::json::parse(studio.client().Get("/api/info")->body);
   EXPECT_EQ(info["labelled"], nlohmann::json({0}));  // the refused save left no trace in the store either
   EXPECT_EQ(studio.client().Post("/api/image/2/labels", kTwoShapes, "application/json")->status, 200);
+}
+
+TEST(StudioImages, ProposalsFromTheProjectsOwnDetector) {
+  testing::TempDir dir;
+  auto options = images_options(image_folder(dir.path()));
+  options.detector = "detector-grape";  // the shipped CenterNet (ONNX): bunch and peduncle
+  RunningStudio studio(options);
+  auto client = studio.client();
+  const auto info = nlohmann::json::parse(client.Get("/api/info")->body);
+  EXPECT_EQ(info["model"], "detector-grape");
+  EXPECT_EQ(info["classes"], nlohmann::json(nn::load_center_detector(io::find_model("detector-grape"))->class_names()));
+  const auto proposals = client.Get("/api/image/0/proposals");
+  ASSERT_EQ(proposals->status, 200);
+  for (const auto& s : nlohmann::json::parse(proposals->body)["shapes"]) {
+    EXPECT_TRUE(info["classes"].contains(s["label"])) << s;
+    EXPECT_EQ(s["box"].size(), 4u);
+  }
 }
 
 TEST(StudioImages, ConcurrentSavesAllLandAndASecondStudioIsReadOnly) {

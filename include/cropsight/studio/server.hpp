@@ -41,6 +41,7 @@ struct StudioOptions {
   std::filesystem::path sequence;         ///< a depth sequence folder (docs/formats.md)
   std::filesystem::path images;           ///< or a folder of images (then `sequence` is unused)
   std::string model;                      ///< broccoli model, or for images an ONNX detector ("" = default)
+  std::string detector;                   ///< images: the project's 2D detector instead (image_proposals.hpp)
   std::string bind = "127.0.0.1";         ///< address to listen on
   int port = 0;                           ///< 0 = a free port chosen by the kernel
   bool read_only = false;                 ///< never write, even when the lock is free
