@@ -9,6 +9,7 @@
 #include "cropsight/io/files.hpp"
 #include "cropsight/io/image_io.hpp"
 #include "cropsight/io/output.hpp"
+#include "cropsight/studio/sequence_files.hpp"
 
 namespace cropsight::studio {
 
@@ -37,7 +38,9 @@ std::vector<std::string> image_names(const fs::path& dir) {
   std::set<std::string> stems;
   for (const fs::path& file : io::list_images(dir)) {
     const std::string name = file.filename().string();
-    if (name.front() == '.') continue;
+    // Hidden names, and links that lead out of the folder, are not the folder's images: the
+    // studio serves nothing outside the folder it was given, whatever the folder holds.
+    if (!file_in_sequence(dir, name)) continue;
     if (!stems.insert(file.stem().string()).second)
       throw Error(file.string(), "another image has the stem '" + file.stem().string() +
                                      "' (its VOC and YOLO label files would be the same); rename one");

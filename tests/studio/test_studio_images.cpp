@@ -86,14 +86,18 @@ TEST(StudioImages, ServesOnlyItsImagesAndNothingOutside) {
   testing::TempDir dir;
   const fs::path images = image_folder(dir.path());
   testing::write_text(dir / "secret.txt", "outside the folder");
+  fs::create_symlink(dir / "secret.txt", images / "secret.png");  // a link out is not an image of the folder
+  fs::create_symlink(images / "img_0.png", images / "same.png");  // a link inside is
   RunningStudio studio(images_options(images));
   auto client = studio.client();
   const auto pixels = client.Get("/api/image/2/pixels");
   EXPECT_EQ(pixels->status, 200);
   EXPECT_EQ(pixels->get_header_value("Content-Type"), "image/png");
   EXPECT_EQ(pixels->body, io::read_file(images / "img_2.png"));
+  EXPECT_EQ(nlohmann::json::parse(client.Get("/api/info")->body)["images"],
+            nlohmann::json({"img_0.png", "img_1.png", "img_2.png", "same.png"}));
   for (const std::string& path : std::vector<std::string>{
-           "/api/image/3/pixels", "/api/image/-1/labels", "/api/image/99999999999999/labels", "/api/image/../labels",
+           "/api/image/4/pixels", "/api/image/-1/labels", "/api/image/99999999999999/labels", "/api/image/../labels",
            "/api/image/%2e%2e/labels", "/api/image/0/../../secret.txt", "/files/../secret.txt",
            "/files/%2e%2e/secret.txt", "/files/.cropsight-studio.lock", "/api/frame/0/labels", "/api/train"}) {
     const auto r = client.Get(path);

@@ -34,7 +34,8 @@ inline constexpr const char* kImageLabelsFolder = "cropsight-labels";
 
 class ImageLabelStore {
  public:
-  /// The images of `dir` (.jpg, .jpeg, .png in name order) and the labels the studio saved there
+  /// The images of `dir` (.jpg, .jpeg, .png in name order; not hidden ones, nor symbolic links
+  /// that lead out of `dir`) and the labels the studio saved there
   /// before. `classes`: class names to offer first (the model's). Throws Error naming the folder
   /// or file: no image, two images with one stem (their VOC and YOLO files would collide), a
   /// cropsight-labels that no studio wrote, or a coco.json that cannot be read.
