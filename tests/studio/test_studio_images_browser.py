@@ -49,8 +49,9 @@ def iou(a, b):
 
 
 def voc_boxes(path):
+    """[(class, (xmin, ymin, xmax, ymax))] of a VOC file."""
     root = ET.parse(path).getroot()
-    return [tuple(float(o.find("bndbox").find(k).text) for k in ("xmin", "ymin", "xmax", "ymax"))
+    return [(o.find("name").text, tuple(float(o.find("bndbox").find(k).text) for k in ("xmin", "ymin", "xmax", "ymax")))
             for o in root.iter("object")]
 
 
@@ -159,7 +160,7 @@ def octagon(box):
 
 
 def label_image(page, truth, polygon_for, redraw_one):
-    """Labels the open image to `truth` and returns what it should now hold: [(box, polygon or None)]."""
+    """Labels the open image to `truth` and returns what it should now hold: [(class, box, polygon or None)]."""
     proposals = [tuple(s["box"]) for s in page.shapes()]
     # Greedy matching, best IoU first: each truth box takes at most one proposal.
     pairs = sorted(((iou(p, t), i, j) for i, p in enumerate(proposals) for j, t in enumerate(truth)), reverse=True)
@@ -187,22 +188,22 @@ def label_image(page, truth, polygon_for, redraw_one):
             for v in vertices:
                 page.click(*v)
             page.key(Keys.ENTER)
-            expected.append((t, vertices))
+            expected.append(("potato", t, vertices))
             actions["polygon"] += 1
         elif j in match and iou(proposals[match[j]], t) >= ACCEPT_IOU:
-            expected.append((proposals[match[j]], None))
+            expected.append(("potato", proposals[match[j]], None))
             actions["accepted"] += 1
         elif j in match:  # drag two corners onto the truth
             page.tool("select", "v")
             p = proposals[match[j]]
             page.drag(p[:2], t[:2])
             page.drag((p[2], p[3]), t[2:])
-            expected.append((t, None))
+            expected.append(("potato", t, None))
             actions["edited"] += 1
         else:
             page.tool("box", "b")
             page.drag(t[:2], t[2:])
-            expected.append((t, None))
+            expected.append(("potato", t, None))
             actions["drawn"] += 1
     return expected, actions
 
@@ -212,11 +213,13 @@ def close(a, b, tol=1.0):
 
 
 def same_shapes(written, want):
-    """Whether `written` [(box, flat polygon or None)] is `want` [(box, vertices or None)] in any order."""
+    """Whether `written` [(class, box, flat polygon or None)] is `want` [(class, box, vertices or None)]
+    in any order."""
     left = list(want)
-    for box, flat in written:
-        k = next((k for k, (b, poly) in enumerate(left) if close(box, b) and (poly is None) == (flat is None) and
-                  (poly is None or close(flat, [c for v in poly for c in v]))), None)
+    for label, box, flat in written:
+        k = next((k for k, (c, b, poly) in enumerate(left) if c == label and close(box, b) and
+                  (poly is None) == (flat is None) and (poly is None or close(flat, [u for v in poly for u in v]))),
+                 None)
         if k is None:
             return False
         left.pop(k)
@@ -229,23 +232,43 @@ def check_written(out, names, expected, size):
     cats = {c["id"]: c["name"] for c in coco["categories"]}
     assert [im["file_name"] for im in coco["images"]] == names
     classes = (out / "yolo" / "classes.txt").read_text().split("\n")[:-1]
-    boxes_only = {name: [(box, None) for box, _ in want] for name, want in expected.items()}
+    assert classes == [cats[k] for k in sorted(cats)]
+    boxes_only = {name: [(c, box, None) for c, box, _ in want] for name, want in expected.items()}
     for im in coco["images"]:
         name, stem = im["file_name"], Path(im["file_name"]).stem
         anns = [a for a in coco["annotations"] if a["image_id"] == im["id"]]
-        assert all(cats[a["category_id"]] == "potato" for a in anns)
-        written = [((a["bbox"][0], a["bbox"][1], a["bbox"][0] + a["bbox"][2], a["bbox"][1] + a["bbox"][3]),
+        written = [(cats[a["category_id"]],
+                    (a["bbox"][0], a["bbox"][1], a["bbox"][0] + a["bbox"][2], a["bbox"][1] + a["bbox"][3]),
                     a["segmentation"][0] if "segmentation" in a else None) for a in anns]
         assert same_shapes(written, expected[name]), ("coco", name, written, expected[name])
         yolo = []
         for line in (out / "yolo" / f"{stem}.txt").read_text().split("\n")[:-1]:
             c, cx, cy, w, h = line.split()
-            assert classes[int(c)] == "potato"
             cx, cy, w, h = float(cx) * size[0], float(cy) * size[1], float(w) * size[0], float(h) * size[1]
-            yolo.append(((cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2), None))
+            yolo.append((classes[int(c)], (cx - w / 2, cy - h / 2, cx + w / 2, cy + h / 2), None))
         assert same_shapes(yolo, boxes_only[name]), ("yolo", name, yolo, expected[name])
-        voc = [(box, None) for box in voc_boxes(out / "voc" / f"{stem}.xml")]
+        voc = [(c, box, None) for c, box in voc_boxes(out / "voc" / f"{stem}.xml")]
         assert same_shapes(voc, boxes_only[name]), ("voc", name, voc, expected[name])
+
+
+def add_class_box(page, box):
+    """A new class typed into the page, then a box of it drawn (test actions: not counted)."""
+    clicks, tool = page.clicks, page.state("imagesStudio.tool")
+    page.key(Keys.ESCAPE)  # nothing selected: a new class would become the selected shape's
+    field = page.driver.find_element(By.ID, "new-class")
+    field.click()
+    field.send_keys("sprout", Keys.ENTER)
+    page.driver.find_element(By.TAG_NAME, "header").click()  # the keys are the page's again
+    page.tool("box", "b")
+    page.drag(box[:2], box[2:])
+    assert page.shapes()[-1]["label"] == "sprout"
+    page.key("1")  # class 1 (potato) for what comes next, and for the selected box: undone below
+    assert page.shapes()[-1]["label"] == "potato"
+    ActionChains(page.driver).key_down(Keys.CONTROL).send_keys("z").key_up(Keys.CONTROL).perform()
+    assert page.shapes()[-1]["label"] == "sprout"
+    page.tool(tool, {"select": "v", "box": "b", "polygon": "g"}[tool])  # as the labelling left it
+    page.clicks = clicks
+    return ("sprout", box, None)
 
 
 def test_label_potato_images_with_boxes_and_a_polygon(browser, studio, tmp_path):
@@ -260,13 +283,15 @@ def test_label_potato_images_with_boxes_and_a_polygon(browser, studio, tmp_path)
         page.wait_ready(i)
         if i == 0:
             screenshot(driver, shots / "studio-images-prefill.png")
-        truth = voc_boxes(POTATO / "annotations_voc" / f"{Path(name).stem}.xml")
+        truth = [box for _, box in voc_boxes(POTATO / "annotations_voc" / f"{Path(name).stem}.xml")]
         want, actions = label_image(page, truth, polygon_for=0 if i == 0 else None,
                                     redraw_one=i == len(names) - 1 and not totals.get("drawn"))
         for k, v in actions.items():
             totals[k] = totals.get(k, 0) + v
         expected[name] = want
-        ious += [max(iou(t, box) for box, _ in want) for t in truth]
+        ious += [max(iou(t, box) for _, box, _ in want) for t in truth]
+        if i == 1:  # classes: one box of a new class, where no potato hangs
+            want.append(add_class_box(page, (4.0, 4.0, 40.0, 30.0)))
         if i == 0:
             screenshot(driver, shots / "studio-images-label.png")
             # Undo and redo (test actions, not counted as labelling clicks).
@@ -291,7 +316,7 @@ def test_label_potato_images_with_boxes_and_a_polygon(browser, studio, tmp_path)
     size = Image.open(folder / names[0]).size
     out = folder / "cropsight-labels"
     check_written(out, names, expected, size)
-    boxes = sum(len(w) for w in expected.values())
+    boxes = len(ious)
     print(f"\nstudio image run: {len(names)} images, {boxes} potatoes, {page.clicks} clicks and keys = "
           f"{page.clicks / boxes:.2f} per box; {json.dumps(totals)}; IoU with the VOC truth: "
           f"mean {sum(ious) / len(ious):.3f}, min {min(ious):.3f}")

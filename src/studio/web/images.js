@@ -311,7 +311,7 @@ function nextUnlabelled() {
 }
 
 function keys(ev) {
-  if (ev.target.tagName === 'INPUT' && ev.target.type !== 'range') return;
+  if (ev.target.tagName === 'INPUT') return;  // typing a class name or an image number
   const k = ev.key.toLowerCase();
   if ((ev.ctrlKey || ev.metaKey) && k === 'z') { ev.preventDefault(); ev.shiftKey ? redo() : undo(); return; }
   if ((ev.ctrlKey || ev.metaKey) && k === 'y') { ev.preventDefault(); redo(); return; }
@@ -352,6 +352,7 @@ async function start() {
     $('min-score-value').textContent = IS.minScore.toFixed(2);
     if (!IS.labelled && !IS.dirty) { IS.shapes = prefill(); IS.selected = -1; render(); }
   };
+  $('min-score').onchange = (e) => e.target.blur();  // the keys are the page's again
   for (const t of ['select', 'box', 'polygon']) $(`tool-${t}`).onclick = () => setTool(t);
   $('undo').onclick = undo; $('redo').onclick = redo; $('save').onclick = save; $('delete').onclick = deleteSelected;
   $('add-class').onclick = addClass;
