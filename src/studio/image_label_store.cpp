@@ -71,9 +71,9 @@ ImageLabelStore::ImageLabelStore(fs::path dir, const std::vector<std::string>& c
   if (!fs::exists(out / "coco.json")) return;
   io::LabelSet set = io::read_coco_labels(out / "coco.json");
   for (const auto& c : set.classes) add_class(classes_, c);
-  for (auto& image : set.images)
-    if (std::find(names_.begin(), names_.end(), image.file_name) != names_.end())
-      saved_[image.file_name] = std::move(image);
+  // Every image of it, also one no longer in the folder: a save rewrites coco.json, and must not
+  // drop labels of an image the user moved away for a while.
+  for (auto& image : set.images) saved_[image.file_name] = std::move(image);
 }
 
 std::vector<int> ImageLabelStore::labelled() const {
@@ -133,6 +133,8 @@ void ImageLabelStore::write_outputs(int index) {
   io::LabelSet set{classes_, {}};
   for (const auto& name : names_)
     if (const auto it = saved_.find(name); it != saved_.end()) set.images.push_back(it->second);
+  for (const auto& [name, image] : saved_)  // then those no longer in the folder
+    if (std::find(names_.begin(), names_.end(), name) == names_.end()) set.images.push_back(image);
   const std::vector<std::pair<std::string, std::string>> files = {
       {"voc/" + stem + ".xml", io::voc_xml(labels)},
       {"yolo/" + stem + ".txt", io::yolo_text(labels, classes_)},

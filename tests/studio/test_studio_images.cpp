@@ -190,13 +190,25 @@ TEST(StudioImages, SavesCocoVocAndYoloIntoItsOwnFolderAndReadsThemBack) {
 
   // A new studio shows the saved labels (they win over the model's boxes, which the page
   // shows only on unlabelled images).
-  RunningStudio again(images_options(images));
-  const auto labels = nlohmann::json::parse(again.client().Get("/api/image/1/labels")->body);
-  EXPECT_TRUE(labels["labelled"].get<bool>());
-  EXPECT_EQ(labels["shapes"][0]["box"], nlohmann::json({4, 6, 30.5, 40}));
-  EXPECT_EQ(labels["shapes"][1]["polygon"], nlohmann::json({40, 10, 60, 12, 50, 30}));
-  EXPECT_FALSE(nlohmann::json::parse(again.client().Get("/api/image/0/labels")->body)["labelled"].get<bool>());
-  EXPECT_EQ(again.client().Get("/api/image/0/proposals")->status, 200);
+  {
+    RunningStudio again(images_options(images));
+    const auto labels = nlohmann::json::parse(again.client().Get("/api/image/1/labels")->body);
+    EXPECT_TRUE(labels["labelled"].get<bool>());
+    EXPECT_EQ(labels["shapes"][0]["box"], nlohmann::json({4, 6, 30.5, 40}));
+    EXPECT_EQ(labels["shapes"][1]["polygon"], nlohmann::json({40, 10, 60, 12, 50, 30}));
+    EXPECT_FALSE(nlohmann::json::parse(again.client().Get("/api/image/0/labels")->body)["labelled"].get<bool>());
+    EXPECT_EQ(again.client().Get("/api/image/0/proposals")->status, 200);
+  }
+
+  // An image moved out of the folder keeps its labels in coco.json through later saves.
+  fs::rename(images / "img_1.png", dir / "img_1.png");
+  RunningStudio without(images_options(images));
+  EXPECT_EQ(nlohmann::json::parse(without.client().Get("/api/info")->body)["labelled"], nlohmann::json({1}));  // img_2
+  ASSERT_EQ(without.client().Post("/api/image/0/labels", kTwoShapes, "application/json")->status, 200);
+  const io::LabelSet kept = io::read_coco_labels(out / "coco.json");
+  ASSERT_EQ(kept.images.size(), 3u);
+  EXPECT_EQ(kept.images[2].file_name, "img_1.png");
+  EXPECT_EQ(kept.images[2].shapes.size(), 2u);
 }
 
 TEST(StudioImages, NeverReplacesAFileItDidNotWrite) {
