@@ -11,11 +11,13 @@
 //   .cropsight-output  the output marker (io/output.hpp) listing every file above
 //
 // A labelled image is one saved at least once, with or without shapes (an image without potatoes
-// is a label too). Labels of an image that is no longer in the folder stay in coco.json. The subfolder must be new or one a studio wrote (its marker names "studio"):
-// anything else at that name is refused, and so is any file in it the marker does not list, so a
-// user's own file is never replaced. Every file is written under a temporary name and renamed
-// (io/files.hpp); coco.json last, so a kill leaves the previous coco.json with per-image files
-// that may be one save newer (the next save of that image rewrites them).
+// is a label too). Labels of an image that is no longer in the folder stay in coco.json.
+//
+// The subfolder must be new or one a studio wrote (its marker names "studio"): anything else at
+// that name is refused, and so is any file in it the marker does not list, so a user's own file
+// is never replaced. Every file is written under a temporary name and renamed (io/files.hpp);
+// coco.json last, so a kill leaves the previous coco.json with per-image files that may be one
+// save newer (the next save of that image rewrites them).
 //
 // Thread-safe: every call takes the store's mutex (the server answers on several threads).
 #include <filesystem>
