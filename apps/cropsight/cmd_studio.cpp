@@ -20,7 +20,7 @@ namespace studio_cmd {
 
 struct Options {
   studio::StudioOptions studio;
-  std::string data, models_dir, general_data;
+  std::string data, images, models_dir, general_data;
 };
 
 // SIGINT and SIGTERM write one byte into a pipe that a watcher thread waits on; the watcher stops
@@ -37,8 +37,13 @@ extern "C" void on_stop_signal(int) {
 
 void run(const Options& o) {
   studio::StudioOptions so = o.studio;
+  if (o.data.empty() == o.images.empty()) throw Error("studio", "give exactly one of --data and --images");
   so.sequence = o.data;
+  so.images = o.images;
+  if (!o.studio.detector.empty() && o.images.empty()) throw Error("--detector", "proposes boxes on --images only");
   so.models_dir = o.models_dir;
+  if (!o.general_data.empty() && !o.images.empty())
+    throw Error("--general-data", "adds broccoli training passes, so it goes with --data, not --images");
   if (!o.general_data.empty())
     for (const auto& dir : split_list(o.general_data, "--general-data")) so.general_data.emplace_back(dir);
   studio::StudioServer server(so);
@@ -50,9 +55,11 @@ void run(const Options& o) {
   sigemptyset(&action.sa_mask);
   ::sigaction(SIGINT, &action, nullptr);
   ::sigaction(SIGTERM, &action, nullptr);
-  std::printf("cropsight studio: %s, %s\n", o.data.c_str(),
-              server.writable() ? "labels are written into the sequence"
-                                : "read-only (--read-only, or another studio writes this sequence)");
+  const std::string& folder = o.data.empty() ? o.images : o.data;
+  std::printf("cropsight studio: %s, %s\n", folder.c_str(),
+              !server.writable() ? "read-only (--read-only, or another studio writes this folder)"
+              : o.images.empty() ? "labels are written into the sequence"
+                                 : "labels are written into its cropsight-labels/ folder");
   std::printf("open %s\n(Ctrl-C stops the studio)\n", server.url().c_str());
   std::fflush(stdout);
   std::thread watcher([&server, read_end = fds[0]] {
@@ -78,10 +85,16 @@ void run(const Options& o) {
 void add_studio(CLI::App& app) {
   using namespace studio_cmd;
   auto o = std::make_shared<Options>();
-  auto* cmd =
-      app.add_subcommand("studio", "Review, label and train on a depth sequence in the browser (docs/studio.md)");
-  cmd->add_option("--data", o->data, "Depth sequence folder to review and label")->required();
-  cmd->add_option("--model", o->studio.model, "Broccoli model name or file (default: the general model)");
+  auto* cmd = app.add_subcommand(
+      "studio", "Review, label and train on a depth sequence or label images in the browser (docs/studio.md)");
+  cmd->add_option("--data", o->data, "Depth sequence folder to review and label");
+  cmd->add_option("--images", o->images, "Folder of images to label with boxes and polygons");
+  cmd->add_option("--model", o->studio.model,
+                  "Broccoli model name or file (default: the general model); with --images, an ONNX detector "
+                  "(default: the potato preset's detector)");
+  cmd->add_option("--detector", o->studio.detector,
+                  "With --images: the 2D detector of detect objects (e.g. detector-grape, or a train detector model) "
+                  "in place of the potato pipeline");
   cmd->add_option("--port", o->studio.port, "Port to listen on (default: a free one)")->check(CLI::Range(0, 65535));
   cmd->add_option("--bind", o->studio.bind, "Address to listen on (default 127.0.0.1: this machine only)");
   cmd->add_option("--models-dir", o->models_dir,

@@ -12,7 +12,7 @@ namespace cropsight::studio {
 namespace {
 
 nlohmann::json info_json(const ServerState& s) {
-  const auto& info = s.reader.info();
+  const auto& info = s.reader->info();
   return {{"sequence", s.options.sequence.filename().string()},
           {"frames", info.frames},
           {"width", info.camera.width},
@@ -49,11 +49,11 @@ nlohmann::json heads_json(const LabelImage& labels) {
 // POST /api/frame/N/labels: {"heads": [runs, ...]}.
 void save_labels(ServerState& s, int frame, const httplib::Request& req, httplib::Response& res) {
   if (!s.writable) return reply_error(res, 403, "this studio is read-only (--read-only, or another studio writes)");
-  const auto& cam = s.reader.info().camera;
+  const auto& cam = s.reader->info().camera;
   std::string error;
   const auto heads = parse_heads_body(req.body, cam.width * cam.height, error);
   if (!heads) return reply_error(res, 400, error);
-  s.labels->save(frame, *heads, s.reader.read(frame).depth);
+  s.labels->save(frame, *heads, s.reader->read(frame).depth);
   reply_json(res, {{"frame", frame}, {"heads", heads->size()}, {"labelled", s.labels->labelled()}});
 }
 
@@ -64,14 +64,14 @@ void add_frame_routes(ServerState& s) {
   http.Get("/api/info", [&s](const httplib::Request&, httplib::Response& res) { reply_json(res, info_json(s)); });
   http.Get(R"(/api/frame/(\d+)/depth\.png)", [&s](const httplib::Request& req, httplib::Response& res) {
     if (const auto f = frame_of(s, req, res)) {
-      const RgbdFrame frame = s.reader.read(*f);
+      const RgbdFrame frame = s.reader->read(*f);
       res.set_content(io::encode_png(report::depth_colormap(frame.depth, frame.camera.depth_scale)), "image/png");
     }
   });
   http.Get(R"(/api/frame/(\d+)/color\.png)", [&s](const httplib::Request& req, httplib::Response& res) {
     if (const auto f = frame_of(s, req, res)) {
-      if (!s.reader.info().has_color) return reply_error(res, 404, "the sequence has no colour frames");
-      res.set_content(io::encode_png(s.reader.read(*f).color), "image/png");
+      if (!s.reader->info().has_color) return reply_error(res, 404, "the sequence has no colour frames");
+      res.set_content(io::encode_png(s.reader->read(*f).color), "image/png");
     }
   });
   http.Get(R"(/api/frame/(\d+)/candidates)", [&s](const httplib::Request& req, httplib::Response& res) {
@@ -89,13 +89,13 @@ void add_frame_routes(ServerState& s) {
   });
   http.Get("/api/uncertain", [&s](const httplib::Request&, httplib::Response& res) {
     std::vector<std::pair<float, int>> order;
-    for (int f = 0; f < s.reader.size(); ++f)
+    for (int f = 0; f < s.reader->size(); ++f)
       if (const auto fc = s.analyzer->cached(f)) order.emplace_back(fc->certainty, f);
     std::stable_sort(order.begin(), order.end());
     nlohmann::json frames = nlohmann::json::array();
     for (const auto& [certainty, f] : order)
       frames.push_back({{"frame", f}, {"certainty", std::isfinite(certainty) ? nlohmann::json(certainty) : nullptr}});
-    reply_json(res, {{"analysed", order.size()}, {"frames", s.reader.size()}, {"least_certain_first", frames}});
+    reply_json(res, {{"analysed", order.size()}, {"frames", s.reader->size()}, {"least_certain_first", frames}});
   });
 }
 

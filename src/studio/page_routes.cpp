@@ -52,14 +52,16 @@ void add_access_checks(ServerState& s) {
 }
 
 void add_page_routes(ServerState& s) {
-  s.http.Get(R"(/([a-z_]*\.?[a-z]*))", [](const httplib::Request& req, httplib::Response& res) {
-    const std::string name = req.matches[1].str().empty() ? "index.html" : req.matches[1].str();
+  // A folder of images has its own page (images.html): boxes and polygons, not depth clusters.
+  const std::string home = s.images_mode() ? "images.html" : "index.html";
+  s.http.Get(R"(/([a-z_]*\.?[a-z]*))", [home](const httplib::Request& req, httplib::Response& res) {
+    const std::string name = req.matches[1].str().empty() ? home : req.matches[1].str();
     for (const auto& asset : web_assets())
       if (asset.name == name) return res.set_content(std::string(asset.bytes), content_type(name).c_str());
     reply_error(res, 404, "no such page file");
   });
   s.http.Get(R"(/files/(.*))", [&s](const httplib::Request& req, httplib::Response& res) {
-    const auto file = file_in_sequence(s.options.sequence, req.matches[1].str());
+    const auto file = file_in_sequence(s.root(), req.matches[1].str());
     if (!file) return reply_error(res, 404, "no such file in the sequence");
     res.set_content(io::read_file(*file), content_type(file->filename().string()).c_str());
   });

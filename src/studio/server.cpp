@@ -1,4 +1,4 @@
-// The studio server: opening the sequence, the lock, binding, and the helpers every handler uses
+// The studio server: opening the sequence or image folder, the lock, binding, and the helpers every handler uses
 // (studio/server.hpp, server_state.hpp).
 #include <sys/socket.h>
 #include <unistd.h>
@@ -14,27 +14,32 @@ namespace cropsight::studio {
 
 namespace {
 
-// A sequence folder the studio may write into: locked, and not opened --read-only.
-std::unique_ptr<SequenceLock> try_lock(const StudioOptions& o) {
-  if (o.read_only) return nullptr;
+// A sequence or image folder the studio may write into: locked, and not opened --read-only.
+std::unique_ptr<SequenceLock> try_lock(const std::filesystem::path& root, bool read_only) {
+  if (read_only) return nullptr;
   std::error_code ec;
-  if (!std::filesystem::is_directory(o.sequence, ec)) return nullptr;  // the reader says what is wrong
-  if (::access(o.sequence.c_str(), W_OK) != 0) return nullptr;         // a read-only folder: a read-only studio
-  return std::make_unique<SequenceLock>(o.sequence);
+  if (!std::filesystem::is_directory(root, ec)) return nullptr;  // the reader says what is wrong
+  if (::access(root.c_str(), W_OK) != 0) return nullptr;         // a read-only folder: a read-only studio
+  return std::make_unique<SequenceLock>(root);
 }
 
 }  // namespace
 
 ServerState::ServerState(StudioOptions o)
     : options(std::move(o)),
-      lock(try_lock(options)),
+      lock(try_lock(root(), options.read_only)),
       writable(lock && lock->held()),
-      reconciled(writable && LabelStore::reconcile(options.sequence)),
-      reader(options.sequence) {
+      reconciled(writable && !images_mode() && LabelStore::reconcile(options.sequence)) {
   if (options.token.empty()) options.token = new_token();
-  const auto& info = reader.info();
+  if (images_mode()) {
+    proposals = std::make_unique<ImageProposals>(options.model, options.detector);
+    image_labels = std::make_unique<ImageLabelStore>(options.images, proposals->class_names(), !writable);
+    return;
+  }
+  reader = std::make_unique<io::SequenceReader>(options.sequence);
+  const auto& info = reader->info();
   labels = std::make_unique<LabelStore>(options.sequence, info.camera, info.frames, !writable);
-  analyzer = std::make_unique<FrameAnalyzer>(reader, options.model);
+  analyzer = std::make_unique<FrameAnalyzer>(*reader, options.model);
   training =
       std::make_unique<TrainingJob>(options.sequence, analyzer->config(), analyzer->model(), options.general_data);
   field_map = std::make_unique<FieldMapJob>(options.sequence, analyzer->model_name());
@@ -60,7 +65,7 @@ std::optional<nlohmann::json> body_object(const httplib::Request& req, httplib::
 
 std::optional<int> frame_of(const ServerState& s, const httplib::Request& req, httplib::Response& res) {
   const std::string digits = req.matches.size() > 1 ? std::string(req.matches[1]) : "";
-  if (digits.empty() || digits.size() > 9 || std::stoi(digits) >= s.reader.size()) {
+  if (digits.empty() || digits.size() > 9 || std::stoi(digits) >= s.reader->size()) {
     reply_error(res, 404, "no frame " + digits);
     return std::nullopt;
   }
@@ -92,9 +97,13 @@ StudioServer::StudioServer(StudioOptions options) : s_(std::make_unique<ServerSt
   });
   add_access_checks(*s_);
   add_page_routes(*s_);
-  add_frame_routes(*s_);
-  add_training_routes(*s_);
-  add_map_routes(*s_);
+  if (s_->images_mode()) {
+    add_image_routes(*s_);
+  } else {
+    add_frame_routes(*s_);
+    add_training_routes(*s_);
+    add_map_routes(*s_);
+  }
   const std::string& bind = s_->options.bind;
   const std::string where = bind + ":" + std::to_string(s_->options.port);
   if (s_->options.port == 0)
@@ -115,11 +124,16 @@ void StudioServer::run() {
     if (s_->stopping) return;
     s_->run_started = true;
   }
-  // Every frame's candidates once, in the background, so "least certain first" covers the pass.
+  // Every frame's candidates (every image's boxes) once, in the background, so "least certain
+  // first" covers the pass and the page need not wait for the detector.
   s_->background = std::thread([s = s_.get()] {
-    for (int f = 0; f < s->reader.size() && !s->stopping; ++f) {
+    const int count = s->images_mode() ? int(s->image_labels->images().size()) : s->reader->size();
+    for (int f = 0; f < count && !s->stopping; ++f) {
       try {
-        s->analyzer->analyse(f);
+        if (s->images_mode())
+          s->proposals->detect(f, s->image_labels->image_path(f));
+        else
+          s->analyzer->analyse(f);
       } catch (const std::exception&) {
         // A frame that cannot be read is reported when the page asks for it.
       }
@@ -135,8 +149,8 @@ void StudioServer::stop() {
     s_->stopping = true;
     if (!s_->run_started) return;
   }
-  s_->training->cancel();
-  s_->field_map->cancel();
+  if (s_->training) s_->training->cancel();
+  if (s_->field_map) s_->field_map->cancel();
   while (!s_->http.is_running() && !s_->run_finished) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   s_->http.stop();
 }

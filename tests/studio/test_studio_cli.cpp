@@ -35,4 +35,34 @@ TEST(StudioCli, BadInputIsOneLineAndExit2) {
   }
 }
 
+TEST(StudioCli, BadImageFolderIsOneLineAndExit2) {
+  testing::TempDir dir;
+  const fs::path seq = unlabelled_copy(dir.path());
+  fs::create_directories(dir / "empty");
+  fs::create_directories(dir / "images" / "cropsight-labels");
+  fs::copy_file(seq / "depth" / "000000.png", dir / "images" / "a.png");
+  fs::copy_file(seq / "depth" / "000001.png", dir / "images" / "a.jpg");  // same stem, decoded only when opened
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"--images " + testing::shell_quoted(dir / "missing"), "missing"},
+      {"--images " + testing::shell_quoted(dir / "empty"), "no .jpg or .png"},
+      {"--images " + testing::shell_quoted(dir / "images"), "stem 'a'"},
+      {"--data " + testing::shell_quoted(seq) + " --images " + testing::shell_quoted(dir / "empty"), "exactly one"},
+      {"", "exactly one"},
+      {"--data " + testing::shell_quoted(seq) + " --detector detector-grape", "--images only"},
+      {"--images " + testing::shell_quoted(dir / "empty") + " --general-data " + testing::shell_quoted(seq),
+       "not --images"},
+      {"--images " + testing::shell_quoted(dir / "empty") + " --detector no-such-detector", "no-such-detector"}};
+  for (const auto& [args, words] : cases) {
+    const auto r = testing::run_cli("studio " + args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(words), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  fs::remove(dir / "images" / "a.jpg");
+  const auto r = testing::run_cli("studio --images " + testing::shell_quoted(dir / "images"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("not written by cropsight studio"), std::string::npos) << r.err;
+  for (const char* name : {"empty", "images"}) EXPECT_FALSE(fs::exists(dir / name / ".cropsight-studio.lock")) << name;
+}
+
 }  // namespace cropsight::studio_testing

@@ -1,7 +1,9 @@
 #pragma once
 // The studio's HTTP server (cpp-httplib, Debian's libcpp-httplib-dev): the page (its files are
 // compiled into the library, so nothing is read from disk to serve it), the frames of one depth
-// sequence as pictures, the model's candidates, the labels, and the training job.
+// sequence as pictures, the model's candidates, the labels, and the training job; or, for a
+// folder of images (StudioOptions::images), the images, the potato detector's boxes and the
+// boxes and polygons a user draws (image_label_store.hpp says where they are written).
 //
 // Every request passes the checks of access.hpp (Host, then token) before any handler; request
 // bodies are bounded (413 above StudioOptions::max_body_bytes); a body that is not the JSON a
@@ -23,6 +25,14 @@
 //   GET  /api/map                               {state, progress, poses, heads: [{id, x, y, diameter_mm, frames...}],
 //   camera} GET  /files/PATH                            a file of the sequence (sequence_files.hpp)
 // "runs" are pixel runs [start, length, start, length, ...] over row-major pixel indices.
+//
+// With a folder of images, in place of the frame and training endpoints:
+//   GET  /, /images.js                          the image page (images.html)
+//   GET  /api/info                              images (names), classes, model, labelled, read_only
+//   GET  /api/image/N/pixels                    the image file as it is
+//   GET  /api/image/N/proposals                 the detector's {shapes: [{label, score, box}]}
+//   GET  /api/image/N/labels                    {name, width, height, labelled, shapes}
+//   POST /api/image/N/labels                    {shapes: [{label, box | polygon}]} (image_shapes.hpp)
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -32,7 +42,9 @@ namespace cropsight::studio {
 
 struct StudioOptions {
   std::filesystem::path sequence;         ///< a depth sequence folder (docs/formats.md)
-  std::string model;                      ///< broccoli model name or file ("" = the default)
+  std::filesystem::path images;           ///< or a folder of images (then `sequence` is unused)
+  std::string model;                      ///< broccoli model, or for images an ONNX detector ("" = default)
+  std::string detector;                   ///< images: the project's 2D detector instead (image_proposals.hpp)
   std::string bind = "127.0.0.1";         ///< address to listen on
   int port = 0;                           ///< 0 = a free port chosen by the kernel
   bool read_only = false;                 ///< never write, even when the lock is free
