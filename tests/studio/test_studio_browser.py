@@ -11,29 +11,18 @@ import os
 import shutil
 import signal
 import subprocess
-import time
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-CLI = os.environ.get("CROPSIGHT_CLI", "build/bin/cropsight")
-CHROMIUM, CHROMEDRIVER = "/usr/bin/chromium", "/usr/bin/chromedriver"
 FRAMES_TO_LABEL = 5
 MIN_HEAD_PIXELS = 200  # truth heads with fewer measured pixels (a sliver at the border) are not asked for
 
-webdriver = pytest.importorskip("selenium.webdriver", reason="python3-selenium is not installed")
-Image = pytest.importorskip("PIL.Image", reason="python3-pil is not installed")
-from selenium.webdriver.chrome.service import Service  # noqa: E402
+from browser_support import CLI, Image, chromium, screenshot, start_studio, stop_studio  # noqa: E402
 from selenium.webdriver.common.action_chains import ActionChains  # noqa: E402
 from selenium.webdriver.common.by import By  # noqa: E402
 from selenium.webdriver.support.ui import WebDriverWait  # noqa: E402
-
-
-def screenshot(driver, path):
-    """The page as a 128-colour PNG (a third of the size of Chromium's), for docs/studio.md."""
-    driver.save_screenshot(str(path))
-    Image.open(path).convert("RGB").quantize(colors=128).save(path, optimize=True)
 
 
 def read_png(path):
@@ -42,15 +31,7 @@ def read_png(path):
 
 @pytest.fixture(scope="module")
 def browser():
-    for exe in (CHROMIUM, CHROMEDRIVER):
-        if not os.access(exe, os.X_OK):
-            pytest.skip(f"{exe} not found (apt-get install chromium chromium-driver)")
-    options = webdriver.ChromeOptions()
-    options.binary_location = CHROMIUM
-    for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1500,900",
-                "--force-device-scale-factor=1"):
-        options.add_argument(arg)
-    driver = webdriver.Chrome(service=Service(executable_path=CHROMEDRIVER), options=options)
+    driver = chromium()
     yield driver
     driver.quit()
 
@@ -65,18 +46,9 @@ def studio(tmp_path):
     shutil.copytree(truth, seq)
     shutil.rmtree(seq / "labels")
     (seq / "groundtruth.json").unlink()
-    proc = subprocess.Popen([CLI, "studio", "--data", str(seq)], stdout=subprocess.PIPE, text=True)
-    url = None
-    for _ in range(5):
-        line = proc.stdout.readline()
-        if line.startswith("open "):
-            url = line.split()[1]
-            break
-    assert url, "the studio printed no URL"
+    proc, url = start_studio("--data", seq)
     yield {"url": url, "seq": seq, "truth": truth, "proc": proc}
-    if proc.poll() is None:
-        proc.send_signal(signal.SIGINT)
-        proc.wait(timeout=20)
+    stop_studio(proc)
 
 
 class Clicks:

@@ -17,27 +17,17 @@ from pathlib import Path
 
 import pytest
 
-CLI = os.environ.get("CROPSIGHT_CLI", "build/bin/cropsight")
-CHROMIUM, CHROMEDRIVER = "/usr/bin/chromium", "/usr/bin/chromedriver"
 SHARED = Path(os.environ.get("CROPSIGHT_DATA", Path(__file__).resolve().parents[3] / "shared" / "data"))
 POTATO = SHARED / "potato" / "detection"
 IMAGES_TO_LABEL = 4
 ACCEPT_IOU = 0.9  # a pre-filled box this close to the truth is accepted as it is
 MATCH_IOU = 0.3   # below this a pre-filled box is nobody's potato and is deleted
 
-webdriver = pytest.importorskip("selenium.webdriver", reason="python3-selenium is not installed")
-Image = pytest.importorskip("PIL.Image", reason="python3-pil is not installed")
-from selenium.webdriver.chrome.service import Service  # noqa: E402
+from browser_support import CLI, Image, chromium, screenshot, start_studio, stop_studio  # noqa: E402
 from selenium.webdriver.common.action_chains import ActionChains  # noqa: E402
 from selenium.webdriver.common.by import By  # noqa: E402
 from selenium.webdriver.common.keys import Keys  # noqa: E402
 from selenium.webdriver.support.ui import WebDriverWait  # noqa: E402
-
-
-def screenshot(driver, path):
-    """The page as a 128-colour PNG (a third of the size of Chromium's), for docs/studio.md."""
-    driver.save_screenshot(str(path))
-    Image.open(path).convert("RGB").quantize(colors=128).save(path, optimize=True)
 
 
 def iou(a, b):
@@ -57,17 +47,9 @@ def voc_boxes(path):
 
 @pytest.fixture(scope="module")
 def browser():
-    for exe in (CHROMIUM, CHROMEDRIVER):
-        if not os.access(exe, os.X_OK):
-            pytest.skip(f"{exe} not found (apt-get install chromium chromium-driver)")
     if not (POTATO / "images").is_dir():
         pytest.skip(f"{POTATO} not found: the shared potato images are needed (../shared/data/README.md)")
-    options = webdriver.ChromeOptions()
-    options.binary_location = CHROMIUM
-    for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1500,900",
-                "--force-device-scale-factor=1"):
-        options.add_argument(arg)
-    driver = webdriver.Chrome(service=Service(executable_path=CHROMEDRIVER), options=options)
+    driver = chromium()
     yield driver
     driver.quit()
 
@@ -80,18 +62,9 @@ def studio(tmp_path):
     names = sorted(p.name for p in (POTATO / "images").glob("*.jpg"))[:IMAGES_TO_LABEL]
     for name in names:
         shutil.copy(POTATO / "images" / name, folder / name)
-    proc = subprocess.Popen([CLI, "studio", "--images", str(folder)], stdout=subprocess.PIPE, text=True)
-    url = None
-    for _ in range(5):
-        line = proc.stdout.readline()
-        if line.startswith("open "):
-            url = line.split()[1]
-            break
-    assert url, "the studio printed no URL"
+    proc, url = start_studio("--images", folder)
     yield {"url": url, "folder": folder, "names": names, "proc": proc}
-    if proc.poll() is None:
-        proc.send_signal(signal.SIGINT)
-        proc.wait(timeout=20)
+    stop_studio(proc)
 
 
 class Page:

@@ -10,15 +10,7 @@ const IS = {
   undo: [], redo: [], dirty: false, saving: null, saveTimer: 0, poly: null, drag: null, hover: null,
 };
 window.imagesStudio = IS;  // read by the browser test; the page never trusts it for anything
-const $ = (id) => document.getElementById(id);
-
-async function api(path, body) {
-  const init = body === undefined ? {} : { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) };
-  const res = await fetch(path, init);
-  const json = await res.json().catch(() => ({}));
-  if (!res.ok) throw new Error(json.error || res.statusText);
-  return json;
-}
+// $ and api() come from common.js.
 
 // ---- shapes: {label, x1, y1, x2, y2, poly: null | [[x, y], ...], source: 'model' | 'user', score}
 function fromWire(s, source) {

@@ -11,15 +11,7 @@ const S = {
   stroke: null, saveTimer: 0, clicks: 0, loaded: false,
 };
 window.studio = S;  // read by the browser test; the page never trusts it for anything
-const $ = (id) => document.getElementById(id);
-
-async function api(path, body) {
-  const init = body === undefined ? {} : { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body) };
-  const res = await fetch(path, init);
-  const json = await res.json().catch(() => ({}));
-  if (!res.ok) throw new Error(json.error || res.statusText);
-  return json;
-}
+// $ and api() come from common.js.
 
 // Runs [start, length, ...] ↔ ascending pixel indices.
 function fromRuns(runs) {
