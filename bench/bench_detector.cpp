@@ -39,6 +39,7 @@
 #include "cropsight/nn/center_decode.hpp"
 #include "cropsight/nn/center_net.hpp"
 #include "cropsight/nn/center_onnx.hpp"
+#include "grape_bench_image.hpp"
 #include "nn/center_codec.hpp"
 
 namespace {
@@ -52,19 +53,7 @@ fs::path onnx_model() {
   return env != nullptr && *env != 0 ? fs::path(env) : kModels / "detector-grape.onnx";
 }
 
-const std::optional<ColorImage>& grape_image() {
-  static const std::optional<ColorImage> image = []() -> std::optional<ColorImage> {
-    const fs::path dir = fs::path(CROPSIGHT_SHARED_DATA_DIR) / "grape" / "coco_train" / "JPEGImages";
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec)) return std::nullopt;
-    std::vector<fs::path> files;
-    for (const auto& e : fs::directory_iterator(dir, ec))
-      if (e.path().extension() == ".jpg" || e.path().extension() == ".png") files.push_back(e.path());
-    if (files.empty()) return std::nullopt;
-    return io::read_color(*std::min_element(files.begin(), files.end()));
-  }();
-  return image;
-}
+using cropsight::bench::grape_image;
 
 void BM_GrapeDetectorTorch(benchmark::State& state) {
   const fs::path m = kModels / "detector-grape.pt";
@@ -117,7 +106,8 @@ void onnx_masks(benchmark::State& state, bool in_boxes) {
   if (!grape_image() || !fs::exists(m))
     return state.SkipWithError("needs ../shared/data/grape and models/detector-grape.onnx");
   nn::CenterNetOnnx net(m);
-  boxes_and_masks(state, net.config(), [&](const ColorImage& im) { return net.heads(im); }, in_boxes);
+  boxes_and_masks(
+      state, net.config(), [&](const ColorImage& im) { return net.heads(im); }, in_boxes);
 }
 
 void torch_masks(benchmark::State& state, bool in_boxes) {
@@ -126,7 +116,8 @@ void torch_masks(benchmark::State& state, bool in_boxes) {
     return state.SkipWithError("needs ../shared/data/grape and models/detector-grape.pt");
   const nn::CenterNet net = nn::CenterNet::load(m, 2);
   for (int i = 0; i < 2; ++i) net.heads(*grape_image());  // untimed: libtorch's first calls
-  boxes_and_masks(state, net.config(), [&](const ColorImage& im) { return net.heads(im); }, in_boxes);
+  boxes_and_masks(
+      state, net.config(), [&](const ColorImage& im) { return net.heads(im); }, in_boxes);
 }
 
 void BM_GrapeDetectorOnnxMasks(benchmark::State& state) { onnx_masks(state, false); }
@@ -153,7 +144,12 @@ void BM_GrapeDetectorMaskDecode(benchmark::State& state) {
                                             : nn::masks_from_heads(h, cfg, image.width, image.height));
   state.SetLabel(state.range(0) ? "inside the boxes" : "every pixel");
 }
-BENCHMARK(BM_GrapeDetectorMaskDecode)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+BENCHMARK(BM_GrapeDetectorMaskDecode)
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 void BM_GrapeDetectorBlob(benchmark::State& state) {
   const fs::path m = onnx_model();

@@ -30,6 +30,7 @@
 #include "cropsight/nn/center_decode.hpp"
 #include "cropsight/nn/center_net.hpp"
 #include "cropsight/nn/center_onnx.hpp"
+#include "grape_bench_image.hpp"
 #include "nn/center_codec.hpp"
 
 namespace detector_stages {
@@ -38,19 +39,7 @@ using namespace cropsight;
 
 const fs::path kModel = cropsight::data_dir() / "models" / "detector-grape";
 
-const std::optional<ColorImage>& grape_image() {
-  static const std::optional<ColorImage> image = []() -> std::optional<ColorImage> {
-    const fs::path dir = fs::path(CROPSIGHT_SHARED_DATA_DIR) / "grape" / "coco_train" / "JPEGImages";
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec)) return std::nullopt;
-    std::vector<fs::path> files;
-    for (const auto& e : fs::directory_iterator(dir, ec))
-      if (e.path().extension() == ".jpg" || e.path().extension() == ".png") files.push_back(e.path());
-    if (files.empty()) return std::nullopt;
-    return io::read_color(*std::min_element(files.begin(), files.end()));
-  }();
-  return image;
-}
+using cropsight::bench::grape_image;
 
 // The group of a layer of the exported graph by its name (center_onnx_writer.cpp names them;
 // OpenCV's importer prefixes "onnx_node!").

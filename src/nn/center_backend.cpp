@@ -38,8 +38,9 @@ std::unique_ptr<Detector2D> open_center_detector(const std::string& model, Detec
     // A file the user named: its extension is the runtime; asking for the other one is a mistake.
     const bool onnx_file = ext == ".onnx";
     if ((runtime == DetectorRuntime::libtorch && onnx_file) || (runtime == DetectorRuntime::opencv && !onnx_file))
-      throw Error(model, "is a " + std::string(onnx_file ? ".onnx" : "libtorch") + " model, but the detector runtime is " +
-                             config_name(runtime) + " (libtorch runs .pt, opencv .onnx; auto follows the extension)");
+      throw Error(model, "is a " + std::string(onnx_file ? ".onnx" : "libtorch") +
+                             " model, but the detector runtime is " + config_name(runtime) +
+                             " (libtorch runs .pt, opencv .onnx; auto follows the extension)");
     return load_center_detector(io::find_model(model), threads);
   }
   std::string file;

@@ -29,9 +29,9 @@ TEST(CenterBackend, AutoTakesLibtorchWhereThePluginLoadsAndAFileKeepsItsOwnRunti
   const std::string e = cropsight::testing::error_message(
       [&] { nn::open_center_detector(kShipped.string() + ".onnx", nn::DetectorRuntime::libtorch, 1); });
   EXPECT_NE(e.find("runtime is libtorch"), std::string::npos) << e;
-  EXPECT_NE(cropsight::testing::error_message(
-                [&] { nn::open_center_detector("no-such-detector", nn::DetectorRuntime::automatic, 1); })
-                .find("no such detector model"),
+  EXPECT_NE(cropsight::testing::error_message([&] {
+              nn::open_center_detector("no-such-detector", nn::DetectorRuntime::automatic, 1);
+            }).find("no such detector model"),
             std::string::npos);
 }
 

@@ -56,12 +56,12 @@ TEST(MakePipeline, GrapeDetectorBackendPicksTheRuntimeOfANamedModel) {
                                               .detector = "detector-grape"});
   EXPECT_TRUE(pipe->has_detector());
   EXPECT_EQ(pipe->config().detector.backend, cropsight::nn::DetectorRuntime::opencv);
-  EXPECT_NE(error_message([] {
-              pl::grape::make_pipeline({.sets = {"detector.backend=libtorch"},
-                                        .model = "grape-gbdt-fast",
-                                        .detector = "detector-grape.onnx"});
-            }).find("runtime is libtorch"),
-            std::string::npos);
+  EXPECT_NE(
+      error_message([] {
+        pl::grape::make_pipeline(
+            {.sets = {"detector.backend=libtorch"}, .model = "grape-gbdt-fast", .detector = "detector-grape.onnx"});
+      }).find("runtime is libtorch"),
+      std::string::npos);
   EXPECT_NE(error_message([] {
               pl::grape::make_pipeline({.sets = {"detector.backend=tensorrt"}, .model = "grape-gbdt-fast"});
             }).find("auto, libtorch, opencv"),

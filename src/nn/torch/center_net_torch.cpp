@@ -208,7 +208,8 @@ class Backend final : public detail::DetectorBackend {
       pool.emplace_back([&, w, begin, end] {
         try {
           one_openmp_thread();
-          parts[std::size_t(w)] = forward_batch(images.data() + std::size_t(begin) * per_image, end - begin, width, height);
+          parts[std::size_t(w)] =
+              forward_batch(images.data() + std::size_t(begin) * per_image, end - begin, width, height);
         } catch (...) {
           errors[std::size_t(w)] = std::current_exception();
         }
