@@ -120,7 +120,7 @@ BENCHMARK(BM_DetectorStageDecode)->Unit(benchmark::kMillisecond)->MeasureProcess
 }  // namespace detector_stages
 
 int main(int argc, char** argv) {
-  cv::setNumThreads(2);  // the two cores, as bench_detector
+  cv::setNumThreads(2);  // the two cores of the speed targets, as bench_detector
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -203,6 +203,13 @@ class Backend final : public detail::DetectorBackend {
     std::vector<std::vector<CenterNetHeads>> parts(static_cast<std::size_t>(workers));
     std::vector<std::exception_ptr> errors(static_cast<std::size_t>(workers));
     std::vector<std::thread> pool;
+    struct JoinAll {  // a failed thread start must not leave started ones unjoined (terminate)
+      std::vector<std::thread>& threads;
+      ~JoinAll() {
+        for (auto& t : threads)
+          if (t.joinable()) t.join();
+      }
+    } join_all{pool};
     for (int w = 0; w < workers; ++w) {
       const int begin = w * n / workers, end = (w + 1) * n / workers;
       pool.emplace_back([&, w, begin, end] {
