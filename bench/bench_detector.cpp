@@ -8,11 +8,17 @@
 //                           weights) through the libtorch plugin: the baseline in the same process
 //   BM_GrapeDetectorOnnxMasks  boxes and per-class masks through OpenCV DNN: CenterNetOnnx::heads()
 //                           (the main input and every mask_inputs pass, flip test as the model
-//                           says), decode_heads() and masks_from_heads() at 1280x720: what the
+//                           says), boxes_from_heads() and masks_from_heads() at 1280x720: what the
 //                           grape paper's Table 2 comparison needs from each image
+//   BM_GrapeDetectorTorchMasks  the same through the libtorch plugin (CenterNet::heads())
+//   ...MasksInBoxes         the same two with masks_in_boxes(): each class's mask computed only
+//                           inside its boxes
+//   BM_GrapeDetectorMaskDecode  the mask decoding alone on heads computed once (every pixel / 0,
+//                           inside the boxes / 1)
 //   BM_GrapeDetectorBlob    the letterboxed input blob alone (nn::center_blob), the fixed cost
 // Both detectors run on two threads (cv::setNumThreads(2); the plugin's threads = 2). The ratio
 // of the ONNX row to the libtorch row of the same run is the number to compare across machines.
+// CPU is the whole process's (every thread's) CPU time per iteration.
 //
 // CROPSIGHT_BENCH_DETECTOR=FILE.onnx replaces models/detector-grape.onnx in the ONNX rows (to time
 // a candidate before it ships).
@@ -33,8 +39,8 @@
 #include "cropsight/nn/center_decode.hpp"
 #include "cropsight/nn/center_net.hpp"
 #include "cropsight/nn/center_onnx.hpp"
+#include "grape_bench_image.hpp"
 #include "nn/center_codec.hpp"
-#include "nn/onnx_decode.hpp"
 
 namespace {
 namespace fs = std::filesystem;
@@ -47,19 +53,7 @@ fs::path onnx_model() {
   return env != nullptr && *env != 0 ? fs::path(env) : kModels / "detector-grape.onnx";
 }
 
-const std::optional<ColorImage>& grape_image() {
-  static const std::optional<ColorImage> image = []() -> std::optional<ColorImage> {
-    const fs::path dir = fs::path(CROPSIGHT_SHARED_DATA_DIR) / "grape" / "coco_train" / "JPEGImages";
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec)) return std::nullopt;
-    std::vector<fs::path> files;
-    for (const auto& e : fs::directory_iterator(dir, ec))
-      if (e.path().extension() == ".jpg" || e.path().extension() == ".png") files.push_back(e.path());
-    if (files.empty()) return std::nullopt;
-    return io::read_color(*std::min_element(files.begin(), files.end()));
-  }();
-  return image;
-}
+using cropsight::bench::grape_image;
 
 void BM_GrapeDetectorTorch(benchmark::State& state) {
   const fs::path m = kModels / "detector-grape.pt";
@@ -74,7 +68,7 @@ void BM_GrapeDetectorTorch(benchmark::State& state) {
   state.counters["boxes"] = double(boxes);
   state.SetLabel(std::to_string(grape_image()->width) + "x" + std::to_string(grape_image()->height));
 }
-BENCHMARK(BM_GrapeDetectorTorch)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GrapeDetectorTorch)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 
 void BM_GrapeDetectorOnnx(benchmark::State& state) {
   const fs::path m = onnx_model();
@@ -86,22 +80,19 @@ void BM_GrapeDetectorOnnx(benchmark::State& state) {
   for (auto _ : state) boxes = net.detect(*grape_image()).size();
   state.counters["boxes"] = double(boxes);
 }
-BENCHMARK(BM_GrapeDetectorOnnx)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GrapeDetectorOnnx)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 
-void BM_GrapeDetectorOnnxMasks(benchmark::State& state) {
-  const fs::path m = onnx_model();
-  if (!grape_image() || !fs::exists(m))
-    return state.SkipWithError("needs ../shared/data/grape and models/detector-grape.onnx");
-  nn::CenterNetOnnx net(m);
-  const nn::CenterNetConfig& cfg = net.config();
+// Boxes and masks of one image from `heads_of` (either backend's heads()): the boxes decoded,
+// then the masks over the whole image (masks_from_heads) or inside the boxes (masks_in_boxes).
+template <class HeadsOf>
+void boxes_and_masks(benchmark::State& state, const nn::CenterNetConfig& cfg, HeadsOf&& heads_of, bool in_boxes) {
   const ColorImage& image = *grape_image();
   std::size_t pixels = 0;
   for (auto _ : state) {
-    const nn::CenterNetHeads h = net.heads(image);
-    const nn::Letterbox lb =
-        nn::Letterbox::fit(image.width, image.height, cfg.input_width, cfg.input_height, nn::OnnxResize::letterbox);
-    benchmark::DoNotOptimize(nn::decode_heads(h, lb, float(cfg.score_threshold), cfg.top_k));
-    const auto masks = nn::masks_from_heads(h, cfg, image.width, image.height);
+    const nn::CenterNetHeads h = heads_of(image);
+    const auto boxes = nn::boxes_from_heads(h, cfg, image.width, image.height);
+    const auto masks = in_boxes ? nn::masks_in_boxes(h, cfg, boxes, image.width, image.height)
+                                : nn::masks_from_heads(h, cfg, image.width, image.height);
     pixels = 0;
     for (const auto& k : masks)
       pixels += std::size_t(std::count_if(k.data.begin(), k.data.end(), [](auto v) { return v != 0; }));
@@ -109,7 +100,56 @@ void BM_GrapeDetectorOnnxMasks(benchmark::State& state) {
   state.counters["mask_pixels"] = double(pixels);
   state.SetLabel(cfg.mask_inputs.empty() ? "one input" : "masks also at " + cfg.mask_inputs);
 }
-BENCHMARK(BM_GrapeDetectorOnnxMasks)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void onnx_masks(benchmark::State& state, bool in_boxes) {
+  const fs::path m = onnx_model();
+  if (!grape_image() || !fs::exists(m))
+    return state.SkipWithError("needs ../shared/data/grape and models/detector-grape.onnx");
+  nn::CenterNetOnnx net(m);
+  boxes_and_masks(
+      state, net.config(), [&](const ColorImage& im) { return net.heads(im); }, in_boxes);
+}
+
+void torch_masks(benchmark::State& state, bool in_boxes) {
+  const fs::path m = kModels / "detector-grape.pt";
+  if (!grape_image() || !fs::exists(m))
+    return state.SkipWithError("needs ../shared/data/grape and models/detector-grape.pt");
+  const nn::CenterNet net = nn::CenterNet::load(m, 2);
+  for (int i = 0; i < 2; ++i) net.heads(*grape_image());  // untimed: libtorch's first calls
+  boxes_and_masks(
+      state, net.config(), [&](const ColorImage& im) { return net.heads(im); }, in_boxes);
+}
+
+void BM_GrapeDetectorOnnxMasks(benchmark::State& state) { onnx_masks(state, false); }
+BENCHMARK(BM_GrapeDetectorOnnxMasks)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+void BM_GrapeDetectorOnnxMasksInBoxes(benchmark::State& state) { onnx_masks(state, true); }
+BENCHMARK(BM_GrapeDetectorOnnxMasksInBoxes)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+void BM_GrapeDetectorTorchMasks(benchmark::State& state) { torch_masks(state, false); }
+BENCHMARK(BM_GrapeDetectorTorchMasks)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+void BM_GrapeDetectorTorchMasksInBoxes(benchmark::State& state) { torch_masks(state, true); }
+BENCHMARK(BM_GrapeDetectorTorchMasksInBoxes)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
+
+// The mask decoding alone, on heads computed once: arg 0 every pixel, 1 inside the boxes.
+void BM_GrapeDetectorMaskDecode(benchmark::State& state) {
+  const fs::path m = onnx_model();
+  if (!grape_image() || !fs::exists(m))
+    return state.SkipWithError("needs ../shared/data/grape and models/detector-grape.onnx");
+  nn::CenterNetOnnx net(m);
+  const nn::CenterNetConfig& cfg = net.config();
+  const ColorImage& image = *grape_image();
+  const nn::CenterNetHeads h = net.heads(image);
+  const auto boxes = nn::boxes_from_heads(h, cfg, image.width, image.height);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(state.range(0) ? nn::masks_in_boxes(h, cfg, boxes, image.width, image.height)
+                                            : nn::masks_from_heads(h, cfg, image.width, image.height));
+  state.SetLabel(state.range(0) ? "inside the boxes" : "every pixel");
+}
+BENCHMARK(BM_GrapeDetectorMaskDecode)
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
 
 void BM_GrapeDetectorBlob(benchmark::State& state) {
   const fs::path m = onnx_model();
@@ -119,7 +159,7 @@ void BM_GrapeDetectorBlob(benchmark::State& state) {
   for (auto _ : state)
     benchmark::DoNotOptimize(nn::center_blob(*grape_image(), cfg.input_width, cfg.input_height, nullptr));
 }
-BENCHMARK(BM_GrapeDetectorBlob)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GrapeDetectorBlob)->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
 
 }  // namespace
 

@@ -3,7 +3,8 @@
 // (nn/detector_eval.hpp says how).
 //
 //   cropsight eval detector (--coco ANN.json | --voc DIR) --images DIR --model M(.pt|.onnx)
-//       [--classes a,b] [--val-split F --split-seed S] [--mask-threshold T] [--threads N] [--json]
+//       [--classes a,b] [--val-split F --split-seed S] [--mask-threshold T] [--masks-in-boxes]
+//       [--threads N] [--json]
 //
 // Masks are thresholded at the model's per-class mask_thresholds (set by train detector /
 // tune-mask-thresholds on training images; 0.5 for older models) unless --mask-threshold gives one
@@ -33,6 +34,7 @@ struct EvalDetectorOptions {
   double val_split = 0, mask_threshold = -1;  // < 0: the model's per-class thresholds
   std::uint64_t split_seed = 1;
   int threads = 1;
+  bool masks_in_boxes = false;
   CommonOptions common;
 };
 
@@ -50,7 +52,7 @@ void run(EvalDetectorOptions o) {
   }
   for (const auto& s : scored) names.push_back(s.name);
   double ms = 0;
-  const nn::DetectorScore score = nn::evaluate_detector(*det, scored, float(o.mask_threshold), &ms);
+  const nn::DetectorScore score = nn::evaluate_detector(*det, scored, float(o.mask_threshold), &ms, o.masks_in_boxes);
   const nn::CenterNetConfig& cfg = nn::center_net_config(*det, o.model);
   std::vector<float> thresholds = cfg.mask_threshold_values(o.model);
   const std::string input = input_size_text(cfg);
@@ -77,6 +79,7 @@ void run(EvalDetectorOptions o) {
                 {"flip_test", cfg.flip_test},
                 {"mask_inputs", cfg.mask_inputs},
                 {"mask_inputs_flip_test", cfg.mask_passes_flip()},
+                {"masks_in_boxes", o.masks_in_boxes},
                 {"input", input},
                 {"ms_per_image", json_number(ms)},
                 {"classes", classes}});
@@ -105,6 +108,8 @@ void add_eval_detector(CLI::App& eval) {
   cmd->add_option("--mask-threshold", o->mask_threshold,
                   "Mask head score a pixel needs, for every class (default: the model's per-class mask_thresholds)")
       ->check(CLI::Range(0.0, 1.0));
+  cmd->add_flag("--masks-in-boxes", o->masks_in_boxes,
+                "Each class's mask only inside its detected boxes (nn::masks_in_boxes), not over the whole image");
   cmd->add_option("--threads", o->threads, "libtorch threads (.pt)")->check(CLI::Range(1, 256));
   add_json_flag(cmd, o->common);
   cmd->callback([o] { run(*o); });

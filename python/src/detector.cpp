@@ -5,8 +5,7 @@
 #include "arrays.hpp"
 #include "bindings.hpp"
 #include "cropsight/core/detection2d.hpp"
-#include "cropsight/io/config_yaml.hpp"
-#include "cropsight/nn/center_onnx.hpp"
+#include "cropsight/nn/center_backend.hpp"
 
 namespace cropsight::python {
 
@@ -27,12 +26,13 @@ void bind_detector(py::module_& m) {
       });
   py::class_<Detector2D>(m, "Detector",
                          "The project's 2D detector (docs/pipelines/detector.md): model = a shipped model's name "
-                         "(detector-grape) or a file, .pt (libtorch plugin) or .onnx (OpenCV DNN); threads = "
-                         "libtorch threads. detect(image) returns the boxes, best first.\n\nThread-safety: not "
+                         "(detector-grape: libtorch where its plugin is installed, else OpenCV DNN) or a file, .pt "
+                         "(libtorch plugin) or .onnx (OpenCV DNN); threads = libtorch threads. detect(image) returns "
+                         "the boxes, best first.\n\nThread-safety: not "
                          "thread-safe (it reuses buffers); one Detector per thread. detect() releases the GIL.")
       .def(py::init([](const std::string& model, int threads) {
              // Built with the GIL held, as the pipelines (model loading is not thread-safe).
-             return nn::load_center_detector(io::find_model(model), threads);
+             return nn::open_center_detector(model, nn::DetectorRuntime::automatic, threads);
            }),
            py::kw_only(), py::arg("model"), py::arg("threads") = 1)
       .def(

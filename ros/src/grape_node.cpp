@@ -48,7 +48,7 @@ std::vector<bridge::GrapeInputBox> grape_boxes(const vision_msgs::Detection2DArr
 GrapeNode::GrapeNode(ros::NodeHandle nh, ros::NodeHandle pnh) : nh_(nh), pnh_(pnh) {
   bridge::GrapeRunnerOptions o;
   // "" or "none": the boxes come on `detections` (a roslaunch arg cannot always be left empty).
-  const std::string detector = pnh_.param<std::string>("detector", "models/detector-grape.onnx");
+  const std::string detector = pnh_.param<std::string>("detector", "detector-grape");
   if (!detector.empty() && detector != "none") o.detector = resolve_project_path(detector);
   o.segmenter = pnh_.param<std::string>("segmenter", "grape-best");
   // A segmenter model file is a path (resolved like the others); a preset is a name or a YAML.

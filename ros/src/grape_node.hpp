@@ -13,7 +13,8 @@
 // Topics (relative, remap them): in  color/image_raw, depth/image_raw, depth/camera_info,
 //                                    [detections]
 //                                out bunches, bunch_points, cut_points, debug_image, diagnostics
-// Parameters (~): detector (models/detector-grape.onnx; "" or none = boxes on `detections`), segmenter
+// Parameters (~): detector (detector-grape: its runtime is the preset's detector.backend, libtorch
+// where the plugin is installed; a .onnx / .pt file; "" or none = boxes on `detections`), segmenter
 // (grape-best: a preset or a model file), preset (grape-camera), set, threads (2), depth_scale
 // (0.001 m per 16UC1 unit), lazy (true), queue_size (5), exact_sync (false), slop_s (0.02).
 #include <message_filters/subscriber.h>

@@ -175,20 +175,92 @@ std::vector<Detection2D> boxes_from_heads(const CenterNetHeads& heads, const Cen
   return decode_heads(heads, lb, float(cfg.score_threshold), cfg.top_k);
 }
 
+// A named namespace: src/nn compiles as unity batches, where anonymous helpers could collide.
+namespace mask_region {
+
+// The threshold of each class: `threshold` for all, or (negative) the model's per-class ones.
+std::vector<float> class_thresholds(const CenterNetHeads& heads, const CenterNetConfig& cfg, float threshold) {
+  std::vector<float> t = threshold < 0 ? cfg.mask_threshold_values()
+                                       : std::vector<float>(std::size_t(std::max(heads.classes, 0)), threshold);
+  t.resize(std::size_t(std::max(heads.classes, 0)), 0.5f);
+  return t;
+}
+
+// The pixels a box touches, as half-open integer bounds clipped to the image.
+struct PixelRect {
+  int u0, v0, u1, v1;
+};
+
+std::vector<PixelRect> class_rects(const std::vector<Detection2D>& boxes, int c, int image_w, int image_h) {
+  std::vector<PixelRect> out;
+  for (const auto& b : boxes) {
+    if (b.class_id != c) continue;
+    const PixelRect r{std::clamp(int(std::floor(b.x1)), 0, image_w), std::clamp(int(std::floor(b.y1)), 0, image_h),
+                      std::clamp(int(std::ceil(b.x2)), 0, image_w), std::clamp(int(std::ceil(b.y2)), 0, image_h)};
+    if (r.u0 < r.u1 && r.v0 < r.v1) out.push_back(r);
+  }
+  return out;
+}
+
+// The column spans of row v covered by `rects`, overlapping and touching ones merged, left to right.
+void row_spans(const std::vector<PixelRect>& rects, int v, std::vector<std::pair<int, int>>& spans) {
+  spans.clear();
+  for (const auto& r : rects)
+    if (r.v0 <= v && v < r.v1) spans.emplace_back(r.u0, r.u1);
+  std::sort(spans.begin(), spans.end());
+  std::size_t n = 0;
+  for (const auto& s : spans) {
+    if (n > 0 && s.first <= spans[n - 1].second)
+      spans[n - 1].second = std::max(spans[n - 1].second, s.second);
+    else
+      spans[n++] = s;
+  }
+  spans.resize(n);
+}
+
+}  // namespace mask_region
+
+using mask_region::class_rects;
+using mask_region::class_thresholds;
+using mask_region::PixelRect;
+using mask_region::row_spans;
+
 std::vector<GrayImage> masks_from_heads(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w,
                                         int image_h, float threshold) {
   MaskScores scores(heads, cfg, image_w, image_h);
-  const std::vector<float> per_class = threshold < 0
-                                           ? cfg.mask_threshold_values()
-                                           : std::vector<float>(std::size_t(std::max(heads.classes, 0)), threshold);
+  const std::vector<float> per_class = class_thresholds(heads, cfg, threshold);
   std::vector<GrayImage> out;
   for (int c = 0; c < heads.classes; ++c) {
-    const float t = std::size_t(c) < per_class.size() ? per_class[std::size_t(c)] : 0.5f;
+    const float t = per_class[std::size_t(c)];
     GrayImage m(image_w, image_h, 0);
     for (int v = 0; v < image_h; ++v) {
       auto* row = m.row(v);
       const float* score = scores.row(c, v);
       for (int u = 0; u < image_w; ++u) row[u] = score[u] >= t ? 255 : 0;
+    }
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
+std::vector<GrayImage> masks_in_boxes(const CenterNetHeads& heads, const CenterNetConfig& cfg,
+                                      const std::vector<Detection2D>& boxes, int image_w, int image_h,
+                                      float threshold) {
+  MaskScores scores(heads, cfg, image_w, image_h);
+  const std::vector<float> per_class = class_thresholds(heads, cfg, threshold);
+  std::vector<GrayImage> out;
+  std::vector<std::pair<int, int>> spans;
+  for (int c = 0; c < heads.classes; ++c) {
+    const float t = per_class[std::size_t(c)];
+    const std::vector<PixelRect> rects = class_rects(boxes, c, image_w, image_h);
+    GrayImage m(image_w, image_h, 0);
+    for (int v = 0; v < image_h; ++v) {
+      row_spans(rects, v, spans);
+      auto* row = m.row(v);
+      for (const auto& [u0, u1] : spans) {
+        const float* score = scores.span(c, v, u0, u1);
+        for (int u = u0; u < u1; ++u) row[u] = score[u] >= t ? 255 : 0;
+      }
     }
     out.push_back(std::move(m));
   }

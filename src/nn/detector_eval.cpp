@@ -161,7 +161,7 @@ std::vector<float> calibrate_mask_thresholds(Detector2D& detector, const std::ve
 }
 
 DetectorScore evaluate_detector(Detector2D& detector, const std::vector<DetectionSample>& samples, float mask_threshold,
-                                double* ms_per_image) {
+                                double* ms_per_image, bool masks_in_boxes_only) {
   const AnyCenterNet net(detector, "eval detector");
   const CenterNetConfig& cfg = net.cfg;
   DetectorEvaluator ev(cfg.names());
@@ -171,7 +171,10 @@ DetectorScore evaluate_detector(Detector2D& detector, const std::vector<Detectio
     const CenterNetHeads h = net.heads(s.image);
     const auto boxes = boxes_from_heads(h, cfg, s.image.width, s.image.height);
     seconds += clock.seconds();
-    ev.add(s, boxes, masks_from_heads(h, cfg, s.image.width, s.image.height, mask_threshold));
+    const int w = s.image.width, hgt = s.image.height;
+    ev.add(s, boxes,
+           masks_in_boxes_only ? masks_in_boxes(h, cfg, boxes, w, hgt, mask_threshold)
+                               : masks_from_heads(h, cfg, w, hgt, mask_threshold));
   }
   if (ms_per_image != nullptr) *ms_per_image = samples.empty() ? 0.0 : 1000.0 * seconds / double(samples.size());
   return ev.score();

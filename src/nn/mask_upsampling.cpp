@@ -46,17 +46,20 @@ CellMap cell_map(int out_w, int out_h, int input_w, int input_h, bool bilinear, 
   return m;
 }
 
-// Calls f(u, score) for every pixel of image row v of class plane p (out_w cells a row): the rows
-// are mixed once into `line` (one value per cell), then each pixel mixes two cells of it.
+// Calls f(u, score) for every pixel u in [u0, u1) of image row v of class plane p (out_w cells a
+// row): the cells under the span are mixed once into `line` (one value per cell), then each pixel
+// mixes two cells of it.
 template <class F>
-void for_each_score(const CellMap& m, const float* p, int out_w, int v, std::vector<float>& line, F&& f) {
+void for_each_score(const CellMap& m, const float* p, int out_w, int v, int u0, int u1, std::vector<float>& line,
+                    F&& f) {
   const float* r0 = p + std::size_t(m.y0[std::size_t(v)]) * std::size_t(out_w);
   const float* r1 = p + std::size_t(m.y1[std::size_t(v)]) * std::size_t(out_w);
   const float wy = m.wy[std::size_t(v)];
   line.resize(std::size_t(out_w));
-  for (int x = 0; x < out_w; ++x) line[std::size_t(x)] = r0[x] + wy * (r1[x] - r0[x]);
-  const int w = int(m.x0.size());
-  for (int u = 0; u < w; ++u) {
+  // x0 and x1 grow with u, so the span's pixels read cells x0[u0] .. x1[u1 - 1] only.
+  const int x_end = m.x1[std::size_t(u1 - 1)] + 1;
+  for (int x = m.x0[std::size_t(u0)]; x < x_end; ++x) line[std::size_t(x)] = r0[x] + wy * (r1[x] - r0[x]);
+  for (int u = u0; u < u1; ++u) {
     const float a = line[std::size_t(m.x0[std::size_t(u)])], b = line[std::size_t(m.x1[std::size_t(u)])];
     f(u, a + m.wx[std::size_t(u)] * (b - a));
   }
@@ -72,18 +75,21 @@ MaskScores::MaskScores(const CenterNetHeads& heads, const CenterNetConfig& cfg, 
     add(p.mask, p.out_w, p.out_h, p.input_w, p.input_h, bilinear, image_w, image_h);
 }
 
-const float* MaskScores::row(int c, int v) {
+const float* MaskScores::row(int c, int v) { return span(c, v, 0, int(row_.size())); }
+
+const float* MaskScores::span(int c, int v, int u0, int u1) {
+  if (u0 >= u1) return row_.data();
   const float inv = 1.0f / float(passes_.size());
   for (std::size_t k = 0; k < passes_.size(); ++k) {
     const Pass& p = passes_[k];
     const float* plane = p.mask + std::size_t(c) * std::size_t(p.out_w) * std::size_t(p.out_h);
     if (k == 0)
-      for_each_score(p.cells, plane, p.out_w, v, line_, [&](int u, float s) { row_[std::size_t(u)] = s; });
+      for_each_score(p.cells, plane, p.out_w, v, u0, u1, line_, [&](int u, float s) { row_[std::size_t(u)] = s; });
     else
-      for_each_score(p.cells, plane, p.out_w, v, line_, [&](int u, float s) { row_[std::size_t(u)] += s; });
+      for_each_score(p.cells, plane, p.out_w, v, u0, u1, line_, [&](int u, float s) { row_[std::size_t(u)] += s; });
   }
   if (passes_.size() > 1)
-    for (auto& s : row_) s *= inv;
+    for (int u = u0; u < u1; ++u) row_[std::size_t(u)] *= inv;
   return row_.data();
 }
 

@@ -27,6 +27,9 @@ class MaskScores {
 
   /// Scores (0..1) of class c along image row v (image_w values, valid until the next call).
   const float* row(int c, int v);
+  /// As row(), but only pixels [u0, u1) of the row are computed (0 <= u0, u1 <= image_w): the
+  /// returned array is indexed by u as row()'s, and holds stale values outside the span.
+  const float* span(int c, int v, int u0, int u1);
 
  private:
   struct Pass {

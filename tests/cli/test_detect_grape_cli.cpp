@@ -123,6 +123,15 @@ TEST(DetectGrapeCli, ShippedDetectorRuns) {
   EXPECT_EQ(j["boxes_from"], "detector");
   EXPECT_TRUE(j["bunches"].is_array());
   EXPECT_EQ(nlohmann::json::parse(cropsight::io::read_file(t / "out" / "cut_points.json"))["bunches"], j["bunches"]);
+  // The shipped model by name: detector.backend (auto: libtorch where the plugin is built) picks
+  // the runtime; the same weights find the same boxes.
+  for (const char* backend : {"auto", "opencv"}) {
+    const auto named = run_cli("detect grape" + frame + " --detector detector-grape --set detector.backend=" + backend +
+                               " --segmenter " + shell_quoted(models / "grape-gbdt-fast.json") + " --threads 1 --out " +
+                               shell_quoted(t / (std::string("named-") + backend)) + " --json");
+    ASSERT_EQ(named.exit_code, 0) << named.err;
+    EXPECT_EQ(nlohmann::json::parse(named.out)["detections"], j["detections"]) << backend;
+  }
 }
 
 }  // namespace

@@ -48,6 +48,26 @@ TEST(MakePipeline, PotatoModelIsAnOnnxDetectorByName) {
   EXPECT_NE(pl::potato::make_pipeline({.preset = "potato-paper"}), nullptr);
 }
 
+// detector.backend resolves a detector named without extension: opencv runs the .onnx; an
+// explicit runtime that contradicts a named file is the spec's error.
+TEST(MakePipeline, GrapeDetectorBackendPicksTheRuntimeOfANamedModel) {
+  const auto pipe = pl::grape::make_pipeline({.sets = {"detector.backend=opencv", "segmenter.threads=1"},
+                                              .model = "grape-gbdt-fast",
+                                              .detector = "detector-grape"});
+  EXPECT_TRUE(pipe->has_detector());
+  EXPECT_EQ(pipe->config().detector.backend, cropsight::nn::DetectorRuntime::opencv);
+  EXPECT_NE(
+      error_message([] {
+        pl::grape::make_pipeline(
+            {.sets = {"detector.backend=libtorch"}, .model = "grape-gbdt-fast", .detector = "detector-grape.onnx"});
+      }).find("runtime is libtorch"),
+      std::string::npos);
+  EXPECT_NE(error_message([] {
+              pl::grape::make_pipeline({.sets = {"detector.backend=tensorrt"}, .model = "grape-gbdt-fast"});
+            }).find("auto, libtorch, opencv"),
+            std::string::npos);
+}
+
 TEST(MakePipeline, GrapeSplitsTheSegmenterSets) {
   const auto pipe = pl::grape::make_pipeline(
       {.sets = {"cut_point.min_points=12", "segmenter.threads=1"}, .model = "grape-gbdt-fast", .threads = 0});

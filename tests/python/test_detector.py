@@ -40,3 +40,15 @@ def test_detect_bad_image():
     with pytest.raises(cs.Error) as e:
         cs.Detector(model="no-such-detector")
     assert "no-such-detector" in str(e.value) and "\n" not in str(e.value)
+
+
+def test_detector_by_name_runs_the_same_weights():
+    """A model named without extension runs on libtorch where the plugin is installed (else OpenCV
+    DNN): the same boxes as the .onnx within float rounding."""
+    image = cs.read_image(os.path.join(shared_data("grape", "coco_train", "JPEGImages"), "grape_image_1.jpg"))
+    want = cs.Detector(model=MODEL).detect(image)
+    got = cs.Detector(model="detector-grape", threads=2).detect(image)
+    assert len(want) > 0 and len(got) == len(want)
+    for g, w in zip(got, want):
+        assert g.class_id == w.class_id and abs(g.score - w.score) < 1e-4
+        assert np.allclose(g.corners, w.corners, atol=0.05)

@@ -31,4 +31,14 @@ std::vector<Detection2D> boxes_from_heads(const CenterNetHeads& heads, const Cen
 std::vector<GrayImage> masks_from_heads(const CenterNetHeads& heads, const CenterNetConfig& cfg, int image_w,
                                         int image_h, float threshold = -1.0f);
 
+/// masks_from_heads inside the boxes only: class c's mask is computed at the pixels its boxes of
+/// class c touch (each box rounded out to whole pixels, clipped to the image) and is 0 elsewhere.
+/// Inside a box a pixel is what masks_from_heads gives it (the same scores, at the image's own
+/// resolution, so the box's pixels are its mask's resolution); the work is the boxes' area instead
+/// of the whole image's, and a stray blob of mask score outside every box of its class is dropped.
+/// `boxes` are image pixels (boxes_from_heads or Detector2D::detect on the same image).
+std::vector<GrayImage> masks_in_boxes(const CenterNetHeads& heads, const CenterNetConfig& cfg,
+                                      const std::vector<Detection2D>& boxes, int image_w, int image_h,
+                                      float threshold = -1.0f);
+
 }  // namespace cropsight::nn

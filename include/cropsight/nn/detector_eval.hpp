@@ -56,9 +56,12 @@ class DetectorEvaluator {
 /// Runs `detector` (a CenterNet or CenterNetOnnx, as load_center_detector returns) on every
 /// sample and scores it; masks at `mask_threshold` for every class, or (negative, the default)
 /// at the model's per-class thresholds. `ms_per_image` (may be null) gets the mean time of the
-/// network and the decoding per image. Throws Error for another kind of detector.
+/// network and the decoding per image. With `masks_in_boxes_only` the masks are those of
+/// masks_in_boxes (center_decode.hpp: each class's mask only inside its detected boxes) instead of
+/// masks_from_heads over the whole image. Throws Error for another kind of detector.
 DetectorScore evaluate_detector(Detector2D& detector, const std::vector<DetectionSample>& samples,
-                                float mask_threshold = -1.0f, double* ms_per_image = nullptr);
+                                float mask_threshold = -1.0f, double* ms_per_image = nullptr,
+                                bool masks_in_boxes_only = false);
 
 /// Per-class mask thresholds from labelled images: for each class, the value of the grid 0.05,
 /// 0.10, ..., 0.95 whose masks have the best pixel IoU over all added images (the same pixels

@@ -3,6 +3,10 @@
 // purpose: libtorch's headers cost ~17 s of a core per file (src/nn/CMakeLists.txt).
 #include <torch/torch.h>
 
+#include <dlfcn.h>
+
+#include <exception>
+#include <thread>
 #include <type_traits>
 
 #include "cropsight/core/error.hpp"
@@ -184,23 +188,45 @@ class Backend final : public detail::DetectorBackend {
     return {loss.item<double>(), l_hm.item<double>(), l_wh.item<double>(), l_off.item<double>(), l_seg.item<double>()};
   }
 
+  // Eval-mode forward passes of a batch of n images: with several images (the flip test's image
+  // and its mirror) and threads >= 2, each thread runs its share as an independent batch on one
+  // OpenMP thread instead of all of them on one OpenMP team. A team's threads spin at every
+  // layer's barrier; on a CPU busy with other work a descheduled member keeps the rest spinning
+  // (308-532 ms an image instead of 48, docs/pipelines/detector.md), and OMP_WAIT_POLICY, which
+  // would stop it, is read only when the process starts. Independent threads never wait for each
+  // other until the final join, which sleeps.
   std::vector<CenterNetHeads> forward(const std::vector<float>& images, int n, int width, int height) const override {
-    torch::NoGradGuard no_grad;
-    net_->eval();
-    const int64_t H = height, W = width;
-    const auto x = torch::from_blob(const_cast<float*>(images.data()), {n, 3, H, W}, torch::kFloat);
-    auto out = net_->forward(x);
-    out[0] = torch::sigmoid(out[0]);
-    out[3] = torch::sigmoid(out[3]);
-    std::vector<CenterNetHeads> heads(static_cast<std::size_t>(n));
-    for (int i = 0; i < n; ++i) {
-      auto& h = heads[std::size_t(i)];
-      h.classes = cfg_.num_classes(), h.out_h = int(H / 4), h.out_w = int(W / 4);
-      auto copy = [&](const torch::Tensor& t, std::vector<float>& v) {
-        const auto c = t[i].contiguous();
-        v.assign(c.data_ptr<float>(), c.data_ptr<float>() + c.numel());
-      };
-      copy(out[0], h.heatmap), copy(out[1], h.size), copy(out[2], h.offset), copy(out[3], h.mask);
+    net_->eval();  // before the threads: it sets the modules' mode, which they then only read
+    const int workers = std::min(n, cfg_.threads);
+    if (workers < 2) return forward_batch(images.data(), n, width, height);
+    const std::size_t per_image = 3 * std::size_t(width) * std::size_t(height);
+    std::vector<std::vector<CenterNetHeads>> parts(static_cast<std::size_t>(workers));
+    std::vector<std::exception_ptr> errors(static_cast<std::size_t>(workers));
+    std::vector<std::thread> pool;
+    struct JoinAll {  // a failed thread start must not leave started ones unjoined (terminate)
+      std::vector<std::thread>& threads;
+      ~JoinAll() {
+        for (auto& t : threads)
+          if (t.joinable()) t.join();
+      }
+    } join_all{pool};
+    for (int w = 0; w < workers; ++w) {
+      const int begin = w * n / workers, end = (w + 1) * n / workers;
+      pool.emplace_back([&, w, begin, end] {
+        try {
+          one_openmp_thread();
+          parts[std::size_t(w)] =
+              forward_batch(images.data() + std::size_t(begin) * per_image, end - begin, width, height);
+        } catch (...) {
+          errors[std::size_t(w)] = std::current_exception();
+        }
+      });
+    }
+    for (auto& t : pool) t.join();
+    std::vector<CenterNetHeads> heads;
+    for (std::size_t w = 0; w < parts.size(); ++w) {
+      if (errors[w]) std::rethrow_exception(errors[w]);
+      for (auto& h : parts[w]) heads.push_back(std::move(h));
     }
     return heads;
   }
@@ -327,6 +353,36 @@ class Backend final : public detail::DetectorBackend {
   };
 
   CenterNetConfig cfg_;
+  // This thread's ATen parallel regions on one OpenMP thread: ATen sets a new thread's OpenMP
+  // thread count on its first parallel call (get_num_threads does it), then omp_set_num_threads
+  // overrides it for this thread alone (the symbol is libgomp's, loaded with libtorch).
+  static void one_openmp_thread() {
+    at::get_num_threads();
+    using SetThreads = void (*)(int);
+    if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "omp_set_num_threads"))) set(1);
+  }
+
+  // The heads of n images of width x height pixels at `images` (one batch).
+  std::vector<CenterNetHeads> forward_batch(const float* images, int n, int width, int height) const {
+    torch::NoGradGuard no_grad;
+    const int64_t H = height, W = width;
+    const auto x = torch::from_blob(const_cast<float*>(images), {n, 3, H, W}, torch::kFloat);
+    auto out = net_->forward(x);
+    out[0] = torch::sigmoid(out[0]);
+    out[3] = torch::sigmoid(out[3]);
+    std::vector<CenterNetHeads> heads(static_cast<std::size_t>(n));
+    for (int i = 0; i < n; ++i) {
+      auto& h = heads[std::size_t(i)];
+      h.classes = cfg_.num_classes(), h.out_h = int(H / 4), h.out_w = int(W / 4);
+      auto copy = [&](const torch::Tensor& t, std::vector<float>& v) {
+        const auto c = t[i].contiguous();
+        v.assign(c.data_ptr<float>(), c.data_ptr<float>() + c.numel());
+      };
+      copy(out[0], h.heatmap), copy(out[1], h.size), copy(out[2], h.offset), copy(out[3], h.mask);
+    }
+    return heads;
+  }
+
   mutable Net net_{nullptr};  // eval-mode forward passes from const methods
   std::unique_ptr<torch::optim::Adam> opt_;
 };

@@ -4,7 +4,7 @@
 
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/config_yaml.hpp"
-#include "cropsight/nn/center_onnx.hpp"
+#include "cropsight/nn/center_backend.hpp"
 
 namespace cropsight::pipeline::grape {
 
@@ -65,7 +65,7 @@ std::unique_ptr<Pipeline> make_pipeline(const PipelineSpec& spec) {
   Segmenter segmenter(cfg.segmenter, spec.model.empty() ? kDefaultSegmenter : spec.model);
   std::unique_ptr<Detector2D> detector;
   if (!spec.detector.empty())
-    detector = nn::load_center_detector(io::find_model(spec.detector).string(), std::max(1, cfg.segmenter.threads));
+    detector = nn::open_center_detector(spec.detector, cfg.detector.backend, std::max(1, cfg.segmenter.threads));
   return std::make_unique<Pipeline>(std::move(cfg), std::move(segmenter), std::move(detector), where);
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "cropsight/core/config.hpp"
+#include "cropsight/nn/center_backend.hpp"
 #include "cropsight/pipeline/grape/roi.hpp"
 #include "cropsight/pipeline/grape/segmenter.hpp"
 
@@ -28,6 +29,23 @@ struct CutPointConfig {
   }
 };
 
+/// How the pipeline's 2D detector runs (the model itself is the spec's `detector`, make_pipeline.hpp).
+struct DetectorConfig {
+  /// auto: the libtorch plugin on the model's .pt weights where the plugin is installed, OpenCV
+  /// DNN on its .onnx otherwise (nn::open_center_detector). Same boxes within float rounding;
+  /// libtorch takes about half OpenCV DNN's time on the shipped grape model (2-core Intel Xeon,
+  /// docs/pipelines/detector.md), but on a CPU busy with other work its OpenMP threads spin while
+  /// they wait unless OMP_WAIT_POLICY=PASSIVE is set at launch: opencv is the choice there.
+  nn::DetectorRuntime backend = nn::DetectorRuntime::automatic;
+
+  template <class V>
+  void visit(V& v) {
+    v("backend", backend,
+      "auto | libtorch | opencv: runtime of a detector given by name (auto: libtorch where its plugin is "
+      "installed, about twice as fast; a .pt or .onnx file picks its own)");
+  }
+};
+
 /// The whole pipeline's config. `segmenter` is what the pipeline's Segmenter was built from: a
 /// preset's or --set's segmenter.* keys are laid over the segmenter preset or model the spec names
 /// (make_pipeline), and Pipeline's constructor records the Segmenter it is given.
@@ -35,12 +53,14 @@ struct Config {
   RoiConfig roi;
   SegmenterConfig segmenter;
   CutPointConfig cut_point;
+  DetectorConfig detector;
 
   template <class V>
   void visit(V& v) {
     v("roi", roi, "steps 1-3: ROI from the boxes (Eq. 1), its coloured cloud (Algorithm 1) and normals");
     v("segmenter", segmenter, "step 4: the per-point segmenter (default: the shipped ensemble, grape-best)");
     v("cut_point", cut_point, "step 5: the cut point on the labelled peduncle");
+    v("detector", detector, "step 1: the 2D detector's runtime (its model is --detector)");
   }
   /// Throws Error(where, ...) naming the first key out of range (roi.validate's rules included).
   /// The segmenter's keys are checked when its models load (Segmenter's constructor).

@@ -6,8 +6,9 @@
 //             segmenter preset (e.g. grape-best); default kDefaultSegmenter
 //   sets      keys of the pipeline preset, "segmenter.KEY=V" among them for the segmenter's keys
 //             (segmenter.votes, segmenter.ensemble, ...)
-//   detector  the 2D detector (a shipped model's name or a .onnx / .pt file); "" = none, every
-//             frame then comes with its boxes
+//   detector  the 2D detector (a shipped model's name, e.g. detector-grape, whose runtime the key
+//             detector.backend picks: nn::open_center_detector; or a .onnx / .pt file); "" = none,
+//             every frame then comes with its boxes
 //   threads   the segmenter's and the detector's threads; 0 = the segmenter preset's
 #include <memory>
 
