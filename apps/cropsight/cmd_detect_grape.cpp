@@ -114,9 +114,11 @@ void add_detect_grape(CLI::App& detect) {
   cmd->add_option("--color", o->color, "Colour image (8-bit, registered to depth)")->required();
   cmd->add_option("--depth", o->depth, "16-bit depth image")->required();
   cmd->add_option("--camera", o->camera, "camera.yaml (intrinsics, depth_scale) of the depth image")->required();
-  auto* det = cmd->add_option("--detector", o->detector,
-                              "The project's grape detector (.onnx or .pt, classes grape and peduncle), e.g. "
-                              "models/detector-grape.onnx");
+  auto* det =
+      cmd->add_option("--detector", o->detector,
+                      "The project's grape detector (classes grape and peduncle): a name such as detector-grape "
+                      "(its .pt under libtorch where the plugin is built, else its .onnx: "
+                      "detector.backend) or a .pt / .onnx file");
   auto* dets = cmd->add_option("--detections", o->detections,
                                "Boxes instead of a detector: COCO-style JSON (bunch = 1, peduncle = 2; an "
                                "\"annotations\" file or a results array)");
