@@ -9,10 +9,13 @@ inclusive count of the function its StageTimer scope lives in (callgrind_annotat
 "cloud" excludes the denoising, which has its own scope inside it. Callgrind runs the AVX2
 clones (valgrind has no AVX-512), so counts are those of an AVX2 machine.
 
---grape: valgrind --tool=callgrind (collecting from the start: the network's passes run on worker
-threads, outside the main thread's calls) of `cropsight segment grape` on FRAMES clouds, counts
-divided by FRAMES. Stages overlap (forward holds fps and knn; carry-back counts the network's
-votes and the GBDT's own); "total" is Model::segment plus the pass workers' threads."""
+--grape: valgrind --tool=callgrind --toggle-collect='cropsight::pipeline::grape::Model::segment*'
+of `cropsight segment grape --threads 1` on FRAMES clouds, counts divided by FRAMES. One thread,
+because callgrind counts a function's callees only on the thread that called it: with two,
+the halves that TBB's, OpenMP's or the pass workers' threads run fall outside every stage.
+Stages overlap (forward holds fps, cdist, topk and linear; carry-back counts the network's votes
+and the GBDT's own; gbdt holds its features, trees and carry-back). "total" is the segmenter's
+work on every thread (the program less the main thread's work outside Model::segment)"""
 import json
 import re
 import subprocess
@@ -46,7 +49,7 @@ GRAPE = {
     "gbdt features": "grape::grape_sample_features(",
     "gbdt trees": "learning::Gbdt::predict_flat(",
     "segment": "grape::Model::segment(",
-    "pass workers": "TorchSegmenter::predict_passes(cropsight::Cloud const&, std::vector<std::vector<int, std::allocator<int> >, std::allocator<std::vector<int, std::allocator<int> > > > const&, std::vector<float, std::allocator<float> > const&, int, std::vector<std::vector<float, std::allocator<float> >, std::allocator<std::vector<float, std::allocator<float> > > >*) const::{lambda()#2}::operator()",
+    "main thread": "(below main)",
 }
 
 
@@ -55,6 +58,8 @@ def inclusive_counts(path, stages):
                          capture_output=True, text=True, check=True).stdout
     counts = {}
     for line in out.splitlines():
+        if line.strip().endswith("PROGRAM TOTALS"):
+            counts["program"] = int(line.split()[0].replace(",", ""))
         m = re.match(r"\s*([\d,]+)\s+\([^)]*\)\s+\S*?:(.*)", line)
         if not m:
             continue
@@ -73,10 +78,13 @@ def main():
     frames = int(sys.argv[2]) + (0 if grape else 1)
     c = inclusive_counts(sys.argv[1], stages)
     if grape:
-        c["total"] = c.get("segment", 0) + c.get("pass workers", 0)
+        # The main thread's segment calls plus every other thread (pass workers, TBB's, OpenMP's):
+        # the program less what the main thread did outside the segmenter (start-up, loading).
+        c["total"] = c.get("program", 0) - c.get("main thread", 0) + c.get("segment", 0)
     elif "cloud" in c and "denoise" in c:
         c["cloud"] -= c["denoise"]
-    per_frame = {k: c.get(k, 0) / frames for k in list(stages) + (["total"] if grape else [])}
+    names = [k for k in stages if k != "main thread"] + (["total"] if grape else [])
+    per_frame = {k: c.get(k, 0) / frames for k in names}
     if "--json" in sys.argv:
         print(json.dumps(per_frame))
         return
