@@ -190,14 +190,13 @@ std::vector<int> grape_carry_back(const Cloud& cloud, const std::vector<int>& sa
     std::vector<float> own_d2(k), vote(static_cast<std::size_t>(num_class));
     for (std::size_t i = b; i < e; ++i) {
       if (out[i] >= 0) continue;
-      const std::uint32_t* nb = own_nb.data();
-      const float* d2 = own_d2.data();
-      std::size_t found = 0;
-      if (const int g = shared.group[i]; g >= 0) {
-        nb = &shared.nb[std::size_t(g) * k], d2 = &shared.d2[std::size_t(g) * k], found = shared.found[std::size_t(g)];
-      } else {
-        found = tree.knnSearch(cloud.points[i].data(), k, own_nb.data(), own_d2.data());
-      }
+      // A shared position's neighbours come from its one search; any other point searches here.
+      const int g = shared.group[i];
+      const std::size_t row = g >= 0 ? std::size_t(g) * k : 0;
+      const std::uint32_t* nb = g >= 0 ? &shared.nb[row] : own_nb.data();
+      const float* d2 = g >= 0 ? &shared.d2[row] : own_d2.data();
+      const std::size_t found = g >= 0 ? shared.found[std::size_t(g)]
+                                       : tree.knnSearch(cloud.points[i].data(), k, own_nb.data(), own_d2.data());
       if (!colour || found == 1) {
         out[i] = sample_labels[nb[0]];
         if (scores_out) voter_scores(nb[0], 1.f, &(*scores_out)[i * C]);
