@@ -19,6 +19,9 @@ Rows (single thread unless the workload says otherwise):
   grape-detector     bench_detector, boxes + masks of a 1280x720 image by the default runtime (libtorch
                      where the plugin is built, else OpenCV DNN) with the masks inside the boxes, vs
                      OpenCV DNN with whole-image masks (the path before both) on the same weights (wall clock)
+  grape-best         bench_grape, the shipped grape segmenter (PointResNet 6 votes + fast GBDT, 2
+                     threads) on one shared cloud vs PCL's k = 30 normals of the same cloud (one
+                     thread; wall clock); needs ../shared/data/grape (unpacked under BUILD/bench/grape)
 """
 import datetime
 import json
@@ -85,16 +88,18 @@ def callgrind_broccoli(build, data):
         shutil.rmtree(os.path.dirname(out), ignore_errors=True)
 
 
-def gbench(build, binary, pattern):
+def gbench(build, binary, pattern, env=None):
     """{benchmark name: wall ms} of a Google Benchmark binary's matching benchmarks."""
     path = os.path.join(build, "bin", binary)
     if not os.path.exists(path):
         raise RuntimeError(f"{binary} not built")
     doc = json.loads(run([path, f"--benchmark_filter={pattern}", "--benchmark_format=json",
-                          "--benchmark_min_time=0.3"]))
+                          "--benchmark_min_time=0.3"], env))
     scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}
     times = {}
     for b in doc["benchmarks"]:
+        if b.get("error_occurred"):
+            raise RuntimeError(f"{b['name']}: {b.get('error_message', 'failed')}")
         parts = b["name"].split("/")  # "BM_X/0/process_time/real_time" -> "BM_X/0"
         times["/".join([parts[0]] + [p for p in parts[1:] if p.isdigit()])] = b["real_time"] * scale[b["time_unit"]]
     return times
@@ -124,6 +129,18 @@ def detector_row(build):
     old = t["BM_GrapeDetectorOnnxMasks"]
     return {"workload": "grape-detector", "ms": ours, "baseline": "DNN, whole masks", "baseline_ms": old,
             "ratio": old / ours, "clock": "wall"}
+
+
+def grape_row(build):
+    archive = os.path.join(HERE, "..", "shared", "data", "grape", "grape_points_train.tar.gz")
+    if not os.path.exists(archive):
+        raise RuntimeError(f"{archive}: no grape data")
+    data = run([os.path.join(HERE, "scripts", "unpack-grape.sh"), archive,
+                os.path.join(build, "bench", "grape")]).strip()
+    t = gbench(build, "bench_grape", "BM_GrapeNetworkVotes/6/1|BM_KnnNormalsPcl", {"CROPSIGHT_GRAPE_DIR": data})
+    best, pcl = t["BM_GrapeNetworkVotes/6/1"], t["BM_KnnNormalsPcl"]
+    return {"workload": "grape-best", "ms": best, "baseline": "PCL normals k=30", "baseline_ms": pcl,
+            "ratio": pcl / best, "clock": "wall, 2 threads"}
 
 
 def print_table(doc):
@@ -161,7 +178,8 @@ def main():
                                                        [f"cnn.model={CNN}"])]),
             ("potato-loop", lambda: [potato_row(build)]),
             ("census-sgm, seedling-pair", lambda: stereo_rows(build)),
-            ("grape-detector", lambda: [detector_row(build)])]
+            ("grape-detector", lambda: [detector_row(build)]),
+            ("grape-best", lambda: [grape_row(build)])]
     for name, job in jobs:
         try:
             doc["rows"] += job()

@@ -15,10 +15,15 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/cpu_dispatch.hpp"
 #include "core/parallel_for.hpp"
 #include "cropsight/core/config.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/io/files.hpp"
+
+#if CROPSIGHT_X86_DISPATCH
+#include <immintrin.h>
+#endif
 
 namespace cropsight::learning {
 namespace {
@@ -212,6 +217,35 @@ void Gbdt::compile() {
 }
 
 namespace {
+#if CROPSIGHT_X86_DISPATCH
+// Eight rows down one tree together, `depth` steps: the scalar step (see predict_rows) with the
+// nodes' three fields and the rows' feature values gathered eight at a time. Nodes are 12 bytes
+// {threshold, feature, left}: field k of node n is the 32-bit word 3n + k. Integer selects and
+// one float comparison per lane, so the leaves reached are the scalar loop's.
+template <class Node>
+CROPSIGHT_TARGET_AVX2 void walk8_avx2(const Node* tree, const float* row, std::size_t cols, int depth,
+                                      std::int32_t* out) {
+  static_assert(sizeof(Node) == 12, "walk8_avx2 reads nodes as three 32-bit words");
+  const auto* words = reinterpret_cast<const int*>(tree);
+  const __m256i row_off = _mm256_mullo_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(int(cols)));
+  const __m256i three = _mm256_set1_epi32(3), low31 = _mm256_set1_epi32(0x7fffffff), one = _mm256_set1_epi32(1);
+  __m256i n = _mm256_setzero_si256();
+  for (int d = 0; d < depth; ++d) {
+    const __m256i w = _mm256_mullo_epi32(n, three);
+    const __m256 thr = _mm256_i32gather_ps(reinterpret_cast<const float*>(words), w, 4);
+    const __m256i feat = _mm256_i32gather_epi32(words + 1, w, 4);
+    const __m256i left = _mm256_i32gather_epi32(words + 2, w, 4);
+    const __m256 v = _mm256_i32gather_ps(row, _mm256_add_epi32(row_off, _mm256_and_si256(feat, low31)), 4);
+    const __m256i lt = _mm256_castps_si256(_mm256_cmp_ps(v, thr, _CMP_LT_OQ));   // false for NaN
+    const __m256i nan = _mm256_castps_si256(_mm256_cmp_ps(v, v, _CMP_UNORD_Q));  // missing value
+    const __m256i dir = _mm256_andnot_si256(lt, one);                            // !(v < threshold)
+    const __m256i missing_dir = _mm256_srli_epi32(feat, 31);                     // bit 31: go right
+    n = _mm256_add_epi32(left, _mm256_blendv_epi8(dir, missing_dir, nan));
+  }
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), n);
+}
+#endif
+
 // Rows [begin, end) through every tree, a block of rows per tree (the tree stays in cache) in
 // lock-step groups of kLanes rows, then XGBoost's softmax (common::Softmax: expf, double sum)
 // and the first arg-max. Sums start at base_score and add leaf values in tree order, in float,
@@ -223,6 +257,10 @@ void predict_rows(const Flat& f, const float* x, std::size_t cols, int num_class
   const std::size_t C = std::size_t(num_class);
   std::vector<float> margin(kBlock * C);
   std::vector<float> e(C);
+#if CROPSIGHT_X86_DISPATCH
+  // The feature gather's offsets are 32-bit: 8 rows of cols floats must stay below 2^31.
+  const bool avx2 = cropsight::detail::cpu_has_avx2_fma() && cols < (std::size_t(1) << 27);
+#endif
   // One step: the child a row goes to (missing: default child; a leaf stays put for finite x).
   auto step = [](const typename Flat::Node& nd, const float* row) {
     const float v = row[nd.feature & 0x7fffffffu];
@@ -241,8 +279,15 @@ void predict_rows(const Flat& f, const float* x, std::size_t cols, int num_class
       for (; r + kLanes <= nb; r += kLanes) {
         std::int32_t n[kLanes] = {};
         const float* row = x + (b0 + r) * cols;
-        for (int d = 0; d < depth; ++d)
-          for (std::size_t j = 0; j < kLanes; ++j) n[j] = step(tree[n[j]], row + j * cols);
+#if CROPSIGHT_X86_DISPATCH
+        if (avx2) {
+          walk8_avx2(tree, row, cols, depth, n);
+        } else
+#endif
+        {
+          for (int d = 0; d < depth; ++d)
+            for (std::size_t j = 0; j < kLanes; ++j) n[j] = step(tree[n[j]], row + j * cols);
+        }
         for (std::size_t j = 0; j < kLanes; ++j) m[(r + j) * C] += leaf[n[j]];
       }
       for (; r < nb; ++r) {

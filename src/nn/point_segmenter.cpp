@@ -112,6 +112,12 @@ std::vector<int> PointSegmenter::predict_at(const Cloud& cloud, const std::vecto
                                             std::vector<float>* proba) const {
   return impl_->backend->predict_at(cloud, idx, angle_rad, proba);
 }
+std::vector<std::vector<int>> PointSegmenter::predict_passes(const Cloud& cloud,
+                                                             const std::vector<std::vector<int>>& idx,
+                                                             const std::vector<float>& angle_rad, int threads,
+                                                             std::vector<std::vector<float>>* proba) const {
+  return impl_->backend->predict_passes(cloud, idx, angle_rad, threads, proba);
+}
 void PointSegmenter::save(const std::filesystem::path& path) const { impl_->backend->save(path); }
 
 PointSegmenter PointSegmenter::load(const std::filesystem::path& path, int threads) {

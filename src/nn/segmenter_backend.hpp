@@ -32,6 +32,9 @@ class SegmenterBackend {
   virtual std::vector<int> sample_for_pass(const Cloud& cloud, bool farthest, int pass) const = 0;
   virtual std::vector<int> predict_at(const Cloud& cloud, const std::vector<int>& idx, float angle_rad,
                                       std::vector<float>* proba) const = 0;
+  virtual std::vector<std::vector<int>> predict_passes(const Cloud& cloud, const std::vector<std::vector<int>>& idx,
+                                                       const std::vector<float>& angle_rad, int threads,
+                                                       std::vector<std::vector<float>>* proba) const = 0;
   virtual void save(const std::filesystem::path& path) const = 0;
 };
 
@@ -41,8 +44,9 @@ class SegmenterBackend {
 // 2: PointNetConfig::lovasz_weight; 3: the detector; 4: CenterNetConfig::mask_thresholds and
 // DetectorBackend::set_mask_thresholds; 5: CenterNetConfig::mask_upsampling and flip_test,
 // DetectorBackend::set_inference in place of set_mask_thresholds; 6: CenterNetConfig::mask_inputs,
-// mask_inputs_flip_test and mask_dice_weight, DetectorBackend::forward at any input size.
-inline constexpr int kBackendApiVersion = 6;
+// mask_inputs_flip_test and mask_dice_weight, DetectorBackend::forward at any input size;
+// 7: SegmenterBackend::predict_passes.
+inline constexpr int kBackendApiVersion = 7;
 
 struct BackendApi {
   int version = 0;

@@ -205,6 +205,40 @@ TEST(PointSegmenter, DeterministicGivenSeedAndRejectsBadInput) {
   EXPECT_THROW(PointSegmenter::load(t / "missing.pt"), Error);
 }
 
+// The rotated passes of the sampled mode run on worker threads (one pass each, libtorch's
+// operators single-threaded there): the same labels and probabilities as one pass at a time.
+TEST(PointSegmenter, PassesOnThreadsEqualOneAtATime) {
+  auto cfg = tiny_config("pointresnet");
+  cfg.threads = 2;
+  PointSegmenter net(cfg);
+  const std::vector<Cloud> batch = {tiny_cloud(21), tiny_cloud(22)};
+  for (int it = 0; it < 5; ++it) net.train_step(batch);
+  const Cloud big = tiny_cloud(23, 300);
+  std::vector<std::vector<int>> idx;
+  std::vector<float> angles;
+  for (int v = 0; v < 5; ++v) {
+    idx.push_back(net.sample_for_pass(big, false, v));
+    angles.push_back(1.1f * float(v));
+  }
+  for (int threads : {1, 2, 3}) {
+    std::vector<std::vector<float>> proba;
+    const auto labels = net.predict_passes(big, idx, angles, threads, &proba);
+    ASSERT_EQ(labels.size(), idx.size());
+    ASSERT_EQ(proba.size(), idx.size());
+    for (std::size_t v = 0; v < idx.size(); ++v) {
+      std::vector<float> one;
+      EXPECT_EQ(labels[v], net.predict_at(big, idx[v], angles[v], &one)) << threads << " threads, pass " << v;
+      EXPECT_EQ(proba[v], one) << threads << " threads, pass " << v;  // the same floats
+    }
+    EXPECT_EQ(net.predict_passes(big, idx, angles, threads), labels);
+  }
+  EXPECT_THROW(net.predict_passes(big, idx, {0.f}, 2), Error);
+  auto bad = idx;
+  bad[3][0] = int(big.size());
+  EXPECT_THROW(net.predict_passes(big, bad, angles, 2), Error);
+  EXPECT_TRUE(net.predict_passes(big, {}, {}, 2).empty());
+}
+
 // OpenBLAS's spinning thread pool slowed training 2.2x on two cores; a network leaves it at one
 // thread (when libtorch's BLAS is OpenBLAS, as on Debian).
 TEST(PointSegmenter, OpenBlasRunsSingleThreaded) {

@@ -136,6 +136,13 @@ class PointSegmenter {
   /// `proba` (optional) receives the class probabilities (num_points × num_classes, row-major).
   std::vector<int> predict_at(const Cloud& cloud, const std::vector<int>& idx, float angle_rad = 0.f,
                               std::vector<float>* proba = nullptr) const;
+  /// Several passes at once: pass p is predict_at(cloud, idx[p], angle_rad[p], &(*proba)[p]), with
+  /// the same labels and probabilities, the passes spread over `threads` threads (each pass on
+  /// one thread: the small layers of these networks gain little from splitting one pass).
+  /// `proba` (optional) receives one probability matrix per pass.
+  std::vector<std::vector<int>> predict_passes(const Cloud& cloud, const std::vector<std::vector<int>>& idx,
+                                               const std::vector<float>& angle_rad, int threads,
+                                               std::vector<std::vector<float>>* proba = nullptr) const;
 
   /// One training step on fixed inputs (no augmentation, no sampling when the cloud already has
   /// num_points points): returns (loss, accuracy). Used by the tests to show learning works.

@@ -2,11 +2,14 @@
 // and single passes on given samples.
 #include <algorithm>
 #include <cmath>
+#include <exception>
+#include <thread>
 
 #include "cropsight/core/class_scores.hpp"
 #include "cropsight/core/error.hpp"
 #include "cropsight/geometry/farthest_point.hpp"
 #include "nn/torch/segmenter_impl.hpp"
+#include "nn/torch/torch_detector.hpp"
 
 namespace cropsight::nn {
 
@@ -79,25 +82,83 @@ std::vector<int> TorchSegmenter::sample_for_pass(const Cloud& cloud, bool farthe
   return idx;
 }
 
-std::vector<int> TorchSegmenter::predict_at(const Cloud& cloud, const std::vector<int>& idx, float angle,
-                                            std::vector<float>* proba) const {
-  if (idx.size() != std::size_t(impl_->cfg.num_points))
-    throw Error("point network", "a pass needs exactly num_points = " + std::to_string(impl_->cfg.num_points) +
+namespace {
+void check_pass(const PointNetConfig& cfg, const Cloud& cloud, const std::vector<int>& idx) {
+  if (idx.size() != std::size_t(cfg.num_points))
+    throw Error("point network", "a pass needs exactly num_points = " + std::to_string(cfg.num_points) +
                                      " indices, got " + std::to_string(idx.size()));
   for (int i : idx)
     if (i < 0 || std::size_t(i) >= cloud.size()) throw Error("point network", "sample index out of range");
-  torch::NoGradGuard ng;
-  impl_->net->eval();
-  const Prepared p = torch_impl::prepare(cloud, impl_->cfg.features);
+}
+}  // namespace
+
+std::vector<int> TorchSegmenter::Impl::forward_pass(const Prepared& p, const std::vector<int>& idx, float angle,
+                                                    std::vector<float>* proba) const {
   const Eigen::Matrix3f R = torch_impl::rotation_about_vertical(angle);
-  auto [xyz, feats, labels] = torch_impl::make_batch(impl_->cfg, {&p}, {idx}, nullptr, angle != 0.f ? &R : nullptr);
-  const auto logits = impl_->net->forward(xyz, feats);
+  auto [xyz, feats, labels] = torch_impl::make_batch(cfg, {&p}, {idx}, nullptr, angle != 0.f ? &R : nullptr);
+  const auto logits = net->forward(xyz, feats);
   if (proba) {
     const auto sm = torch::softmax(logits, -1).contiguous();
     proba->assign(sm.data_ptr<float>(), sm.data_ptr<float>() + sm.numel());
   }
   const auto pred = logits.argmax(-1).contiguous();
   return std::vector<int>(pred.data_ptr<int64_t>(), pred.data_ptr<int64_t>() + idx.size());
+}
+
+std::vector<int> TorchSegmenter::predict_at(const Cloud& cloud, const std::vector<int>& idx, float angle,
+                                            std::vector<float>* proba) const {
+  check_pass(impl_->cfg, cloud, idx);
+  torch::NoGradGuard ng;
+  impl_->net->eval();
+  return impl_->forward_pass(torch_impl::prepare(cloud, impl_->cfg.features), idx, angle, proba);
+}
+
+std::vector<std::vector<int>> TorchSegmenter::predict_passes(const Cloud& cloud,
+                                                             const std::vector<std::vector<int>>& idx,
+                                                             const std::vector<float>& angles, int threads,
+                                                             std::vector<std::vector<float>>* proba) const {
+  if (angles.size() != idx.size()) throw Error("point network", "one angle per pass expected");
+  for (const auto& one : idx) check_pass(impl_->cfg, cloud, one);
+  const std::size_t passes = idx.size();
+  std::vector<std::vector<int>> labels(passes);
+  if (proba) proba->assign(passes, {});
+  if (passes == 0) return labels;
+  impl_->net->eval();  // here, once: the workers only read the network
+  const Prepared p = torch_impl::prepare(cloud, impl_->cfg.features);
+  const std::size_t workers = std::min(passes, std::size_t(std::max(1, threads)));
+  // Worker w runs passes w, w + workers, ...; each pass writes only its own slots.
+  auto run = [&](std::size_t w, bool own_thread) {
+    torch::NoGradGuard ng;
+    if (own_thread) torch_impl::set_operator_threads(1);
+    for (std::size_t k = w; k < passes; k += workers)
+      labels[k] = impl_->forward_pass(p, idx[k], angles[k], proba ? &(*proba)[k] : nullptr);
+  };
+  if (workers == 1) {
+    run(0, false);
+    return labels;
+  }
+  std::vector<std::exception_ptr> errors(workers);
+  std::vector<std::thread> pool;
+  for (std::size_t w = 1; w < workers; ++w)
+    pool.emplace_back([&, w] {
+      try {
+        run(w, true);
+      } catch (...) {
+        errors[w] = std::current_exception();
+      }
+    });
+  // The calling thread is worker 0, also one operator thread while the others run.
+  const int before = torch_impl::set_operator_threads(1);
+  try {
+    run(0, false);
+  } catch (...) {
+    errors[0] = std::current_exception();
+  }
+  torch_impl::set_operator_threads(before);
+  for (auto& t : pool) t.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
+  return labels;
 }
 
 std::vector<int> TorchSegmenter::segment_sampled(const Cloud& cloud, bool farthest) const {

@@ -40,6 +40,11 @@ struct TorchSegmenter::Impl {
   // cover without rotation.
   std::vector<int> predict(const torch_impl::Prepared& p, int* passes, int votes = 1,
                            std::vector<float>* proba_out = nullptr) const;
+  // One forward pass on the num_points samples `idx` of a prepared cloud, rotated by `angle`
+  // about the vertical axis: labels, and probabilities into `proba` when given. Needs
+  // no-grad and eval mode set by the caller (both are per call site: no-grad is per thread).
+  std::vector<int> forward_pass(const torch_impl::Prepared& p, const std::vector<int>& idx, float angle,
+                                std::vector<float>* proba) const;
 };
 
 }  // namespace cropsight::nn

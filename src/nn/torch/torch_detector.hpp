@@ -13,5 +13,8 @@ std::unique_ptr<detail::DetectorBackend> load_detector(const std::filesystem::pa
 
 // OpenBLAS single-threaded (torch_segmenter.cpp says why); both networks call it.
 void single_threaded_blas();
+// Sets the calling thread's libtorch operator threads to n (torch_segmenter.cpp); returns the
+// count it had.
+int set_operator_threads(int n);
 
 }  // namespace cropsight::nn::torch_impl

@@ -19,6 +19,19 @@ void torch_impl::single_threaded_blas() {
   if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set(1);
 }
 
+// libtorch's operators split their loops over OpenMP threads, as many as the calling thread's
+// OpenMP setting allows; a thread libtorch has not seen starts at every core (two pass workers
+// would start four threads on two cores). So a pass worker sets its own count to 1. libtorch
+// sets a thread's count from the process-wide one on its first use, so that comes first
+// (at::get_num_threads); at::set_num_threads would change the process-wide count for every
+// thread, hence OpenMP's per-thread call, looked up at run time like OpenBLAS's above.
+int torch_impl::set_operator_threads(int n) {
+  const int before = at::get_num_threads();
+  using SetThreads = void (*)(int);
+  if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "omp_set_num_threads"))) set(n);
+  return before;
+}
+
 TorchSegmenter::Impl::Impl(const PointNetConfig& c) : cfg(c) {
   cfg.validate("point network");
   at::set_num_threads(cfg.threads);

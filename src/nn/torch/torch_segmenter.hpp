@@ -25,6 +25,9 @@ class TorchSegmenter final : public detail::SegmenterBackend {
   std::vector<int> sample_for_pass(const Cloud& cloud, bool farthest, int pass) const override;
   std::vector<int> predict_at(const Cloud& cloud, const std::vector<int>& idx, float angle_rad,
                               std::vector<float>* proba) const override;
+  std::vector<std::vector<int>> predict_passes(const Cloud& cloud, const std::vector<std::vector<int>>& idx,
+                                               const std::vector<float>& angle_rad, int threads,
+                                               std::vector<std::vector<float>>* proba) const override;
   void save(const std::filesystem::path& path) const override;
   static std::unique_ptr<detail::SegmenterBackend> load(const std::filesystem::path& path, int threads);
 

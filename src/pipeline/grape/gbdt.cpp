@@ -1,10 +1,13 @@
 #include "cropsight/pipeline/grape/gbdt.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <numeric>
 #include <random>
+#include <unordered_map>
 
 #include "core/parallel_for.hpp"
 #include "cropsight/core/class_scores.hpp"
@@ -90,6 +93,56 @@ learning::Gbdt train_grape_gbdt(const std::vector<Cloud>& clouds, const GbdtConf
   return model;
 }
 
+namespace {
+// Searches of positions that several points to carry back share exactly (the same three float
+// bits): the shared clouds put 15-20 % of their points at one position (label 0), and those
+// searches are the slowest (every sample there is at distance 0, so no branch of the tree can
+// be skipped). A search is a function of the query's coordinates alone, so one search per such
+// position gives every point there exactly the neighbours and distances its own search would.
+struct SharedSearches {
+  std::vector<int> group;  // per point: its position's row below, or -1 (a position of its own)
+  std::vector<std::uint32_t> nb;
+  std::vector<float> d2;
+  std::vector<std::size_t> found;
+};
+
+SharedSearches search_repeated_positions(const Cloud& cloud, const std::vector<int>& out,
+                                         const geometry::detail::PointKdTree& tree, std::size_t k, int threads) {
+  using Key = std::array<std::uint32_t, 3>;
+  struct KeyHash {
+    std::size_t operator()(const Key& key) const {
+      return std::size_t(key[0]) * 0x9E3779B97F4A7C15ull ^ std::size_t(key[1]) * 0xC2B2AE3D27D4EB4Full ^ key[2];
+    }
+  };
+  SharedSearches s;
+  s.group.assign(cloud.size(), -1);
+  std::unordered_map<Key, std::pair<std::size_t, int>, KeyHash> first;  // position -> (first point, its row)
+  first.reserve(cloud.size());
+  std::vector<std::size_t> query;  // one point per shared position
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    if (out[i] >= 0) continue;
+    Key key;
+    std::memcpy(key.data(), cloud.points[i].data(), sizeof(key));
+    auto [it, inserted] = first.try_emplace(key, i, -1);
+    if (inserted) continue;
+    if (it->second.second < 0) {
+      it->second.second = int(query.size());
+      s.group[it->second.first] = int(query.size());
+      query.push_back(it->second.first);
+    }
+    s.group[i] = it->second.second;
+  }
+  s.nb.resize(query.size() * k);
+  s.d2.resize(query.size() * k);
+  s.found.resize(query.size());
+  cropsight::detail::parallel_for(query.size(), threads, 1, [&](std::size_t b, std::size_t e) {
+    for (std::size_t g = b; g < e; ++g)
+      s.found[g] = tree.knnSearch(cloud.points[query[g]].data(), k, &s.nb[g * k], &s.d2[g * k]);
+  });
+  return s;
+}
+}  // namespace
+
 std::vector<int> grape_carry_back(const Cloud& cloud, const std::vector<int>& sample,
                                   const std::vector<int>& sample_labels, const FeatureConfig& fc, int num_class,
                                   int threads, const std::vector<float>* sample_proba, std::vector<float>* scores_out) {
@@ -131,12 +184,19 @@ std::vector<int> grape_carry_back(const Cloud& cloud, const std::vector<int>& sa
   const std::size_t k = std::min<std::size_t>(std::size_t(fc.carry_k), sample.size());
   const float wc = float(fc.carry_colour);
   const bool colour = k > 1 && cloud.has_colors();
+  const SharedSearches shared = search_repeated_positions(cloud, out, tree, k, threads);
   cropsight::detail::parallel_for(cloud.size(), threads, 2048, [&](std::size_t b, std::size_t e) {
-    std::vector<std::uint32_t> nb(k);
-    std::vector<float> d2(k), vote(static_cast<std::size_t>(num_class));
+    std::vector<std::uint32_t> own_nb(k);
+    std::vector<float> own_d2(k), vote(static_cast<std::size_t>(num_class));
     for (std::size_t i = b; i < e; ++i) {
       if (out[i] >= 0) continue;
-      const std::size_t found = tree.knnSearch(cloud.points[i].data(), k, nb.data(), d2.data());
+      // A shared position's neighbours come from its one search; any other point searches here.
+      const int g = shared.group[i];
+      const std::size_t row = g >= 0 ? std::size_t(g) * k : 0;
+      const std::uint32_t* nb = g >= 0 ? &shared.nb[row] : own_nb.data();
+      const float* d2 = g >= 0 ? &shared.d2[row] : own_d2.data();
+      const std::size_t found = g >= 0 ? shared.found[std::size_t(g)]
+                                       : tree.knnSearch(cloud.points[i].data(), k, own_nb.data(), own_d2.data());
       if (!colour || found == 1) {
         out[i] = sample_labels[nb[0]];
         if (scores_out) voter_scores(nb[0], 1.f, &(*scores_out)[i * C]);

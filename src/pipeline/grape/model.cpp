@@ -72,11 +72,19 @@ std::vector<float> Model::scores(const Cloud& cloud) const {
   FeatureConfig fc;
   fc.carry_k = impl_->carry_k;
   const int C = impl_->net->config().num_classes, V = impl_->votes;
-  std::vector<float> proba, one;
+  // The passes' forward runs first, spread over the threads a pass each; then each pass's
+  // carry-back (itself split over the threads), summed in pass order.
+  std::vector<std::vector<int>> idx(static_cast<std::size_t>(V));
+  std::vector<float> angles(static_cast<std::size_t>(V));
   for (int v = 0; v < V; ++v) {
-    const auto idx = impl_->net->sample_for_pass(cloud, impl_->farthest, v);
-    const auto labels = impl_->net->predict_at(cloud, idx, 2.f * float(M_PI) * float(v) / float(V), &proba);
-    grape_carry_back(cloud, idx, labels, fc, C, impl_->threads, &proba, &one);
+    idx[std::size_t(v)] = impl_->net->sample_for_pass(cloud, impl_->farthest, v);
+    angles[std::size_t(v)] = 2.f * float(M_PI) * float(v) / float(V);
+  }
+  std::vector<std::vector<float>> proba;
+  const auto labels = impl_->net->predict_passes(cloud, idx, angles, impl_->threads, &proba);
+  std::vector<float> one;
+  for (std::size_t v = 0; v < std::size_t(V); ++v) {
+    grape_carry_back(cloud, idx[v], labels[v], fc, C, impl_->threads, &proba[v], &one);
     if (s.empty()) s.assign(one.size(), 0.f);
     for (std::size_t k = 0; k < s.size(); ++k) s[k] += one[k] / float(V);
   }

@@ -279,6 +279,47 @@ TEST(GrapeGbdt, CarryBackLabelsEveryPoint) {
   EXPECT_THROW(pipeline::grape::grape_carry_back(c, s, truth, f, 6), Error);
 }
 
+// Points at one position (the shared clouds put 15-20 % of their points there) share one
+// neighbour search: each must get the scores it gets when it is the only point there. The
+// reference cloud holds the same samples in the same order (so the same k-d tree) and that one
+// point alone, whose search is then its own.
+TEST(GrapeGbdt, CarryBackOfRepeatedPositionsEqualsOnePointAtATime) {
+  const Cloud base = synthetic(9);
+  Cloud c;
+  std::vector<int> s, labels;
+  for (std::size_t i = 0; i < base.size(); i += 3) {  // the samples first, several at the shared position
+    c.points.push_back(i % 30 == 0 ? Eigen::Vector3f(0.05f, 0.f, 0.f) : base.points[i]);
+    c.colors.push_back(base.colors[i]);
+    s.push_back(int(c.size() - 1));
+    labels.push_back(base.labels[i]);
+  }
+  const std::size_t samples = c.size();
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<float> u(0, 1);
+  for (std::size_t i = 1; i < base.size(); i += 3) {  // then others, every fourth at the shared position
+    c.points.push_back(i % 4 == 1 ? Eigen::Vector3f(0.05f, 0.f, 0.f) : base.points[i]);
+    c.colors.emplace_back(u(rng), u(rng), u(rng));
+  }
+  pipeline::grape::FeatureConfig f = fast_config().features;
+  f.carry_k = 4;
+  std::vector<float> scores;
+  const auto out = pipeline::grape::grape_carry_back(c, s, labels, f, 6, 2, nullptr, &scores);
+  std::size_t repeated = 0;
+  for (std::size_t i = samples; i < c.size(); ++i) {
+    Cloud one;
+    one.points.assign(c.points.begin(), c.points.begin() + long(samples));
+    one.colors.assign(c.colors.begin(), c.colors.begin() + long(samples));
+    one.points.push_back(c.points[i]);
+    one.colors.push_back(c.colors[i]);
+    std::vector<float> alone;
+    const auto ref = pipeline::grape::grape_carry_back(one, s, labels, f, 6, 1, nullptr, &alone);
+    ASSERT_EQ(out[i], ref[samples]) << i;
+    for (std::size_t k = 0; k < 6; ++k) ASSERT_EQ(scores[i * 6 + k], alone[samples * 6 + k]) << i;  // same floats
+    repeated += c.points[i] == Eigen::Vector3f(0.05f, 0.f, 0.f);
+  }
+  EXPECT_GT(repeated, 40u);
+}
+
 // A point whose colour is far from all its voters' makes every exp() weight underflow to zero;
 // it must take the nearest sample's label, not label 0 (the argmax of an all-zero vote).
 TEST(GrapeGbdt, CarryBackOfAnOddColouredPointTakesTheNearestLabel) {
