@@ -32,28 +32,67 @@ constexpr int kSums = 10;  // n, x, y, z, xx, xy, xz, yy, yz, zz
 constexpr int kCell = 12;  // doubles per integral-image cell: the 10 sums + 2 padding (three 4-lane vectors)
 
 typedef double v4d __attribute__((vector_size(32)));
+typedef float v4f __attribute__((vector_size(16)));
+typedef int v4i __attribute__((vector_size(16)));
+
+// The transpose of four 4-lane rows (a, b, c, d): out[j] = {a[j], b[j], c[j], d[j]}.
+inline void transpose4(v4d a, v4d b, v4d c, v4d d, v4d out[4]) {
+  const v4d t0 = __builtin_shufflevector(a, b, 0, 4, 2, 6), t1 = __builtin_shufflevector(a, b, 1, 5, 3, 7);
+  const v4d t2 = __builtin_shufflevector(c, d, 0, 4, 2, 6), t3 = __builtin_shufflevector(c, d, 1, 5, 3, 7);
+  out[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5), out[1] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+  out[2] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7), out[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+}
+
+// One pixel's step of build_row(): adds its cell (three 4-lane vectors) to the running row sums
+// and writes up + sums to out.
+inline void add_cell(v4d& a0, v4d& a1, v4d& a2, v4d p0, v4d p1, v4d p2, const double* up, double* out) {
+  a0 += p0, a1 += p1, a2 += p2;
+  v4d u0, u1, u2;
+  __builtin_memcpy(&u0, up, 32), __builtin_memcpy(&u1, up + 4, 32), __builtin_memcpy(&u2, up + 8, 32);
+  u0 += a0, u1 += a1, u2 += a2;
+  __builtin_memcpy(out, &u0, 32), __builtin_memcpy(out + 4, &u1, 32), __builtin_memcpy(out + 8, &u2, 32);
+}
 
 // One integral row: out[u + 1] = up[u + 1] + (sums over columns <= u of image row (xr, yr, zr)),
-// out[0] = 0. Three 4-lane vectors per cell (AVX2 clone at run time; SSE pairs otherwise): each
-// lane does the same double operations, in the same order, as a scalar loop over the 10 sums.
+// out[0] = 0. A pixel's cell is (n, x, y, z), (xx, xy, xz, yy), (yz, zz, 0, 0): four pixels'
+// values are computed at once, one sum per vector across the pixels (float test, conversion to
+// double, double products), then transposed into cells; the cells are added pixel by pixel in
+// column order, each lane the same double additions as a scalar loop over the 10 sums (AVX2
+// clone at run time; SSE pairs otherwise).
 CROPSIGHT_AVX2_CLONES void build_row(int w, const float* __restrict xr, const float* __restrict yr,
                                      const float* __restrict zr, const double* __restrict up, double* __restrict out) {
   v4d a0 = {0, 0, 0, 0}, a1 = {0, 0, 0, 0}, a2 = {0, 0, 0, 0};
+  const v4d zero = {0, 0, 0, 0};
   for (int q = 0; q < kCell; ++q) out[q] = 0.0;
-  for (int u = 0; u < w; ++u) {
-    // Non-finite points add nothing (PCL's isfinite(x + y + z) test), without a branch.
+  int u = 0;
+  for (; u + 4 <= w; u += 4) {
+    v4f fx, fy, fz;
+    __builtin_memcpy(&fx, xr + u, 16), __builtin_memcpy(&fy, yr + u, 16), __builtin_memcpy(&fz, zr + u, 16);
+    // Non-finite points add nothing (PCL's isfinite(x + y + z) test): s - s is 0 only for finite s.
+    const v4f s = fx + fy + fz;
+    const v4i fin = (s - s) == (v4f){0, 0, 0, 0};
+    const v4f f0 = {0, 0, 0, 0}, f1 = {1, 1, 1, 1};
+    const v4d n = __builtin_convertvector(fin ? f1 : f0, v4d);
+    const v4d x = __builtin_convertvector(fin ? fx : f0, v4d), y = __builtin_convertvector(fin ? fy : f0, v4d);
+    const v4d z = __builtin_convertvector(fin ? fz : f0, v4d);
+    v4d c0[4], c1[4];
+    transpose4(n, x, y, z, c0);
+    transpose4(x * x, x * y, x * z, y * y, c1);
+    const v4d yz = y * z, zz = z * z;
+    const v4d lo = __builtin_shufflevector(yz, zz, 0, 4, 1, 5), hi = __builtin_shufflevector(yz, zz, 2, 6, 3, 7);
+    const v4d c2[4] = {__builtin_shufflevector(lo, zero, 0, 1, 4, 5), __builtin_shufflevector(lo, zero, 2, 3, 4, 5),
+                       __builtin_shufflevector(hi, zero, 0, 1, 4, 5), __builtin_shufflevector(hi, zero, 2, 3, 4, 5)};
+    for (int j = 0; j < 4; ++j) {
+      const std::size_t cell = std::size_t(u + j + 1) * kCell;
+      add_cell(a0, a1, a2, c0[j], c1[j], c2[j], up + cell, out + cell);
+    }
+  }
+  for (; u < w; ++u) {
     const bool fin = std::isfinite(xr[u] + yr[u] + zr[u]);
     const double x = fin ? xr[u] : 0.0, y = fin ? yr[u] : 0.0, z = fin ? zr[u] : 0.0;
-    const v4d p0 = {fin ? 1.0 : 0.0, x, y, z};
-    const v4d l1 = {x, x, x, y}, r1 = {x, y, z, y};
-    const v4d l2 = {y, z, 0.0, 0.0}, r2 = {z, z, 0.0, 0.0};
-    a0 += p0, a1 += l1 * r1, a2 += l2 * r2;
-    const double* a = up + std::size_t(u + 1) * kCell;
-    double* o = out + std::size_t(u + 1) * kCell;
-    v4d u0, u1, u2;
-    __builtin_memcpy(&u0, a, 32), __builtin_memcpy(&u1, a + 4, 32), __builtin_memcpy(&u2, a + 8, 32);
-    u0 += a0, u1 += a1, u2 += a2;
-    __builtin_memcpy(o, &u0, 32), __builtin_memcpy(o + 4, &u1, 32), __builtin_memcpy(o + 8, &u2, 32);
+    const v4d p0 = {fin ? 1.0 : 0.0, x, y, z}, p1 = {x * x, x * y, x * z, y * y}, p2 = {y * z, z * z, 0.0, 0.0};
+    const std::size_t cell = std::size_t(u + 1) * kCell;
+    add_cell(a0, a1, a2, p0, p1, p2, up + cell, out + cell);
   }
 }
 
