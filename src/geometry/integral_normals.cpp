@@ -96,39 +96,62 @@ CROPSIGHT_AVX2_CLONES void build_row(int w, const float* __restrict xr, const fl
   }
 }
 
+// The window sums of pixel k: w[0] = n, x, y, z; w[1] = xx, xy, xz, yy; w[2] = yz, zz, -, -, each
+// (c1 + a0 - a1 - c0) from the corner cells of integral rows tops[s] and bottoms[s].
+inline void window_sums(int k, const int* __restrict cols, const int* __restrict sizes, const double* const* tops,
+                        const double* const* bottoms, v4d w[3]) {
+  const int s = sizes[k], left = cols[k] - s / 2;
+  const double* a0 = tops[s] + std::size_t(left) * kCell;
+  const double* a1 = tops[s] + std::size_t(left + s) * kCell;
+  const double* c0 = bottoms[s] + std::size_t(left) * kCell;
+  const double* c1 = bottoms[s] + std::size_t(left + s) * kCell;
+  for (int j = 0; j < 3; ++j) {
+    v4d p, q, r, t;
+    __builtin_memcpy(&p, c1 + 4 * j, 32), __builtin_memcpy(&q, a0 + 4 * j, 32);
+    __builtin_memcpy(&r, a1 + 4 * j, 32), __builtin_memcpy(&t, c0 + 4 * j, 32);
+    w[j] = p + q - r - t;
+  }
+}
+
 // Window sums and centred scatter matrices of the `count` listed pixels of one row: pixel k at
 // column cols[k] with window side sizes[k] reads the corner cells of integral rows tops[s] and
-// bottoms[s]; writes xx, xy, xz, yy, yz, zz to m[j * stride + k] (float). The double operations
-// of the scalar form, (c1 + a0 - a1 - c0) per sum and q - (p·p')·(1/n) per entry, each done
-// lane by lane in 4-lane vectors (AVX2 clone at run time; no FMA), so the values are the same.
+// bottoms[s]; writes xx, xy, xz, yy, yz, zz to m[j * stride + k] (float). Four pixels at a time:
+// their sums are transposed into one vector per sum across the pixels, and each entry is
+// q - (p·p')·(1/n) in 4-lane double vectors, lane by lane the scalar operations (AVX2 clone at
+// run time; no FMA), so the values are those of a scalar loop; the tail runs the same operations
+// on a block of which only the first pixels are stored.
 CROPSIGHT_AVX2_CLONES void scatter_row(int count, const int* __restrict cols, const int* __restrict sizes,
                                        const double* const* tops, const double* const* bottoms, float* __restrict m,
                                        std::size_t stride, double min_valid_fraction) {
-  for (int k = 0; k < count; ++k) {
-    const int s = sizes[k], left = cols[k] - s / 2;
-    const double* a0 = tops[s] + std::size_t(left) * kCell;
-    const double* a1 = tops[s] + std::size_t(left + s) * kCell;
-    const double* c0 = bottoms[s] + std::size_t(left) * kCell;
-    const double* c1 = bottoms[s] + std::size_t(left + s) * kCell;
-    v4d w[3];
-    for (int j = 0; j < 3; ++j) {
-      v4d p, q, r, t;
-      __builtin_memcpy(&p, c1 + 4 * j, 32), __builtin_memcpy(&q, a0 + 4 * j, 32);
-      __builtin_memcpy(&r, a1 + 4 * j, 32), __builtin_memcpy(&t, c0 + 4 * j, 32);
-      w[j] = p + q - r - t;
-    }
-    // w[0] = n, x, y, z; w[1] = xx, xy, xz, yy; w[2] = yz, zz, -, -.
-    const double ic = 1.0 / w[0][0];
-    const v4d icv = {ic, ic, ic, ic};
-    const v4d l = __builtin_shufflevector(w[0], w[0], 1, 1, 1, 2), r = __builtin_shufflevector(w[0], w[0], 1, 2, 3, 2);
-    const v4d c = w[1] - l * r * icv;
-    m[k] = float(c[0]), m[stride + k] = float(c[1]), m[2 * stride + k] = float(c[2]), m[3 * stride + k] = float(c[3]);
-    m[4 * stride + k] = float(w[2][0] - w[0][2] * w[0][3] * ic);
-    m[5 * stride + k] = float(w[2][1] - w[0][3] * w[0][3] * ic);
+  for (int k = 0; k < count; k += 4) {
+    v4d w[4][3];
+    for (int j = 0; j < 4; ++j) window_sums(std::min(k + j, count - 1), cols, sizes, tops, bottoms, w[j]);
+    v4d s0[4], s1[4];  // n, x, y, z and xx, xy, xz, yy, one vector across the four pixels each
+    transpose4(w[0][0], w[1][0], w[2][0], w[3][0], s0);
+    transpose4(w[0][1], w[1][1], w[2][1], w[3][1], s1);
+    const v4d lo = __builtin_shufflevector(w[0][2], w[1][2], 0, 4, 1, 5);
+    const v4d hi = __builtin_shufflevector(w[2][2], w[3][2], 0, 4, 1, 5);
+    const v4d yz = __builtin_shufflevector(lo, hi, 0, 1, 4, 5), zz = __builtin_shufflevector(lo, hi, 2, 3, 6, 7);
+    const v4d one = {1, 1, 1, 1}, ic = one / s0[0];
+    const v4d x = s0[1], y = s0[2], z = s0[3];
+    v4d c[6] = {s1[0] - x * x * ic, s1[1] - x * y * ic, s1[2] - x * z * ic,
+                s1[3] - y * y * ic, yz - y * z * ic,    zz - z * z * ic};
     // Too few valid points in the window (only possible when NaN pixels do not break windows):
     // a zero matrix, which solve_row() turns into NaN.
-    if (w[0][0] < min_valid_fraction * double(s) * double(s))
-      for (int j = 0; j < 6; ++j) m[std::size_t(j) * stride + k] = 0.0f;
+    v4d side;
+    for (int j = 0; j < 4; ++j) side[j] = double(sizes[std::min(k + j, count - 1)]);
+    const v4d mvf = {min_valid_fraction, min_valid_fraction, min_valid_fraction, min_valid_fraction};
+    const auto few = s0[0] < mvf * side * side;
+    const int n = std::min(4, count - k);
+    for (int e = 0; e < 6; ++e) {
+      c[e] = few ? (v4d){0, 0, 0, 0} : c[e];
+      const v4f f = __builtin_convertvector(c[e], v4f);
+      float* out = m + std::size_t(e) * stride + k;
+      if (n == 4)
+        __builtin_memcpy(out, &f, 16);
+      else
+        for (int j = 0; j < n; ++j) out[j] = f[j];
+    }
   }
 }
 
