@@ -222,50 +222,58 @@ CROPSIGHT_AVX2_CLONES void solve_row(int n, const float* __restrict m, std::size
 // is below, so only j < reach matter. By doubling: after the stages with shifts 1, 2, 4, ..., K
 // (stage K: c[i] = min(c[i], g^K(c_prev[i-K])), K sequential additions) c covers j = 0..2K-1;
 // each stage is one vectorised pass over the row. `a` is a scratch row of w floats.
+// Each stage reads the row from `src` and writes it to `dst` (the two buffers swap roles from
+// stage to stage: no copy of the row per stage).
 template <int K>
-inline void sweep_stage_forward(int w, float* __restrict c, float* __restrict a) {
-  for (int i = 0; i < w; ++i) a[i] = c[i];
+inline void sweep_stage_forward(int w, const float* __restrict src, float* __restrict dst) {
+  for (int i = 0; i < K && i < w; ++i) dst[i] = src[i];
   for (int i = K; i < w; ++i) {
-    float v = a[i - K];
+    float v = src[i - K];
     for (int m = 0; m < K; ++m) v = v + 1.0f;  // g^K: K roundings, as the sequential loop does
-    c[i] = std::min(c[i], v);
+    dst[i] = std::min(src[i], v);
   }
 }
 template <int K>
-inline void sweep_stage_backward(int w, float* __restrict c, float* __restrict a) {
-  for (int i = 0; i < w; ++i) a[i] = c[i];
+inline void sweep_stage_backward(int w, const float* __restrict src, float* __restrict dst) {
   for (int i = 0; i + K < w; ++i) {
-    float v = a[i + K];
+    float v = src[i + K];
     for (int m = 0; m < K; ++m) v = v + 1.0f;
-    c[i] = std::min(c[i], v);
+    dst[i] = std::min(src[i], v);
   }
+  for (int i = std::max(w - K, 0); i < w; ++i) dst[i] = src[i];
 }
 // Stages with a run-time shift, for smoothing sizes beyond 15 pixels.
-inline void sweep_stage_generic(int w, int k, bool forward, float* __restrict c, float* __restrict a) {
-  for (int i = 0; i < w; ++i) a[i] = c[i];
+inline void sweep_stage_generic(int w, int k, bool forward, const float* __restrict src, float* __restrict dst) {
   for (int i = 0; i < w; ++i) {
-    const int src = forward ? i - k : i + k;
-    if (src < 0 || src >= w) continue;
-    float v = a[src];
-    for (int m = 0; m < k; ++m) v = v + 1.0f;
-    c[i] = std::min(c[i], v);
+    const int from = forward ? i - k : i + k;
+    float v = src[i];
+    if (from >= 0 && from < w) {
+      v = src[from];
+      for (int m = 0; m < k; ++m) v = v + 1.0f;
+      v = std::min(src[i], v);
+    }
+    dst[i] = v;
   }
 }
 CROPSIGHT_AVX2_CLONES void sweep(int w, float* __restrict c, int reach, bool forward, float* __restrict a) {
   // After the stages with shifts 1..K, j = 0..2K-1 is covered; stop once that reaches reach - 1.
   if (reach <= 0) return;
+  float* src = c;
+  float* dst = a;
+  auto next = [&] { std::swap(src, dst); };
   if (forward) {
-    sweep_stage_forward<1>(w, c, a);
-    if (reach > 2) sweep_stage_forward<2>(w, c, a);
-    if (reach > 4) sweep_stage_forward<4>(w, c, a);
-    if (reach > 8) sweep_stage_forward<8>(w, c, a);
+    sweep_stage_forward<1>(w, src, dst), next();
+    if (reach > 2) sweep_stage_forward<2>(w, src, dst), next();
+    if (reach > 4) sweep_stage_forward<4>(w, src, dst), next();
+    if (reach > 8) sweep_stage_forward<8>(w, src, dst), next();
   } else {
-    sweep_stage_backward<1>(w, c, a);
-    if (reach > 2) sweep_stage_backward<2>(w, c, a);
-    if (reach > 4) sweep_stage_backward<4>(w, c, a);
-    if (reach > 8) sweep_stage_backward<8>(w, c, a);
+    sweep_stage_backward<1>(w, src, dst), next();
+    if (reach > 2) sweep_stage_backward<2>(w, src, dst), next();
+    if (reach > 4) sweep_stage_backward<4>(w, src, dst), next();
+    if (reach > 8) sweep_stage_backward<8>(w, src, dst), next();
   }
-  for (int k = 16; reach > k; k *= 2) sweep_stage_generic(w, k, forward, c, a);
+  for (int k = 16; reach > k; k *= 2) sweep_stage_generic(w, k, forward, src, dst), next();
+  if (src != c) std::copy(src, src + w, c);  // an odd number of stages ended in the scratch row
 }
 
 // The vertical part of a chamfer pass for pixels [lo, hi) of a row, in place: c[i] = min(a[i-1] +
