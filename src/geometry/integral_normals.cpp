@@ -295,14 +295,18 @@ void check_inputs(const IntegralNormalConfig& cfg, std::span<const int> select, 
   if (!select.empty() && select.size() != n) throw Error("normals", "selection size differs from the cloud size");
 }
 
+// NaN in n floats of each of the four outputs from offset a (AVX2 clone at run time: 8 floats a
+// store instead of the baseline's 4).
+CROPSIGHT_AVX2_CLONES void fill_nan4(float* __restrict nx, float* __restrict ny, float* __restrict nz,
+                                     float* __restrict cv, std::size_t n) {
+  constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+  for (std::size_t i = 0; i < n; ++i) nx[i] = kNaN, ny[i] = kNaN, nz[i] = kNaN, cv[i] = kNaN;
+}
+
 // NaN in rows [v0, v1) of the four outputs.
 void nan_rows(OrganizedCloud& cloud, int v0, int v1) {
-  constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-  const std::size_t a = std::size_t(v0) * cloud.width, b = std::size_t(v1) * cloud.width;
-  std::fill(cloud.nx.begin() + a, cloud.nx.begin() + b, kNaN);
-  std::fill(cloud.ny.begin() + a, cloud.ny.begin() + b, kNaN);
-  std::fill(cloud.nz.begin() + a, cloud.nz.begin() + b, kNaN);
-  std::fill(cloud.curvature.begin() + a, cloud.curvature.begin() + b, kNaN);
+  const std::size_t a = std::size_t(v0) * cloud.width, n = std::size_t(v1 - v0) * cloud.width;
+  fill_nan4(cloud.nx.data() + a, cloud.ny.data() + a, cloud.nz.data() + a, cloud.curvature.data() + a, n);
 }
 
 // Step 1. Depth-change map, PCL's rule: for ri < h-1, ci < w-1 the pixel is compared with its
