@@ -35,6 +35,12 @@ typedef double v4d __attribute__((vector_size(32)));
 typedef float v4f __attribute__((vector_size(16)));
 typedef int v4i __attribute__((vector_size(16)));
 
+// Lane-wise conversions, written element by element: GCC 12 turns these into one vcvtps2pd /
+// vcvtpd2ps in the AVX2 clones, but __builtin_convertvector into two halves through the stack.
+// (Out-parameters: a function returning a 32-byte vector changes the ABI of the baseline build.)
+inline void to_double(v4f f, v4d& d) { d = v4d{double(f[0]), double(f[1]), double(f[2]), double(f[3])}; }
+inline v4f to_float(v4d d) { return v4f{float(d[0]), float(d[1]), float(d[2]), float(d[3])}; }
+
 // The transpose of four 4-lane rows (a, b, c, d): out[j] = {a[j], b[j], c[j], d[j]}.
 inline void transpose4(v4d a, v4d b, v4d c, v4d d, v4d out[4]) {
   const v4d t0 = __builtin_shufflevector(a, b, 0, 4, 2, 6), t1 = __builtin_shufflevector(a, b, 1, 5, 3, 7);
@@ -72,9 +78,9 @@ CROPSIGHT_AVX2_CLONES void build_row(int w, const float* __restrict xr, const fl
     const v4f s = fx + fy + fz;
     const v4i fin = (s - s) == (v4f){0, 0, 0, 0};
     const v4f f0 = {0, 0, 0, 0}, f1 = {1, 1, 1, 1};
-    const v4d n = __builtin_convertvector(fin ? f1 : f0, v4d);
-    const v4d x = __builtin_convertvector(fin ? fx : f0, v4d), y = __builtin_convertvector(fin ? fy : f0, v4d);
-    const v4d z = __builtin_convertvector(fin ? fz : f0, v4d);
+    v4d n, x, y, z;
+    to_double(fin ? f1 : f0, n), to_double(fin ? fx : f0, x), to_double(fin ? fy : f0, y);
+    to_double(fin ? fz : f0, z);
     v4d c0[4], c1[4];
     transpose4(n, x, y, z, c0);
     transpose4(x * x, x * y, x * z, y * y, c1);
@@ -145,7 +151,7 @@ CROPSIGHT_AVX2_CLONES void scatter_row(int count, const int* __restrict cols, co
     const int n = std::min(4, count - k);
     for (int e = 0; e < 6; ++e) {
       c[e] = few ? (v4d){0, 0, 0, 0} : c[e];
-      const v4f f = __builtin_convertvector(c[e], v4f);
+      const v4f f = to_float(c[e]);
       float* out = m + std::size_t(e) * stride + k;
       if (n == 4)
         __builtin_memcpy(out, &f, 16);
