@@ -106,7 +106,7 @@ CROPSIGHT_AVX2_CLONES void build_row(int w, const float* __restrict xr, const fl
 // (c1 + a0 - a1 - c0) from the corner cells of integral rows tops[s] and bottoms[s].
 inline void window_sums(int k, const int* __restrict cols, const int* __restrict sizes, const double* const* tops,
                         const double* const* bottoms, v4d w[3]) {
-  const int s = sizes[k], left = cols[k] - s / 2;
+  const int s = sizes[k], left = cols[k] - (s >> 1);  // s >= 2: the shift is s / 2
   const double* a0 = tops[s] + std::size_t(left) * kCell;
   const double* a1 = tops[s] + std::size_t(left + s) * kCell;
   const double* c0 = bottoms[s] + std::size_t(left) * kCell;
@@ -124,14 +124,14 @@ inline void window_sums(int k, const int* __restrict cols, const int* __restrict
 // bottoms[s]; writes xx, xy, xz, yy, yz, zz to m[j * stride + k] (float). Four pixels at a time:
 // their sums are transposed into one vector per sum across the pixels, and each entry is
 // q - (p·p')·(1/n) in 4-lane double vectors, lane by lane the scalar operations (AVX2 clone at
-// run time; no FMA), so the values are those of a scalar loop; the tail runs the same operations
-// on a block of which only the first pixels are stored.
+// run time; no FMA), so the values are those of a scalar loop. cols and sizes hold whole blocks
+// of four (list_row() pads them); of the last block only the first pixels are stored.
 CROPSIGHT_AVX2_CLONES void scatter_row(int count, const int* __restrict cols, const int* __restrict sizes,
                                        const double* const* tops, const double* const* bottoms, float* __restrict m,
                                        std::size_t stride, double min_valid_fraction) {
   for (int k = 0; k < count; k += 4) {
     v4d w[4][3];
-    for (int j = 0; j < 4; ++j) window_sums(std::min(k + j, count - 1), cols, sizes, tops, bottoms, w[j]);
+    for (int j = 0; j < 4; ++j) window_sums(k + j, cols, sizes, tops, bottoms, w[j]);
     v4d s0[4], s1[4];  // n, x, y, z and xx, xy, xz, yy, one vector across the four pixels each
     transpose4(w[0][0], w[1][0], w[2][0], w[3][0], s0);
     transpose4(w[0][1], w[1][1], w[2][1], w[3][1], s1);
@@ -145,7 +145,7 @@ CROPSIGHT_AVX2_CLONES void scatter_row(int count, const int* __restrict cols, co
     // Too few valid points in the window (only possible when NaN pixels do not break windows):
     // a zero matrix, which solve_row() turns into NaN.
     v4d side;
-    for (int j = 0; j < 4; ++j) side[j] = double(sizes[std::min(k + j, count - 1)]);
+    for (int j = 0; j < 4; ++j) side[j] = double(sizes[k + j]);
     const v4d mvf = {min_valid_fraction, min_valid_fraction, min_valid_fraction, min_valid_fraction};
     const auto few = s0[0] < mvf * side * side;
     const int n = std::min(4, count - k);
@@ -427,8 +427,8 @@ struct RowLists {
   RowLists(std::vector<float>& row, std::vector<int>& cols_v, std::vector<int>& sizes_v, int run)
       : stride(std::size_t(run)) {
     row.resize(13 * stride);
-    cols_v.resize(stride);
-    sizes_v.resize(stride);
+    cols_v.resize(stride + 3);  // + 3: list_row() pads the lists to whole blocks of 4 for scatter_row()
+    sizes_v.resize(stride + 3);
     M = row.data();
     PX = M + 6 * stride, PY = PX + stride, PZ = PY + stride;
     RX = PZ + stride, RY = RX + stride, RZ = RY + stride, RC = RZ + stride;
@@ -472,6 +472,9 @@ int list_row(const float* const xyz[3], const float* dist, const int* sel, std::
   }
   for (; k0 < m; ++k0)
     if (need[k0]) take(k0);
+  // Pad the columns and sizes to a whole block of four with copies of the last pixel, so that
+  // scatter_row() reads four valid entries per block (it stores only the first `count`).
+  for (int k = count; k % 4 != 0; ++k) L.cols[k] = L.cols[count - 1], L.sizes[k] = L.sizes[count - 1];
   return count;
 }
 
