@@ -318,16 +318,17 @@ void nan_rows(OrganizedCloud& cloud, int v0, int v1) {
 // Step 1. Depth-change map, PCL's rule: for ri < h-1, ci < w-1 the pixel is compared with its
 // right (H) and lower (V) neighbour, and a failed test marks both pixels. So the last column is
 // only compared with its left neighbour and the last row with the row above. Computed per row
-// as flags (branch-free, vectorised), then combined. change[i] = 1: no depth change at pixel i.
-CROPSIGHT_AVX2_CLONES void depth_change_map(const float* Z, int w, int h, float factor, bool nan_breaks,
-                                            std::vector<std::uint8_t>& change, std::vector<std::uint8_t>& flags) {
+// as flags (branch-free, vectorised), then combined into the chamfer distance's start values
+// (step 2): dist[i] = cap where pixel i is no depth change, 0 where it is.
+CROPSIGHT_AVX2_CLONES void depth_change_map(const float* Z, int w, int h, float factor, bool nan_breaks, float cap,
+                                            std::vector<float>& distance, std::vector<std::uint8_t>& flags) {
   const bool nan_ok = !nan_breaks;
-  change.assign(std::size_t(w) * std::size_t(h), 1);
+  distance.resize(std::size_t(w) * std::size_t(h));
   flags.assign(3 * std::size_t(w), 0);
   std::uint8_t* H = flags.data();  // this row: pixel vs right neighbour failed
   std::uint8_t* V = H + w;         // this row: pixel vs lower neighbour failed
   std::uint8_t* Vprev = V + w;     // previous row's V
-  std::uint8_t* ch = change.data();
+  float* dist = distance.data();
   for (int ri = 0; ri < h; ++ri) {
     const float* z0 = Z + std::size_t(ri) * w;
     if (ri < h - 1) {
@@ -349,9 +350,9 @@ CROPSIGHT_AVX2_CLONES void depth_change_map(const float* Z, int w, int h, float 
       std::fill(H, H + w, std::uint8_t(0));
       std::fill(V, V + w, std::uint8_t(0));
     }
-    std::uint8_t* c = ch + std::size_t(ri) * w;
-    c[0] = std::uint8_t(!(H[0] | V[0] | Vprev[0]));
-    for (int ci = 1; ci < w; ++ci) c[ci] = std::uint8_t(!(H[ci] | H[ci - 1] | V[ci] | Vprev[ci]));
+    float* d = dist + std::size_t(ri) * w;
+    d[0] = (H[0] | V[0] | Vprev[0]) ? 0.0f : cap;
+    for (int ci = 1; ci < w; ++ci) d[ci] = (H[ci] | H[ci - 1] | V[ci] | Vprev[ci]) ? 0.0f : cap;
     std::copy(V, V + w, Vprev);
   }
 }
@@ -362,15 +363,12 @@ CROPSIGHT_AVX2_CLONES void depth_change_map(const float* Z, int w, int h, float 
 // and only min(distance, smoothing) is used, and min(min(PCL, cap), smoothing) = min(PCL,
 // smoothing). Each row is split into a vectorised part (the three neighbours in the previous row)
 // and the sweep along the row (vectorised too, same float sums as PCL's sequential loop).
-void chamfer_distance(const std::uint8_t* ch, int w, int h, float cap, std::vector<float>& distance,
-                      std::vector<float>& scratch) {
-  const std::size_t n = std::size_t(w) * std::size_t(h);
+// `distance` holds the start values (depth_change_map()) and is turned into the map in place.
+void chamfer_distance(int w, int h, float cap, std::vector<float>& distance, std::vector<float>& scratch) {
   const int reach = int(cap) + 1;  // g^j(x) >= j - tiny > cap for j >= reach
-  distance.resize(n);
   scratch.resize(std::size_t(w));
   float* dist = distance.data();
   float* sa = scratch.data();  // the sweep's scratch row
-  for (std::size_t i = 0; i < n; ++i) dist[i] = ch[i] ? cap : 0.0f;
   for (int ri = 1; ri < h; ++ri) {
     const float* prev = dist + std::size_t(ri - 1) * w;
     float* cur = dist + std::size_t(ri) * w;
@@ -504,8 +502,9 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int
   const float* Y = cloud.y.data();
   const float* Z = cloud.z.data();
 
-  depth_change_map(Z, w, h, cfg_.max_depth_change_factor, cfg_.nan_breaks_window, change_, flags_);
-  chamfer_distance(change_.data(), w, h, cfg_.normal_smoothing_size, distance_, scratch_);
+  depth_change_map(Z, w, h, cfg_.max_depth_change_factor, cfg_.nan_breaks_window, cfg_.normal_smoothing_size, distance_,
+                   flags_);
+  chamfer_distance(w, h, cfg_.normal_smoothing_size, distance_, scratch_);
   const float* dist = distance_.data();
 
   // Step 3. Per row: the list of pixels that get a normal, their window sums and scatter
