@@ -32,64 +32,132 @@ constexpr int kSums = 10;  // n, x, y, z, xx, xy, xz, yy, yz, zz
 constexpr int kCell = 12;  // doubles per integral-image cell: the 10 sums + 2 padding (three 4-lane vectors)
 
 typedef double v4d __attribute__((vector_size(32)));
+typedef float v4f __attribute__((vector_size(16)));
+typedef int v4i __attribute__((vector_size(16)));
+
+// Lane-wise conversions, written element by element: GCC 12 turns these into one vcvtps2pd /
+// vcvtpd2ps in the AVX2 clones, but __builtin_convertvector into two halves through the stack.
+// (Out-parameters: a function returning a 32-byte vector changes the ABI of the baseline build.)
+inline void to_double(v4f f, v4d& d) { d = v4d{double(f[0]), double(f[1]), double(f[2]), double(f[3])}; }
+inline v4f to_float(v4d d) { return v4f{float(d[0]), float(d[1]), float(d[2]), float(d[3])}; }
+
+// The transpose of four 4-lane rows (a, b, c, d): out[j] = {a[j], b[j], c[j], d[j]}.
+inline void transpose4(v4d a, v4d b, v4d c, v4d d, v4d out[4]) {
+  const v4d t0 = __builtin_shufflevector(a, b, 0, 4, 2, 6), t1 = __builtin_shufflevector(a, b, 1, 5, 3, 7);
+  const v4d t2 = __builtin_shufflevector(c, d, 0, 4, 2, 6), t3 = __builtin_shufflevector(c, d, 1, 5, 3, 7);
+  out[0] = __builtin_shufflevector(t0, t2, 0, 1, 4, 5), out[1] = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
+  out[2] = __builtin_shufflevector(t0, t2, 2, 3, 6, 7), out[3] = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
+}
+
+// One pixel's step of build_row(): adds its cell (three 4-lane vectors) to the running row sums
+// and writes up + sums to out.
+inline void add_cell(v4d& a0, v4d& a1, v4d& a2, v4d p0, v4d p1, v4d p2, const double* up, double* out) {
+  a0 += p0, a1 += p1, a2 += p2;
+  v4d u0, u1, u2;
+  __builtin_memcpy(&u0, up, 32), __builtin_memcpy(&u1, up + 4, 32), __builtin_memcpy(&u2, up + 8, 32);
+  u0 += a0, u1 += a1, u2 += a2;
+  __builtin_memcpy(out, &u0, 32), __builtin_memcpy(out + 4, &u1, 32), __builtin_memcpy(out + 8, &u2, 32);
+}
 
 // One integral row: out[u + 1] = up[u + 1] + (sums over columns <= u of image row (xr, yr, zr)),
-// out[0] = 0. Three 4-lane vectors per cell (AVX2 clone at run time; SSE pairs otherwise): each
-// lane does the same double operations, in the same order, as a scalar loop over the 10 sums.
+// out[0] = 0. A pixel's cell is (n, x, y, z), (xx, xy, xz, yy), (yz, zz, 0, 0): four pixels'
+// values are computed at once, one sum per vector across the pixels (float test, conversion to
+// double, double products), then transposed into cells; the cells are added pixel by pixel in
+// column order, each lane the same double additions as a scalar loop over the 10 sums (AVX2
+// clone at run time; SSE pairs otherwise).
 CROPSIGHT_AVX2_CLONES void build_row(int w, const float* __restrict xr, const float* __restrict yr,
                                      const float* __restrict zr, const double* __restrict up, double* __restrict out) {
   v4d a0 = {0, 0, 0, 0}, a1 = {0, 0, 0, 0}, a2 = {0, 0, 0, 0};
+  const v4d zero = {0, 0, 0, 0};
   for (int q = 0; q < kCell; ++q) out[q] = 0.0;
-  for (int u = 0; u < w; ++u) {
-    // Non-finite points add nothing (PCL's isfinite(x + y + z) test), without a branch.
+  int u = 0;
+  for (; u + 4 <= w; u += 4) {
+    v4f fx, fy, fz;
+    __builtin_memcpy(&fx, xr + u, 16), __builtin_memcpy(&fy, yr + u, 16), __builtin_memcpy(&fz, zr + u, 16);
+    // Non-finite points add nothing (PCL's isfinite(x + y + z) test): s - s is 0 only for finite s.
+    const v4f s = fx + fy + fz;
+    const v4i fin = (s - s) == (v4f){0, 0, 0, 0};
+    const v4f f0 = {0, 0, 0, 0}, f1 = {1, 1, 1, 1};
+    v4d n, x, y, z;
+    to_double(fin ? f1 : f0, n), to_double(fin ? fx : f0, x), to_double(fin ? fy : f0, y);
+    to_double(fin ? fz : f0, z);
+    v4d c0[4], c1[4];
+    transpose4(n, x, y, z, c0);
+    transpose4(x * x, x * y, x * z, y * y, c1);
+    const v4d yz = y * z, zz = z * z;
+    const v4d lo = __builtin_shufflevector(yz, zz, 0, 4, 1, 5), hi = __builtin_shufflevector(yz, zz, 2, 6, 3, 7);
+    const v4d c2[4] = {__builtin_shufflevector(lo, zero, 0, 1, 4, 5), __builtin_shufflevector(lo, zero, 2, 3, 4, 5),
+                       __builtin_shufflevector(hi, zero, 0, 1, 4, 5), __builtin_shufflevector(hi, zero, 2, 3, 4, 5)};
+    for (int j = 0; j < 4; ++j) {
+      const std::size_t cell = std::size_t(u + j + 1) * kCell;
+      add_cell(a0, a1, a2, c0[j], c1[j], c2[j], up + cell, out + cell);
+    }
+  }
+  for (; u < w; ++u) {
     const bool fin = std::isfinite(xr[u] + yr[u] + zr[u]);
     const double x = fin ? xr[u] : 0.0, y = fin ? yr[u] : 0.0, z = fin ? zr[u] : 0.0;
-    const v4d p0 = {fin ? 1.0 : 0.0, x, y, z};
-    const v4d l1 = {x, x, x, y}, r1 = {x, y, z, y};
-    const v4d l2 = {y, z, 0.0, 0.0}, r2 = {z, z, 0.0, 0.0};
-    a0 += p0, a1 += l1 * r1, a2 += l2 * r2;
-    const double* a = up + std::size_t(u + 1) * kCell;
-    double* o = out + std::size_t(u + 1) * kCell;
-    v4d u0, u1, u2;
-    __builtin_memcpy(&u0, a, 32), __builtin_memcpy(&u1, a + 4, 32), __builtin_memcpy(&u2, a + 8, 32);
-    u0 += a0, u1 += a1, u2 += a2;
-    __builtin_memcpy(o, &u0, 32), __builtin_memcpy(o + 4, &u1, 32), __builtin_memcpy(o + 8, &u2, 32);
+    const v4d p0 = {fin ? 1.0 : 0.0, x, y, z}, p1 = {x * x, x * y, x * z, y * y}, p2 = {y * z, z * z, 0.0, 0.0};
+    const std::size_t cell = std::size_t(u + 1) * kCell;
+    add_cell(a0, a1, a2, p0, p1, p2, up + cell, out + cell);
+  }
+}
+
+// The window sums of pixel k: w[0] = n, x, y, z; w[1] = xx, xy, xz, yy; w[2] = yz, zz, -, -, each
+// (c1 + a0 - a1 - c0) from the corner cells of integral rows tops[s] and bottoms[s].
+inline void window_sums(int k, const int* __restrict cols, const int* __restrict sizes, const double* const* tops,
+                        const double* const* bottoms, v4d w[3]) {
+  const int s = sizes[k], left = cols[k] - (s >> 1);  // s >= 2: the shift is s / 2
+  const double* a0 = tops[s] + std::size_t(left) * kCell;
+  const double* a1 = tops[s] + std::size_t(left + s) * kCell;
+  const double* c0 = bottoms[s] + std::size_t(left) * kCell;
+  const double* c1 = bottoms[s] + std::size_t(left + s) * kCell;
+  for (int j = 0; j < 3; ++j) {
+    v4d p, q, r, t;
+    __builtin_memcpy(&p, c1 + 4 * j, 32), __builtin_memcpy(&q, a0 + 4 * j, 32);
+    __builtin_memcpy(&r, a1 + 4 * j, 32), __builtin_memcpy(&t, c0 + 4 * j, 32);
+    w[j] = p + q - r - t;
   }
 }
 
 // Window sums and centred scatter matrices of the `count` listed pixels of one row: pixel k at
 // column cols[k] with window side sizes[k] reads the corner cells of integral rows tops[s] and
-// bottoms[s]; writes xx, xy, xz, yy, yz, zz to m[j * stride + k] (float). The double operations
-// of the scalar form, (c1 + a0 - a1 - c0) per sum and q - (p·p')·(1/n) per entry, each done
-// lane by lane in 4-lane vectors (AVX2 clone at run time; no FMA), so the values are the same.
+// bottoms[s]; writes xx, xy, xz, yy, yz, zz to m[j * stride + k] (float). Four pixels at a time:
+// their sums are transposed into one vector per sum across the pixels, and each entry is
+// q - (p·p')·(1/n) in 4-lane double vectors, lane by lane the scalar operations (AVX2 clone at
+// run time; no FMA), so the values are those of a scalar loop. cols and sizes hold whole blocks
+// of four (list_row() pads them); of the last block only the first pixels are stored.
 CROPSIGHT_AVX2_CLONES void scatter_row(int count, const int* __restrict cols, const int* __restrict sizes,
                                        const double* const* tops, const double* const* bottoms, float* __restrict m,
                                        std::size_t stride, double min_valid_fraction) {
-  for (int k = 0; k < count; ++k) {
-    const int s = sizes[k], left = cols[k] - s / 2;
-    const double* a0 = tops[s] + std::size_t(left) * kCell;
-    const double* a1 = tops[s] + std::size_t(left + s) * kCell;
-    const double* c0 = bottoms[s] + std::size_t(left) * kCell;
-    const double* c1 = bottoms[s] + std::size_t(left + s) * kCell;
-    v4d w[3];
-    for (int j = 0; j < 3; ++j) {
-      v4d p, q, r, t;
-      __builtin_memcpy(&p, c1 + 4 * j, 32), __builtin_memcpy(&q, a0 + 4 * j, 32);
-      __builtin_memcpy(&r, a1 + 4 * j, 32), __builtin_memcpy(&t, c0 + 4 * j, 32);
-      w[j] = p + q - r - t;
-    }
-    // w[0] = n, x, y, z; w[1] = xx, xy, xz, yy; w[2] = yz, zz, -, -.
-    const double ic = 1.0 / w[0][0];
-    const v4d icv = {ic, ic, ic, ic};
-    const v4d l = __builtin_shufflevector(w[0], w[0], 1, 1, 1, 2), r = __builtin_shufflevector(w[0], w[0], 1, 2, 3, 2);
-    const v4d c = w[1] - l * r * icv;
-    m[k] = float(c[0]), m[stride + k] = float(c[1]), m[2 * stride + k] = float(c[2]), m[3 * stride + k] = float(c[3]);
-    m[4 * stride + k] = float(w[2][0] - w[0][2] * w[0][3] * ic);
-    m[5 * stride + k] = float(w[2][1] - w[0][3] * w[0][3] * ic);
+  for (int k = 0; k < count; k += 4) {
+    v4d w[4][3];
+    for (int j = 0; j < 4; ++j) window_sums(k + j, cols, sizes, tops, bottoms, w[j]);
+    v4d s0[4], s1[4];  // n, x, y, z and xx, xy, xz, yy, one vector across the four pixels each
+    transpose4(w[0][0], w[1][0], w[2][0], w[3][0], s0);
+    transpose4(w[0][1], w[1][1], w[2][1], w[3][1], s1);
+    const v4d lo = __builtin_shufflevector(w[0][2], w[1][2], 0, 4, 1, 5);
+    const v4d hi = __builtin_shufflevector(w[2][2], w[3][2], 0, 4, 1, 5);
+    const v4d yz = __builtin_shufflevector(lo, hi, 0, 1, 4, 5), zz = __builtin_shufflevector(lo, hi, 2, 3, 6, 7);
+    const v4d one = {1, 1, 1, 1}, ic = one / s0[0];
+    const v4d x = s0[1], y = s0[2], z = s0[3];
+    v4d c[6] = {s1[0] - x * x * ic, s1[1] - x * y * ic, s1[2] - x * z * ic,
+                s1[3] - y * y * ic, yz - y * z * ic,    zz - z * z * ic};
     // Too few valid points in the window (only possible when NaN pixels do not break windows):
     // a zero matrix, which solve_row() turns into NaN.
-    if (w[0][0] < min_valid_fraction * double(s) * double(s))
-      for (int j = 0; j < 6; ++j) m[std::size_t(j) * stride + k] = 0.0f;
+    v4d side;
+    for (int j = 0; j < 4; ++j) side[j] = double(sizes[k + j]);
+    const v4d mvf = {min_valid_fraction, min_valid_fraction, min_valid_fraction, min_valid_fraction};
+    const auto few = s0[0] < mvf * side * side;
+    const int n = std::min(4, count - k);
+    for (int e = 0; e < 6; ++e) {
+      c[e] = few ? (v4d){0, 0, 0, 0} : c[e];
+      const v4f f = to_float(c[e]);
+      float* out = m + std::size_t(e) * stride + k;
+      if (n == 4)
+        __builtin_memcpy(out, &f, 16);
+      else
+        for (int j = 0; j < n; ++j) out[j] = f[j];
+    }
   }
 }
 
@@ -160,50 +228,58 @@ CROPSIGHT_AVX2_CLONES void solve_row(int n, const float* __restrict m, std::size
 // is below, so only j < reach matter. By doubling: after the stages with shifts 1, 2, 4, ..., K
 // (stage K: c[i] = min(c[i], g^K(c_prev[i-K])), K sequential additions) c covers j = 0..2K-1;
 // each stage is one vectorised pass over the row. `a` is a scratch row of w floats.
+// Each stage reads the row from `src` and writes it to `dst` (the two buffers swap roles from
+// stage to stage: no copy of the row per stage).
 template <int K>
-inline void sweep_stage_forward(int w, float* __restrict c, float* __restrict a) {
-  for (int i = 0; i < w; ++i) a[i] = c[i];
+inline void sweep_stage_forward(int w, const float* __restrict src, float* __restrict dst) {
+  for (int i = 0; i < K && i < w; ++i) dst[i] = src[i];
   for (int i = K; i < w; ++i) {
-    float v = a[i - K];
+    float v = src[i - K];
     for (int m = 0; m < K; ++m) v = v + 1.0f;  // g^K: K roundings, as the sequential loop does
-    c[i] = std::min(c[i], v);
+    dst[i] = std::min(src[i], v);
   }
 }
 template <int K>
-inline void sweep_stage_backward(int w, float* __restrict c, float* __restrict a) {
-  for (int i = 0; i < w; ++i) a[i] = c[i];
+inline void sweep_stage_backward(int w, const float* __restrict src, float* __restrict dst) {
   for (int i = 0; i + K < w; ++i) {
-    float v = a[i + K];
+    float v = src[i + K];
     for (int m = 0; m < K; ++m) v = v + 1.0f;
-    c[i] = std::min(c[i], v);
+    dst[i] = std::min(src[i], v);
   }
+  for (int i = std::max(w - K, 0); i < w; ++i) dst[i] = src[i];
 }
 // Stages with a run-time shift, for smoothing sizes beyond 15 pixels.
-inline void sweep_stage_generic(int w, int k, bool forward, float* __restrict c, float* __restrict a) {
-  for (int i = 0; i < w; ++i) a[i] = c[i];
+inline void sweep_stage_generic(int w, int k, bool forward, const float* __restrict src, float* __restrict dst) {
   for (int i = 0; i < w; ++i) {
-    const int src = forward ? i - k : i + k;
-    if (src < 0 || src >= w) continue;
-    float v = a[src];
-    for (int m = 0; m < k; ++m) v = v + 1.0f;
-    c[i] = std::min(c[i], v);
+    const int from = forward ? i - k : i + k;
+    float v = src[i];
+    if (from >= 0 && from < w) {
+      v = src[from];
+      for (int m = 0; m < k; ++m) v = v + 1.0f;
+      v = std::min(src[i], v);
+    }
+    dst[i] = v;
   }
 }
 CROPSIGHT_AVX2_CLONES void sweep(int w, float* __restrict c, int reach, bool forward, float* __restrict a) {
   // After the stages with shifts 1..K, j = 0..2K-1 is covered; stop once that reaches reach - 1.
   if (reach <= 0) return;
+  float* src = c;
+  float* dst = a;
+  auto next = [&] { std::swap(src, dst); };
   if (forward) {
-    sweep_stage_forward<1>(w, c, a);
-    if (reach > 2) sweep_stage_forward<2>(w, c, a);
-    if (reach > 4) sweep_stage_forward<4>(w, c, a);
-    if (reach > 8) sweep_stage_forward<8>(w, c, a);
+    sweep_stage_forward<1>(w, src, dst), next();
+    if (reach > 2) sweep_stage_forward<2>(w, src, dst), next();
+    if (reach > 4) sweep_stage_forward<4>(w, src, dst), next();
+    if (reach > 8) sweep_stage_forward<8>(w, src, dst), next();
   } else {
-    sweep_stage_backward<1>(w, c, a);
-    if (reach > 2) sweep_stage_backward<2>(w, c, a);
-    if (reach > 4) sweep_stage_backward<4>(w, c, a);
-    if (reach > 8) sweep_stage_backward<8>(w, c, a);
+    sweep_stage_backward<1>(w, src, dst), next();
+    if (reach > 2) sweep_stage_backward<2>(w, src, dst), next();
+    if (reach > 4) sweep_stage_backward<4>(w, src, dst), next();
+    if (reach > 8) sweep_stage_backward<8>(w, src, dst), next();
   }
-  for (int k = 16; reach > k; k *= 2) sweep_stage_generic(w, k, forward, c, a);
+  for (int k = 16; reach > k; k *= 2) sweep_stage_generic(w, k, forward, src, dst), next();
+  if (src != c) std::copy(src, src + w, c);  // an odd number of stages ended in the scratch row
 }
 
 // The vertical part of a chamfer pass for pixels [lo, hi) of a row, in place: c[i] = min(a[i-1] +
@@ -225,29 +301,34 @@ void check_inputs(const IntegralNormalConfig& cfg, std::span<const int> select, 
   if (!select.empty() && select.size() != n) throw Error("normals", "selection size differs from the cloud size");
 }
 
+// NaN in n floats of each of the four outputs from offset a (AVX2 clone at run time: 8 floats a
+// store instead of the baseline's 4).
+CROPSIGHT_AVX2_CLONES void fill_nan4(float* __restrict nx, float* __restrict ny, float* __restrict nz,
+                                     float* __restrict cv, std::size_t n) {
+  constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+  for (std::size_t i = 0; i < n; ++i) nx[i] = kNaN, ny[i] = kNaN, nz[i] = kNaN, cv[i] = kNaN;
+}
+
 // NaN in rows [v0, v1) of the four outputs.
 void nan_rows(OrganizedCloud& cloud, int v0, int v1) {
-  constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-  const std::size_t a = std::size_t(v0) * cloud.width, b = std::size_t(v1) * cloud.width;
-  std::fill(cloud.nx.begin() + a, cloud.nx.begin() + b, kNaN);
-  std::fill(cloud.ny.begin() + a, cloud.ny.begin() + b, kNaN);
-  std::fill(cloud.nz.begin() + a, cloud.nz.begin() + b, kNaN);
-  std::fill(cloud.curvature.begin() + a, cloud.curvature.begin() + b, kNaN);
+  const std::size_t a = std::size_t(v0) * cloud.width, n = std::size_t(v1 - v0) * cloud.width;
+  fill_nan4(cloud.nx.data() + a, cloud.ny.data() + a, cloud.nz.data() + a, cloud.curvature.data() + a, n);
 }
 
 // Step 1. Depth-change map, PCL's rule: for ri < h-1, ci < w-1 the pixel is compared with its
 // right (H) and lower (V) neighbour, and a failed test marks both pixels. So the last column is
 // only compared with its left neighbour and the last row with the row above. Computed per row
-// as flags (branch-free, vectorised), then combined. change[i] = 1: no depth change at pixel i.
-CROPSIGHT_AVX2_CLONES void depth_change_map(const float* Z, int w, int h, float factor, bool nan_breaks,
-                                            std::vector<std::uint8_t>& change, std::vector<std::uint8_t>& flags) {
+// as flags (branch-free, vectorised), then combined into the chamfer distance's start values
+// (step 2): dist[i] = cap where pixel i is no depth change, 0 where it is.
+CROPSIGHT_AVX2_CLONES void depth_change_map(const float* Z, int w, int h, float factor, bool nan_breaks, float cap,
+                                            std::vector<float>& distance, std::vector<std::uint8_t>& flags) {
   const bool nan_ok = !nan_breaks;
-  change.assign(std::size_t(w) * std::size_t(h), 1);
+  distance.resize(std::size_t(w) * std::size_t(h));
   flags.assign(3 * std::size_t(w), 0);
   std::uint8_t* H = flags.data();  // this row: pixel vs right neighbour failed
   std::uint8_t* V = H + w;         // this row: pixel vs lower neighbour failed
   std::uint8_t* Vprev = V + w;     // previous row's V
-  std::uint8_t* ch = change.data();
+  float* dist = distance.data();
   for (int ri = 0; ri < h; ++ri) {
     const float* z0 = Z + std::size_t(ri) * w;
     if (ri < h - 1) {
@@ -269,9 +350,9 @@ CROPSIGHT_AVX2_CLONES void depth_change_map(const float* Z, int w, int h, float 
       std::fill(H, H + w, std::uint8_t(0));
       std::fill(V, V + w, std::uint8_t(0));
     }
-    std::uint8_t* c = ch + std::size_t(ri) * w;
-    c[0] = std::uint8_t(!(H[0] | V[0] | Vprev[0]));
-    for (int ci = 1; ci < w; ++ci) c[ci] = std::uint8_t(!(H[ci] | H[ci - 1] | V[ci] | Vprev[ci]));
+    float* d = dist + std::size_t(ri) * w;
+    d[0] = (H[0] | V[0] | Vprev[0]) ? 0.0f : cap;
+    for (int ci = 1; ci < w; ++ci) d[ci] = (H[ci] | H[ci - 1] | V[ci] | Vprev[ci]) ? 0.0f : cap;
     std::copy(V, V + w, Vprev);
   }
 }
@@ -282,15 +363,12 @@ CROPSIGHT_AVX2_CLONES void depth_change_map(const float* Z, int w, int h, float 
 // and only min(distance, smoothing) is used, and min(min(PCL, cap), smoothing) = min(PCL,
 // smoothing). Each row is split into a vectorised part (the three neighbours in the previous row)
 // and the sweep along the row (vectorised too, same float sums as PCL's sequential loop).
-void chamfer_distance(const std::uint8_t* ch, int w, int h, float cap, std::vector<float>& distance,
-                      std::vector<float>& scratch) {
-  const std::size_t n = std::size_t(w) * std::size_t(h);
+// `distance` holds the start values (depth_change_map()) and is turned into the map in place.
+void chamfer_distance(int w, int h, float cap, std::vector<float>& distance, std::vector<float>& scratch) {
   const int reach = int(cap) + 1;  // g^j(x) >= j - tiny > cap for j >= reach
-  distance.resize(n);
   scratch.resize(std::size_t(w));
   float* dist = distance.data();
   float* sa = scratch.data();  // the sweep's scratch row
-  for (std::size_t i = 0; i < n; ++i) dist[i] = ch[i] ? cap : 0.0f;
   for (int ri = 1; ri < h; ++ri) {
     const float* prev = dist + std::size_t(ri - 1) * w;
     float* cur = dist + std::size_t(ri) * w;
@@ -347,8 +425,8 @@ struct RowLists {
   RowLists(std::vector<float>& row, std::vector<int>& cols_v, std::vector<int>& sizes_v, int run)
       : stride(std::size_t(run)) {
     row.resize(13 * stride);
-    cols_v.resize(stride);
-    sizes_v.resize(stride);
+    cols_v.resize(stride + 3);  // + 3: list_row() pads the lists to whole blocks of 4 for scatter_row()
+    sizes_v.resize(stride + 3);
     M = row.data();
     PX = M + 6 * stride, PY = PX + stride, PZ = PY + stride;
     RX = PZ + stride, RY = RX + stride, RZ = RY + stride, RC = RZ + stride;
@@ -392,6 +470,9 @@ int list_row(const float* const xyz[3], const float* dist, const int* sel, std::
   }
   for (; k0 < m; ++k0)
     if (need[k0]) take(k0);
+  // Pad the columns and sizes to a whole block of four with copies of the last pixel, so that
+  // scatter_row() reads four valid entries per block (it stores only the first `count`).
+  for (int k = count; k % 4 != 0; ++k) L.cols[k] = L.cols[count - 1], L.sizes[k] = L.sizes[count - 1];
   return count;
 }
 
@@ -421,8 +502,9 @@ void IntegralNormalEstimator::compute(OrganizedCloud& cloud, std::span<const int
   const float* Y = cloud.y.data();
   const float* Z = cloud.z.data();
 
-  depth_change_map(Z, w, h, cfg_.max_depth_change_factor, cfg_.nan_breaks_window, change_, flags_);
-  chamfer_distance(change_.data(), w, h, cfg_.normal_smoothing_size, distance_, scratch_);
+  depth_change_map(Z, w, h, cfg_.max_depth_change_factor, cfg_.nan_breaks_window, cfg_.normal_smoothing_size, distance_,
+                   flags_);
+  chamfer_distance(w, h, cfg_.normal_smoothing_size, distance_, scratch_);
   const float* dist = distance_.data();
 
   // Step 3. Per row: the list of pixels that get a normal, their window sums and scatter

@@ -61,14 +61,13 @@ class IntegralNormalEstimator {
 
  private:
   IntegralNormalConfig cfg_;
-  std::vector<double> integral_;      // (w+1)·(h+1) cells × 10 sums: n, x, y, z, xx, xy, xz, yy, yz, zz
-  std::vector<float> distance_;       // chamfer distance to the nearest depth change, pixels
-  std::vector<float> scratch_;        // one row of the distance passes
-  std::vector<std::uint8_t> change_;  // 0 = depth change / NaN pixel
-  std::vector<std::uint8_t> flags_;   // per-row depth-change test results, then per-row "needs a normal" bytes
-  std::vector<float> row_;            // per-row scatter matrices, positions, results (structure of arrays)
-  std::vector<int> cols_;             // per-row: columns of the pixels that get a normal
-  std::vector<int> sizes_;            // per-row: their window sizes
+  std::vector<double> integral_;     // (w+1)·(h+1) cells × 10 sums: n, x, y, z, xx, xy, xz, yy, yz, zz
+  std::vector<float> distance_;      // chamfer distance to the nearest depth change, pixels
+  std::vector<float> scratch_;       // one row of the distance passes
+  std::vector<std::uint8_t> flags_;  // per-row depth-change test results, then per-row "needs a normal" bytes
+  std::vector<float> row_;           // per-row scatter matrices, positions, results (structure of arrays)
+  std::vector<int> cols_;            // per-row: columns of the pixels that get a normal
+  std::vector<int> sizes_;           // per-row: their window sizes
 };
 
 /// One-shot convenience wrapper (allocates its workspace).
