@@ -67,6 +67,9 @@ TEST(BroccoliSuggest, CandidateWeightsFallWithDistanceFromTheThreshold) {
   EXPECT_EQ(u.doubtful, 2);
   EXPECT_NEAR(u.max_weight, 1.0, 1e-9);
   EXPECT_NEAR(u.uncertainty, 1.0 + std::exp(-1.0), 1e-6);
+  EXPECT_EQ(u.heads, 2) << "0.4 and 0.9 lie at or above the threshold 0.4; the others are not the model's";
+  const std::vector<bs::Candidate> below{scored(0.39f), scored(-1.0f)};
+  EXPECT_EQ(bs::measure_frame(0, flat_frame(1000), below, 0.4f, cfg).heads, 0);
 }
 
 TEST(BroccoliSuggest, DepthDescriptorIsANormalisedHistogram) {
@@ -116,12 +119,40 @@ TEST(BroccoliSuggest, AFarFrameThatLooksTheSameGivesWayToADifferentView) {
   EXPECT_EQ(ranked, (std::vector<int>{0, 60, 30}));
 }
 
+// Frames equally doubtful and equally far apart: without the heads term the ranking keeps index
+// order; with it the frames the model sees most heads in come first, and the term adds to the
+// uncertainty rather than replacing it (the most doubtful frame, without heads, still comes before
+// less doubtful frames with one or two).
+TEST(BroccoliSuggest, FramesWithMoreHeadsComeFirstWhenHeadsWeigh) {
+  std::vector<bs::FrameUncertainty> frames;
+  const int heads[] = {1, 4, 0, 2};
+  for (int i = 0; i < 4; ++i) {
+    frames.push_back(synthetic(i * 20, 0.5, i));
+    frames.back().heads = heads[i];
+  }
+  bs::SuggestConfig cfg;
+  cfg.frames = 4;
+  cfg.heads_weight = 0.0;
+  EXPECT_EQ(ranked_indices(bs::rank_frames(frames, cfg)), (std::vector<int>{0, 20, 40, 60}));
+  cfg.heads_weight = 1.0;
+  const auto ranked = bs::rank_frames(frames, cfg);
+  EXPECT_EQ(ranked_indices(ranked), (std::vector<int>{20, 60, 0, 40}));
+  EXPECT_NEAR(ranked.front().gain, (cfg.floor + 1.0 + 1.0), 1e-9) << "full uncertainty and the most heads";
+  frames[2].uncertainty = 1.0;  // now the most doubtful frame, still without heads
+  frames[3].uncertainty = 0.0;
+  cfg.frames = 2;
+  EXPECT_EQ(ranked_indices(bs::rank_frames(frames, cfg)), (std::vector<int>{20, 40}));
+}
+
 TEST(BroccoliSuggest, BadSettingsAreRefused) {
   bs::SuggestConfig cfg;
   cfg.frames = 0;
   EXPECT_THROW(cfg.validate("test"), Error);
   cfg = {};
   cfg.diversity_weight = 1.5;
+  EXPECT_THROW(cfg.validate("test"), Error);
+  cfg = {};
+  cfg.heads_weight = -0.1;
   EXPECT_THROW(cfg.validate("test"), Error);
   cfg = {};
   cfg.score_scale = 0.0f;
