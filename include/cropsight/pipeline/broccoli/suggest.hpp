@@ -42,8 +42,9 @@ struct SuggestConfig {
   double max_depth_m = 2.0;
   /// Weight of the frame's predicted heads against its uncertainty: every frame holds many
   /// not-head clusters (leaves, soil, weeds) but few heads, so a model trained on a few frames is
-  /// short of heads; 0 = uncertainty only (the rule before 2026-12-07).
-  double heads_weight = 0.0;
+  /// short of heads. 1 (heads count as much as doubt) was chosen on two simulated field kinds and
+  /// judged on two others (docs/adapting.md); 0 = the earlier rule, uncertainty only.
+  double heads_weight = 1.0;
   /// Throws Error(where, ...) naming the first bad value.
   void validate(const char* where) const;
 };
