@@ -19,7 +19,7 @@ the frames with each of RULES (below) and trains on each rule's frames (a rule c
 as an earlier one reuses its result); --passes reads simulated passes from another OUT (nothing is
 written there).
 
-Writes OUT/results-RECIPE[-with-general].json (every run) and prints the markdown table of docs/adapting.md.
+Writes OUT/results-RECIPE[-with-general]-KINDS.json (every run) and prints the markdown table of docs/adapting.md.
 """
 import argparse
 import json
@@ -78,7 +78,8 @@ KINDS = {
 }
 # Ranking rules of `suggest`, written out in full so that the results do not depend on its defaults.
 # "old": the rule measured first (uncertainty and diversity); the others add the frame's predicted
-# heads (--heads-weight, suggest.hpp). Every rule tried on the development kinds A and B is listed.
+# heads (--heads-weight, suggest.hpp). Every rule tried on the development kinds A and B is listed;
+# "heads-1" was chosen there and is suggest's default since (docs/experiments/2026-12-07-suggest-rule.md).
 RULES = {"old": ["--heads-weight", "0"], "heads-0.5": ["--heads-weight", "0.5"], "heads-1": ["--heads-weight", "1"],
          "heads-2": ["--heads-weight", "2"]}
 POOL_FRAMES, TEST_FRAMES, NS = 40, 30, [5, 10, 20]
@@ -226,6 +227,8 @@ def main():
     if bad := [r for r in a.rules if r not in RULES]:
         ap.error(f"unknown rule {bad[0]}; known: {', '.join(RULES)}")
     kinds = {k: v for k, v in KINDS.items() if k[0] in a.kinds.split(",")}
+    if not kinds or len(kinds) != len(a.kinds.split(",")):
+        ap.error(f"--kinds {a.kinds}: letters of {', '.join(k[0] for k in KINDS)}, comma-separated")
     os.makedirs(os.path.join(a.out, "models-" + a.recipe), exist_ok=True)
     general = None
     if a.with_general:
