@@ -11,9 +11,15 @@ evaluated on the kind's test passes (`eval broccoli`: kappa and precision per cl
 (`--extra-data`), for N = 10 only (each such training takes minutes).
 
     scripts/broccoli-adaptation.py OUT [--recipe small|general] [--with-general] [--draws 5] [--pools 2]
+        [--kinds A,B] [--rules old[,RULE...]] [--passes DIR]
     (CROPSIGHT=build/bin/cropsight)
 
-Writes OUT/results-RECIPE[-with-general].json (every run) and prints the markdown table of docs/adapting.md.
+--kinds picks field kinds by letter (A and B develop a ranking rule, C and D judge it); --rules ranks
+the frames with each of RULES (below) and trains on each rule's frames (a rule choosing the same frames
+as an earlier one reuses its result); --passes reads simulated passes from another OUT (nothing is
+written there).
+
+Writes OUT/results-RECIPE[-with-general]-KINDS.json (every run) and prints the markdown table of docs/adapting.md.
 """
 import argparse
 import json
@@ -50,7 +56,32 @@ KINDS = {
         "inner_leaves": 4, "soil_roughness_m": 0.02, "clod_density_m2": 100, "weed_density_m2": 20,
         "tof_noise_at_1m_m": 0.005, "tof_flying_prob": 0.7, "tof_amplitude_min": 0.12, "random_dropout": 0.02})
         + ["randomize.one_row_prob=1", "randomize.leaf_family_weights=[1,0,0]"], "pools": [8521, 8522], "tests": [8531, 8532, 8533, 8534]},
+    # C and D judge a ranking rule chosen on A and B: defined (values and seeds) before any rule was
+    # tried, pinned away from A and B (the third leaf family, a low camera and small heads; a high
+    # camera over one dense row of large heads); seeds 86xx, used by no model or earlier experiment.
+    "C: obovate leaves, two rows, 1.10 m": {"sets": pinned({
+        "camera_height_m": 1.10, "camera_tilt_deg": 1, "row_spacing_m": 0.6, "in_row_spacing_m": 0.45,
+        "leaf_count": 7, "leaf_length_m": 0.30, "leaf_elevation_deg": 35,
+        "leaf_droop_deg": 60, "leaf_ruffle_m": 0.005, "plant_height_m": 0.50, "head_diameter_mm": [45, 140],
+        "head_dome_ratio": 0.75, "floret_ratio": 0.08, "floret_height": 0.2, "head_below_canopy_m": 0.05,
+        "inner_leaves": 1, "soil_roughness_m": 0.005, "clod_density_m2": 20, "weed_density_m2": 0,
+        "tof_noise_at_1m_m": 0.002, "tof_flying_prob": 0.3, "tof_amplitude_min": 0.04, "random_dropout": 0.005})
+        + ["randomize.one_row_prob=0", "randomize.leaf_family_weights=[0,0,1]"], "pools": [8601, 8602], "tests": [8611, 8612, 8613, 8614]},
+    "D: broad leaves, one dense row, 1.55 m": {"sets": pinned({
+        "camera_height_m": 1.55, "camera_tilt_deg": 5, "row_spacing_m": 0.55, "in_row_spacing_m": 0.27,
+        "leaf_count": 16, "leaf_length_m": 0.50, "leaf_elevation_deg": 70,
+        "leaf_droop_deg": 20, "leaf_ruffle_m": 0.025, "plant_height_m": 0.72, "head_diameter_mm": [80, 190],
+        "head_dome_ratio": 0.4, "floret_ratio": 0.24, "floret_height": 0.85, "head_below_canopy_m": 0.08,
+        "inner_leaves": 3, "soil_roughness_m": 0.03, "clod_density_m2": 140, "weed_density_m2": 30,
+        "tof_noise_at_1m_m": 0.006, "tof_flying_prob": 0.85, "tof_amplitude_min": 0.15, "random_dropout": 0.025})
+        + ["randomize.one_row_prob=1", "randomize.leaf_family_weights=[0,1,0]"], "pools": [8621, 8622], "tests": [8631, 8632, 8633, 8634]},
 }
+# Ranking rules of `suggest`, written out in full so that the results do not depend on its defaults.
+# "old": the rule measured first (uncertainty and diversity); the others add the frame's predicted
+# heads (--heads-weight, suggest.hpp). Every rule tried on the development kinds A and B is listed;
+# "heads-1" was chosen there and is suggest's default since (docs/experiments/2026-12-07-suggest-rule.md).
+RULES = {"old": ["--heads-weight", "0"], "heads-0.5": ["--heads-weight", "0.5"], "heads-1": ["--heads-weight", "1"],
+         "heads-2": ["--heads-weight", "2"]}
 POOL_FRAMES, TEST_FRAMES, NS = 40, 30, [5, 10, 20]
 
 # The general model's detector settings (models/README.md), so that only the training data differ.
@@ -76,7 +107,9 @@ def cs(*args):
     return json.loads(r.stdout) if "--json" in args else r.stdout
 
 
-def simulate(out, variety, seed, frames, sets, name):
+def simulate(out, variety, seed, frames, sets, name, passes=None):
+    if passes and os.path.isdir(os.path.join(passes, name)):
+        return os.path.join(passes, name)
     path = os.path.join(out, name)
     if not os.path.isdir(path):
         cs("simulate", "broccoli", "--variety", variety, "--seed", str(seed), "--frames", str(frames),
@@ -85,7 +118,24 @@ def simulate(out, variety, seed, frames, sets, name):
 
 
 def train_eval(out, name, pool, frames, tests, recipe, extra=None):
+    """Trains on `frames` of `pool` and evaluates on `tests`; a rerun with the same inputs reads the
+    result kept beside the model (so that adding a rule to a finished run trains only that rule)."""
     model = os.path.join(out, "models-" + recipe, name + ".json")
+    inputs = {"pool": pool, "frames": frames, "tests": tests, "extra": extra, "sets": RECIPES[recipe]}
+    kept = model[:-len(".json")] + ".result.json"
+    if os.path.exists(kept):
+        with open(kept) as f:
+            old = json.load(f)
+        if old["inputs"] == inputs:
+            return old["result"]
+    result = train_eval_now(model, pool, frames, tests, recipe, extra)
+    with open(kept + ".part", "w") as f:
+        json.dump({"inputs": inputs, "result": result}, f)
+    os.replace(kept + ".part", kept)
+    return result
+
+
+def train_eval_now(model, pool, frames, tests, recipe, extra):
     args = ["train", "broccoli", "--data", pool, "--frame-list", ",".join(map(str, frames)), "--config",
             "broccoli-oes-uk", "--out", model, "--force", "--json"]
     if extra:
@@ -103,42 +153,62 @@ def mean(rows, key):
 
 def run_kind(out, kind, spec, a, general):
     draws, with_general = a.draws, a.with_general
-    tests = [simulate(out, "random-wide", s, TEST_FRAMES, spec["sets"], f"test-{s}") for s in spec["tests"]]
+    tests = [simulate(out, "random-wide", s, TEST_FRAMES, spec["sets"], f"test-{s}", a.passes) for s in spec["tests"]]
     base = cs("eval", "broccoli", "--data", ",".join(tests), "--model", "broccoli-oes-general", "--json")
     res = {"kind": kind, "general": {"kappa": base["kappa"], "precision": base["precision"]}, "runs": []}
     for pool_seed in spec["pools"][:a.pools]:
-        pool = simulate(out, "random-wide", pool_seed, POOL_FRAMES, spec["sets"], f"pool-{pool_seed}")
+        pool = simulate(out, "random-wide", pool_seed, POOL_FRAMES, spec["sets"], f"pool-{pool_seed}", a.passes)
         ns = [10] if with_general else NS
+        # The ranking is greedy, so its first n frames are what `suggest --frames n` prints: one run
+        # per rule and pass serves every n.
+        rankings = {rule: cs("suggest", "--data", pool, "--frames", str(max(ns)), "--json", *RULES[rule])["frames"]
+                    for rule in a.rules}
         for n in ns:
-            ranked = cs("suggest", "--data", pool, "--frames", str(n), "--json")["frames"]
             extra = general if with_general else None
             tag = "g" if with_general else ""
-            row = {"pool": pool_seed, "n": n, "suggest": train_eval(out, f"s{tag}-{pool_seed}-{n}", pool, ranked,
-                                                                   tests, a.recipe, extra)}
+            row = {"pool": pool_seed, "n": n, "suggest": {}}
+            done = {}  # frames (as a tuple) -> result, so that rules that agree train once
+            for rule in a.rules:
+                ranked = rankings[rule][:n]
+                if tuple(ranked) not in done:
+                    done[tuple(ranked)] = train_eval(out, f"s{tag}-{rule}-{pool_seed}-{n}", pool, ranked, tests,
+                                                     a.recipe, extra)
+                row["suggest"][rule] = done[tuple(ranked)]
             rng = random.Random(pool_seed * 100 + n)
             row["random"] = [train_eval(out, f"r{tag}-{pool_seed}-{n}-{d}", pool,
                                         sorted(rng.sample(range(POOL_FRAMES), n)), tests, a.recipe, extra)
                              for d in range(draws)]
             res["runs"].append(row)
-            print(f"{kind} pool {pool_seed} N={n}: suggest kappa {mean([row['suggest']], 'kappa'):.3f} "
-                  f"P {mean([row['suggest']], 'precision'):.3f}; random kappa {mean(row['random'], 'kappa'):.3f} "
-                  f"P {mean(row['random'], 'precision'):.3f}", file=sys.stderr, flush=True)
+            said = "; ".join(f"{r} kappa {row['suggest'][r]['kappa']:.3f}" for r in a.rules)
+            drawn = " ".join(f"{d['kappa']:.3f}" for d in row["random"])
+            print(f"{kind} pool {pool_seed} N={n}: {said}; random kappa {drawn}", file=sys.stderr, flush=True)
     return res
 
 
-def table(results, with_general):
-    lines = ["| field kind | N | suggest: κ / precision | random (mean of draws): κ / precision | "
-             "general model alone: κ / precision |", "|---|---|---|---|---|"]
+def spread(vals):
+    m = sum(vals) / len(vals)
+    return m, (sum((v - m) ** 2 for v in vals) / max(1, len(vals) - 1)) ** 0.5
+
+
+def table(results, rules):
+    """κ per kind and N: each rule's (mean over labelling passes), the random draws' mean ± standard
+    deviation and range, and how many draws beat each rule (a draw against its own pass's rule)."""
+    lines = ["| kind | N | " + " | ".join(f"{r}: κ / precision" for r in rules) +
+             " | random κ: mean ± sd (min–max) | " + " | ".join(f"draws above {r}" for r in rules) +
+             " | general model: κ / precision |", "|---" * (4 + 2 * len(rules)) + "|"]
     for res in results:
         for n in sorted({r["n"] for r in res["runs"]}):
             rows = [r for r in res["runs"] if r["n"] == n]
-            s = [r["suggest"] for r in rows]
-            rd = [d for r in rows for d in r["random"]]
+            rd = [d["kappa"] for r in rows for d in r["random"] if d["kappa"] is not None]
+            cells = [f"{mean([r['suggest'][u] for r in rows], 'kappa'):.3f} / "
+                     f"{mean([r['suggest'][u] for r in rows], 'precision'):.3f}" for u in rules]
+            above = [f"{sum(d['kappa'] > r['suggest'][u]['kappa'] for r in rows for d in r['random'])} of {len(rd)}"
+                     for u in rules]
+            m, sd = spread(rd) if rd else (float("nan"), float("nan"))
             g = res["general"]
-            lines.append(f"| {res['kind']}{' + general set' if with_general else ''} | {n} | "
-                         f"{mean(s, 'kappa'):.3f} / {mean(s, 'precision'):.3f} | "
-                         f"{mean(rd, 'kappa'):.3f} / {mean(rd, 'precision'):.3f} | "
-                         f"{g['kappa']:.3f} / {g['precision']:.3f} |")
+            lines.append(f"| {res['kind'][0]} | {n} | " + " | ".join(cells) +
+                         f" | {m:.3f} ± {sd:.3f} ({min(rd, default=float('nan')):.3f}–{max(rd, default=float('nan')):.3f}) | " +
+                         " | ".join(above) + f" | {g['kappa']:.3f} / {g['precision']:.3f} |")
     return "\n".join(lines)
 
 
@@ -149,16 +219,25 @@ def main():
     ap.add_argument("--with-general", action="store_true", help="train with the general model's passes (N = 10)")
     ap.add_argument("--pools", type=int, default=2, help="labelling passes per field kind (1 or 2)")
     ap.add_argument("--recipe", choices=sorted(RECIPES), default="small", help="training settings (above)")
+    ap.add_argument("--kinds", default="A,B", help="field kinds by letter, e.g. A,B or C,D")
+    ap.add_argument("--rules", default="old", help="suggest's ranking rules, comma-separated: " + ", ".join(RULES))
+    ap.add_argument("--passes", help="another OUT whose simulated passes to read (not written)")
     a = ap.parse_args()
+    a.rules = a.rules.split(",")
+    if bad := [r for r in a.rules if r not in RULES]:
+        ap.error(f"unknown rule {bad[0]}; known: {', '.join(RULES)}")
+    kinds = {k: v for k, v in KINDS.items() if k[0] in a.kinds.split(",")}
+    if not kinds or len(kinds) != len(a.kinds.split(",")):
+        ap.error(f"--kinds {a.kinds}: letters of {', '.join(k[0] for k in KINDS)}, comma-separated")
     os.makedirs(os.path.join(a.out, "models-" + a.recipe), exist_ok=True)
     general = None
     if a.with_general:
         general = [simulate(a.out, v, s, f, [], f"general-{v}-{s}") for v, s, f in GENERAL_DATA]
-    results = [run_kind(a.out, k, spec, a, general) for k, spec in KINDS.items()]
-    name = f"results-{a.recipe}{'-with-general' if a.with_general else ''}.json"
+    results = [run_kind(a.out, k, spec, a, general) for k, spec in kinds.items()]
+    name = f"results-{a.recipe}{'-with-general' if a.with_general else ''}-{''.join(kinds_[0] for kinds_ in kinds)}.json"
     with open(os.path.join(a.out, name), "w") as f:
         json.dump(results, f, indent=1)
-    print(table(results, a.with_general))
+    print(table(results, a.rules))
 
 
 if __name__ == "__main__":

@@ -23,12 +23,14 @@ struct SuggestOptions {
 nlohmann::json suggestion_json(const SuggestOptions& o, int total,
                                const std::vector<pipeline::broccoli::SuggestedFrame>& ranked) {
   nlohmann::json frames = nlohmann::json::array(), scores = nlohmann::json::array(),
-                 uncertainty = nlohmann::json::array(), doubtful = nlohmann::json::array();
+                 uncertainty = nlohmann::json::array(), doubtful = nlohmann::json::array(),
+                 heads = nlohmann::json::array();
   for (const auto& r : ranked) {
     frames.push_back(r.frame);
     scores.push_back(json_number(r.gain));
     uncertainty.push_back(json_number(r.measured.uncertainty));
     doubtful.push_back(r.measured.doubtful);
+    heads.push_back(r.measured.heads);
   }
   return {{"data", o.data},
           {"model", o.model},
@@ -37,15 +39,18 @@ nlohmann::json suggestion_json(const SuggestOptions& o, int total,
           {"scores", scores},
           {"uncertainty", uncertainty},
           {"doubtful", doubtful},
+          {"heads", heads},
           {"score_scale", o.suggest.score_scale},
           {"neighbour_frames", o.suggest.neighbour_frames},
-          {"diversity_weight", o.suggest.diversity_weight}};
+          {"diversity_weight", o.suggest.diversity_weight},
+          {"heads_weight", o.suggest.heads_weight}};
 }
 
 void run(const SuggestOptions& o) {
   if (o.suggest.frames < 1) throw Error("--frames", "must be >= 1, got " + std::to_string(o.suggest.frames));
   if (!(o.suggest.score_scale > 0)) throw Error("--score-scale", "must be > 0 (score units)");
   if (!(o.suggest.neighbour_frames > 0)) throw Error("--neighbour-frames", "must be > 0");
+  if (!(o.suggest.heads_weight >= 0)) throw Error("--heads-weight", "must be >= 0");
   o.suggest.validate("--diversity");  // the one left: a weight in [0, 1]
   io::SequenceReader reader(o.data);
   if (reader.size() == 0) throw Error(o.data, "sequence has no frames to suggest from");
@@ -81,6 +86,9 @@ void add_suggest(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--diversity", o->suggest.diversity_weight,
                   "0 = uncertainty only, 1 = a frame like a chosen one gains nothing")
+      ->capture_default_str();
+  cmd->add_option("--heads-weight", o->suggest.heads_weight,
+                  "Weight of a frame's predicted heads against its uncertainty (0 = uncertainty only)")
       ->capture_default_str();
   cmd->add_flag("--quiet", o->quiet, "No progress lines");
   add_config_options(cmd, o->common);

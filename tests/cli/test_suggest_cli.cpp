@@ -69,6 +69,7 @@ TEST_F(SuggestCli, BadInputIsOneLine) {
   expect_one_line_error(run_cli("suggest --data " + shell_quoted(dir() / "nope") + " --frames 3"), "nope");
   expect_one_line_error(run_cli("suggest --data " + shell_quoted(seq()) + " --frames 0"), "--frames");
   expect_one_line_error(run_cli("suggest --data " + shell_quoted(seq()) + " --diversity 2"), "--diversity");
+  expect_one_line_error(run_cli("suggest --data " + shell_quoted(seq()) + " --heads-weight -1"), "--heads-weight");
   expect_one_line_error(run_cli("suggest --data " + shell_quoted(seq()) + " --model " + shell_quoted(dir() / "m.json")),
                         "m.json");
 }

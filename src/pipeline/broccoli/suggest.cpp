@@ -57,6 +57,7 @@ void SuggestConfig::validate(const char* where) const {
   if (!(neighbour_frames > 0)) bad("neighbour_frames must be > 0");
   if (!(diversity_weight >= 0 && diversity_weight <= 1)) bad("diversity_weight must lie in [0, 1]");
   if (!(floor >= 0)) bad("floor must be >= 0");
+  if (!(heads_weight >= 0)) bad("heads_weight must be >= 0");
   if (depth_bins < 1) bad("depth_bins must be >= 1");
   if (!(min_depth_m >= 0 && max_depth_m > min_depth_m)) bad("need 0 <= min_depth_m < max_depth_m");
 }
@@ -74,6 +75,7 @@ FrameUncertainty measure_frame(int index, const RgbdFrame& frame, std::span<cons
     u.max_weight = std::max(u.max_weight, weight);
     ++u.candidates;
     if (distance <= cfg.score_scale) ++u.doubtful;
+    if (c.score >= threshold) ++u.heads;
   }
   u.descriptor = suggest_detail::depth_histogram(frame, cfg);
   return u;
@@ -83,7 +85,8 @@ std::vector<SuggestedFrame> rank_frames(const std::vector<FrameUncertainty>& fra
   cfg.validate("suggest");
   const std::size_t n = frames.size(), want = std::min(n, std::size_t(cfg.frames));
   double top = 0.0;
-  for (const auto& f : frames) top = std::max(top, f.uncertainty);
+  int top_heads = 0;
+  for (const auto& f : frames) top = std::max(top, f.uncertainty), top_heads = std::max(top_heads, f.heads);
   const double scale = suggest_detail::typical_distance(frames);
   std::vector<double> similarity(n, 0.0);  // to the frames chosen so far
   std::vector<bool> chosen(n, false);
@@ -93,8 +96,9 @@ std::vector<SuggestedFrame> rank_frames(const std::vector<FrameUncertainty>& fra
     double best_gain = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < n; ++i) {
       if (chosen[i]) continue;
-      const double gain =
-          (cfg.floor + (top > 0 ? frames[i].uncertainty / top : 0.0)) * (1.0 - cfg.diversity_weight * similarity[i]);
+      const double heads = top_heads > 0 ? cfg.heads_weight * frames[i].heads / top_heads : 0.0;
+      const double gain = (cfg.floor + (top > 0 ? frames[i].uncertainty / top : 0.0) + heads) *
+                          (1.0 - cfg.diversity_weight * similarity[i]);
       if (gain > best_gain) best = i, best_gain = gain;  // strict: ties keep the lower index
     }
     chosen[best] = true;

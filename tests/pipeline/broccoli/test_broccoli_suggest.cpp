@@ -67,6 +67,9 @@ TEST(BroccoliSuggest, CandidateWeightsFallWithDistanceFromTheThreshold) {
   EXPECT_EQ(u.doubtful, 2);
   EXPECT_NEAR(u.max_weight, 1.0, 1e-9);
   EXPECT_NEAR(u.uncertainty, 1.0 + std::exp(-1.0), 1e-6);
+  EXPECT_EQ(u.heads, 2) << "0.4 and 0.9 lie at or above the threshold 0.4; the others are not the model's";
+  const std::vector<bs::Candidate> below{scored(0.39f), scored(-1.0f)};
+  EXPECT_EQ(bs::measure_frame(0, flat_frame(1000), below, 0.4f, cfg).heads, 0);
 }
 
 TEST(BroccoliSuggest, DepthDescriptorIsANormalisedHistogram) {
@@ -116,6 +119,31 @@ TEST(BroccoliSuggest, AFarFrameThatLooksTheSameGivesWayToADifferentView) {
   EXPECT_EQ(ranked, (std::vector<int>{0, 60, 30}));
 }
 
+// Frames equally doubtful and equally far apart: without the heads term the ranking keeps index
+// order; with it the frames the model sees most heads in come first, and the term adds to the
+// uncertainty rather than replacing it (the most doubtful frame, without heads, still comes before
+// less doubtful frames with one or two).
+TEST(BroccoliSuggest, FramesWithMoreHeadsComeFirstWhenHeadsWeigh) {
+  std::vector<bs::FrameUncertainty> frames;
+  const int heads[] = {1, 4, 0, 2};
+  for (int i = 0; i < 4; ++i) {
+    frames.push_back(synthetic(i * 20, 0.5, i));
+    frames.back().heads = heads[i];
+  }
+  bs::SuggestConfig cfg;
+  cfg.frames = 4;
+  cfg.heads_weight = 0.0;
+  EXPECT_EQ(ranked_indices(bs::rank_frames(frames, cfg)), (std::vector<int>{0, 20, 40, 60}));
+  cfg.heads_weight = 1.0;
+  const auto ranked = bs::rank_frames(frames, cfg);
+  EXPECT_EQ(ranked_indices(ranked), (std::vector<int>{20, 60, 0, 40}));
+  EXPECT_NEAR(ranked.front().gain, (cfg.floor + 1.0 + 1.0), 1e-9) << "full uncertainty and the most heads";
+  frames[2].uncertainty = 1.0;  // now the most doubtful frame, still without heads
+  frames[3].uncertainty = 0.0;
+  cfg.frames = 2;
+  EXPECT_EQ(ranked_indices(bs::rank_frames(frames, cfg)), (std::vector<int>{20, 40}));
+}
+
 TEST(BroccoliSuggest, BadSettingsAreRefused) {
   bs::SuggestConfig cfg;
   cfg.frames = 0;
@@ -124,13 +152,16 @@ TEST(BroccoliSuggest, BadSettingsAreRefused) {
   cfg.diversity_weight = 1.5;
   EXPECT_THROW(cfg.validate("test"), Error);
   cfg = {};
+  cfg.heads_weight = -0.1;
+  EXPECT_THROW(cfg.validate("test"), Error);
+  cfg = {};
   cfg.score_scale = 0.0f;
   EXPECT_THROW(bs::rank_frames({synthetic(0, 1.0, 0)}, cfg), Error);
 }
 
 // The whole ranking on a simulated wide field with the shipped general model: distinct frames of
-// the sequence, the most doubtful frame first, and the same ranking whether or not the sequence
-// carries labels (suggest never reads them).
+// the sequence, the frame with the most doubt and heads first, and the same ranking whether or not
+// the sequence carries labels (suggest never reads them).
 TEST(BroccoliSuggest, RanksASequenceWithTheGeneralModelIgnoringItsLabels) {
   const auto frames = testdata::simulate(testdata::sim_preset("random-wide"), 6111, 10);
   cropsight::testing::TempDir tmp;
@@ -156,13 +187,21 @@ TEST(BroccoliSuggest, RanksASequenceWithTheGeneralModelIgnoringItsLabels) {
   const std::vector<int> order = ranked_indices(ranked);
   EXPECT_EQ(std::set<int>(order.begin(), order.end()).size(), 4u);
   for (int f : order) EXPECT_TRUE(f >= 0 && f < 10);
+  cfg.frames = 4;
+  EXPECT_EQ(ranked_indices(bs::suggest_frames(*pipe, io::SequenceReader(tmp / "bare"), cfg)), order);
+  // Uncertainty alone (no heads term, no diversity): frames in falling order of doubt.
   cfg.frames = 10;
   cfg.diversity_weight = 0.0;
+  cfg.heads_weight = 0.0;
   const auto all = bs::suggest_frames(*pipe, io::SequenceReader(tmp / "bare"), cfg);
-  EXPECT_EQ(all.front().frame, order.front()) << "the first choice is the most doubtful frame";
   EXPECT_GT(all.front().measured.candidates, 0);
   for (std::size_t k = 1; k < all.size(); ++k) EXPECT_LE(all[k].measured.uncertainty, all[k - 1].measured.uncertainty);
-  cfg.frames = 4;
-  cfg.diversity_weight = bs::SuggestConfig{}.diversity_weight;
-  EXPECT_EQ(ranked_indices(bs::suggest_frames(*pipe, io::SequenceReader(tmp / "bare"), cfg)), order);
+  // The first choice of the full rule has the largest doubt-plus-heads term (nothing chosen yet).
+  double top_u = 0.0;
+  int top_h = 0;
+  for (const auto& f : all) top_u = std::max(top_u, f.measured.uncertainty), top_h = std::max(top_h, f.measured.heads);
+  auto term = [&](const bs::FrameUncertainty& m) {
+    return m.uncertainty / top_u + (top_h > 0 ? double(m.heads) / top_h : 0.0);
+  };
+  for (const auto& f : all) EXPECT_LE(term(f.measured), term(ranked.front().measured) + 1e-9) << "frame " << f.frame;
 }

@@ -8,11 +8,13 @@
 //   1. per frame (measure_frame): every described candidate's distance from the head threshold,
 //      |score − (model threshold + detection.score_margin)| in score units, becomes a weight
 //      exp(−distance / score_scale) in (0, 1]; the frame's uncertainty is their sum (a frame with
-//      many doubtful clusters teaches more than one with a single doubtful cluster). Its descriptor
+//      many doubtful clusters teaches more than one with a single doubtful cluster). Its heads are
+//      the candidates at or above the threshold (what the model takes for heads). Its descriptor
 //      is a histogram of the frame's valid depths (what the view looks like: canopy, soil, rows),
 //      cheap and independent of the model.
 //   2. greedy ranking (rank_frames): each step takes the frame with the largest
-//        gain = (floor + uncertainty / max uncertainty) × (1 − diversity_weight × similarity),
+//        gain = (floor + uncertainty / max uncertainty + heads_weight × heads / max heads)
+//               × (1 − diversity_weight × similarity),
 //      where similarity to the chosen frames is the largest of exp(−|index gap| / neighbour_frames)
 //      (neighbouring frames of a pass overlap) and exp(−descriptor distance / typical distance)
 //      (the median distance between frames, so that the scale suits every sequence).
@@ -38,6 +40,11 @@ struct SuggestConfig {
   int depth_bins = 24;            ///< descriptor: depth histogram bins over [min_depth_m, max_depth_m]
   double min_depth_m = 0.3;
   double max_depth_m = 2.0;
+  /// Weight of the frame's predicted heads against its uncertainty: every frame holds many
+  /// not-head clusters (leaves, soil, weeds) but few heads, so a model trained on a few frames is
+  /// short of heads. 1 (heads count as much as doubt) was chosen on two simulated field kinds and
+  /// judged on two others (docs/adapting.md); 0 = the earlier rule, uncertainty only.
+  double heads_weight = 1.0;
   /// Throws Error(where, ...) naming the first bad value.
   void validate(const char* where) const;
 };
@@ -49,13 +56,14 @@ struct FrameUncertainty {
   double max_weight = 0.0;        ///< the most doubtful candidate's weight, in [0, 1]
   int candidates = 0;             ///< described candidates scored
   int doubtful = 0;               ///< candidates within score_scale of the threshold
+  int heads = 0;                  ///< candidates scoring at or above the threshold
   std::vector<float> descriptor;  ///< normalised depth histogram (sums to 1; all 0 when no valid depth)
 };
 
 /// One ranked frame.
 struct SuggestedFrame {
   int frame = 0;
-  double gain = 0.0;  ///< the greedy gain when it was chosen (step 2), in [0, 1 + floor]
+  double gain = 0.0;  ///< the greedy gain when it was chosen (step 2), in [0, 1 + floor + heads_weight]
   FrameUncertainty measured;
 };
 
