@@ -1,5 +1,5 @@
 # cropsight_module(NAME <m> [SUBDIRS <folders>...] [DEPS <public targets>...] [PRIVATE_DEPS <targets>...]
-#                  [TEST_DEPS <targets>...])
+#                  [TEST_DEPS <targets>...] [THREADED_OPENCV_TESTS])
 #
 # Builds library cropsight_<m> from src/<m>/*.cpp and src/<m>/<subdir>/*.cpp for each SUBDIRS
 # folder (public headers in include/cropsight/<m>/[<subdir>/]), and, when tests/<m>/ (or
@@ -35,7 +35,7 @@ function(cropsight_unity_tests target)
 endfunction()
 
 function(cropsight_module)
-  cmake_parse_arguments(M "" "NAME" "SUBDIRS;DEPS;PRIVATE_DEPS;TEST_DEPS;PCH" ${ARGN})
+  cmake_parse_arguments(M "THREADED_OPENCV_TESTS" "NAME" "SUBDIRS;DEPS;PRIVATE_DEPS;TEST_DEPS;PCH" ${ARGN})
   set(src_globs ${PROJECT_SOURCE_DIR}/src/${M_NAME}/*.cpp)
   set(test_globs ${PROJECT_SOURCE_DIR}/tests/${M_NAME}/*.cpp)
   foreach(d IN LISTS M_SUBDIRS)
@@ -83,7 +83,14 @@ function(cropsight_module)
         CROPSIGHT_SHARED_DATA_DIR="${PROJECT_SOURCE_DIR}/../shared/data"
         CROPSIGHT_CLI="${PROJECT_BINARY_DIR}/bin/cropsight")
       cropsight_unity_tests(test_${M_NAME})
-      gtest_discover_tests(test_${M_NAME} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS ${M_NAME})
+      if(CROPSIGHT_SANITIZE AND M_THREADED_OPENCV_TESTS)
+        # Tests that run OpenCV on several threads: tests/lsan.supp names OpenCV frames (see
+        # CROPSIGHT_LSAN_FULL_UNWIND in the top CMakeLists.txt).
+        gtest_discover_tests(test_${M_NAME} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS ${M_NAME}
+                             ENVIRONMENT "${CROPSIGHT_LSAN_FULL_UNWIND}")
+      else()
+        gtest_discover_tests(test_${M_NAME} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS ${M_NAME})
+      endif()
     endif()
   endif()
 endfunction()

@@ -3,6 +3,7 @@
 // and nowhere else, and that no file the studio did not write is ever replaced.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -14,6 +15,7 @@
 #include "cropsight/nn/center_onnx.hpp"
 #include "cropsight/studio/image_label_store.hpp"
 #include "studio_fixture.hpp"
+#include "testing/testing.hpp"
 
 namespace cropsight::studio_testing {
 
@@ -237,10 +239,16 @@ TEST(StudioImages, NeverReplacesAFileItDidNotWrite) {
   EXPECT_EQ(studio.client().Post("/api/image/2/labels", kTwoShapes, "application/json")->status, 200);
 }
 
+// On a real grape image (the drawn blobs of image_folder() hold no grapes): the shipped CenterNet's
+// bunches and peduncles, each a box inside the image with one of its classes.
 TEST(StudioImages, ProposalsFromTheProjectsOwnDetector) {
+  const fs::path grape_image = cropsight::testing::shared_data_dir() / "grape/coco_train/JPEGImages/grape_image_1.jpg";
+  CROPSIGHT_REQUIRE_DATA(grape_image);
   testing::TempDir dir;
-  auto options = images_options(image_folder(dir.path()));
-  options.detector = "detector-grape";  // the shipped CenterNet (ONNX): bunch and peduncle
+  fs::create_directories(dir / "grapes");
+  fs::copy_file(grape_image, dir / "grapes" / grape_image.filename());
+  auto options = images_options(dir / "grapes");
+  options.detector = "detector-grape";  // the shipped CenterNet: bunch and peduncle
   RunningStudio studio(options);
   auto client = studio.client();
   const auto info = nlohmann::json::parse(client.Get("/api/info")->body);
@@ -248,9 +256,13 @@ TEST(StudioImages, ProposalsFromTheProjectsOwnDetector) {
   EXPECT_EQ(info["classes"], nlohmann::json(nn::load_center_detector(io::find_model("detector-grape"))->class_names()));
   const auto proposals = client.Get("/api/image/0/proposals");
   ASSERT_EQ(proposals->status, 200);
-  for (const auto& s : nlohmann::json::parse(proposals->body)["shapes"]) {
-    EXPECT_TRUE(info["classes"].contains(s["label"])) << s;
-    EXPECT_EQ(s["box"].size(), 4u);
+  const auto shapes = nlohmann::json::parse(proposals->body)["shapes"];  // a copy: the parsed document is a temporary
+  EXPECT_FALSE(shapes.empty()) << "the grape detector proposes nothing on a grape image";
+  for (const auto& s : shapes) {
+    EXPECT_NE(std::find(info["classes"].begin(), info["classes"].end(), s["label"]), info["classes"].end()) << s;
+    ASSERT_EQ(s["box"].size(), 4u) << s;
+    const double x1 = s["box"][0], y1 = s["box"][1], x2 = s["box"][2], y2 = s["box"][3];
+    EXPECT_TRUE(0 <= x1 && x1 < x2 && x2 <= 1280 && 0 <= y1 && y1 < y2 && y2 <= 720) << s;
   }
 }
 
