@@ -111,7 +111,11 @@ TrainingStatus TrainingJob::status() const {
 // both models on the held-out frames.
 void TrainingJob::run(std::vector<int> labelled, bool with_general) {
   run_job(mutex_, status_, [&] {
-    const auto [train, test] = split_held_out(labelled);
+    // Named vectors, not a structured binding: Clang 14 (the fuzz build) cannot capture one in the
+    // scoring lambda below.
+    const auto split = split_held_out(labelled);
+    const std::vector<int>& train = split.first;
+    const std::vector<int>& test = split.second;
     const double steps = double(train.size() + 2 * test.size()) + (with_general ? double(general_frames_) : 0.0);
     double done = 0;
     auto step = [&] {
