@@ -385,6 +385,58 @@ std::int64_t count_at(const nlohmann::json& o, const char* key) {
   return o.contains(key) && o[key].is_string() ? parse_count(o[key].get<std::string>()) : -1;
 }
 
+// One tree's nodes (check_tree_model below says why each rule): num_nodes entries in every per-node
+// array, children after their parents, parents that name them, features within the model's, no
+// categorical splits.
+void check_tree_nodes(const nlohmann::json& t, std::int64_t num_feature, const std::string& where) {
+  const auto fail = [&](const std::string& problem) { throw Error(where, "not a valid XGBoost model: " + problem); };
+  const auto param = t.find("tree_param");
+  if (param == t.end() || !param->is_object() || !param->contains("num_nodes") || !(*param)["num_nodes"].is_string())
+    fail("a tree without tree_param.num_nodes");
+  const std::int64_t nodes = parse_count((*param)["num_nodes"].get<std::string>());
+  if (nodes < 1 || nodes > (std::int64_t(1) << 31)) fail("a tree's num_nodes is not a positive count");
+  for (const char* key : {"left_children", "right_children", "parents", "split_indices", "split_conditions",
+                          "default_left", "base_weights", "loss_changes", "sum_hessian"}) {
+    const auto a = t.find(key);
+    if (a == t.end() || !a->is_array() || std::int64_t(a->size()) != nodes)
+      fail(std::string("a tree's \"") + key + "\" does not hold num_nodes entries");
+  }
+  for (const char* key : {"left_children", "right_children"}) {
+    const auto& a = t[key];
+    for (std::int64_t i = 0; i < nodes; ++i) {
+      const auto& c = a[std::size_t(i)];
+      if (!c.is_number_integer()) fail(std::string("a tree's \"") + key + "\" holds a non-integer");
+      const std::int64_t v = c.get<std::int64_t>();
+      if (v != -1 && (v <= i || v >= nodes)) fail("a tree node's child is not a later node of the same tree");
+    }
+  }
+  // XGBoost writes each node's parent index unchecked: a parent far out of range was a SEGV in
+  // RegTree::LoadModel (fuzzing finding 23), a near one silent heap corruption.
+  const auto& parents = t["parents"];
+  for (std::int64_t i = 0; i < nodes; ++i) {
+    const auto& p = parents[std::size_t(i)];
+    if (!p.is_number_integer()) fail("a tree's \"parents\" holds a non-integer");
+    const std::int64_t v = p.get<std::int64_t>();
+    const bool ok = i == 0 ? v == kNoParent
+                           : v >= 0 && v < i &&
+                                 (t["left_children"][std::size_t(v)].get<std::int64_t>() == i ||
+                                  t["right_children"][std::size_t(v)].get<std::int64_t>() == i);
+    if (!ok) fail("a tree node's parent is not the node whose child it is");
+  }
+  // A split's feature index reads the feature row: it must be one of the model's features.
+  for (const auto& f : t["split_indices"])
+    if (!f.is_number_integer() || f.get<std::int64_t>() < 0 || f.get<std::int64_t>() >= num_feature)
+      fail("a tree's split feature is not one of the model's " + std::to_string(num_feature) + " features");
+  // cropsight trains numerical splits only; XGBoost's categorical ones index further arrays.
+  if (const auto st = t.find("split_type"); st != t.end())
+    if (!st->is_array() || std::int64_t(st->size()) != nodes ||
+        !std::all_of(st->begin(), st->end(), [](const nlohmann::json& v) { return v == 0; }))
+      fail("a tree's \"split_type\" is not num_nodes numerical splits (0)");
+  for (const char* key : {"categories", "categories_nodes", "categories_segments", "categories_sizes"})
+    if (const auto c = t.find(key); c != t.end() && !(c->is_array() && c->empty()))
+      fail(std::string("a tree holds categorical splits (\"") + key + "\")");
+}
+
 // XGBoost 1.7 trusts a JSON model's tree structure: two trees with the same "id" made its
 // parallel loader free one tree twice (fuzz_gbdt_model; fuzz/regressions/gbdt_model/), and a
 // child index out of range or pointing back up would send compile() out of bounds or round a
@@ -438,52 +490,7 @@ void check_tree_model(const nlohmann::json& j, const std::string& where) {
     if (!t.is_object() || id == t.end() || !id->is_number_integer() || id->get<std::int64_t>() < 0 ||
         id->get<std::int64_t>() >= std::int64_t(n) || seen[std::size_t(id->get<std::int64_t>())]++)
       fail("tree ids must be 0.." + std::to_string(n) + "-1, each once");
-    const auto param = t.find("tree_param");
-    std::int64_t nodes = 0;
-    if (param == t.end() || !param->is_object() || !param->contains("num_nodes") || !(*param)["num_nodes"].is_string())
-      fail("a tree without tree_param.num_nodes");
-    nodes = parse_count((*param)["num_nodes"].get<std::string>());
-    if (nodes < 1 || nodes > (std::int64_t(1) << 31)) fail("a tree's num_nodes is not a positive count");
-    for (const char* key : {"left_children", "right_children", "parents", "split_indices", "split_conditions",
-                            "default_left", "base_weights", "loss_changes", "sum_hessian"}) {
-      const auto a = t.find(key);
-      if (a == t.end() || !a->is_array() || std::int64_t(a->size()) != nodes)
-        fail(std::string("a tree's \"") + key + "\" does not hold num_nodes entries");
-    }
-    for (const char* key : {"left_children", "right_children"}) {
-      const auto& a = t[key];
-      for (std::int64_t i = 0; i < nodes; ++i) {
-        const auto& c = a[std::size_t(i)];
-        if (!c.is_number_integer()) fail(std::string("a tree's \"") + key + "\" holds a non-integer");
-        const std::int64_t v = c.get<std::int64_t>();
-        if (v != -1 && (v <= i || v >= nodes)) fail("a tree node's child is not a later node of the same tree");
-      }
-    }
-    // XGBoost writes each node's parent index unchecked: a parent far out of range was a SEGV in
-    // RegTree::LoadModel (fuzzing finding 23), a near one silent heap corruption.
-    const auto& parents = t["parents"];
-    for (std::int64_t i = 0; i < nodes; ++i) {
-      const auto& p = parents[std::size_t(i)];
-      if (!p.is_number_integer()) fail("a tree's \"parents\" holds a non-integer");
-      const std::int64_t v = p.get<std::int64_t>();
-      const bool ok = i == 0 ? v == kNoParent
-                             : v >= 0 && v < i &&
-                                   (t["left_children"][std::size_t(v)].get<std::int64_t>() == i ||
-                                    t["right_children"][std::size_t(v)].get<std::int64_t>() == i);
-      if (!ok) fail("a tree node's parent is not the node whose child it is");
-    }
-    // A split's feature index reads the feature row: it must be one of the model's features.
-    for (const auto& f : t["split_indices"])
-      if (!f.is_number_integer() || f.get<std::int64_t>() < 0 || f.get<std::int64_t>() >= num_feature)
-        fail("a tree's split feature is not one of the model's " + std::to_string(num_feature) + " features");
-    // cropsight trains numerical splits only; XGBoost's categorical ones index further arrays.
-    if (const auto st = t.find("split_type"); st != t.end())
-      if (!st->is_array() || std::int64_t(st->size()) != nodes ||
-          !std::all_of(st->begin(), st->end(), [](const nlohmann::json& v) { return v == 0; }))
-        fail("a tree's \"split_type\" is not num_nodes numerical splits (0)");
-    for (const char* key : {"categories", "categories_nodes", "categories_segments", "categories_sizes"})
-      if (const auto c = t.find(key); c != t.end() && !(c->is_array() && c->empty()))
-        fail(std::string("a tree holds categorical splits (\"") + key + "\")");
+    check_tree_nodes(t, num_feature, where);
   }
 }
 
