@@ -15,18 +15,11 @@ namespace fs = std::filesystem;
 namespace {
 
 // The map's id of a track: the filter merges a head lost and found again into the earlier one
-// (merged_ids: from → into), so a frame's detection may carry an id the map no longer has.
+// (merged_ids: from → into), so a frame's detection may carry an id the map no longer has. The
+// kept id is always a group's first track, never itself merged (as HeadMapper::finish relies on).
 int map_id(int id, const std::vector<std::pair<int, int>>& merged) {
-  for (std::size_t step = 0; step <= merged.size(); ++step) {
-    bool moved = false;
-    for (const auto& [from, into] : merged)
-      if (from == id) {
-        id = into;
-        moved = true;
-        break;
-      }
-    if (!moved) break;
-  }
+  for (const auto& [from, into] : merged)
+    if (from == id) return into;
   return id;
 }
 
